@@ -1,0 +1,12 @@
+# Every third-party dependency, found once. scripts/deps installs the Debian packages.
+find_package(PkgConfig REQUIRED)
+find_package(glm REQUIRED)
+find_package(assimp REQUIRED)
+find_package(embree 3 REQUIRED)
+find_package(fmt REQUIRED)
+find_package(nlohmann_json REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(PNG REQUIRED)
+find_package(GTest REQUIRED)
+find_package(benchmark REQUIRED)
+find_package(Threads REQUIRED)

@@ -1,0 +1,15 @@
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace lancer {
+
+// Bad input from the user: a file, a ray, an option. The CLI prints what() on one
+// line and exits non-zero; messages name the file and line (or the ray index).
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace lancer

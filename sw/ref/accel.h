@@ -1,0 +1,58 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "ref/ray.h"
+#include "scene/scene.h"
+
+namespace lancer {
+
+// Named statistics of one or more queries (pbrt-style counters, not prints).
+struct TraversalStats {
+  uint64_t nodesVisited = 0;   // BVH/octree nodes or grid voxels entered
+  uint64_t triangleTests = 0;  // ray-triangle tests performed
+
+  TraversalStats& operator+=(const TraversalStats& o) {
+    nodesVisited += o.nodesVisited;
+    triangleTests += o.triangleTests;
+    return *this;
+  }
+};
+
+// The query interface every acceleration structure implements: the reference
+// grid, octree and BVH, and the Embree oracle. Implementations are immutable
+// after construction, so queries may run concurrently.
+class Accel {
+ public:
+  virtual ~Accel() = default;
+  virtual std::string_view name() const = 0;
+  // Closest hit in (0, ray.tMax], ties broken by closerHit(); nullopt on a miss.
+  virtual std::optional<Hit> intersect(const Ray& ray, TraversalStats* stats = nullptr) const = 0;
+  // Any hit in (0, ray.tMax]: the shadow-ray query.
+  virtual bool intersectP(const Ray& ray) const = 0;
+};
+
+enum class AccelKind { Grid, Octree, Bvh, Embree };
+
+std::string_view toString(AccelKind kind);
+// Throws InputError for an unknown name.
+AccelKind parseAccelKind(std::string_view name);
+
+// Build parameters; zero means "choose by the documented heuristic".
+struct AccelOptions {
+  int gridResolution = 0;  // voxels along the longest axis (1..1024)
+  int octreeMaxDepth = 0;  // 1..kMaxOctreeDepth
+  int octreeLeafSize = 0;  // split a node holding more triangles than this
+  int bvhLeafSize = 4;     // largest leaf the SAH builder may make
+};
+
+// Builds the structure over `scene` (which must outlive it). Throws InputError
+// on impossible options.
+std::unique_ptr<Accel> makeAccel(AccelKind kind, const Scene& scene,
+                                 const AccelOptions& options = {});
+
+}  // namespace lancer

@@ -1,0 +1,22 @@
+#pragma once
+
+#include <optional>
+
+#include "ref/accel.h"
+
+namespace lancer {
+
+// Tests every triangle: the slow, obviously correct answer the structures are
+// checked against in the tests.
+class BruteForce final : public Accel {
+ public:
+  explicit BruteForce(const Scene& scene) : scene_(scene) {}
+  std::string_view name() const override { return "brute-force"; }
+  std::optional<Hit> intersect(const Ray& ray, TraversalStats* stats = nullptr) const override;
+  bool intersectP(const Ray& ray) const override;
+
+ private:
+  const Scene& scene_;
+};
+
+}  // namespace lancer

@@ -1,0 +1,131 @@
+#include "scene/scene.h"
+
+#include <array>
+#include <fstream>
+#include <tuple>
+#include <map>
+#include <utility>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <fmt/format.h>
+
+#include "common/error.h"
+
+namespace lancer {
+
+void Scene::computeBounds() {
+  bounds = Aabb{};
+  for (const Triangle& t : triangles) bounds.extend(t.bounds());
+}
+
+namespace {
+
+glm::vec3 toVec(const aiVector3D& v) { return {v.x, v.y, v.z}; }
+
+Scene loadWithAssimp(const std::string& path) {
+  if (!std::ifstream(path)) throw InputError(fmt::format("{}: cannot open file", path));
+  Assimp::Importer importer;
+  // Keep vertices exactly as written (no joining, no normal generation): shared
+  // vertices are already shared by index in the formats we read, and any
+  // re-computation would risk moving them.
+  const unsigned flags = aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                         aiProcess_SortByPType;
+  const aiScene* ai = importer.ReadFile(path, flags);
+  if (!ai || !ai->mRootNode) {
+    throw InputError(fmt::format("{}: cannot read scene: {}", path, importer.GetErrorString()));
+  }
+  Scene scene;
+  scene.name = path;
+  for (unsigned m = 0; m < ai->mNumMaterials; ++m) {
+    const aiMaterial* mat = ai->mMaterials[m];
+    Material material;
+    aiString name;
+    if (mat->Get(AI_MATKEY_NAME, name) == AI_SUCCESS) material.name = name.C_Str();
+    aiColor3D color;
+    if (mat->Get(AI_MATKEY_COLOR_DIFFUSE, color) == AI_SUCCESS) material.diffuse = {color.r, color.g, color.b};
+    if (mat->Get(AI_MATKEY_COLOR_EMISSIVE, color) == AI_SUCCESS) material.emission = {color.r, color.g, color.b};
+    scene.materials.push_back(material);
+  }
+  if (scene.materials.empty()) scene.materials.push_back(Material{"default"});
+  // Triangle order: meshes in aiScene order, faces in order within a mesh.
+  for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
+    const aiMesh* mesh = ai->mMeshes[m];
+    if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+    const uint32_t material = mesh->mMaterialIndex < scene.materials.size() ? mesh->mMaterialIndex : 0;
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const aiFace& face = mesh->mFaces[f];
+      if (face.mNumIndices != 3) continue;  // points and lines left by SortByPType
+      Triangle tri{toVec(mesh->mVertices[face.mIndices[0]]), toVec(mesh->mVertices[face.mIndices[1]]),
+                   toVec(mesh->mVertices[face.mIndices[2]])};
+      for (const glm::vec3& v : {tri.v0, tri.v1, tri.v2}) {
+        if (!allFinite(v)) {
+          throw InputError(fmt::format("{}: mesh {} face {} has a non-finite vertex", path, m, f));
+        }
+      }
+      scene.triangles.push_back(tri);
+      scene.materialOf.push_back(material);
+    }
+  }
+  if (scene.triangles.empty()) throw InputError(fmt::format("{}: scene has no triangles", path));
+  scene.computeBounds();
+  return scene;
+}
+
+}  // namespace
+
+Scene loadScene(const std::string& nameOrPath) {
+  if (nameOrPath == kDefaultSceneName || nameOrPath == "cornell") return makeCornellBox();
+  if (nameOrPath.starts_with("builtin:")) {
+    throw InputError(fmt::format("unknown built-in scene '{}' (available: {})", nameOrPath, kDefaultSceneName));
+  }
+  return loadWithAssimp(nameOrPath);
+}
+
+Scene subdivide(const Scene& scene, int times) {
+  Scene out = scene;
+  for (int i = 0; i < times; ++i) {
+    Scene next;
+    next.name = out.name;
+    next.materials = out.materials;
+    next.triangles.reserve(out.triangles.size() * 4);
+    for (size_t t = 0; t < out.triangles.size(); ++t) {
+      const Triangle& tri = out.triangles[t];
+      // 0.5f * (a + b) is symmetric in a and b, so both triangles sharing an edge
+      // compute a bit-identical midpoint.
+      const glm::vec3 m01 = 0.5f * (tri.v0 + tri.v1);
+      const glm::vec3 m12 = 0.5f * (tri.v1 + tri.v2);
+      const glm::vec3 m20 = 0.5f * (tri.v2 + tri.v0);
+      for (const Triangle& child : {Triangle{tri.v0, m01, m20}, Triangle{m01, tri.v1, m12},
+                                    Triangle{m20, m12, tri.v2}, Triangle{m01, m12, m20}}) {
+        next.triangles.push_back(child);
+        next.materialOf.push_back(out.materialOf[t]);
+      }
+    }
+    out = std::move(next);
+  }
+  out.computeBounds();
+  return out;
+}
+
+void writeObj(const Scene& scene, const std::filesystem::path& path) {
+  std::ofstream out(path);
+  if (!out) throw InputError(fmt::format("{}: cannot write file", path.string()));
+  // Deduplicate vertices so the OBJ keeps the mesh's connectivity.
+  std::map<std::tuple<float, float, float>, size_t> index;
+  std::vector<glm::vec3> vertices;
+  auto vertexId = [&](const glm::vec3& v) {
+    auto [it, inserted] = index.try_emplace({v.x, v.y, v.z}, vertices.size() + 1);
+    if (inserted) vertices.push_back(v);
+    return it->second;
+  };
+  std::vector<std::array<size_t, 3>> faces;
+  for (const Triangle& t : scene.triangles) faces.push_back({vertexId(t.v0), vertexId(t.v1), vertexId(t.v2)});
+  out << "# written by lancer from " << scene.name << "\n";
+  for (const glm::vec3& v : vertices) out << fmt::format("v {:.9g} {:.9g} {:.9g}\n", v.x, v.y, v.z);
+  for (const auto& f : faces) out << fmt::format("f {} {} {}\n", f[0], f[1], f[2]);
+  if (!out) throw InputError(fmt::format("{}: write failed", path.string()));
+}
+
+}  // namespace lancer
