@@ -1,0 +1,119 @@
+#pragma once
+
+// Records that cross the hardware boundary, written out bit by bit once.
+//
+// Each record has a field list (name, element width, element count, signedness)
+// from which gen_rt_pkg emits the SystemVerilog `typedef struct packed`, and from
+// which packWire()/unpackWire() place the C++ values at the same bit offsets.
+// Layout rule (SystemVerilog's): the first field is most significant; within an
+// array field `logic [N-1:0][W-1:0] f`, element 0 is least significant.
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "golden/formats.h"
+
+namespace lancer::fx {
+
+struct FieldSpec {
+  const char* name;
+  int width;   // bits of one element
+  int count;   // elements (1 for a scalar)
+  bool isSigned;
+  const char* doc;
+};
+
+struct RecordSpec {
+  const char* name;  // SystemVerilog type name, ends in _t
+  const char* doc;
+  std::span<const FieldSpec> fields;
+};
+
+constexpr int recordBits(std::span<const FieldSpec> fields) {
+  int bits = 0;
+  for (const FieldSpec& f : fields) bits += f.width * f.count;
+  return bits;
+}
+constexpr int wireWords(int bits) { return (bits + 31) / 32; }
+
+// ---- isect_ray_t: a quantized ray, as the intersection pipeline sees it -------
+inline constexpr FieldSpec kIsectRayFields[] = {
+    {"ray_id", kRayIdBits, 1, false, "ray id, carried to the result"},
+    {"org", kPosBits, 3, false, "origin on the position lattice, [0]=x"},
+    {"dir", kDirBits, 3, true, "direction, dominant component = +-DIR_MAX"},
+};
+// ---- isect_tri_t: a quantized triangle -----------------------------------------
+inline constexpr FieldSpec kIsectTriFields[] = {
+    {"prim_id", kPrimIdBits, 1, false, "triangle id, carried to the result"},
+    {"v0", kPosBits, 3, false, "vertex 0 on the position lattice"},
+    {"v1", kPosBits, 3, false, "vertex 1 (weight u)"},
+    {"v2", kPosBits, 3, false, "vertex 2 (weight v)"},
+};
+// ---- isect_res_t: one pipeline result; all numeric fields zero on a miss -------
+inline constexpr FieldSpec kIsectResFields[] = {
+    {"ray_id", kRayIdBits, 1, false, "ray id of the request"},
+    {"prim_id", kPrimIdBits, 1, false, "triangle id of the request"},
+    {"hit", 1, 1, false, "1 if the ray hits the triangle at t > 0"},
+    {"t_num", kTNumBits, 1, false, "t = t_num / (DIR_MAX * det)"},
+    {"det", kDetAbsBits, 1, false, "|determinant|, > 0 on a hit"},
+    {"u_num", kBaryBits, 1, false, "u = u_num / det (weight of v1)"},
+    {"v_num", kBaryBits, 1, false, "v = v_num / det (weight of v2)"},
+};
+
+inline constexpr RecordSpec kIsectRay{"isect_ray_t", "a quantized ray", kIsectRayFields};
+inline constexpr RecordSpec kIsectTri{"isect_tri_t", "a quantized triangle", kIsectTriFields};
+inline constexpr RecordSpec kIsectRes{"isect_res_t", "an intersection result", kIsectResFields};
+inline constexpr RecordSpec kAllRecords[] = {kIsectRay, kIsectTri, kIsectRes};
+
+inline constexpr int kIsectRayBits = recordBits(kIsectRayFields);
+inline constexpr int kIsectTriBits = recordBits(kIsectTriFields);
+inline constexpr int kIsectResBits = recordBits(kIsectResFields);
+
+// ---- The C++ views of the records ----------------------------------------------
+struct QRay {
+  uint32_t id = 0;
+  std::array<int64_t, 3> org{};  // 0 .. kPosMax
+  std::array<int64_t, 3> dir{};  // -kDirMax .. kDirMax
+  bool operator==(const QRay&) const = default;
+};
+
+struct QTriangle {
+  uint32_t id = 0;
+  std::array<std::array<int64_t, 3>, 3> v{};  // v[vertex][axis], 0 .. kPosMax
+  bool operator==(const QTriangle&) const = default;
+};
+
+struct IsectResult {
+  uint32_t rayId = 0;
+  uint32_t primId = 0;
+  bool hit = false;
+  u128 tNum = 0;
+  u128 det = 0;
+  u128 uNum = 0;
+  u128 vNum = 0;
+  bool operator==(const IsectResult&) const = default;
+};
+
+// A record as bits: 32-bit words, least significant first (Verilator's VlWide order).
+using Wire = std::vector<uint32_t>;
+
+Wire packWire(const QRay& ray);
+Wire packWire(const QTriangle& tri);
+Wire packWire(const IsectResult& res);
+QRay unpackRay(std::span<const uint32_t> wire);
+QTriangle unpackTriangle(std::span<const uint32_t> wire);
+IsectResult unpackResult(std::span<const uint32_t> wire);
+
+// The field values of a record, flattened in declaration order (arrays element 0 first).
+std::vector<u128> fieldValues(const QRay& ray);
+std::vector<u128> fieldValues(const QTriangle& tri);
+std::vector<u128> fieldValues(const IsectResult& res);
+
+// Places flattened field values into a wire image by the field list, and back
+// (signed fields are sign-extended on the way out).
+Wire packFields(std::span<const FieldSpec> fields, std::span<const u128> values);
+std::vector<u128> unpackFields(std::span<const FieldSpec> fields, std::span<const uint32_t> wire);
+
+}  // namespace lancer::fx
