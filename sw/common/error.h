@@ -13,3 +13,14 @@ class InputError : public std::runtime_error {
 };
 
 }  // namespace lancer
+
+namespace lancer {
+
+// The run completed but its check failed (a model disagreed with the golden
+// model). The CLI has already printed the report; it exits with status 4.
+class CheckFailed : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace lancer

@@ -1,0 +1,209 @@
+// lancer run: rays from the reference tracer through a model of the hardware,
+// checked bit for bit against the golden model.
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "cli/options.h"
+#include "common/error.h"
+#include "common/progress.h"
+#include "driver/candidates.h"
+#include "driver/devices.h"
+#include "driver/golden_device.h"
+#include "driver/report.h"
+#include "golden/isect.h"
+#include "ref/bvh.h"
+#include "ref/shade.h"
+#include "ref/trace.h"
+#include "scene/rays_file.h"
+
+namespace lancer::cli {
+
+namespace {
+
+// 500 MHz: one stage per wide multiply (up to 66x17 bits at the default
+// formats) is comfortable at this clock in a 16 nm-class process; see docs/driver.md.
+constexpr double kDefaultClockMhz = 500.0;
+// Host-side candidate boxes grow by this many lattice units, which covers the
+// float rounding of the dequantized ray (the hardware's ray itself is exact).
+constexpr float kCandidateMarginUnits = 2.0f;
+
+struct Args {
+  SceneOptions scene;
+  RaySource source;
+  std::string accel = "bvh";
+  std::string model = "golden";
+  double clockMhz = kDefaultClockMhz;
+  int posBits = fx::kPosBits;
+  int dirBits = fx::kDirBits;
+  double stall = 0.0;
+  uint64_t seed = 1;
+  std::string report, image, hits, wave;
+  std::string repro = "lancer-mismatch.rays";
+};
+
+void writeHardwareHits(const std::string& path, const IsectJobResult& job) {
+  std::unique_ptr<FILE, int (*)(FILE*)> out(std::fopen(path.c_str(), "w"), &std::fclose);
+  if (!out) throw InputError(fmt::format("{}: cannot write hits file", path));
+  fmt::print(out.get(), "ray,hit,prim,t,u,v,t_num,det,u_num,v_num\n");
+  for (size_t i = 0; i < job.hits.size(); ++i) {
+    const auto hit = sceneHit(job, i);
+    if (!hit) {
+      fmt::print(out.get(), "{},0,-1,inf,0,0,0x0,0x0,0x0,0x0\n", i);
+      continue;
+    }
+    const fx::IsectResult& r = *job.hits[i];
+    auto hex = [](fx::u128 v) {
+      return uint64_t(v >> 64) ? fmt::format("0x{:x}{:016x}", uint64_t(v >> 64), uint64_t(v))
+                               : fmt::format("0x{:x}", uint64_t(v));
+    };
+    fmt::print(out.get(), "{},1,{},{:.9g},{:.9g},{:.9g},{},{},{},{}\n", i, hit->prim, hit->t, hit->u, hit->v,
+               hex(r.tNum), hex(r.det), hex(r.uNum), hex(r.vNum));
+  }
+  if (std::ferror(out.get())) throw InputError(fmt::format("{}: write failed", path));
+}
+
+void checkFormats(const Args& args) {
+  if (args.posBits != fx::kPosBits || args.dirBits != fx::kDirBits) {
+    throw InputError(fmt::format(
+        "the hardware in this build uses {}-bit positions and {}-bit directions, not {} and {}: "
+        "configure a build with -DLANCER_POS_BITS={} -DLANCER_DIR_BITS={}",
+        fx::kPosBits, fx::kDirBits, args.posBits, args.dirBits, args.posBits, args.dirBits));
+  }
+  if (!(args.clockMhz > 0.0)) throw InputError(fmt::format("--clock-mhz {} must be positive", args.clockMhz));
+  if (!(args.stall >= 0.0 && args.stall < 1.0)) {
+    throw InputError(fmt::format("--stall {} must lie in [0, 1)", args.stall));
+  }
+}
+
+void run(const Args& args) {
+  checkFormats(args);
+  const auto hostStart = std::chrono::steady_clock::now();
+  auto model = makeIsectDevice(args.model);
+  const Scene scene = loadScene(args.scene.scene);
+  const Rays rays = loadRays(args.source, scene);
+  const Quantizer quantizer(scene.bounds);
+  const Bvh bvh(scene, AccelOptions{});
+
+  GoldenIsectDevice golden;
+  IsectJobConfig config;
+  config.stream.outputStallProbability = args.stall;
+  config.stream.seed = args.seed;
+  config.stream.wavePath = args.wave;
+  Progress progress(fmt::format("run {}", model->name()), rays.rays.size());
+  const IsectJobResult job =
+      runIsectJob(scene, rays.rays, quantizer, bvhCandidates(bvh, kCandidateMarginUnits * float(quantizer.unit())),
+                  *model, golden, config, [&](size_t n) { progress.advance(n); });
+  progress.finish();
+
+  const auto reference = traceRays(bvh, rays.rays);
+  const ReferenceComparison cmp = compareWithReference(scene, rays.rays, reference, job, quantizer);
+  const double hostSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - hostStart).count();
+  const double clockHz = args.clockMhz * 1e6;
+  const double testsPerCycle = job.model.cycles ? double(job.intersectionTests) / double(job.model.cycles) : 0.0;
+  const double rate = job.model.cycles ? double(job.intersectionTests) / (double(job.model.cycles) / clockHz) : 0.0;
+  size_t hitCount = 0, inLattice = 0;
+  for (size_t i = 0; i < job.hits.size(); ++i) {
+    hitCount += job.hits[i].has_value();
+    inLattice += job.rays[i].has_value();
+  }
+
+  fmt::print("run: {} ({} triangles), {} rays from {}, model {}, accel {}, formats pos {} / dir {} bits\n",
+             scene.name, scene.size(), rays.rays.size(), rays.origin, model->name(), args.accel, fx::kPosBits,
+             fx::kDirBits);
+  fmt::print("  intersection tests  {} in {} cycles ({:.4f} tests/cycle{})\n", job.intersectionTests,
+             job.model.cycles, testsPerCycle, job.model.cycleAccurate ? "" : ", ideal timing: golden model");
+  fmt::print("  simulated rate      {:.1f} M intersections/s at {:g} MHz ({:.1f}x the AR250's 80 M/s)\n",
+             rate / 1e6, args.clockMhz, rate / 80e6);
+  fmt::print("  host                {:.2f} s in all, {:.2f} s in the model ({:.2f} M tests/s), {:.2f} s in golden\n",
+             hostSeconds, job.modelSeconds, job.modelSeconds > 0 ? double(job.intersectionTests) / job.modelSeconds / 1e6 : 0.0,
+             job.goldenSeconds);
+  fmt::print("  bit-exact vs golden {} rays ({} entered the lattice, {} hit), {} mismatches\n", rays.rays.size(),
+             inLattice, hitCount, job.mismatchedRays);
+  fmt::print("  vs float reference  {} rays differ ({} hit/miss, {} triangle); t error max {:.3f}, mean {:.4f} lattice units\n",
+             cmp.disagreements, cmp.hitMissDiffers, cmp.primDiffers, cmp.maxTError, cmp.meanTError);
+
+  if (!args.image.empty()) {
+    if (!rays.camera) throw InputError("--image needs camera rays (no --rays file)");
+    std::vector<std::optional<Hit>> hits(job.hits.size());
+    for (size_t i = 0; i < hits.size(); ++i) hits[i] = sceneHit(job, i);
+    writePng(shadeHits(scene, rays.rays, hits, rays.camera->width(), rays.camera->height()), args.image);
+    fmt::print("  image               {} (drawn from the model's hits)\n", args.image);
+  }
+  if (!args.hits.empty()) writeHardwareHits(args.hits, job);
+
+  nlohmann::json report = {
+      {"command", "run"},
+      {"scene", scene.name},
+      {"triangles", scene.size()},
+      {"accel", args.accel},
+      {"model", std::string(model->name())},
+      {"pos_bits", fx::kPosBits},
+      {"dir_bits", fx::kDirBits},
+      {"rays", rays.rays.size()},
+      {"rays_in_lattice", inLattice},
+      {"rays_hit", hitCount},
+      {"mismatches", job.mismatchedRays},
+      {"cycles", job.model.cycles},
+      {"cycle_accurate", job.model.cycleAccurate},
+      {"intersection_tests", job.intersectionTests},
+      {"tests_per_cycle", testsPerCycle},
+      {"clock_hz", clockHz},
+      {"intersections_per_second", rate},
+      {"host_seconds", hostSeconds},
+      {"model_seconds", job.modelSeconds},
+      {"golden_seconds", job.goldenSeconds},
+      {"reference_disagreements", cmp.disagreements},
+      {"reference_hit_miss_differs", cmp.hitMissDiffers},
+      {"reference_prim_differs", cmp.primDiffers},
+      {"t_error_max_lattice_units", cmp.maxTError},
+      {"t_error_mean_lattice_units", cmp.meanTError},
+      {"output_stall_probability", args.stall},
+      {"seed", args.seed},
+  };
+  if (job.firstMismatch) {
+    const Mismatch& m = *job.firstMismatch;
+    writeRaysFile(args.repro, {rays.rays[m.rayId]}, fmt::format("ray {} of {}: mismatch reproducer", m.rayId, rays.origin));
+    const std::string replay = fmt::format("lancer run --scene {} --rays {} --model {} --accel {} --stall {} --seed {}",
+                                           scene.name, args.repro, model->name(), args.accel, args.stall, args.seed);
+    const std::string text = describeMismatch(m, replay);
+    fmt::print(stderr, "{}", text);
+    report["first_mismatch"] = {{"ray", m.rayId}, {"report", text}, {"repro_rays", args.repro}};
+  }
+  writeReport(args.report, report);
+  if (job.mismatchedRays) {
+    throw CheckFailed(fmt::format("model {} disagrees with the golden model on {} rays", model->name(),
+                                  job.mismatchedRays));
+  }
+}
+
+}  // namespace
+
+void addRunCommand(CLI::App& app) {
+  auto args = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("run", "Run rays through a hardware model and check it bit for bit");
+  args->scene.add(*cmd);
+  args->source.add(*cmd);
+  cmd->add_option("--accel", args->accel, "Traversal: bvh (host BVH feeding the intersection pipeline)")
+      ->check(CLI::IsMember({"bvh"}))
+      ->capture_default_str();
+  cmd->add_option("--model", args->model, "Model of the hardware")
+      ->check(CLI::IsMember(isectDeviceNames()))
+      ->capture_default_str();
+  cmd->add_option("--clock-mhz", args->clockMhz, "Clock of the simulated chip")->capture_default_str();
+  cmd->add_option("--pos-bits", args->posBits, "Expected position width (must match the build)");
+  cmd->add_option("--dir-bits", args->dirBits, "Expected direction width (must match the build)");
+  cmd->add_option("--stall", args->stall, "Probability per cycle that the consumer stalls the pipeline output")
+      ->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Seed of the stall pattern")->capture_default_str();
+  cmd->add_option("--report", args->report, "JSON report file");
+  cmd->add_option("--image", args->image, "PNG drawn from the model's own hits");
+  cmd->add_option("--hits", args->hits, "CSV of the model's hits, with the raw fixed-point fields in hex");
+  cmd->add_option("--wave", args->wave, "FST waveform of the RTL (rtl model only; slow)");
+  cmd->add_option("--repro", args->repro, "Where a mismatch's reproducer rays file goes")->capture_default_str();
+  cmd->callback([args] { run(*args); });
+}
+
+}  // namespace lancer::cli

@@ -1,0 +1,79 @@
+// lancer trace: closest hits of camera rays or a rays file, as CSV.
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "cli/options.h"
+#include "common/error.h"
+#include "common/progress.h"
+#include "ref/trace.h"
+
+namespace lancer::cli {
+
+namespace {
+
+void writeHitsCsv(const std::string& path, const std::vector<std::optional<Hit>>& hits) {
+  std::unique_ptr<FILE, int (*)(FILE*)> out(std::fopen(path.c_str(), "w"), &std::fclose);
+  if (!out) throw InputError(fmt::format("{}: cannot write hits file", path));
+  fmt::print(out.get(), "ray,hit,prim,t,u,v\n");
+  for (size_t i = 0; i < hits.size(); ++i) {
+    if (hits[i]) {
+      fmt::print(out.get(), "{},1,{},{:.9g},{:.9g},{:.9g}\n", i, hits[i]->prim, hits[i]->t, hits[i]->u, hits[i]->v);
+    } else {
+      fmt::print(out.get(), "{},0,-1,inf,0,0\n", i);
+    }
+  }
+  if (std::ferror(out.get())) throw InputError(fmt::format("{}: write failed", path));
+}
+
+}  // namespace
+
+void addTraceCommand(CLI::App& app) {
+  struct Args {
+    SceneOptions scene;
+    RaySource source;
+    AccelArgs accel;
+    std::string hits;
+    std::string report;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("trace", "Closest hits of rays with the reference tracer, as CSV");
+  args->scene.add(*cmd);
+  args->source.add(*cmd);
+  args->accel.add(*cmd, {"grid", "octree", "bvh", "embree"});
+  cmd->add_option("--hits", args->hits, "CSV file to write: ray,hit,prim,t,u,v")->required();
+  cmd->add_option("--report", args->report, "JSON report file");
+  cmd->callback([args] {
+    const Scene scene = loadScene(args->scene.scene);
+    const Rays rays = loadRays(args->source, scene);
+    double buildSeconds = 0;
+    const auto accel = buildAccel(args->accel.accel, scene, args->accel.options, &buildSeconds);
+    TraversalStats stats;
+    const auto start = std::chrono::steady_clock::now();
+    Progress progress("trace", rays.rays.size());
+    const auto hits = traceRays(*accel, rays.rays, &stats, [&](size_t n) { progress.advance(n); });
+    progress.finish();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    writeHitsCsv(args->hits, hits);
+    size_t hitCount = 0;
+    for (const auto& h : hits) hitCount += h.has_value();
+    fmt::print("trace: {} ({} triangles), {} rays from {}, {} hit, {} in {:.3f} s -> {}\n", scene.name,
+               scene.size(), rays.rays.size(), rays.origin, hitCount, accel->name(), seconds, args->hits);
+    writeReport(args->report, {{"command", "trace"},
+                               {"scene", scene.name},
+                               {"triangles", scene.size()},
+                               {"accel", accel->name()},
+                               {"rays_source", rays.origin},
+                               {"rays", rays.rays.size()},
+                               {"hits", hitCount},
+                               {"build_seconds", buildSeconds},
+                               {"trace_seconds", seconds},
+                               {"nodes_visited", stats.nodesVisited},
+                               {"triangle_tests", stats.triangleTests},
+                               {"hits_csv", args->hits}});
+  });
+}
+
+}  // namespace lancer::cli

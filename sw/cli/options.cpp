@@ -1,0 +1,100 @@
+#include "cli/options.h"
+
+#include <chrono>
+#include <fstream>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+
+namespace lancer::cli {
+
+namespace {
+
+std::optional<glm::vec3> toVec3(const std::vector<float>& v) {
+  if (v.empty()) return std::nullopt;
+  return glm::vec3(v[0], v[1], v[2]);
+}
+
+void addVec3(CLI::App& app, const std::string& name, std::vector<float>& into, const std::string& help) {
+  app.add_option(name, into, help)->delimiter(',')->expected(3)->type_name("X,Y,Z");
+}
+
+}  // namespace
+
+void SceneOptions::add(CLI::App& app) {
+  app.add_option("--scene", scene,
+                 "Scene file (OBJ, PLY, glTF 2.0, ... via assimp) or builtin:cornell")
+      ->capture_default_str();
+}
+
+void CameraArgs::add(CLI::App& app) {
+  addVec3(app, "--eye", eye, "Camera position (default: auto-framed from the scene)");
+  addVec3(app, "--look-at", target, "Point the camera looks at");
+  addVec3(app, "--up", up, "Camera up vector (default 0,1,0)");
+  app.add_option("--fov", fov, "Vertical field of view in degrees (default 40, or the scene's)");
+  app.add_option("--width", width, "Image width in pixels")->capture_default_str();
+  app.add_option("--height", height, "Image height in pixels")->capture_default_str();
+}
+
+CameraOptions CameraArgs::resolve() const {
+  CameraOptions options;
+  options.eye = toVec3(eye);
+  options.target = toVec3(target);
+  options.up = toVec3(up);
+  options.fovYDegrees = fov;
+  options.width = width;
+  options.height = height;
+  return options;
+}
+
+void AccelArgs::add(CLI::App& app, const std::vector<std::string>& allowed) {
+  app.add_option("--accel", accel, "Acceleration structure")
+      ->check(CLI::IsMember(allowed))
+      ->capture_default_str();
+  app.add_option("--grid-res", options.gridResolution,
+                 "Grid voxels along the longest axis (default: from the triangle count)");
+  app.add_option("--octree-depth", options.octreeMaxDepth, "Octree maximum depth (default: heuristic)");
+  app.add_option("--octree-leaf", options.octreeLeafSize, "Octree leaf size in triangles (default: heuristic)");
+}
+
+void RaySource::add(CLI::App& app) {
+  app.add_option("--rays", raysFile, "Rays file (see traces/README.md); default: camera rays");
+  camera.add(app);
+}
+
+void writeReport(const std::string& path, const nlohmann::json& report) {
+  if (path.empty()) return;
+  std::ofstream out(path);
+  out << report.dump(2) << "\n";
+  if (!out) throw InputError(fmt::format("{}: cannot write report", path));
+}
+
+std::unique_ptr<Accel> buildAccel(const std::string& kind, const Scene& scene, const AccelOptions& options,
+                                  double* seconds) {
+  const auto start = std::chrono::steady_clock::now();
+  auto accel = makeAccel(parseAccelKind(kind), scene, options);
+  if (seconds) *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return accel;
+}
+
+}  // namespace lancer::cli
+
+#include "scene/rays_file.h"
+
+namespace lancer::cli {
+
+Rays loadRays(const RaySource& source, const Scene& scene) {
+  Rays out;
+  if (source.fromCamera()) {
+    out.camera = frameScene(scene, source.camera.resolve());
+    out.rays = out.camera->generateRays();
+    out.origin = "camera";
+  } else {
+    out.rays = readRaysFile(source.raysFile);
+    out.origin = source.raysFile;
+  }
+  return out;
+}
+
+}  // namespace lancer::cli

@@ -1,0 +1,70 @@
+#pragma once
+
+// Options shared by the subcommands, so every command spells them the same way.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "ref/accel.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+
+namespace lancer::cli {
+
+struct SceneOptions {
+  std::string scene = kDefaultSceneName;
+  void add(CLI::App& app);
+};
+
+struct CameraArgs {
+  std::vector<float> eye, target, up;
+  std::optional<float> fov;
+  int width = 512;
+  int height = 512;
+  void add(CLI::App& app);
+  CameraOptions resolve() const;
+};
+
+struct AccelArgs {
+  std::string accel = "bvh";
+  AccelOptions options;
+  void add(CLI::App& app, const std::vector<std::string>& allowed);
+};
+
+// Rays from --rays FILE, or from the camera when no file is given.
+struct RaySource {
+  std::string raysFile;
+  CameraArgs camera;
+  void add(CLI::App& app);
+  bool fromCamera() const { return raysFile.empty(); }
+};
+
+// Writes a JSON report if a path was given (throws InputError if it cannot).
+void writeReport(const std::string& path, const nlohmann::json& report);
+
+// Builds the structure, timing the build; prints nothing.
+std::unique_ptr<Accel> buildAccel(const std::string& kind, const Scene& scene, const AccelOptions& options,
+                                  double* seconds = nullptr);
+
+void addRenderCommand(CLI::App& app);
+void addTraceCommand(CLI::App& app);
+void addBenchCommand(CLI::App& app);
+void addRunCommand(CLI::App& app);
+
+}  // namespace lancer::cli
+
+namespace lancer::cli {
+
+// The rays a command traces, with the camera when they came from one.
+struct Rays {
+  std::vector<Ray> rays;
+  std::optional<PinholeCamera> camera;
+  std::string origin;  // the rays file, or "camera"
+};
+Rays loadRays(const RaySource& source, const Scene& scene);
+
+}  // namespace lancer::cli

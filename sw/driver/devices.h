@@ -1,0 +1,17 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "driver/isect_device.h"
+
+namespace lancer {
+
+// Every model of the intersection pipeline, by the name the CLI uses:
+// golden, systemc, rtl (Verilated, C++), rtl-systemc (Verilated, in SystemC).
+std::vector<std::string> isectDeviceNames();
+// Throws InputError for an unknown name.
+std::unique_ptr<IsectDevice> makeIsectDevice(const std::string& name);
+
+}  // namespace lancer

@@ -1,0 +1,82 @@
+#include "driver/quantize.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+
+namespace lancer {
+
+Quantizer::Quantizer(const Aabb& bounds) {
+  const glm::dvec3 lo(bounds.lo), hi(bounds.hi);
+  double side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  if (!(side > 0.0) || !std::isfinite(side)) side = 1.0;  // a point-like scene still gets a lattice
+  lo_ = 0.5 * (lo + hi) - glm::dvec3(0.5 * side);
+  scale_ = double(fx::kPosMax) / side;
+}
+
+fx::QTriangle Quantizer::quantize(const Triangle& tri, uint32_t id) const {
+  fx::QTriangle q;
+  q.id = id;
+  const glm::vec3* vertices[3] = {&tri.v0, &tri.v1, &tri.v2};
+  for (int k = 0; k < 3; ++k) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const double x = (double((*vertices[k])[axis]) - lo_[axis]) * scale_;
+      if (!(x >= -0.5 && x <= double(fx::kPosMax) + 0.5)) {
+        throw InputError(fmt::format(
+            "triangle {} vertex {}: coordinate {} is outside the {}-bit position format's range "
+            "(lattice {:.3f} not in [0, {}])",
+            id, k, (*vertices[k])[axis], fx::kPosBits, x, fx::kPosMax));
+      }
+      // Round half to even (the current FP rounding mode), then clamp the half unit of slack.
+      q.v[k][axis] = std::clamp<int64_t>(std::llrint(x), 0, fx::kPosMax);
+    }
+  }
+  return q;
+}
+
+std::optional<QuantizedRay> Quantizer::quantize(const Ray& ray, uint32_t id) const {
+  const glm::dvec3 o = (glm::dvec3(ray.origin) - lo_) * scale_;
+  const glm::dvec3 d = glm::dvec3(ray.dir) * scale_;
+  // Clip to the cube [0, kPosMax]^3; a zero component never bounds t.
+  double tEnter = 0.0, tExit = double(ray.tMax);
+  for (int axis = 0; axis < 3; ++axis) {
+    if (d[axis] == 0.0) {
+      if (o[axis] < 0.0 || o[axis] > double(fx::kPosMax)) return std::nullopt;
+      continue;
+    }
+    double t0 = (0.0 - o[axis]) / d[axis];
+    double t1 = (double(fx::kPosMax) - o[axis]) / d[axis];
+    if (t0 > t1) std::swap(t0, t1);
+    tEnter = std::max(tEnter, t0);
+    tExit = std::min(tExit, t1);
+  }
+  if (tEnter > tExit) return std::nullopt;
+
+  QuantizedRay out;
+  out.q.id = id;
+  out.tEnter = tEnter;
+  const glm::dvec3 entry = o + tEnter * d;
+  for (int axis = 0; axis < 3; ++axis) {
+    out.q.org[axis] = std::clamp<int64_t>(std::llrint(entry[axis]), 0, fx::kPosMax);
+  }
+  // Direction: the dominant component becomes exactly +-kDirMax, the others round.
+  const double magnitude = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+  const double toDir = double(fx::kDirMax) / magnitude;
+  for (int axis = 0; axis < 3; ++axis) out.q.dir[axis] = std::llrint(d[axis] * toDir);
+  // A lattice-t unit moves the ray by q = d * toDir lattice units: t_scene = t_lattice * toDir.
+  out.tScale = toDir;
+  return out;
+}
+
+glm::dvec3 Quantizer::sceneOrigin(const fx::QRay& q) const {
+  return lo_ + glm::dvec3(double(q.org[0]), double(q.org[1]), double(q.org[2])) / scale_;
+}
+
+glm::dvec3 Quantizer::sceneDirection(const fx::QRay& q) const {
+  return glm::dvec3(double(q.dir[0]), double(q.dir[1]), double(q.dir[2])) / scale_;
+}
+
+}  // namespace lancer

@@ -1,0 +1,45 @@
+#pragma once
+
+#include <optional>
+
+#include "golden/records.h"
+#include "ref/ray.h"
+#include "scene/scene.h"
+
+namespace lancer {
+
+// A ray as the hardware sees it, and how to map its answers back to the scene.
+struct QuantizedRay {
+  fx::QRay q;
+  double tEnter = 0;  // scene t at the quantized origin (where the ray entered the lattice cube)
+  double tScale = 1;  // scene t per unit of lattice t: t_scene = tEnter + tScale * t_lattice
+};
+
+// The driver's boundary into the hardware's fixed-point space (docs/number-formats.md):
+// the scene's bounding cube (centred on its bounds, side = the longest extent)
+// maps onto the lattice [0, kPosMax]^3 by one uniform scale, rounding to nearest.
+// Rays are clipped to the cube first, so an origin outside the scene becomes the
+// entry point; the direction is scaled so its dominant component is +-kDirMax.
+class Quantizer {
+ public:
+  explicit Quantizer(const Aabb& sceneBounds);
+
+  // Throws InputError if a vertex lies outside the lattice cube by more than half a unit.
+  fx::QTriangle quantize(const Triangle& tri, uint32_t id) const;
+  // nullopt if the ray misses the cube (or leaves it before t = 0, or before tMax).
+  // The ray must already be validated (finite, non-zero direction).
+  std::optional<QuantizedRay> quantize(const Ray& ray, uint32_t id) const;
+
+  // The hardware's ray back in scene space (what it really traces), in double.
+  glm::dvec3 sceneOrigin(const fx::QRay& q) const;
+  glm::dvec3 sceneDirection(const fx::QRay& q) const;
+  // Scene units per lattice unit.
+  double unit() const { return 1.0 / scale_; }
+  const glm::dvec3& latticeOrigin() const { return lo_; }
+
+ private:
+  glm::dvec3 lo_;
+  double scale_;  // lattice units per scene unit
+};
+
+}  // namespace lancer

@@ -1,0 +1,107 @@
+#include "driver/report.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "golden/isect.h"
+#include "ref/triangle.h"
+
+namespace lancer {
+
+namespace {
+
+std::string hex(fx::u128 value) {
+  const uint64_t hi = uint64_t(value >> 64), lo = uint64_t(value);
+  return hi ? fmt::format("0x{:x}{:016x}", hi, lo) : fmt::format("0x{:x}", lo);
+}
+
+std::string hexTriple(const std::array<int64_t, 3>& v, int width) {
+  const fx::u128 mask = (fx::u128(1) << width) - 1;
+  return fmt::format("[{},{},{}]", hex(fx::u128(fx::i128(v[0])) & mask), hex(fx::u128(fx::i128(v[1])) & mask),
+                     hex(fx::u128(fx::i128(v[2])) & mask));
+}
+
+std::string wireHex(const fx::Wire& wire) {
+  std::string out;
+  for (auto it = wire.rbegin(); it != wire.rend(); ++it) out += fmt::format("{:08x}", *it);
+  return out;
+}
+
+}  // namespace
+
+std::string hexFields(const fx::QRay& r) {
+  return fmt::format("ray_id={} org={} dir={}", hex(r.id), hexTriple(r.org, fx::kPosBits),
+                     hexTriple(r.dir, fx::kDirBits));
+}
+
+std::string hexFields(const fx::QTriangle& t) {
+  return fmt::format("prim_id={} v0={} v1={} v2={}", hex(t.id), hexTriple(t.v[0], fx::kPosBits),
+                     hexTriple(t.v[1], fx::kPosBits), hexTriple(t.v[2], fx::kPosBits));
+}
+
+std::string hexFields(const fx::IsectResult& r) {
+  return fmt::format("ray_id={} prim_id={} hit={} t_num={} det={} u_num={} v_num={}", hex(r.rayId),
+                     hex(r.primId), int(r.hit), hex(r.tNum), hex(r.det), hex(r.uNum), hex(r.vNum));
+}
+
+std::string describeMismatch(const Mismatch& m, const std::string& replayCommand) {
+  std::string out = fmt::format("first mismatch: ray {} ({})\n", m.rayId,
+                                m.what == "count" ? "the model delivered a different number of results"
+                                                  : "a pipeline result differs");
+  out += fmt::format("  ray      {}\n           wire {}\n", hexFields(m.ray), wireHex(fx::packWire(m.ray)));
+  if (m.tri) out += fmt::format("  triangle {}\n           wire {}\n", hexFields(*m.tri), wireHex(fx::packWire(*m.tri)));
+  out += fmt::format("  model    {}\n", m.model ? hexFields(*m.model) : "(no result)");
+  out += fmt::format("  golden   {}\n", m.golden ? hexFields(*m.golden) : "(no result)");
+  if (m.model && m.golden) {
+    const fx::Wire a = fx::packWire(*m.model), b = fx::packWire(*m.golden);
+    std::string bits;
+    for (int i = fx::kIsectResBits - 1; i >= 0; --i) {
+      if (((a[size_t(i / 32)] ^ b[size_t(i / 32)]) >> (i % 32)) & 1) bits += fmt::format(" {}", i);
+    }
+    out += fmt::format("  differing bits of isect_res_t ({} wide, bit 0 = LSB of v_num):{}\n", fx::kIsectResBits,
+                       bits);
+  }
+  out += fmt::format("  replay: {}\n", replayCommand);
+  return out;
+}
+
+std::optional<Hit> sceneHit(const IsectJobResult& job, size_t ray) {
+  if (!job.hits[ray] || !job.rays[ray]) return std::nullopt;
+  const fx::IsectResult& r = *job.hits[ray];
+  const QuantizedRay& q = *job.rays[ray];
+  return Hit{r.primId, float(q.tEnter + q.tScale * fx::tOf(r, q.q)), float(fx::uOf(r)), float(fx::vOf(r))};
+}
+
+ReferenceComparison compareWithReference(const Scene& scene, std::span<const Ray> rays,
+                                         std::span<const std::optional<Hit>> reference,
+                                         const IsectJobResult& job, const Quantizer& quantizer) {
+  ReferenceComparison cmp;
+  double sum = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const std::optional<Hit> hw = sceneHit(job, i);
+    const std::optional<Hit>& ref = reference[i];
+    if (hw.has_value() != ref.has_value() || (hw && hw->prim != ref->prim)) {
+      ++cmp.disagreements;
+      (hw.has_value() != ref.has_value() ? cmp.hitMissDiffers : cmp.primDiffers) += 1;
+      if (!cmp.firstDisagreement) cmp.firstDisagreement = uint32_t(i);
+      continue;
+    }
+    if (!hw) continue;
+    // The reference t of the same triangle in long double, and the hardware's t in
+    // double from its exact fraction; the difference as a distance in lattice units.
+    const auto exact = intersectTriangleExtended(rays[i], scene.triangles[ref->prim], ref->prim);
+    const double tRef = exact ? double(exact->t) : double(ref->t);
+    const double hwT = job.rays[i]->tEnter + job.rays[i]->tScale * fx::tOf(*job.hits[i], job.rays[i]->q);
+    const double error = std::abs(hwT - tRef) * double(glm::length(rays[i].dir)) / quantizer.unit();
+    cmp.maxTError = std::max(cmp.maxTError, error);
+    sum += error;
+    ++cmp.compared;
+  }
+  cmp.meanTError = cmp.compared ? sum / double(cmp.compared) : 0.0;
+  return cmp;
+}
+
+}  // namespace lancer
