@@ -2,9 +2,15 @@
 
 #include <array>
 #include <fstream>
+#include <new>
 #include <tuple>
 #include <map>
 #include <utility>
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
@@ -24,15 +30,47 @@ namespace {
 
 glm::vec3 toVec(const aiVector3D& v) { return {v.x, v.y, v.z}; }
 
+// Caps the address space while assimp parses, so a file that declares absurd
+// counts (assimp's invalid/OutOfMemory.off claims trillions of vertices) fails
+// with bad_alloc instead of being killed by the kernel. Restored on scope exit.
+class AddressSpaceCap {
+ public:
+  explicit AddressSpaceCap(uint64_t fileBytes) {
+    if (getrlimit(RLIMIT_AS, &saved_) != 0) return;
+    long pages = 0, pageSize = sysconf(_SC_PAGESIZE);
+    if (std::ifstream statm("/proc/self/statm"); !(statm >> pages)) return;
+    // Generous: assimp's in-memory scene is a few hundred bytes per input byte at worst.
+    const uint64_t budget = std::max<uint64_t>(uint64_t(4) << 30, fileBytes * 256);
+    rlimit capped = saved_;
+    capped.rlim_cur = std::min<uint64_t>(saved_.rlim_cur, uint64_t(pages) * uint64_t(pageSize) + budget);
+    active_ = setrlimit(RLIMIT_AS, &capped) == 0;
+  }
+  ~AddressSpaceCap() {
+    if (active_) setrlimit(RLIMIT_AS, &saved_);
+  }
+
+ private:
+  rlimit saved_{};
+  bool active_ = false;
+};
+
 Scene loadWithAssimp(const std::string& path) {
   if (!std::ifstream(path)) throw InputError(fmt::format("{}: cannot open file", path));
+  std::error_code sizeError;
+  const uint64_t fileBytes = std::filesystem::file_size(path, sizeError);
   Assimp::Importer importer;
   // Keep vertices exactly as written (no joining, no normal generation): shared
   // vertices are already shared by index in the formats we read, and any
   // re-computation would risk moving them.
   const unsigned flags = aiProcess_Triangulate | aiProcess_PreTransformVertices |
                          aiProcess_SortByPType;
-  const aiScene* ai = importer.ReadFile(path, flags);
+  const aiScene* ai = nullptr;
+  try {
+    AddressSpaceCap cap(sizeError ? 0 : fileBytes);
+    ai = importer.ReadFile(path, flags);
+  } catch (const std::bad_alloc&) {
+    throw InputError(fmt::format("{}: cannot read scene: it declares more data than fits in memory", path));
+  }
   if (!ai || !ai->mRootNode) {
     throw InputError(fmt::format("{}: cannot read scene: {}", path, importer.GetErrorString()));
   }
