@@ -1,5 +1,6 @@
 #include "scene/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -41,12 +42,21 @@ PinholeCamera frameScene(const Scene& scene, const CameraOptions& options) {
   if (scene.view) {
     view = *scene.view;
   } else {
+    // Look at the broad side: along the thinner of the two horizontal axes
+    // (y is up), from slightly above, far enough that the box fits the frame.
     const glm::vec3 center = scene.bounds.center();
-    const float radius = 0.5f * glm::length(scene.bounds.diagonal());
+    const glm::vec3 half = 0.5f * scene.bounds.diagonal();
     const float fov = options.fovYDegrees.value_or(view.fovYDegrees);
-    const float distance = 1.1f * radius / std::sin(glm::radians(fov) * 0.5f);
+    const float aspect = float(std::max(options.width, 1)) / float(std::max(options.height, 1));
+    const bool alongZ = half.z <= half.x;
+    const float across = alongZ ? half.x : half.z;  // half-width seen by the camera
+    const float depth = alongZ ? half.z : half.x;
+    const float tanY = std::tan(glm::radians(fov) * 0.5f);
+    const float fit = std::max(half.y / tanY, across / (tanY * aspect));
+    const float distance = 1.15f * fit + depth;
+    const glm::vec3 axis = alongZ ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
     view.target = center;
-    view.eye = center + distance * glm::normalize(glm::vec3(0.0f, 0.25f, 1.0f));
+    view.eye = center + distance * glm::normalize(axis + glm::vec3(0.0f, 0.25f, 0.0f));
   }
   if (options.eye) view.eye = *options.eye;
   if (options.target) view.target = *options.target;

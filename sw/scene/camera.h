@@ -40,8 +40,9 @@ class PinholeCamera {
 };
 
 // Auto-framing: the scene's own view if it has one; otherwise the camera looks
-// at the centre of the bounds from the +z side, slightly above, far enough that
-// the bounding sphere fits the vertical field of view with a 10% margin.
+// at the centre of the bounds along the thinner horizontal axis (y is up), from
+// slightly above, far enough that the box's broad side fits the frame with a
+// 15% margin.
 // Explicit options override either. Throws InputError on a degenerate camera
 // (eye equal to target, up parallel to the view direction, fov outside (0,180),
 // a non-positive resolution).
