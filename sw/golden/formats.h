@@ -66,6 +66,35 @@ static_assert(kPosBits >= 4 && kDirBits >= 4, "formats narrower than 4 bits are 
 static_assert(kShearBits <= 63, "shear must fit int64: lower LANCER_POS_BITS + LANCER_DIR_BITS");
 static_assert(kTBits <= 127, "T must fit __int128: need 3*POS_BITS + 2*DIR_BITS <= 123");
 
+// ---- Uniform grid traversal unit (docs/grid-unit.md) ---------------------------
+// Resolution per axis 1..kGridResMax. The grid covers the lattice cube [0, 2^P)
+// and works in per-axis scaled coordinates X = x * R (exact integers), where
+// cell i spans [i * 2^P, (i+1) * 2^P): the cell of a point is X >> P, no division.
+inline constexpr int kGridResMax = 256;
+inline constexpr int kGridResBits = 9;     // holds R = 1..256
+inline constexpr int kCellIndexBits = 8;   // holds a cell coordinate 0..255
+inline constexpr int kGridScaleBits = 8;   // R <= 2^8
+// Scaled origin X = o * R < 2^(P+8) ................................ P+8 unsigned
+inline constexpr int kGridPosBits = kPosBits + kGridScaleBits;
+// Scaled direction |D| = |d| * R < 2^(D-1+8) ........................ D+8 signed
+inline constexpr int kGridDirBits = kDirBits + kGridScaleBits;
+// Product of the other two axes' |D|: < 2^(2(D+7)) ................ 2D+14 unsigned
+inline constexpr int kGridPairBits = 2 * (kDirBits + 7);
+// Product of all three |D|: < 2^(3(D+7)) ............................ 3D+21 unsigned
+inline constexpr int kGridTripleBits = 3 * (kDirBits + 7);
+// DDA accumulator N_a = (distance to the next boundary along a) * (product of the
+// other active |D|), in the same units for all axes so comparing them compares
+// the t of the next crossing. Starts <= 2^P * 2^(2D+14), grows by one cell
+// (2^P * pair) per step, at most R steps: < 2^(P+8) * 2^(2D+14) ... P+2D+23 unsigned
+inline constexpr int kGridAccBits = kPosBits + 2 * kDirBits + 23;
+static_assert(kGridAccBits + kDirBits <= 127, "N * |d| must fit u128 for the exit test");
+
+// Memory image address width (every region: cells, index list, triangles).
+#ifndef LANCER_MEM_ADDR_BITS
+#define LANCER_MEM_ADDR_BITS 24
+#endif
+inline constexpr int kMemAddrBits = LANCER_MEM_ADDR_BITS;
+
 // ---- Pipeline timing ---------------------------------------------------------
 // Cycles from an accepted request to its result appearing on the output, with
 // no backpressure. The RTL builds this many stages; the SystemC model delays by it.

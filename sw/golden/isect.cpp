@@ -2,6 +2,8 @@
 
 #include <cstdlib>
 
+#include "golden/wide.h"
+
 namespace lancer::fx {
 
 int dominantAxis(const std::array<int64_t, 3>& dir) {
@@ -53,29 +55,9 @@ IsectResult intersect(const QRay& ray, const QTriangle& tri) {
   return res;
 }
 
-namespace {
-
-struct U256 {
-  u128 hi, lo;
-  bool operator<(const U256& o) const { return hi < o.hi || (hi == o.hi && lo < o.lo); }
-  bool operator==(const U256& o) const = default;
-};
-
-U256 multiply(u128 a, u128 b) {
-  const u128 mask = ~uint64_t(0);
-  const u128 a0 = a & mask, a1 = a >> 64, b0 = b & mask, b1 = b >> 64;
-  const u128 p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
-  const u128 middle = (p00 >> 64) + (p01 & mask) + (p10 & mask);
-  const u128 lo = (middle << 64) | (p00 & mask);
-  const u128 hi = p11 + (p01 >> 64) + (p10 >> 64) + (middle >> 64);
-  return {hi, lo};
-}
-
-}  // namespace
-
 bool closerResult(const IsectResult& a, const IsectResult& b) {
-  const U256 ta = multiply(a.tNum, b.det);
-  const U256 tb = multiply(b.tNum, a.det);
+  const U256 ta = mul256(a.tNum, b.det);
+  const U256 tb = mul256(b.tNum, a.det);
   return ta < tb || (ta == tb && a.primId < b.primId);
 }
 
