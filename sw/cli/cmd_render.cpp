@@ -26,7 +26,7 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--out", args->out, "PNG file to write")->capture_default_str();
   cmd->add_option("--report", args->report, "JSON report file");
   cmd->callback([args] {
-    const Scene scene = loadScene(args->scene.scene);
+    const Scene scene = args->scene.load();
     const PinholeCamera camera = frameScene(scene, args->camera.resolve());
     double buildSeconds = 0;
     const auto accel = buildAccel(args->accel.accel, scene, args->accel.options, &buildSeconds);

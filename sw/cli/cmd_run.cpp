@@ -82,7 +82,7 @@ void run(const Args& args) {
   checkFormats(args);
   const auto hostStart = std::chrono::steady_clock::now();
   auto model = makeIsectDevice(args.model);
-  const Scene scene = loadScene(args.scene.scene);
+  const Scene scene = args.scene.load();
   const Rays rays = loadRays(args.source, scene);
   const Quantizer quantizer(scene.bounds);
   const Bvh bvh(scene, AccelOptions{});

@@ -46,7 +46,7 @@ void addTraceCommand(CLI::App& app) {
   cmd->add_option("--hits", args->hits, "CSV file to write: ray,hit,prim,t,u,v")->required();
   cmd->add_option("--report", args->report, "JSON report file");
   cmd->callback([args] {
-    const Scene scene = loadScene(args->scene.scene);
+    const Scene scene = args->scene.load();
     const Rays rays = loadRays(args->source, scene);
     double buildSeconds = 0;
     const auto accel = buildAccel(args->accel.accel, scene, args->accel.options, &buildSeconds);

@@ -26,6 +26,14 @@ void SceneOptions::add(CLI::App& app) {
   app.add_option("--scene", scene,
                  "Scene file (OBJ, PLY, glTF 2.0, ... via assimp) or builtin:cornell")
       ->capture_default_str();
+  app.add_option("--subdivide", subdivide,
+                 "Split every triangle into 4, this many times (large meshes for benchmarks)")
+      ->check(CLI::Range(0, 6));
+}
+
+Scene SceneOptions::load() const {
+  Scene loaded = loadScene(scene);
+  return subdivide ? lancer::subdivide(loaded, subdivide) : loaded;
 }
 
 void CameraArgs::add(CLI::App& app) {

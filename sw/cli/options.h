@@ -17,7 +17,10 @@ namespace lancer::cli {
 
 struct SceneOptions {
   std::string scene = kDefaultSceneName;
+  int subdivide = 0;
   void add(CLI::App& app);
+  // The scene, subdivided --subdivide times (for large benchmark meshes).
+  Scene load() const;
 };
 
 struct CameraArgs {

@@ -45,7 +45,8 @@ std::optional<Hit> finishHit(Real u, Real v, Real w, Real az, Real bz, Real cz, 
     w = -w;
   }
   const Real absDet = std::abs(det);
-  if (t <= 0 || t > tMax * absDet) return std::nullopt;
+  // Written so that a NaN (products overflowing at coordinates beyond ~1e19) is a miss.
+  if (!(t > 0 && t <= tMax * absDet)) return std::nullopt;
   const Real rcp = Real(1) / absDet;
   return Hit{prim, static_cast<float>(t * rcp), static_cast<float>(v * rcp),
              static_cast<float>(w * rcp)};
