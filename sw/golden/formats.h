@@ -71,7 +71,7 @@ static_assert(kTBits <= 127, "T must fit __int128: need 3*POS_BITS + 2*DIR_BITS 
 // and works in per-axis scaled coordinates X = x * R (exact integers), where
 // cell i spans [i * 2^P, (i+1) * 2^P): the cell of a point is X >> P, no division.
 inline constexpr int kGridResMax = 256;
-inline constexpr int kGridResBits = 9;     // holds R = 1..256
+inline constexpr int kGridResolutionBits = 9;    // holds R = 1..256
 inline constexpr int kCellIndexBits = 8;   // holds a cell coordinate 0..255
 inline constexpr int kGridScaleBits = 8;   // R <= 2^8
 // Scaled origin X = o * R < 2^(P+8) ................................ P+8 unsigned

@@ -62,14 +62,43 @@ inline constexpr FieldSpec kIsectResFields[] = {
     {"v_num", kBaryBits, 1, false, "v = v_num / det (weight of v2)"},
 };
 
+// ---- grid_cell_t: one entry of the grid unit's cell table -----------------------
+inline constexpr FieldSpec kGridCellFields[] = {
+    {"first", 32, 1, false, "first entry of the cell's run in the index list"},
+    {"count", 32, 1, false, "triangles listed in the cell"},
+};
+// ---- grid_visit_t: one voxel step, on the unit's trace stream ---------------------
+inline constexpr FieldSpec kGridVisitFields[] = {
+    {"ray_id", kRayIdBits, 1, false, "ray id"},
+    {"cell_id", 3 * kCellIndexBits, 1, false, "(z * Ry + y) * Rx + x"},
+};
+// ---- grid_res_t: a ray's answer from the grid unit --------------------------------
+inline constexpr FieldSpec kGridResFields[] = {
+    {"ray_id", kRayIdBits, 1, false, "ray id"},
+    {"cells", 32, 1, false, "cells visited"},
+    {"tests", 32, 1, false, "ray-triangle tests issued"},
+    {"hit", 1, 1, false, "1 if the ray hit a triangle"},
+    {"prim_id", kPrimIdBits, 1, false, "closest triangle (zero on a miss)"},
+    {"t_num", kTNumBits, 1, false, "as isect_res_t"},
+    {"det", kDetAbsBits, 1, false, "as isect_res_t"},
+    {"u_num", kBaryBits, 1, false, "as isect_res_t"},
+    {"v_num", kBaryBits, 1, false, "as isect_res_t"},
+};
+
 inline constexpr RecordSpec kIsectRay{"isect_ray_t", "a quantized ray", kIsectRayFields};
 inline constexpr RecordSpec kIsectTri{"isect_tri_t", "a quantized triangle", kIsectTriFields};
 inline constexpr RecordSpec kIsectRes{"isect_res_t", "an intersection result", kIsectResFields};
-inline constexpr RecordSpec kAllRecords[] = {kIsectRay, kIsectTri, kIsectRes};
+inline constexpr RecordSpec kGridCell{"grid_cell_t", "a grid cell table entry", kGridCellFields};
+inline constexpr RecordSpec kGridVisit{"grid_visit_t", "a grid unit voxel step", kGridVisitFields};
+inline constexpr RecordSpec kGridRes{"grid_res_t", "a grid unit ray result", kGridResFields};
+inline constexpr RecordSpec kAllRecords[] = {kIsectRay, kIsectTri, kIsectRes, kGridCell, kGridVisit, kGridRes};
 
 inline constexpr int kIsectRayBits = recordBits(kIsectRayFields);
 inline constexpr int kIsectTriBits = recordBits(kIsectTriFields);
 inline constexpr int kIsectResBits = recordBits(kIsectResFields);
+inline constexpr int kGridCellBits = recordBits(kGridCellFields);
+inline constexpr int kGridVisitBits = recordBits(kGridVisitFields);
+inline constexpr int kGridResultBits = recordBits(kGridResFields);
 
 // ---- The C++ views of the records ----------------------------------------------
 struct QRay {

@@ -45,6 +45,10 @@ int main(int argc, char** argv) {
       {"BARY_W", kBaryBits},        {"ISECT_LATENCY", kIsectLatency},
       {"ISECT_RAY_W", kIsectRayBits}, {"ISECT_TRI_W", kIsectTriBits},
       {"ISECT_RES_W", kIsectResBits},
+      {"GRID_RES_MAX", kGridResMax}, {"GRID_RESOLUTION_W", kGridResolutionBits}, {"CELL_INDEX_W", kCellIndexBits},
+      {"GRID_POS_W", kGridPosBits}, {"GRID_DIR_W", kGridDirBits}, {"GRID_PAIR_W", kGridPairBits},
+      {"GRID_TRIPLE_W", kGridTripleBits}, {"GRID_ACC_W", kGridAccBits}, {"MEM_ADDR_W", kMemAddrBits},
+      {"GRID_CELL_W", kGridCellBits}, {"GRID_VISIT_W", kGridVisitBits}, {"GRID_RESULT_W", kGridResultBits},
   };
   for (const auto& [name, value] : params) {
     out << fmt::format("  localparam int {} = {};\n", name, value);
