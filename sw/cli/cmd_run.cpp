@@ -2,16 +2,16 @@
 // checked bit for bit against the golden model.
 #include <chrono>
 #include <cstdio>
+#include <algorithm>
 #include <memory>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "cli/options.h"
 #include "common/error.h"
 #include "common/progress.h"
-#include "driver/candidates.h"
-#include "driver/devices.h"
-#include "driver/golden_device.h"
+#include "driver/job.h"
 #include "driver/report.h"
 #include "golden/isect.h"
 #include "ref/bvh.h"
@@ -26,25 +26,19 @@ namespace {
 // 500 MHz: one stage per wide multiply (up to 66x17 bits at the default
 // formats) is comfortable at this clock in a 16 nm-class process; see docs/driver.md.
 constexpr double kDefaultClockMhz = 500.0;
-// Host-side candidate boxes grow by this many lattice units, which covers the
-// float rounding of the dequantized ray (the hardware's ray itself is exact).
-constexpr float kCandidateMarginUnits = 2.0f;
-
 struct Args {
   SceneOptions scene;
   RaySource source;
   std::string accel = "bvh";
-  std::string model = "golden";
+  JobConfig job;
   double clockMhz = kDefaultClockMhz;
   int posBits = fx::kPosBits;
   int dirBits = fx::kDirBits;
-  double stall = 0.0;
-  uint64_t seed = 1;
-  std::string report, image, hits, wave;
+  std::string report, image, hits;
   std::string repro = "lancer-mismatch.rays";
 };
 
-void writeHardwareHits(const std::string& path, const IsectJobResult& job) {
+void writeHardwareHits(const std::string& path, const JobResult& job) {
   std::unique_ptr<FILE, int (*)(FILE*)> out(std::fopen(path.c_str(), "w"), &std::fclose);
   if (!out) throw InputError(fmt::format("{}: cannot write hits file", path));
   fmt::print(out.get(), "ray,hit,prim,t,u,v,t_num,det,u_num,v_num\n");
@@ -73,37 +67,34 @@ void checkFormats(const Args& args) {
         fx::kPosBits, fx::kDirBits, args.posBits, args.dirBits, args.posBits, args.dirBits));
   }
   if (!(args.clockMhz > 0.0)) throw InputError(fmt::format("--clock-mhz {} must be positive", args.clockMhz));
-  if (!(args.stall >= 0.0 && args.stall < 1.0)) {
-    throw InputError(fmt::format("--stall {} must lie in [0, 1)", args.stall));
+  if (!(args.job.stream.outputStallProbability >= 0.0 && args.job.stream.outputStallProbability < 1.0)) {
+    throw InputError(fmt::format("--stall {} must lie in [0, 1)", args.job.stream.outputStallProbability));
   }
 }
 
 void run(const Args& args) {
   checkFormats(args);
   const auto hostStart = std::chrono::steady_clock::now();
-  auto model = makeIsectDevice(args.model);
+  const std::vector<std::string> models = modelsFor(args.accel);
+  if (std::find(models.begin(), models.end(), args.job.model) == models.end()) {
+    throw InputError(fmt::format("--model {}: the {} path has no such model (available: {})", args.job.model,
+                                 args.accel, fmt::join(models, ", ")));
+  }
   const Scene scene = args.scene.load();
   const Rays rays = loadRays(args.source, scene);
   const Quantizer quantizer(scene.bounds);
-  const Bvh bvh(scene, AccelOptions{});
 
-  GoldenIsectDevice golden;
-  IsectJobConfig config;
-  config.stream.outputStallProbability = args.stall;
-  config.stream.seed = args.seed;
-  config.stream.wavePath = args.wave;
-  Progress progress(fmt::format("run {}", model->name()), rays.rays.size());
-  const IsectJobResult job =
-      runIsectJob(scene, rays.rays, quantizer, bvhCandidates(bvh, kCandidateMarginUnits * float(quantizer.unit())),
-                  *model, golden, config, [&](size_t n) { progress.advance(n); });
+  Progress progress(fmt::format("run {} {}", args.accel, args.job.model), rays.rays.size());
+  const JobResult job = runJob(args.accel, scene, rays.rays, quantizer, args.job, [&](size_t n) { progress.advance(n); });
   progress.finish();
 
-  const auto reference = traceRays(bvh, rays.rays);
-  const ReferenceComparison cmp = compareWithReference(scene, rays.rays, reference, job, quantizer);
+  const Bvh reference(scene, AccelOptions{});
+  const ReferenceComparison cmp = compareWithReference(scene, rays.rays, traceRays(reference, rays.rays), job, quantizer);
   const double hostSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - hostStart).count();
   const double clockHz = args.clockMhz * 1e6;
-  const double testsPerCycle = job.model.cycles ? double(job.intersectionTests) / double(job.model.cycles) : 0.0;
-  const double rate = job.model.cycles ? double(job.intersectionTests) / (double(job.model.cycles) / clockHz) : 0.0;
+  const double testsPerCycle = job.cycles ? double(job.intersectionTests) / double(job.cycles) : 0.0;
+  const double rate = job.cycles ? double(job.intersectionTests) / (double(job.cycles) / clockHz) : 0.0;
+  const double raysPerSecond = job.cycles ? double(rays.rays.size()) / (double(job.cycles) / clockHz) : 0.0;
   size_t hitCount = 0, inLattice = 0;
   for (size_t i = 0; i < job.hits.size(); ++i) {
     hitCount += job.hits[i].has_value();
@@ -111,14 +102,20 @@ void run(const Args& args) {
   }
 
   fmt::print("run: {} ({} triangles), {} rays from {}, model {}, accel {}, formats pos {} / dir {} bits\n",
-             scene.name, scene.size(), rays.rays.size(), rays.origin, model->name(), args.accel, fx::kPosBits,
+             scene.name, scene.size(), rays.rays.size(), rays.origin, args.job.model, args.accel, fx::kPosBits,
              fx::kDirBits);
-  fmt::print("  intersection tests  {} in {} cycles ({:.4f} tests/cycle{})\n", job.intersectionTests,
-             job.model.cycles, testsPerCycle, job.model.cycleAccurate ? "" : ", ideal timing: golden model");
-  fmt::print("  simulated rate      {:.1f} M intersections/s at {:g} MHz ({:.1f}x the AR250's 80 M/s)\n",
-             rate / 1e6, args.clockMhz, rate / 80e6);
-  fmt::print("  host                {:.2f} s in all, {:.2f} s in the model ({:.2f} M tests/s), {:.2f} s in golden\n",
-             hostSeconds, job.modelSeconds, job.modelSeconds > 0 ? double(job.intersectionTests) / job.modelSeconds / 1e6 : 0.0,
+  if (job.cycleAccurate) {
+    fmt::print("  intersection tests  {} in {} cycles ({:.4f} tests/cycle)\n", job.intersectionTests, job.cycles,
+               testsPerCycle);
+    fmt::print("  simulated rate      {:.1f} M intersections/s, {:.2f} M rays/s at {:g} MHz ({:.1f}x the AR250's 80 M/s)\n",
+               rate / 1e6, raysPerSecond / 1e6, args.clockMhz, rate / 80e6);
+  } else {
+    fmt::print("  intersection tests  {} (golden model: no cycle timing{})\n", job.intersectionTests,
+               job.cycles ? fmt::format(", ideal pipeline {} cycles", job.cycles) : "");
+  }
+  for (const JobCounter& c : job.counters) fmt::print("  {:<19} {:g}\n", c.label, c.value);
+  fmt::print("  host                {:.2f} s in all, {:.2f} s in the model ({:.0f} rays/s), {:.2f} s in golden\n",
+             hostSeconds, job.modelSeconds, job.modelSeconds > 0 ? double(inLattice) / job.modelSeconds : 0.0,
              job.goldenSeconds);
   fmt::print("  bit-exact vs golden {} rays ({} entered the lattice, {} hit), {} mismatches\n", rays.rays.size(),
              inLattice, hitCount, job.mismatchedRays);
@@ -139,19 +136,20 @@ void run(const Args& args) {
       {"scene", scene.name},
       {"triangles", scene.size()},
       {"accel", args.accel},
-      {"model", std::string(model->name())},
+      {"model", args.job.model},
       {"pos_bits", fx::kPosBits},
       {"dir_bits", fx::kDirBits},
       {"rays", rays.rays.size()},
       {"rays_in_lattice", inLattice},
       {"rays_hit", hitCount},
       {"mismatches", job.mismatchedRays},
-      {"cycles", job.model.cycles},
-      {"cycle_accurate", job.model.cycleAccurate},
+      {"cycles", job.cycles},
+      {"cycle_accurate", job.cycleAccurate},
       {"intersection_tests", job.intersectionTests},
       {"tests_per_cycle", testsPerCycle},
       {"clock_hz", clockHz},
       {"intersections_per_second", rate},
+      {"rays_per_second", raysPerSecond},
       {"host_seconds", hostSeconds},
       {"model_seconds", job.modelSeconds},
       {"golden_seconds", job.goldenSeconds},
@@ -160,21 +158,25 @@ void run(const Args& args) {
       {"reference_prim_differs", cmp.primDiffers},
       {"t_error_max_lattice_units", cmp.maxTError},
       {"t_error_mean_lattice_units", cmp.meanTError},
-      {"output_stall_probability", args.stall},
-      {"seed", args.seed},
+      {"output_stall_probability", args.job.stream.outputStallProbability},
+      {"seed", args.job.stream.seed},
   };
+  for (const JobCounter& c : job.counters) report[c.key] = c.value;
   if (job.firstMismatch) {
-    const Mismatch& m = *job.firstMismatch;
+    const MismatchReport& m = *job.firstMismatch;
     writeRaysFile(args.repro, {rays.rays[m.rayId]}, fmt::format("ray {} of {}: mismatch reproducer", m.rayId, rays.origin));
-    const std::string replay = fmt::format("lancer run --scene {} --rays {} --model {} --accel {} --stall {} --seed {}",
-                                           scene.name, args.repro, model->name(), args.accel, args.stall, args.seed);
-    const std::string text = describeMismatch(m, replay);
+    const std::string replay = fmt::format("lancer run --scene {}{} --rays {} --model {} --accel {}{} --stall {} --seed {}",
+                                           scene.name, args.scene.subdivide ? fmt::format(" --subdivide {}", args.scene.subdivide) : "",
+                                           args.repro, args.job.model, args.accel,
+                                           args.job.accel.gridResolution ? fmt::format(" --grid-res {}", args.job.accel.gridResolution) : "",
+                                           args.job.stream.outputStallProbability, args.job.stream.seed);
+    const std::string text = fmt::format("{}  replay: {}\n", m.details, replay);
     fmt::print(stderr, "{}", text);
     report["first_mismatch"] = {{"ray", m.rayId}, {"report", text}, {"repro_rays", args.repro}};
   }
   writeReport(args.report, report);
   if (job.mismatchedRays) {
-    throw CheckFailed(fmt::format("model {} disagrees with the golden model on {} rays", model->name(),
+    throw CheckFailed(fmt::format("model {} disagrees with the golden model on {} rays", args.job.model,
                                   job.mismatchedRays));
   }
 }
@@ -186,22 +188,31 @@ void addRunCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("run", "Run rays through a hardware model and check it bit for bit");
   args->scene.add(*cmd);
   args->source.add(*cmd);
-  cmd->add_option("--accel", args->accel, "Traversal: bvh (host BVH feeding the intersection pipeline)")
-      ->check(CLI::IsMember({"bvh"}))
+  cmd->add_option("--accel", args->accel,
+                 "Hardware path: bvh (host BVH feeding the intersection pipeline) or grid (the grid unit)")
+      ->check(CLI::IsMember(hardwareAccels()))
       ->capture_default_str();
-  cmd->add_option("--model", args->model, "Model of the hardware")
-      ->check(CLI::IsMember(isectDeviceNames()))
+  cmd->add_option("--model", args->job.model, "Model of the hardware: golden, systemc, rtl, rtl-systemc")
+      ->check(CLI::IsMember({"golden", "systemc", "rtl", "rtl-systemc"}))
       ->capture_default_str();
   cmd->add_option("--clock-mhz", args->clockMhz, "Clock of the simulated chip")->capture_default_str();
   cmd->add_option("--pos-bits", args->posBits, "Expected position width (must match the build)");
   cmd->add_option("--dir-bits", args->dirBits, "Expected direction width (must match the build)");
-  cmd->add_option("--stall", args->stall, "Probability per cycle that the consumer stalls the pipeline output")
+  cmd->add_option("--grid-res", args->job.accel.gridResolution,
+                  "Grid cells per axis (default: from the triangle count)");
+  cmd->add_option("--mem-latency", args->job.memLatency, "Memory latency of the traversal units, in cycles")
       ->capture_default_str();
-  cmd->add_option("--seed", args->seed, "Seed of the stall pattern")->capture_default_str();
+  cmd->add_option("--mem-jitter", args->job.memLatencyJitter, "Random extra memory latency per read, 0..N cycles")
+      ->capture_default_str();
+  cmd->add_option("--rays-in-flight", args->job.raysInFlight, "Ray slots of the traversal unit (default: all built)");
+  cmd->add_option("--stall", args->job.stream.outputStallProbability,
+                  "Probability per cycle that the consumer stalls the unit's output")
+      ->capture_default_str();
+  cmd->add_option("--seed", args->job.stream.seed, "Seed of the stall pattern")->capture_default_str();
   cmd->add_option("--report", args->report, "JSON report file");
   cmd->add_option("--image", args->image, "PNG drawn from the model's own hits");
   cmd->add_option("--hits", args->hits, "CSV of the model's hits, with the raw fixed-point fields in hex");
-  cmd->add_option("--wave", args->wave, "FST waveform of the RTL (rtl model only; slow)");
+  cmd->add_option("--wave", args->job.stream.wavePath, "FST waveform of the RTL (rtl model only; slow)");
   cmd->add_option("--repro", args->repro, "Where a mismatch's reproducer rays file goes")->capture_default_str();
   cmd->callback([args] { run(*args); });
 }

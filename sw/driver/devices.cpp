@@ -5,14 +5,40 @@
 
 #include "common/error.h"
 #include "driver/golden_device.h"
+#include "driver/systemc_isect_device.h"
+#include "driver/verilator_isect_device.h"
 
 namespace lancer {
 
-std::vector<std::string> isectDeviceNames() { return {"golden"}; }
+namespace {
+
+[[noreturn]] void unknownModel(const std::string& name, const std::vector<std::string>& names, const char* unit) {
+  throw InputError(fmt::format("unknown model '{}' for the {} (available: {})", name, unit, fmt::join(names, ", ")));
+}
+
+}  // namespace
+
+std::vector<std::string> isectDeviceNames() {
+  std::vector<std::string> names{"golden", "systemc", "rtl"};
+  if (SystemCIsectDevice::rtlAvailable()) names.push_back("rtl-systemc");
+  return names;
+}
 
 std::unique_ptr<IsectDevice> makeIsectDevice(const std::string& name) {
   if (name == "golden") return std::make_unique<GoldenIsectDevice>();
-  throw InputError(fmt::format("unknown model '{}' (available: {})", name, fmt::join(isectDeviceNames(), ", ")));
+  if (name == "systemc") return std::make_unique<SystemCIsectDevice>(SystemCIsectDevice::Impl::Model);
+  if (name == "rtl") return std::make_unique<VerilatorIsectDevice>();
+  if (name == "rtl-systemc" && SystemCIsectDevice::rtlAvailable()) {
+    return std::make_unique<SystemCIsectDevice>(SystemCIsectDevice::Impl::Rtl);
+  }
+  unknownModel(name, isectDeviceNames(), "intersection pipeline");
+}
+
+std::vector<std::string> gridDeviceNames() { return {"golden"}; }
+
+std::unique_ptr<GridDevice> makeGridDevice(const std::string& name) {
+  if (name == "golden") return std::make_unique<GoldenGridDevice>();
+  unknownModel(name, gridDeviceNames(), "grid unit");
 }
 
 }  // namespace lancer

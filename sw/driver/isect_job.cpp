@@ -2,6 +2,9 @@
 
 #include <chrono>
 
+#include <fmt/format.h>
+
+#include "driver/report.h"
 #include "golden/isect.h"
 
 namespace lancer {
@@ -12,14 +15,40 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+std::string wireHex(const fx::Wire& wire) {
+  std::string out;
+  for (auto it = wire.rbegin(); it != wire.rend(); ++it) out += fmt::format("{:08x}", *it);
+  return out;
+}
+
+void keepCloserResult(std::optional<fx::IsectResult>& best, const fx::IsectResult& r) {
+  if (r.hit && (!best || fx::closerResult(r, *best))) best = r;
+}
+
 }  // namespace
 
-IsectJobResult runIsectJob(const Scene& scene, std::span<const Ray> rays, const Quantizer& quantizer,
-                           const CandidateSource& candidates, IsectDevice& model, IsectDevice& golden,
-                           const IsectJobConfig& config, const std::function<void(size_t)>& onProgress) {
-  IsectJobResult job;
+std::string describeMismatch(const Mismatch& m) {
+  std::string out = fmt::format("first mismatch: ray {} ({})\n", m.rayId,
+                                m.what == "count" ? "the model delivered a different number of results"
+                                                  : "a pipeline result differs");
+  out += fmt::format("  ray      {}\n           wire {}\n", hexFields(m.ray), wireHex(fx::packWire(m.ray)));
+  if (m.tri) out += fmt::format("  triangle {}\n           wire {}\n", hexFields(*m.tri), wireHex(fx::packWire(*m.tri)));
+  out += fmt::format("  model    {}\n", m.model ? hexFields(*m.model) : "(no result)");
+  out += fmt::format("  golden   {}\n", m.golden ? hexFields(*m.golden) : "(no result)");
+  if (m.model && m.golden) {
+    out += fmt::format("  differing bits of isect_res_t ({} wide, bit 0 = LSB of v_num):{}\n", fx::kIsectResBits,
+                       differingBits(fx::packWire(*m.model), fx::packWire(*m.golden), fx::kIsectResBits));
+  }
+  return out;
+}
+
+JobResult runIsectJob(const Scene& scene, std::span<const Ray> rays, const Quantizer& quantizer,
+                      const CandidateSource& candidates, IsectDevice& model, IsectDevice& golden,
+                      const JobConfig& config, const ProgressFn& onProgress) {
+  JobResult job;
   job.rays.resize(rays.size());
   job.hits.resize(rays.size());
+  uint64_t inputStalls = 0;
 
   // Triangles are quantized once; shared vertices quantize to the same integers.
   std::vector<fx::QTriangle> triangles(scene.size());
@@ -36,10 +65,8 @@ IsectJobResult runIsectJob(const Scene& scene, std::span<const Ray> rays, const 
       job.rays[i] = quantizer.quantize(rays[i], uint32_t(i));
       if (!job.rays[i]) continue;
       const fx::QRay& q = job.rays[i]->q;
-      const glm::dvec3 origin = quantizer.sceneOrigin(q);
-      const Ray latticeRay{glm::vec3(origin), glm::vec3(quantizer.sceneDirection(q))};
       found.clear();
-      candidates(latticeRay, found);
+      candidates(Ray{glm::vec3(quantizer.sceneOrigin(q)), glm::vec3(quantizer.sceneDirection(q))}, found);
       for (uint32_t prim : found) requests.push_back({q, triangles[prim]});
     }
     job.intersectionTests += requests.size();
@@ -52,53 +79,39 @@ IsectJobResult runIsectJob(const Scene& scene, std::span<const Ray> rays, const 
     start = std::chrono::steady_clock::now();
     golden.run(requests, goldenOut, {});
     job.goldenSeconds += secondsSince(start);
-    job.model.cycles += stats.cycles;
-    job.model.requests += stats.requests;
-    job.model.results += stats.results;
-    job.model.inputStalls += stats.inputStalls;
-    job.model.cycleAccurate = stats.cycleAccurate;
+    job.cycles += stats.cycles;
+    job.cycleAccurate = stats.cycleAccurate;
+    inputStalls += stats.inputStalls;
 
-    // Bit-for-bit, in stream order: the pipeline keeps order, so record k of the
-    // model answers request k.
+    // Bit for bit, in stream order: the pipeline keeps order, so record k of the
+    // model answers request k. The model's answers are kept even when wrong, so
+    // the image and the hits file show what the model did.
     rayMismatched.assign(end - begin, false);
-    const size_t common = std::min(modelOut.size(), goldenOut.size());
-    for (size_t k = 0; k < requests.size(); ++k) {
-      const uint32_t rayId = requests[k].ray.id;
-      const bool present = k < common;
-      if (present && modelOut[k] == goldenOut[k]) {
-        if (modelOut[k].hit) {
-          auto& best = job.hits[rayId];
-          if (!best || fx::closerResult(modelOut[k], *best)) best = modelOut[k];
-        }
-        continue;
+    for (size_t k = 0; k < std::max(requests.size(), modelOut.size()); ++k) {
+      const bool inModel = k < modelOut.size(), inGolden = k < goldenOut.size();
+      if (inModel && modelOut[k].rayId >= begin && modelOut[k].rayId < end) {
+        keepCloserResult(job.hits[modelOut[k].rayId], modelOut[k]);
       }
-      rayMismatched[rayId - begin] = true;
+      if (inModel && inGolden && modelOut[k] == goldenOut[k]) continue;
+      const uint32_t rayId = k < requests.size() ? requests[k].ray.id : modelOut[k].rayId;
+      if (rayId >= begin && rayId < end) rayMismatched[rayId - begin] = true;
       if (!job.firstMismatch) {
         Mismatch m;
         m.rayId = rayId;
-        m.what = present ? "pair" : "count";
-        m.ray = requests[k].ray;
-        m.tri = requests[k].tri;
-        if (k < modelOut.size()) m.model = modelOut[k];
-        if (k < goldenOut.size()) m.golden = goldenOut[k];
-        job.firstMismatch = m;
+        m.what = inModel && inGolden ? "pair" : "count";
+        if (k < requests.size()) {
+          m.ray = requests[k].ray;
+          m.tri = requests[k].tri;
+        }
+        if (inModel) m.model = modelOut[k];
+        if (inGolden) m.golden = goldenOut[k];
+        job.firstMismatch = MismatchReport{rayId, describeMismatch(m)};
       }
-      // Keep the model's answer for the image and hits file even when it is wrong.
-      if (k < modelOut.size() && modelOut[k].hit) {
-        auto& best = job.hits[rayId];
-        if (!best || fx::closerResult(modelOut[k], *best)) best = modelOut[k];
-      }
-    }
-    if (modelOut.size() > requests.size() && !job.firstMismatch) {
-      Mismatch m;
-      m.rayId = modelOut[requests.size()].rayId;
-      m.what = "count";
-      m.model = modelOut[requests.size()];
-      job.firstMismatch = m;
     }
     for (bool bad : rayMismatched) job.mismatchedRays += bad;
     if (onProgress) onProgress(end - begin);
   }
+  job.addCounter("input_stall_cycles", "input stall cycles", double(inputStalls));
   return job;
 }
 

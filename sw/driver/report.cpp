@@ -24,12 +24,6 @@ std::string hexTriple(const std::array<int64_t, 3>& v, int width) {
                      hex(fx::u128(fx::i128(v[2])) & mask));
 }
 
-std::string wireHex(const fx::Wire& wire) {
-  std::string out;
-  for (auto it = wire.rbegin(); it != wire.rend(); ++it) out += fmt::format("{:08x}", *it);
-  return out;
-}
-
 }  // namespace
 
 std::string hexFields(const fx::QRay& r) {
@@ -47,28 +41,15 @@ std::string hexFields(const fx::IsectResult& r) {
                      hex(r.primId), int(r.hit), hex(r.tNum), hex(r.det), hex(r.uNum), hex(r.vNum));
 }
 
-std::string describeMismatch(const Mismatch& m, const std::string& replayCommand) {
-  std::string out = fmt::format("first mismatch: ray {} ({})\n", m.rayId,
-                                m.what == "count" ? "the model delivered a different number of results"
-                                                  : "a pipeline result differs");
-  out += fmt::format("  ray      {}\n           wire {}\n", hexFields(m.ray), wireHex(fx::packWire(m.ray)));
-  if (m.tri) out += fmt::format("  triangle {}\n           wire {}\n", hexFields(*m.tri), wireHex(fx::packWire(*m.tri)));
-  out += fmt::format("  model    {}\n", m.model ? hexFields(*m.model) : "(no result)");
-  out += fmt::format("  golden   {}\n", m.golden ? hexFields(*m.golden) : "(no result)");
-  if (m.model && m.golden) {
-    const fx::Wire a = fx::packWire(*m.model), b = fx::packWire(*m.golden);
-    std::string bits;
-    for (int i = fx::kIsectResBits - 1; i >= 0; --i) {
-      if (((a[size_t(i / 32)] ^ b[size_t(i / 32)]) >> (i % 32)) & 1) bits += fmt::format(" {}", i);
-    }
-    out += fmt::format("  differing bits of isect_res_t ({} wide, bit 0 = LSB of v_num):{}\n", fx::kIsectResBits,
-                       bits);
+std::string differingBits(const fx::Wire& a, const fx::Wire& b, int bits) {
+  std::string out;
+  for (int i = bits - 1; i >= 0; --i) {
+    if (((a[size_t(i / 32)] ^ b[size_t(i / 32)]) >> (i % 32)) & 1) out += fmt::format(" {}", i);
   }
-  out += fmt::format("  replay: {}\n", replayCommand);
   return out;
 }
 
-std::optional<Hit> sceneHit(const IsectJobResult& job, size_t ray) {
+std::optional<Hit> sceneHit(const JobResult& job, size_t ray) {
   if (!job.hits[ray] || !job.rays[ray]) return std::nullopt;
   const fx::IsectResult& r = *job.hits[ray];
   const QuantizedRay& q = *job.rays[ray];
@@ -77,7 +58,7 @@ std::optional<Hit> sceneHit(const IsectJobResult& job, size_t ray) {
 
 ReferenceComparison compareWithReference(const Scene& scene, std::span<const Ray> rays,
                                          std::span<const std::optional<Hit>> reference,
-                                         const IsectJobResult& job, const Quantizer& quantizer) {
+                                         const JobResult& job, const Quantizer& quantizer) {
   ReferenceComparison cmp;
   double sum = 0;
   for (size_t i = 0; i < rays.size(); ++i) {

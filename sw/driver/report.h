@@ -7,7 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "driver/isect_job.h"
+#include "driver/job.h"
+#include "golden/records.h"
 
 namespace lancer {
 
@@ -16,9 +17,8 @@ std::string hexFields(const fx::QRay& ray);
 std::string hexFields(const fx::QTriangle& tri);
 std::string hexFields(const fx::IsectResult& res);
 
-// The multi-line reproducer of a mismatch: ray id, inputs in hex, both records,
-// the differing bits (XOR of the two wire images), and the replay command.
-std::string describeMismatch(const Mismatch& mismatch, const std::string& replayCommand);
+// Bit positions (most significant first) where two wire images of a `bits`-wide record differ.
+std::string differingBits(const fx::Wire& a, const fx::Wire& b, int bits);
 
 // How the hardware's closest hits differ from the floating-point reference on
 // the original rays. t errors are distances along the ray in lattice units
@@ -35,9 +35,9 @@ struct ReferenceComparison {
 
 ReferenceComparison compareWithReference(const Scene& scene, std::span<const Ray> rays,
                                          std::span<const std::optional<Hit>> reference,
-                                         const IsectJobResult& job, const Quantizer& quantizer);
+                                         const JobResult& job, const Quantizer& quantizer);
 
 // The hardware's closest hit as a scene-space Hit (t in the original ray's units).
-std::optional<Hit> sceneHit(const IsectJobResult& job, size_t ray);
+std::optional<Hit> sceneHit(const JobResult& job, size_t ray);
 
 }  // namespace lancer

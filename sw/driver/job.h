@@ -1,0 +1,73 @@
+#pragma once
+
+// A hardware job: rays through one hardware path (--accel) on one model
+// (--model), compared bit for bit with the golden model. The CLI and the
+// reports see only this; each path (the host BVH feeding the intersection
+// pipeline, the grid unit, ...) fills it in its own way.
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "driver/isect_device.h"
+#include "driver/quantize.h"
+#include "ref/accel.h"
+
+namespace lancer {
+
+// The first ray on which the model and the golden model disagree: a
+// multi-line reproducer (inputs in hex, both outputs, the differing bits).
+struct MismatchReport {
+  uint32_t rayId = 0;
+  std::string details;
+};
+
+// A unit-specific figure for the summary and the JSON report.
+struct JobCounter {
+  std::string key;    // JSON key, e.g. "voxel_steps"
+  std::string label;  // summary label, e.g. "voxel steps"
+  double value = 0;
+};
+
+struct JobResult {
+  std::vector<std::optional<QuantizedRay>> rays;     // per ray; nullopt: missed the lattice cube
+  std::vector<std::optional<fx::IsectResult>> hits;  // the model's closest hit per ray
+  uint64_t mismatchedRays = 0;
+  std::optional<MismatchReport> firstMismatch;
+  uint64_t cycles = 0;
+  bool cycleAccurate = true;
+  uint64_t intersectionTests = 0;
+  std::vector<JobCounter> counters;
+  double modelSeconds = 0;   // host time inside the model
+  double goldenSeconds = 0;  // host time inside the golden model
+
+  void addCounter(std::string key, std::string label, double value) {
+    counters.push_back({std::move(key), std::move(label), value});
+  }
+};
+
+struct JobConfig {
+  std::string model = "golden";
+  StreamOptions stream;
+  AccelOptions accel;        // --grid-res, --octree-depth, ...
+  int memLatency = 20;       // traversal units: memory latency in cycles
+  int memLatencyJitter = 0;  // and its random extra per request
+  int raysInFlight = 0;      // ray slots; 0 = all the unit was built with
+  size_t raysPerBatch = 4096;
+};
+
+using ProgressFn = std::function<void(size_t raysDone)>;
+
+// The hardware paths, by --accel name, and the models each has.
+std::vector<std::string> hardwareAccels();
+std::vector<std::string> modelsFor(const std::string& accel);
+
+// Runs `rays` through the path. Throws InputError for an unknown path or model,
+// or a configuration the model cannot run.
+JobResult runJob(const std::string& accel, const Scene& scene, std::span<const Ray> rays,
+                 const Quantizer& quantizer, const JobConfig& config, const ProgressFn& onProgress = {});
+
+}  // namespace lancer

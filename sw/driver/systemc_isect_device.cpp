@@ -1,0 +1,117 @@
+#include "driver/systemc_isect_device.h"
+
+#include <cstdlib>
+#include <mutex>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <systemc>
+
+#include "isect/rt_isect_top.h"
+#include "isect/rt_isect_types.h"
+
+namespace lancer {
+
+namespace {
+
+// SystemC's own messages. Its banner is switched off (before the kernel exists);
+// informational reports are dropped and warnings too unless LANCER_SC_VERBOSE is
+// set, so that programs print only their own summaries; errors and fatal errors
+// are thrown (as sc_core::sc_report) and turned into std::runtime_error by run().
+void routeReports() {
+  setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 0);
+  using sc_core::sc_report_handler;
+  const bool verbose = std::getenv("LANCER_SC_VERBOSE") != nullptr;
+  sc_report_handler::set_actions(sc_core::SC_INFO, verbose ? sc_core::SC_DISPLAY : sc_core::SC_DO_NOTHING);
+  sc_report_handler::set_actions(sc_core::SC_WARNING, verbose ? sc_core::SC_DISPLAY : sc_core::SC_DO_NOTHING);
+  sc_report_handler::set_actions(sc_core::SC_ERROR, sc_core::SC_THROW);
+  sc_report_handler::set_actions(sc_core::SC_FATAL, sc_core::SC_THROW);
+}
+
+std::mutex& kernelMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+// The one SystemC system of the process, elaborated on first use. It is never
+// destroyed: SystemC cannot tear down an elaborated design and start again.
+sc::rt_isect_top& isectSystem() {
+  static sc::rt_isect_top* const top = [] {
+    routeReports();
+    return new sc::rt_isect_top("lancer_isect");
+  }();
+  return *top;
+}
+
+}  // namespace
+
+SystemCIsectDevice::SystemCIsectDevice(Impl impl) : impl_(impl) {
+  if (impl_ == Impl::Rtl && !rtlAvailable()) {
+    throw std::runtime_error("rtl-systemc is not part of this build (no LANCER_RTL_ISECT_SOURCES)");
+  }
+}
+
+bool SystemCIsectDevice::rtlAvailable() { return sc::rt_isect_top::has_rtl(); }
+bool SystemCIsectDevice::wavesAvailable() { return sc::rt_isect_top::has_waves(); }
+
+StreamStats SystemCIsectDevice::run(std::span<const IsectRequest> requests,
+                                    std::vector<fx::IsectResult>& results,
+                                    const StreamOptions& options) {
+  for (const double p : {options.outputStallProbability, options.inputIdleProbability}) {
+    if (!(p >= 0.0 && p < 1.0)) {
+      throw std::invalid_argument(fmt::format("{}: stall and idle probabilities must lie in [0, 1), got {}",
+                                              name(), p));
+    }
+  }
+  const bool wave = impl_ == Impl::Rtl && !options.wavePath.empty();
+  if (wave && !wavesAvailable()) {
+    throw std::runtime_error("rtl-systemc: this build has no FST tracing (LANCER_SC_RTL_WAVES=OFF)");
+  }
+  StreamStats stats;
+  if (requests.empty()) return stats;
+
+  sc::rt_isect_job job;
+  job.rays.reserve(requests.size());
+  job.tris.reserve(requests.size());
+  for (const IsectRequest& r : requests) {
+    job.rays.push_back(sc::toPort<sc::ISECT_RAY_W>(fx::packWire(r.ray)));
+    job.tris.push_back(sc::toPort<sc::ISECT_TRI_W>(fx::packWire(r.tri)));
+  }
+  job.inputIdleProbability = options.inputIdleProbability;
+  job.outputStallProbability = options.outputStallProbability;
+  job.seed = options.seed;
+  job.results = &results;
+  job.trace = trace_;
+  const size_t resultsBefore = results.size();
+  results.reserve(resultsBefore + requests.size());
+
+  const std::lock_guard<std::mutex> lock(kernelMutex());
+  sc::rt_isect_top& top = isectSystem();
+  sc::rt_isect_tb& tb = top.tb(impl_ == Impl::Model ? sc::rt_isect_impl::model : sc::rt_isect_impl::rtl);
+  if (wave) top.open_wave(options.wavePath);
+  try {
+    tb.start(job);
+    // The bench's clock stops after the last result, so sc_start() returns by
+    // starvation exactly when the run is over.
+    sc_core::sc_start();
+  } catch (const sc_core::sc_report& report) {
+    if (wave) top.close_wave();
+    results.resize(resultsBefore);
+    throw std::runtime_error(fmt::format("{}: SystemC: {}", name(), report.what()));
+  }
+  if (wave) top.close_wave();
+  const sc::rt_isect_tally& tally = tb.tally();
+  if (!tally.error.empty() || tally.busy || tally.taken != requests.size()) {
+    results.resize(resultsBefore);
+    throw std::runtime_error(fmt::format("{}: run abandoned: {}", name(),
+                                         tally.error.empty() ? "the clock stopped early" : tally.error));
+  }
+  stats.cycles = tally.lastTake - tally.firstOffer + 1;
+  stats.requests = tally.accepted;
+  stats.results = tally.taken;
+  stats.inputStalls = tally.inputStalls;
+  stats.cycleAccurate = true;
+  return stats;
+}
+
+}  // namespace lancer

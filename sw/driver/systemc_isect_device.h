@@ -1,0 +1,55 @@
+#pragma once
+
+#include <vector>
+
+#include "driver/isect_device.h"
+#include "isect/rt_isect_cycle.h"
+
+namespace lancer {
+
+// The intersection pipeline simulated in SystemC (systemc/isect/), behind the
+// device interface. Two implementations of rt_isect sit in one SystemC system,
+// each on its own testbench, and bind to the same signals:
+//   "systemc"      rt_isect_model, the hand-written cycle model;
+//   "rtl-systemc"  Vrt_isect_sc, rtl/isect/rt_isect.sv Verilated with --sc.
+//
+// SystemC elaborates once per process and cannot instantiate modules after the
+// first sc_start(), so the system is built on the first run() in the process
+// and kept (never torn down); every run() of any SystemCIsectDevice feeds the
+// chosen bench and calls sc_start() until its results are in. Devices can be
+// created, destroyed and mixed freely; runs are serialized by a process-wide
+// lock (SystemC has one kernel per process). The testbench resets the unit at
+// the start of every run, so a run's results and cycles depend only on its
+// requests and options.
+//
+// Cycles are counted as StreamStats says: from the cycle the first request is
+// offered to the cycle the last result is taken, both included. With no
+// backpressure that is requests + fx::kIsectLatency, as the golden device reports.
+//
+// Options: stall/idle probabilities must lie in [0, 1). StreamOptions::wavePath
+// writes an FST of the Verilated RTL for "rtl-systemc" (when built with
+// LANCER_SC_RTL_WAVES) and is ignored by "systemc" (it has no RTL signals).
+class SystemCIsectDevice final : public IsectDevice {
+ public:
+  enum class Impl { Model, Rtl };
+
+  explicit SystemCIsectDevice(Impl impl = Impl::Model);
+
+  std::string_view name() const override { return impl_ == Impl::Model ? "systemc" : "rtl-systemc"; }
+  StreamStats run(std::span<const IsectRequest> requests, std::vector<fx::IsectResult>& results,
+                  const StreamOptions& options = {}) override;
+
+  // Records the port activity of every cycle of the following runs into
+  // *trace (appended; nullptr turns it off). For cycle-for-cycle comparisons.
+  void setCycleTrace(std::vector<sc::IsectCycle>* trace) { trace_ = trace; }
+
+  // Whether this build has the Verilated RTL ("rtl-systemc") and its FST tracing.
+  static bool rtlAvailable();
+  static bool wavesAvailable();
+
+ private:
+  Impl impl_;
+  std::vector<sc::IsectCycle>* trace_ = nullptr;
+};
+
+}  // namespace lancer

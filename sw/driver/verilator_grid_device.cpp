@@ -1,0 +1,338 @@
+#include "driver/verilator_grid_device.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+#include <fmt/format.h>
+
+#include "Vrt_grid.h"
+#include "common/error.h"
+#include "verilated.h"
+#include "verilated_fst_c.h"
+
+#ifndef LANCER_GRID_RAYS_IN_FLIGHT
+#error "LANCER_GRID_RAYS_IN_FLIGHT must come from rt_grid_vlt (rtl/CMakeLists.txt)"
+#endif
+
+namespace lancer {
+
+namespace {
+
+constexpr size_t kRayWords = size_t(fx::wireWords(fx::kIsectRayBits));
+constexpr size_t kTriWords = size_t(fx::wireWords(fx::kIsectTriBits));
+constexpr size_t kCellWords = size_t(fx::wireWords(fx::kGridCellBits));
+constexpr size_t kVisitWords = size_t(fx::wireWords(fx::kGridVisitBits));
+constexpr size_t kResWords = size_t(fx::wireWords(fx::kGridResultBits));
+
+// Verilator holds a port of up to 64 bits in an integer and a wider one in a
+// VlWide<N> of 32-bit words, least significant first (fx::Wire's order).
+template <typename Port>
+void writePort(Port& port, const uint32_t* words, size_t count) {
+  if constexpr (std::is_integral_v<Port>) {
+    uint64_t value = words[0];
+    if (count > 1) value |= uint64_t(words[1]) << 32;
+    port = Port(value);
+  } else {
+    std::memcpy(port.data(), words, count * sizeof(uint32_t));
+  }
+}
+
+template <typename Port>
+void readPort(const Port& port, uint32_t* words, size_t count) {
+  if constexpr (std::is_integral_v<Port>) {
+    const uint64_t value = port;
+    words[0] = uint32_t(value);
+    if (count > 1) words[1] = uint32_t(value >> 32);
+  } else {
+    std::memcpy(words, port.data(), count * sizeof(uint32_t));
+  }
+}
+
+// Bernoulli draws that cost nothing when the probability is zero.
+class Coin {
+ public:
+  Coin(double p, std::mt19937_64& rng) : threshold_(toThreshold(p)), rng_(rng) {}
+  bool operator()() { return threshold_ != 0 && rng_() < threshold_; }
+
+ private:
+  static uint64_t toThreshold(double p) {
+    if (!(p > 0.0)) return 0;
+    if (p >= 1.0) return ~uint64_t(0);
+    return uint64_t(p * 18446744073709551616.0);  // p * 2^64
+  }
+  uint64_t threshold_;
+  std::mt19937_64& rng_;
+};
+
+}  // namespace
+
+void GridMemoryPort::request(uint64_t cycle, uint32_t addr, uint32_t tag) {
+  uint64_t due = cycle + uint64_t(latency_);
+  if (jitter_ > 0) due += rng_() % uint64_t(jitter_ + 1);
+  due = std::max(due, lastDue_ + 1);  // in order, one response per cycle
+  lastDue_ = due;
+  pending_.push_back({due, addr, tag});
+}
+
+bool GridMemoryPort::respond(uint64_t cycle, uint32_t& addr, uint32_t& tag) {
+  if (pending_.empty() || pending_.front().due > cycle) return false;
+  addr = pending_.front().addr;
+  tag = pending_.front().tag;
+  pending_.pop_front();
+  return true;
+}
+
+VerilatorGridDevice::VerilatorGridDevice() : context_(std::make_unique<VerilatedContext>()) {
+  context_->traceEverOn(true);
+  context_->fatalOnError(false);  // a failed assertion becomes an exception
+  top_ = std::make_unique<Vrt_grid>(context_.get(), "rt_grid");
+  reset();
+}
+
+VerilatorGridDevice::~VerilatorGridDevice() {
+  if (wave_) wave_->close();
+  if (top_) top_->final();
+}
+
+int VerilatorGridDevice::maxRaysInFlight() const { return LANCER_GRID_RAYS_IN_FLIGHT; }
+
+void VerilatorGridDevice::reset() {
+  top_->clk_i = 0;
+  top_->rst_ni = 0;
+  top_->ray_valid_i = 0;
+  top_->res_ready_i = 0;
+  top_->visit_ready_i = 0;
+  top_->cell_req_ready_i = 1;
+  top_->idx_req_ready_i = 1;
+  top_->tri_req_ready_i = 1;
+  top_->cell_rsp_valid_i = 0;
+  top_->idx_rsp_valid_i = 0;
+  top_->tri_rsp_valid_i = 0;
+  top_->cfg_slots_i = LANCER_GRID_RAYS_IN_FLIGHT;
+  top_->cfg_res_i = 1 | (1 << 9) | (1 << 18);
+  top_->eval();
+  for (int i = 0; i < 2; ++i) tick();
+  top_->rst_ni = 1;
+  top_->eval();
+  tick();
+  checkAssertions();
+}
+
+void VerilatorGridDevice::tick() {
+  if (wave_) wave_->dump(2 * cycle_);
+  context_->time(2 * cycle_ + 1);
+  top_->clk_i = 1;
+  top_->eval();
+  if (wave_) wave_->dump(2 * cycle_ + 1);
+  ++cycle_;
+  context_->time(2 * cycle_);
+  top_->clk_i = 0;
+}
+
+void VerilatorGridDevice::checkAssertions() const {
+  if (context_->gotError()) {
+    throw std::runtime_error(
+        fmt::format("rtl: an assertion of rt_grid failed near cycle {} (see the %Error line above)", cycle_));
+  }
+}
+
+GridRunStats VerilatorGridDevice::run(const fx::GridImage& image, std::span<const fx::QRay> rays,
+                                      std::vector<fx::GridTrace>& traces, const GridRunOptions& options) {
+  const int maxSlots = maxRaysInFlight();
+  if (options.raysInFlight < 0 || options.raysInFlight > maxSlots) {
+    throw InputError(fmt::format("rays in flight {} is out of range: the RTL grid unit was built with {} ray slots "
+                                 "(use 1..{}, or 0 for all; rebuild with -DLANCER_GRID_RAYS_IN_FLIGHT for more)",
+                                 options.raysInFlight, maxSlots, maxSlots));
+  }
+  if (options.memLatency < 1 || options.memLatencyJitter < 0) {
+    throw InputError(fmt::format("memory latency {} (jitter {}) is out of range: latency >= 1, jitter >= 0",
+                                 options.memLatency, options.memLatencyJitter));
+  }
+  for (int a = 0; a < 3; ++a) {
+    if (image.res[a] < 1 || image.res[a] > fx::kGridResMax) {
+      throw InputError(fmt::format("grid resolution {} on axis {} is out of range 1..{}", image.res[a], a,
+                                   fx::kGridResMax));
+    }
+  }
+
+  GridRunStats stats;
+  const size_t n = rays.size();
+  traces.assign(n, fx::GridTrace{});
+  stats.rays = n;
+  if (n == 0) return stats;
+
+  reset();
+  top_->cfg_res_i = uint32_t(image.res[0]) | (uint32_t(image.res[1]) << 9) | (uint32_t(image.res[2]) << 18);
+  top_->cfg_slots_i = options.raysInFlight == 0 ? maxSlots : options.raysInFlight;
+  top_->eval();
+
+  if (!options.stream.wavePath.empty()) {
+    wave_ = std::make_unique<VerilatedFstC>();
+    top_->trace(wave_.get(), 99);
+    wave_->open(options.stream.wavePath.c_str());
+    if (!wave_->isOpen()) {
+      wave_.reset();
+      throw std::runtime_error("rtl: cannot write waveform " + options.stream.wavePath);
+    }
+  }
+
+  std::mt19937_64 rng(options.stream.seed);
+  Coin idle(options.stream.inputIdleProbability, rng);
+  Coin stallRes(options.stream.outputStallProbability, rng);
+  Coin stallVisit(options.stream.outputStallProbability, rng);
+  GridMemoryPort cellPort(options.memLatency, options.memLatencyJitter, options.stream.seed * 3 + 1);
+  GridMemoryPort idxPort(options.memLatency, options.memLatencyJitter, options.stream.seed * 3 + 2);
+  GridMemoryPort triPort(options.memLatency, options.memLatencyJitter, options.stream.seed * 3 + 3);
+
+  std::vector<uint8_t> finished(n, 0);
+  std::vector<uint32_t> resultCells(n, 0);
+  fx::Wire resWire(kResWords), visitWire(kVisitWords);
+  const uint64_t kWatchdog = 1000000;
+  size_t offered = 0, results = 0;
+  bool offering = false, started = false;
+  uint64_t firstCycle = 0, lastProgress = cycle_;
+
+  auto checkAddr = [](const char* region, uint32_t addr, size_t size) {
+    if (addr >= size) {
+      throw std::runtime_error(fmt::format("rtl: {} read at {} outside the image ({} entries)", region, addr, size));
+    }
+  };
+
+  while (results < n || !cellPort.idle() || !idxPort.idle() || !triPort.idle() || top_->visit_valid_o) {
+    // Producer: the next ray, unless idling; an offer holds until taken.
+    if (!offering && offered < n && !idle()) {
+      fx::QRay wireRay = rays[offered];
+      wireRay.id = uint32_t(offered);
+      writePort(top_->ray_data_i, fx::packWire(wireRay).data(), kRayWords);
+      offering = true;
+      if (!started) {
+        started = true;
+        firstCycle = cycle_;
+      }
+    }
+    top_->ray_valid_i = offering;
+    const bool resReady = !stallRes();
+    const bool visitReady = !stallVisit();
+    top_->res_ready_i = resReady;
+    top_->visit_ready_i = visitReady;
+
+    // Memory responses due in this cycle.
+    uint32_t addr = 0, tag = 0;
+    top_->cell_rsp_valid_i = cellPort.respond(cycle_, addr, tag);
+    if (top_->cell_rsp_valid_i) {
+      checkAddr("cell table", addr, image.cells.size());
+      const fx::GridCell& c = image.cells[addr];
+      const fx::u128 values[] = {c.first, c.count};
+      writePort(top_->cell_rsp_data_i, fx::packFields(fx::kGridCellFields, values).data(), kCellWords);
+      top_->cell_rsp_tag_i = tag;
+    }
+    top_->idx_rsp_valid_i = idxPort.respond(cycle_, addr, tag);
+    if (top_->idx_rsp_valid_i) {
+      checkAddr("index list", addr, image.indices.size());
+      top_->idx_rsp_data_i = image.indices[addr];
+      top_->idx_rsp_tag_i = tag;
+    }
+    top_->tri_rsp_valid_i = triPort.respond(cycle_, addr, tag);
+    if (top_->tri_rsp_valid_i) {
+      checkAddr("triangle table", addr, image.triangles.size());
+      writePort(top_->tri_rsp_data_i, fx::packWire(image.triangles[addr]).data(), kTriWords);
+      top_->tri_rsp_tag_i = tag;
+    }
+    top_->eval();
+
+    // Handshakes of this cycle.
+    const bool rayFire = offering && top_->ray_ready_o;
+    bool progress = rayFire;
+    if (top_->cell_req_valid_o) {
+      cellPort.request(cycle_, top_->cell_req_addr_o, top_->cell_req_tag_o);
+      ++stats.cellReads;
+    }
+    if (top_->idx_req_valid_o) {
+      idxPort.request(cycle_, top_->idx_req_addr_o, top_->idx_req_tag_o);
+      ++stats.indexReads;
+    }
+    if (top_->tri_req_valid_o) {
+      triPort.request(cycle_, top_->tri_req_addr_o, top_->tri_req_tag_o);
+      ++stats.triangleReads;
+    }
+    if (top_->perf_isect_fire_o) {
+      ++stats.isectTests;
+      ++stats.isectBusyCycles;
+      progress = true;
+    }
+    const uint64_t edge = cycle_;
+    if (top_->visit_valid_o && visitReady) {
+      readPort(top_->visit_data_o, visitWire.data(), kVisitWords);
+      const auto v = fx::unpackFields(fx::kGridVisitFields, visitWire);
+      const size_t k = size_t(v[0]);
+      if (k >= offered) {
+        throw std::runtime_error(fmt::format("rtl: a visit record for ray {} that is not in flight", k));
+      }
+      traces[k].cells.push_back(uint32_t(v[1]));
+      ++stats.voxelSteps;
+      stats.cycles = edge - firstCycle + 1;
+      progress = true;
+    }
+    if (top_->res_valid_o && resReady) {
+      readPort(top_->res_data_o, resWire.data(), kResWords);
+      const auto v = fx::unpackFields(fx::kGridResFields, resWire);
+      const size_t k = size_t(v[0]);
+      if (k >= offered || finished[k]) {
+        throw std::runtime_error(fmt::format("rtl: a result for ray {} that is not in flight", k));
+      }
+      finished[k] = 1;
+      resultCells[k] = uint32_t(v[1]);
+      fx::GridTrace& t = traces[k];
+      t.tests = uint64_t(v[2]);
+      if (v[3]) {
+        fx::IsectResult hit;
+        hit.rayId = rays[k].id;
+        hit.primId = uint32_t(v[4]);
+        hit.hit = true;
+        hit.tNum = v[5];
+        hit.det = v[6];
+        hit.uNum = v[7];
+        hit.vNum = v[8];
+        t.hit = hit;
+      }
+      ++results;
+      stats.cycles = edge - firstCycle + 1;
+      progress = true;
+    }
+    tick();
+    checkAssertions();
+    if (rayFire) {
+      offering = false;
+      ++offered;
+    }
+    if (progress) lastProgress = cycle_;
+    if (cycle_ - lastProgress > kWatchdog) {
+      throw std::runtime_error(fmt::format("rtl: no progress for {} cycles ({} of {} rays accepted, {} results)",
+                                           kWatchdog, offered, n, results));
+    }
+  }
+  top_->ray_valid_i = 0;
+  top_->res_ready_i = 0;
+  top_->visit_ready_i = 0;
+  top_->cell_rsp_valid_i = 0;
+  top_->idx_rsp_valid_i = 0;
+  top_->tri_rsp_valid_i = 0;
+  top_->eval();
+  if (wave_) {
+    wave_->dump(2 * cycle_);
+    wave_->close();
+    wave_.reset();
+  }
+  for (size_t k = 0; k < n; ++k) {
+    if (resultCells[k] != traces[k].cells.size()) {
+      throw std::runtime_error(fmt::format("rtl: ray {} reports {} cells but {} visit records came out", k,
+                                           resultCells[k], traces[k].cells.size()));
+    }
+  }
+  return stats;
+}
+
+}  // namespace lancer

@@ -1,0 +1,234 @@
+#include "driver/verilator_isect_device.h"
+
+#include <algorithm>
+#include <cstring>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+#include <fmt/format.h>
+
+#include "Vrt_isect.h"
+#include "verilated.h"
+#include "verilated_fst_c.h"
+
+namespace lancer {
+
+namespace {
+
+constexpr size_t kRayWords = size_t(fx::wireWords(fx::kIsectRayBits));
+constexpr size_t kTriWords = size_t(fx::wireWords(fx::kIsectTriBits));
+constexpr size_t kResWords = size_t(fx::wireWords(fx::kIsectResBits));
+
+// Verilator holds a port of up to 64 bits in an integer and a wider one in a
+// VlWide<N> of 32-bit words, least significant first: the same order as
+// fx::Wire, so a record crosses the port as a block copy.
+template <typename Port>
+constexpr size_t portWords() {
+  if constexpr (std::is_integral_v<Port>) {
+    return (sizeof(Port) + 3) / 4;
+  } else {
+    return sizeof(Port) / sizeof(uint32_t);
+  }
+}
+
+template <typename Port>
+void writePort(Port& port, const uint32_t* words, size_t count) {
+  if constexpr (std::is_integral_v<Port>) {
+    uint64_t value = words[0];
+    if (count > 1) value |= uint64_t(words[1]) << 32;
+    port = Port(value);
+  } else {
+    std::memcpy(port.data(), words, count * sizeof(uint32_t));
+  }
+}
+
+template <typename Port>
+void readPort(const Port& port, uint32_t* words, size_t count) {
+  if constexpr (std::is_integral_v<Port>) {
+    const uint64_t value = port;
+    words[0] = uint32_t(value);
+    if (count > 1) words[1] = uint32_t(value >> 32);
+  } else {
+    std::memcpy(words, port.data(), count * sizeof(uint32_t));
+  }
+}
+
+using RayPort = std::remove_reference_t<decltype(std::declval<Vrt_isect>().req_ray_i)>;
+using TriPort = std::remove_reference_t<decltype(std::declval<Vrt_isect>().req_tri_i)>;
+using ResPort = std::remove_reference_t<decltype(std::declval<Vrt_isect>().res_data_o)>;
+static_assert(portWords<RayPort>() >= kRayWords && portWords<RayPort>() < kRayWords + 2,
+              "req_ray_i does not match fx::kIsectRayBits: rebuild rt_pkg");
+static_assert(portWords<TriPort>() >= kTriWords && portWords<TriPort>() < kTriWords + 2,
+              "req_tri_i does not match fx::kIsectTriBits: rebuild rt_pkg");
+static_assert(portWords<ResPort>() >= kResWords && portWords<ResPort>() < kResWords + 2,
+              "res_data_o does not match fx::kIsectResBits: rebuild rt_pkg");
+
+// Bernoulli draws that cost nothing when the probability is zero.
+class Coin {
+ public:
+  Coin(double p, std::mt19937_64& rng) : threshold_(toThreshold(p)), rng_(rng) {}
+  bool operator()() { return threshold_ != 0 && rng_() < threshold_; }
+
+ private:
+  static uint64_t toThreshold(double p) {
+    if (!(p > 0.0)) return 0;
+    if (p >= 1.0) return ~uint64_t(0);
+    return uint64_t(p * 18446744073709551616.0);  // p * 2^64
+  }
+  uint64_t threshold_;
+  std::mt19937_64& rng_;
+};
+
+}  // namespace
+
+VerilatorIsectDevice::VerilatorIsectDevice()
+    : context_(std::make_unique<VerilatedContext>()) {
+  context_->traceEverOn(true);    // waves may be asked for by any later run()
+  context_->fatalOnError(false);  // a failed assertion becomes an exception, see tick()
+  top_ = std::make_unique<Vrt_isect>(context_.get(), "rt_isect");
+  reset();
+}
+
+VerilatorIsectDevice::~VerilatorIsectDevice() {
+  if (wave_) wave_->close();
+  if (top_) top_->final();
+}
+
+void VerilatorIsectDevice::reset() {
+  top_->clk_i = 0;
+  top_->rst_ni = 0;
+  top_->req_valid_i = 0;
+  top_->res_ready_i = 0;
+  top_->eval();
+  for (int i = 0; i < 2; ++i) tick();
+  top_->rst_ni = 1;
+  top_->eval();
+  tick();
+  checkAssertions();
+}
+
+void VerilatorIsectDevice::tick() {
+  if (wave_) wave_->dump(2 * cycle_);
+  context_->time(2 * cycle_ + 1);
+  top_->clk_i = 1;
+  top_->eval();
+  if (wave_) wave_->dump(2 * cycle_ + 1);
+  ++cycle_;
+  context_->time(2 * cycle_);
+  top_->clk_i = 0;
+}
+
+void VerilatorIsectDevice::checkAssertions() const {
+  if (context_->gotError()) {
+    throw std::runtime_error(fmt::format(
+        "rtl: an assertion of rt_isect failed near cycle {} (see the %Error line above)", cycle_));
+  }
+}
+
+StreamStats VerilatorIsectDevice::run(std::span<const IsectRequest> requests,
+                                      std::vector<fx::IsectResult>& results,
+                                      const StreamOptions& options) {
+  StreamStats stats;
+  const size_t n = requests.size();
+  if (n == 0) return stats;
+
+  // Records are packed when offered and unpacked when taken, straight from and
+  // into the ports: no image of the whole stream is kept. A port keeps its
+  // value, so a ray (or triangle) equal to the previous request's is not
+  // packed again: streams of one ray against its candidate triangles pay once.
+  if (results.capacity() < results.size() + n) {
+    results.reserve(std::max(results.size() + n, 2 * results.capacity()));
+  }
+  fx::Wire resWire(kResWords);
+  const fx::QRay* portRay = nullptr;
+  const fx::QTriangle* portTri = nullptr;
+
+  if (!options.wavePath.empty()) {
+    wave_ = std::make_unique<VerilatedFstC>();
+    top_->trace(wave_.get(), 99);
+    wave_->open(options.wavePath.c_str());
+    if (!wave_->isOpen()) {
+      wave_.reset();
+      throw std::runtime_error("rtl: cannot write waveform " + options.wavePath);
+    }
+  }
+
+  std::mt19937_64 rng(options.seed);
+  Coin idle(options.inputIdleProbability, rng);
+  Coin stall(options.outputStallProbability, rng);
+
+  // Without a transfer for this long the RTL has lost a request or a result
+  // (a stalled stream moves every 1 / (1 - p) cycles: 10^4 at p = 0.9999).
+  // Stall or idle probabilities of 1 never move, and end here.
+  const uint64_t kWatchdog = 1000000;
+  size_t offered = 0;  // index of the request on offer, or of the next one
+  bool offering = false;
+  size_t taken = 0;
+  uint64_t firstCycle = 0, lastProgress = cycle_;
+  bool started = false;
+
+  while (taken < n) {
+    // Producer: offers the next request, unless idling; keeps an offer until taken.
+    if (!offering && offered < n && !idle()) {
+      const IsectRequest& req = requests[offered];
+      if (!portRay || !(req.ray == *portRay)) {
+        writePort(top_->req_ray_i, fx::packWire(req.ray).data(), kRayWords);
+        portRay = &req.ray;
+      }
+      if (!portTri || !(req.tri == *portTri)) {
+        writePort(top_->req_tri_i, fx::packWire(req.tri).data(), kTriWords);
+        portTri = &req.tri;
+      }
+      offering = true;
+      if (!started) {
+        started = true;
+        firstCycle = cycle_;
+      }
+    }
+    top_->req_valid_i = offering;
+    // Consumer: ready unless stalling.
+    const bool ready = !stall();
+    top_->res_ready_i = ready;
+    top_->eval();  // settle req_ready_o, which depends on res_ready_i
+
+    const bool reqFire = offering && top_->req_ready_o;
+    const bool resFire = top_->res_valid_o && ready;
+    if (resFire) {
+      if (taken >= stats.requests) throw std::runtime_error("rtl: a result without a request");
+      readPort(top_->res_data_o, resWire.data(), kResWords);
+      results.push_back(fx::unpackResult(resWire));
+      ++taken;
+    }
+    if (offering && !reqFire) ++stats.inputStalls;
+    const uint64_t edge = cycle_;
+    tick();
+    checkAssertions();
+    if (reqFire) {
+      offering = false;
+      ++offered;
+      ++stats.requests;
+    }
+    if (reqFire || resFire) lastProgress = cycle_;
+    if (taken == n) stats.cycles = edge - firstCycle + 1;
+    if (cycle_ - lastProgress > kWatchdog) {
+      throw std::runtime_error(fmt::format(
+          "rtl: no progress for {} cycles ({} of {} requests accepted, {} results taken)",
+          kWatchdog, stats.requests, n, taken));
+    }
+  }
+  top_->req_valid_i = 0;
+  top_->res_ready_i = 0;
+  top_->eval();
+  if (wave_) {
+    wave_->dump(2 * cycle_);
+    wave_->close();
+    wave_.reset();
+  }
+
+  stats.results = taken;
+  return stats;
+}
+
+}  // namespace lancer

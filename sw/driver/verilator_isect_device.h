@@ -1,0 +1,51 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "driver/isect_device.h"
+
+class Vrt_isect;
+class VerilatedContext;
+class VerilatedFstC;
+
+namespace lancer {
+
+// The Verilated RTL of rt_isect (rtl/isect/rt_isect.sv) behind the device
+// interface. run() drives the model one clock at a time through its valid/ready
+// ports: requests are offered in order (the producer idles with
+// StreamOptions::inputIdleProbability when it has nothing on offer, and holds
+// an offered request until it is taken), the consumer deasserts res_ready_i
+// with StreamOptions::outputStallProbability, both from StreamOptions::seed.
+// Records cross the ports as whole words (fx::packWire / fx::unpackResult; the
+// wire images have Verilator's word order). Cycles are counted exactly, from
+// the first cycle a request is offered to the cycle the last result is taken.
+// An FST waveform is written when StreamOptions::wavePath is set (off by
+// default). A failed SVA assertion in the RTL makes run() throw, and so does a
+// stream without a transfer for 10^6 cycles (a lost item, or a probability of 1).
+class VerilatorIsectDevice final : public IsectDevice {
+ public:
+  VerilatorIsectDevice();  // builds the model and resets it
+  ~VerilatorIsectDevice() override;
+  VerilatorIsectDevice(const VerilatorIsectDevice&) = delete;
+  VerilatorIsectDevice& operator=(const VerilatorIsectDevice&) = delete;
+
+  std::string_view name() const override { return "rtl"; }
+  StreamStats run(std::span<const IsectRequest> requests, std::vector<fx::IsectResult>& results,
+                  const StreamOptions& options = {}) override;
+
+  // Clock edges since construction (reset included); the waveform's time base.
+  uint64_t totalCycles() const { return cycle_; }
+
+ private:
+  void reset();
+  void tick();  // one rising edge, with the waveform samples around it
+  void checkAssertions() const;
+
+  std::unique_ptr<VerilatedContext> context_;
+  std::unique_ptr<Vrt_isect> top_;
+  std::unique_ptr<VerilatedFstC> wave_;
+  uint64_t cycle_ = 0;
+};
+
+}  // namespace lancer

@@ -1,0 +1,153 @@
+#include "isect/rt_isect_tb.h"
+
+#include <fmt/format.h>
+
+namespace lancer::sc {
+
+namespace {
+
+// rng() < threshold happens with probability p (0 never draws, see coin()).
+uint64_t threshold(double p) {
+  if (!(p > 0.0)) return 0;
+  if (p >= 1.0) return ~uint64_t(0);
+  return uint64_t(p * 18446744073709551616.0);  // p * 2^64
+}
+
+}  // namespace
+
+rt_isect_tb::rt_isect_tb(sc_core::sc_module_name name)
+    : sc_core::sc_module(name),
+      clk_i("clk_i"),
+      rst_ni("rst_ni"),
+      req_valid_i("req_valid_i"),
+      req_ready_o("req_ready_o"),
+      req_ray_i("req_ray_i"),
+      req_tri_i("req_tri_i"),
+      res_valid_o("res_valid_o"),
+      res_ready_i("res_ready_i"),
+      res_data_o("res_data_o") {
+  SC_METHOD(clock);
+  sensitive << start_;
+  dont_initialize();
+
+  SC_METHOD(stream);
+  sensitive << clk_i.pos();
+  dont_initialize();
+
+  SC_METHOD(monitor);
+  sensitive << clk_i.pos();
+  dont_initialize();
+}
+
+void rt_isect_tb::start(const rt_isect_job& job) {
+  job_ = &job;
+  tally_ = rt_isect_tally{};
+  tally_.busy = true;
+  edge_ = monitorEdge_ = 0;
+  rng_.seed(job.seed);
+  idleThreshold_ = threshold(job.inputIdleProbability);
+  stallThreshold_ = threshold(job.outputStallProbability);
+  next_ = 0;
+  offered_ = false;
+  lastProgress_ = 0;
+  monitorTaken_ = 0;
+  running_ = true;
+  start_.notify(sc_core::SC_ZERO_TIME);
+}
+
+void rt_isect_tb::clock() {
+  const bool level = clk_i.read();
+  if (!level && !running_) return;  // at rest, low, until the next start()
+  clk_i.write(!level);
+  next_trigger(sc_core::sc_time(CLOCK_PERIOD_NS / 2, sc_core::SC_NS));
+}
+
+void rt_isect_tb::abandon(const std::string& why) {
+  tally_.error = why;
+  tally_.busy = false;
+  running_ = false;
+}
+
+// Edges 0 .. RESET_CYCLES-1 drive reset (low at edges 1 .. RESET_CYCLES); from
+// edge RESET_CYCLES on, the value written after edge e is sampled at edge e+1,
+// which ends cycle e - RESET_CYCLES. Both partners sample the ports as they were
+// before the edge and write what the next cycle sees.
+void rt_isect_tb::stream() {
+  const uint64_t edge = edge_++;
+  produce(edge);
+  consume(edge);
+}
+
+void rt_isect_tb::produce(uint64_t edge) {
+  if (edge < RESET_CYCLES) {
+    rst_ni.write(false);
+    req_valid_i.write(false);
+    return;
+  }
+  bool holding = false;
+  if (edge == RESET_CYCLES) {
+    rst_ni.write(true);
+  } else if (req_valid_i.read()) {
+    if (req_ready_o.read()) {
+      ++tally_.accepted;
+      ++next_;
+    } else {
+      ++tally_.inputStalls;
+      holding = true;
+    }
+  }
+  if (holding) return;  // the offered request stays, unchanged
+  if (next_ < job_->rays.size() && !coin(idleThreshold_)) {
+    req_ray_i.write(job_->rays[next_]);
+    req_tri_i.write(job_->tris[next_]);
+    req_valid_i.write(true);
+    if (!offered_) {
+      offered_ = true;
+      tally_.firstOffer = edge - RESET_CYCLES;
+    }
+  } else {
+    req_valid_i.write(false);
+  }
+}
+
+void rt_isect_tb::consume(uint64_t edge) {
+  if (edge < RESET_CYCLES) {
+    res_ready_i.write(false);
+    return;
+  }
+  if (edge > RESET_CYCLES) {
+    const uint64_t cycle = edge - RESET_CYCLES - 1;
+    if (res_valid_o.read() && res_ready_i.read()) {
+      job_->results->push_back(fx::unpackResult(fromPort<ISECT_RES_W>(res_data_o.read())));
+      lastProgress_ = cycle;
+      if (++tally_.taken == job_->rays.size()) {
+        tally_.lastTake = cycle;
+        tally_.busy = false;
+        running_ = false;  // this was the last rising edge of the run
+        res_ready_i.write(false);
+        return;
+      }
+    } else if (cycle - lastProgress_ > job_->watchdogCycles) {
+      abandon(fmt::format("no result for {} cycles ({} of {} taken, {} accepted)",
+                          job_->watchdogCycles, tally_.taken, job_->rays.size(), tally_.accepted));
+      return;
+    }
+  }
+  res_ready_i.write(!coin(stallThreshold_));
+}
+
+void rt_isect_tb::monitor() {
+  const uint64_t edge = monitorEdge_++;
+  if (job_->trace == nullptr || edge <= RESET_CYCLES || monitorTaken_ >= job_->rays.size()) return;
+  IsectCycle c;
+  c.cycle = edge - RESET_CYCLES - 1;
+  c.reqValid = req_valid_i.read();
+  c.reqReady = req_ready_o.read();
+  c.resValid = res_valid_o.read();
+  c.resReady = res_ready_i.read();
+  if (c.resValid) c.resData = fromPort<ISECT_RES_W>(res_data_o.read());
+  if (c.resValid && c.resReady) ++monitorTaken_;
+  job_->trace->push_back(std::move(c));
+}
+
+}  // namespace lancer::sc

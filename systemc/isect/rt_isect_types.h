@@ -1,0 +1,83 @@
+#pragma once
+
+// The port types of rt_isect as SystemC sees them, shared by the hand-written
+// cycle model (rt_isect_model), the Verilated RTL (Vrt_isect_sc) and the
+// testbench, so that either implementation drops into the same sockets.
+//
+// Verilator 5.006 --sc (no --pins-* options) maps a W-bit port to
+//     W == 1        bool
+//     2 <= W <= 32  uint32_t
+//     33 <= W <= 64 uint64_t
+//     W > 64        sc_bv<W>
+// (checked on a probe module with 1-, 8-, 32-, 40-, 64-, 65- and 100-bit ports).
+// The record widths follow LANCER_POS_BITS / LANCER_DIR_BITS, so which branch a
+// port takes is decided here at compile time: with the narrowest formats the
+// ray (56 bits) is a uint64_t, by default every record is an sc_bv.
+//
+// Bit layout: a port value holds the record's wire image (sw/golden/records.h):
+// bit i of the port is bit i%32 of word i/32, words least significant first.
+
+#include <cstdint>
+#include <span>
+#include <type_traits>
+
+#include <systemc>
+
+#include "golden/records.h"
+
+namespace lancer::sc {
+
+template <int W>
+using vl_port_t =
+    std::conditional_t<(W == 1), bool,
+                       std::conditional_t<(W <= 32), uint32_t,
+                                          std::conditional_t<(W <= 64), uint64_t, sc_dt::sc_bv<W>>>>;
+
+// rt_pkg's record widths, under rt_pkg's names.
+inline constexpr int ISECT_RAY_W = fx::kIsectRayBits;
+inline constexpr int ISECT_TRI_W = fx::kIsectTriBits;
+inline constexpr int ISECT_RES_W = fx::kIsectResBits;
+inline constexpr int ISECT_LATENCY = fx::kIsectLatency;
+
+// The types Verilator gives req_ray_i, req_tri_i and res_data_o.
+using isect_ray_t = vl_port_t<ISECT_RAY_W>;
+using isect_tri_t = vl_port_t<ISECT_TRI_W>;
+using isect_res_t = vl_port_t<ISECT_RES_W>;
+
+// Wire image (fx::wireWords(W) words) -> port value. Bits above W are dropped.
+template <int W>
+vl_port_t<W> toPort(std::span<const uint32_t> wire) {
+  if constexpr (W == 1) {
+    return (wire[0] & 1u) != 0;
+  } else if constexpr (W < 32) {
+    return wire[0] & ((uint32_t(1) << W) - 1);
+  } else if constexpr (W == 32) {
+    return wire[0];
+  } else if constexpr (W < 64) {
+    return (uint64_t(wire[0]) | (uint64_t(wire[1]) << 32)) & ((uint64_t(1) << W) - 1);
+  } else if constexpr (W == 64) {
+    return uint64_t(wire[0]) | (uint64_t(wire[1]) << 32);
+  } else {
+    sc_dt::sc_bv<W> value;
+    for (int i = 0; i < fx::wireWords(W); ++i) value.set_word(i, wire[size_t(i)]);
+    value.clean_tail();
+    return value;
+  }
+}
+
+// Port value -> wire image of fx::wireWords(W) words.
+template <int W>
+fx::Wire fromPort(const vl_port_t<W>& value) {
+  fx::Wire wire(size_t(fx::wireWords(W)), 0);
+  if constexpr (W <= 32) {
+    wire[0] = uint32_t(value);
+  } else if constexpr (W <= 64) {
+    wire[0] = uint32_t(value);
+    wire[1] = uint32_t(value >> 32);
+  } else {
+    for (int i = 0; i < fx::wireWords(W); ++i) wire[size_t(i)] = value.get_word(i);
+  }
+  return wire;
+}
+
+}  // namespace lancer::sc

@@ -1,0 +1,89 @@
+# Runs the Icarus Verilog bench of rt_isect (CTest test rtl_isect_icarus):
+#   1. make_isect_vectors writes golden vectors (hard cases + random pairs);
+#   2. Icarus-11 copies of the package and the DUT (see below);
+#   3. iverilog -g2012 compiles package, DUT and tb_rt_isect.sv; vvp runs them.
+# Fails unless the bench prints "N passed, 0 failed" with N = every vector.
+#
+# Icarus 11 aborts on a struct typedef inside a package (elab_type.cc:86,
+# "failed assertion scope"; fixed in Icarus 12). The copies move the struct
+# typedefs of rt_pkg.sv out of the package into the compilation unit, and
+# rename rt_pkg::isect_*_t to isect_*_t in the DUT; nothing else changes.
+#
+# cmake -DVECTOR_TOOL=... -DIVERILOG=... -DVVP=... -DPKG=rt_pkg.sv -DDUT=rt_isect.sv
+#       -DTB=tb_rt_isect.sv -DWORK=dir [-DRANDOM=n] [-DMAX_HARD=n] [-DSTALL=pct]
+#       [-DIDLE=pct] [-DSEED=s] -P run_icarus.cmake
+foreach(var VECTOR_TOOL IVERILOG VVP PKG DUT TB WORK)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "run_icarus.cmake: -D${var}=... is required")
+  endif()
+endforeach()
+if(NOT DEFINED RANDOM)
+  set(RANDOM 5000)
+endif()
+if(NOT DEFINED MAX_HARD)
+  set(MAX_HARD 100000)
+endif()
+if(NOT DEFINED STALL)
+  set(STALL 30)
+endif()
+if(NOT DEFINED IDLE)
+  set(IDLE 20)
+endif()
+if(NOT DEFINED SEED)
+  set(SEED 1)
+endif()
+file(MAKE_DIRECTORY ${WORK})
+
+# 1. Vectors.
+execute_process(COMMAND ${VECTOR_TOOL} ${WORK}/vectors ${RANDOM} ${MAX_HARD}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+message(STATUS "${out}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "make_isect_vectors failed (${rc})")
+endif()
+file(STRINGS ${WORK}/vectors.count count)
+
+# 2. Icarus-11 copies. gen_rt_pkg emits the parameters first, then the types.
+file(READ ${PKG} pkg)
+string(FIND "${pkg}" "typedef struct packed" first_type)
+string(FIND "${pkg}" "endpackage" end_pkg REVERSE)
+if(first_type LESS 0 OR end_pkg LESS first_type)
+  message(FATAL_ERROR "unexpected layout of ${PKG}")
+endif()
+string(SUBSTRING "${pkg}" 0 ${first_type} pkg_params)
+math(EXPR types_length "${end_pkg} - ${first_type}")
+string(SUBSTRING "${pkg}" ${first_type} ${types_length} pkg_types)
+if(pkg_types MATCHES "localparam")
+  message(FATAL_ERROR "${PKG}: parameters after the types; update run_icarus.cmake")
+endif()
+file(WRITE ${WORK}/rt_pkg_icarus.sv
+  "// Icarus-11 copy of ${PKG}: struct typedefs moved out of the package.\n"
+  "${pkg_params}endpackage\n\n${pkg_types}")
+file(READ ${DUT} dut)
+string(REGEX REPLACE "rt_pkg::(isect_[a-z_]+_t)" "\\1" dut "${dut}")
+file(WRITE ${WORK}/rt_isect_icarus.sv "// Icarus-11 copy of ${DUT}: type names unscoped.\n${dut}")
+
+# 3. Compile and run.
+execute_process(COMMAND ${IVERILOG} -g2012 -Wall -Wno-timescale -o ${WORK}/tb_rt_isect.vvp
+                        -s tb_rt_isect ${WORK}/rt_pkg_icarus.sv ${WORK}/rt_isect_icarus.sv ${TB}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "iverilog failed (${rc}):\n${out}")
+endif()
+if(out)
+  message(STATUS "iverilog:\n${out}")
+endif()
+execute_process(COMMAND ${VVP} -n ${WORK}/tb_rt_isect.vvp +vectors=${WORK}/vectors +n=${count}
+                        +seed=${SEED} +stall=${STALL} +idle=${IDLE}
+                WORKING_DIRECTORY ${WORK}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+message("${out}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "vvp failed (${rc})")
+endif()
+if(NOT out MATCHES "tb_rt_isect: ([0-9]+) passed, 0 failed" OR NOT CMAKE_MATCH_1 EQUAL count)
+  message(FATAL_ERROR "rt_isect under Icarus: mismatches (expected ${count} passed, 0 failed)")
+endif()
+if(NOT out MATCHES "\nPASS")
+  message(FATAL_ERROR "rt_isect under Icarus: the bench did not report PASS")
+endif()
