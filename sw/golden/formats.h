@@ -89,6 +89,18 @@ inline constexpr int kGridTripleBits = 3 * (kDirBits + 7);
 inline constexpr int kGridAccBits = kPosBits + 2 * kDirBits + 23;
 static_assert(kGridAccBits + kDirBits <= 127, "N * |d| must fit u128 for the exit test");
 
+// ---- Octree stepping unit (docs/octree-unit.md) ----------------------------------
+// The root is the lattice cube [0, 2^P]; a node at depth k has side 2^(P-k), so
+// every mid-plane of a node of side >= 2 is an integer and the parametric
+// traversal's halvings tm = (t0 + t1) / 2 are exact: depth P is the limit.
+inline constexpr int kOctreeMaxDepth = kPosBits;
+// Plane parameters over the common denominator prod(|d_b|, active b):
+// T = (plane - o') * prod(|d_b|, b != a), |plane - o'| <= 2^P, prod < 2^(2(D-1))
+// ............................................................. P+2D signed
+inline constexpr int kOctreeTBits = kPosBits + 2 * kDirBits;
+// Stack entry: node index, the six plane parameters, the next child (0..8).
+inline constexpr int kOctreeStackDepth = kOctreeMaxDepth + 1;
+
 // Memory image address width (every region: cells, index list, triangles).
 #ifndef LANCER_MEM_ADDR_BITS
 #define LANCER_MEM_ADDR_BITS 24
