@@ -114,8 +114,9 @@ TEST(DriverJob, GoldenAgainstItselfIsExactAndMatchesTheReference) {
   EXPECT_GT(job.intersectionTests, c.rays.size());
   const auto reference = traceRays(c.bvh, c.rays);
   const ReferenceComparison cmp = compareWithReference(c.scene, c.rays, reference, job, c.quantizer);
-  // At 32x32 the Cornell box has no silhouette so thin that 16-bit positions flip it.
-  EXPECT_LE(cmp.disagreements, 2u);
+  // At 32x32 the Cornell box has few silhouettes thin enough for 16-bit positions
+  // to flip; at the narrow 10-bit lattice (64x coarser) more edge pixels move.
+  EXPECT_LE(cmp.disagreements, fx::kPosBits >= 16 ? 2u : 32u);
   EXPECT_LT(cmp.meanTError, 4.0) << "mean t error in lattice units";
 }
 

@@ -27,8 +27,9 @@ TEST(GoldenIsect, HitsAndReportsExactFractions) {
   EXPECT_EQ(res.primId, 3u);
   // The ray travels z/kDirMax parameter units to reach the plane.
   EXPECT_NEAR(tOf(res, ray), double(z) / double(kDirMax), 1e-12);
-  EXPECT_NEAR(uOf(res), 0.25, 1e-3);
-  EXPECT_NEAR(vOf(res), 0.25, 1e-3);
+  // (kPosMax/16) / (kPosMax/4) is 1/4 up to the integer divisions.
+  EXPECT_NEAR(uOf(res), 0.25, 8.0 / double(kPosMax));
+  EXPECT_NEAR(vOf(res), 0.25, 8.0 / double(kPosMax));
 }
 
 TEST(GoldenIsect, MissesAreAllZero) {
@@ -109,6 +110,58 @@ TEST(Records, WireRoundTripAtExtremes) {
   const Wire wire = packWire(QRay{1, {}, {}});
   const int top = kIsectRayBits - kRayIdBits;
   EXPECT_EQ((wire[size_t(top / 32)] >> (top % 32)) & 1u, 1u);
+}
+
+// The allocation-free forms write the same images as the vector forms, overwrite
+// stale words of a reused buffer, leave words past the image alone, and refuse
+// a span that is too short.
+TEST(Records, SpanFormsMatchVectorFormsAndReuseBuffers) {
+  std::mt19937_64 rng(11);
+  auto pos = [&] { return int64_t(rng() % uint64_t(kPosMax + 1)); };
+  auto dir = [&] { return int64_t(rng() % uint64_t(2 * kDirMax + 1)) - kDirMax; };
+  auto wide = [&](int bits) { return ((u128(rng()) << 64) | rng()) & ((u128(1) << bits) - 1); };
+  std::array<uint32_t, kIsectResWords + 1> buffer;
+  buffer.fill(0xffffffffu);  // stale bits everywhere, and a guard word past the image
+  for (int i = 0; i < 200; ++i) {
+    const QRay ray{uint32_t(rng()), {pos(), pos(), pos()}, {dir(), dir(), dir()}};
+    const QTriangle tri{uint32_t(rng()), {{{pos(), pos(), pos()}, {pos(), pos(), pos()}, {pos(), pos(), pos()}}}};
+    const IsectResult res{uint32_t(rng()), uint32_t(rng()), (rng() & 1) != 0, wide(kTNumBits),
+                          wide(kDetAbsBits),  wide(kBaryBits),  wide(kBaryBits)};
+
+    packWire(ray, std::span<uint32_t>(buffer));
+    EXPECT_TRUE(std::equal(buffer.begin(), buffer.begin() + kIsectRayWords, packWire(ray).begin()));
+    QRay rayBack;
+    unpackRay(std::span<const uint32_t>(buffer), rayBack);
+    EXPECT_EQ(rayBack, ray);
+
+    packWire(tri, std::span<uint32_t>(buffer));
+    EXPECT_TRUE(std::equal(buffer.begin(), buffer.begin() + kIsectTriWords, packWire(tri).begin()));
+    QTriangle triBack;
+    unpackTriangle(std::span<const uint32_t>(buffer), triBack);
+    EXPECT_EQ(triBack, tri);
+
+    ResWire resWire;
+    resWire.fill(0xffffffffu);
+    packWire(res, resWire);
+    EXPECT_TRUE(std::equal(resWire.begin(), resWire.end(), packWire(res).begin()));
+    IsectResult resBack{1, 1, true, 1, 1, 1, 1};
+    unpackResult(resWire, resBack);
+    EXPECT_EQ(resBack, res);
+    EXPECT_EQ(unpackResult(resWire), res);
+
+    const auto values = fieldArray(ray);
+    EXPECT_EQ(std::vector<u128>(values.begin(), values.end()), fieldValues(ray));
+    std::array<u128, kIsectTriValues> triValues;
+    unpackFields(kIsectTriFields, packWire(tri), triValues);
+    EXPECT_EQ(std::vector<u128>(triValues.begin(), triValues.end()), fieldValues(tri));
+  }
+  EXPECT_EQ(buffer.back(), 0xffffffffu) << "a word past the image was written";
+  std::array<uint32_t, kIsectRayWords - 1> shortWire{};
+  EXPECT_THROW(packWire(QRay{}, std::span<uint32_t>(shortWire)), std::logic_error);
+  QRay ray;
+  EXPECT_THROW(unpackRay(std::span<const uint32_t>(shortWire), ray), std::logic_error);
+  static_assert(kIsectRayValues == 7 && kIsectTriValues == 10 && kIsectResValues == 7);
+  static_assert(std::tuple_size_v<RayWire> == size_t(wireWords(kIsectRayBits)));
 }
 
 }  // namespace
