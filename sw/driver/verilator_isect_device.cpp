@@ -141,7 +141,9 @@ StreamStats VerilatorIsectDevice::run(std::span<const IsectRequest> requests,
   if (results.capacity() < results.size() + n) {
     results.reserve(std::max(results.size() + n, 2 * results.capacity()));
   }
-  fx::Wire resWire(kResWords);
+  fx::RayWire rayWire;  // fixed-size images: packing allocates nothing
+  fx::TriWire triWire;
+  fx::ResWire resWire;
   const fx::QRay* portRay = nullptr;
   const fx::QTriangle* portTri = nullptr;
 
@@ -174,11 +176,13 @@ StreamStats VerilatorIsectDevice::run(std::span<const IsectRequest> requests,
     if (!offering && offered < n && !idle()) {
       const IsectRequest& req = requests[offered];
       if (!portRay || !(req.ray == *portRay)) {
-        writePort(top_->req_ray_i, fx::packWire(req.ray).data(), kRayWords);
+        fx::packWire(req.ray, rayWire);
+        writePort(top_->req_ray_i, rayWire.data(), kRayWords);
         portRay = &req.ray;
       }
       if (!portTri || !(req.tri == *portTri)) {
-        writePort(top_->req_tri_i, fx::packWire(req.tri).data(), kTriWords);
+        fx::packWire(req.tri, triWire);
+        writePort(top_->req_tri_i, triWire.data(), kTriWords);
         portTri = &req.tri;
       }
       offering = true;
@@ -198,7 +202,7 @@ StreamStats VerilatorIsectDevice::run(std::span<const IsectRequest> requests,
     if (resFire) {
       if (taken >= stats.requests) throw std::runtime_error("rtl: a result without a request");
       readPort(top_->res_data_o, resWire.data(), kResWords);
-      results.push_back(fx::unpackResult(resWire));
+      fx::unpackResult(resWire, results.emplace_back());
       ++taken;
     }
     if (offering && !reqFire) ++stats.inputStalls;

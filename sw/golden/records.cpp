@@ -2,48 +2,108 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace lancer::fx {
 
 namespace {
 
-u128 lowBits(u128 value, int width) {
+constexpr u128 lowBits(u128 value, int width) {
   return width >= 128 ? value : (value & ((u128(1) << width) - 1));
 }
 
-uint32_t lowMask(int bits) { return bits >= 32 ? ~uint32_t(0) : ((uint32_t(1) << bits) - 1); }
-
-// Word-wise so that packing stays cheap next to a Verilated clock edge.
-void putBits(Wire& wire, int lsb, int width, u128 value) {
+// Word by word, so that packing stays cheap next to a Verilated clock edge: bits
+// [lsb, lsb + width) of the image span words lsb/32 .. (lsb+width-1)/32, and
+// image word w holds value bits from 32w - lsb on. The trip count is affine in
+// lsb and width, so with the constants of the fixed records below the loop
+// unrolls into a few shifts.
+inline void putBits(std::span<uint32_t> wire, int lsb, int width, u128 value) {
   value = lowBits(value, width);
-  while (width > 0) {
-    const int offset = lsb % 32;
-    const int take = std::min(32 - offset, width);
-    wire[size_t(lsb / 32)] |= (uint32_t(value) & lowMask(take)) << offset;
-    value >>= take;
-    lsb += take;
-    width -= take;
+  const int last = (lsb + width - 1) / 32;
+  for (int w = lsb / 32; w <= last; ++w) {
+    const int at = 32 * w - lsb;  // negative for the first word unless lsb is word-aligned
+    wire[size_t(w)] |= uint32_t(at >= 0 ? value >> at : value << -at);
   }
 }
 
-u128 getBits(std::span<const uint32_t> wire, int lsb, int width) {
+inline u128 getBits(std::span<const uint32_t> wire, int lsb, int width) {
   u128 value = 0;
-  for (int done = 0; done < width;) {
-    const int offset = (lsb + done) % 32;
-    const int take = std::min(32 - offset, width - done);
-    value |= u128((wire[size_t((lsb + done) / 32)] >> offset) & lowMask(take)) << done;
-    done += take;
+  const int last = (lsb + width - 1) / 32;
+  for (int w = lsb / 32; w <= last; ++w) {
+    const int at = 32 * w - lsb;
+    const u128 word = wire[size_t(w)];
+    value |= at >= 0 ? word << at : word >> -at;
   }
-  return value;
+  return lowBits(value, width);
 }
 
-u128 signExtend(u128 value, int width) {
+constexpr u128 signExtend(u128 value, int width) {
   if (width < 128 && ((value >> (width - 1)) & 1)) value |= ~((u128(1) << width) - 1);
   return value;
 }
 
-template <size_t N>
-std::array<int64_t, N> takeSigned(const std::vector<u128>& values, size_t& at) {
+// Where one flattened field value sits in the wire image.
+struct Slot {
+  int lsb = 0;
+  int width = 0;
+  bool isSigned = false;
+};
+
+// The bit layout, once: the first field is the most significant, element 0 of
+// an array field is the least significant element. fn(index, slot) is called
+// for every flattened value in declaration order. Used at run time by the
+// generic forms and at compile time for the slot tables of the fixed records.
+template <typename Fn>
+constexpr void forEachSlot(std::span<const FieldSpec> fields, Fn&& fn) {
+  int msb = recordBits(fields);
+  size_t at = 0;
+  for (const FieldSpec& f : fields) {
+    msb -= f.width * f.count;
+    for (int e = 0; e < f.count; ++e) fn(at++, Slot{msb + e * f.width, f.width, f.isSigned});
+  }
+}
+
+void checkSpans(std::span<const FieldSpec> fields, size_t values, size_t words, const char* what) {
+  if (words < size_t(wireWords(recordBits(fields)))) throw std::logic_error(std::string(what) + ": wire span too short");
+  if (values != valueCount(fields)) throw std::logic_error(std::string(what) + ": wrong number of values");
+}
+
+// ---- The fixed records: the same layout, unrolled at compile time ---------------
+
+template <const auto& Fields>
+constexpr auto kSlots = [] {
+  std::array<Slot, valueCount(Fields)> slots{};
+  forEachSlot(Fields, [&](size_t i, Slot slot) { slots[i] = slot; });
+  return slots;
+}();
+
+template <const auto& Fields>
+void packFixed(const std::array<u128, valueCount(Fields)>& values, std::span<uint32_t> wire) {
+  constexpr auto& slots = kSlots<Fields>;
+  constexpr size_t words = size_t(wireWords(recordBits(Fields)));
+  if (wire.size() < words) throw std::logic_error("packWire: wire span too short");
+  std::fill_n(wire.begin(), words, 0u);
+  [&]<size_t... I>(std::index_sequence<I...>) {
+    (putBits(wire, slots[I].lsb, slots[I].width, values[I]), ...);
+  }(std::make_index_sequence<slots.size()>{});
+}
+
+template <const auto& Fields>
+std::array<u128, valueCount(Fields)> unpackFixed(std::span<const uint32_t> wire) {
+  constexpr auto& slots = kSlots<Fields>;
+  if (wire.size() < size_t(wireWords(recordBits(Fields)))) throw std::logic_error("unpack: wire span too short");
+  std::array<u128, valueCount(Fields)> values;
+  [&]<size_t... I>(std::index_sequence<I...>) {
+    ((values[I] = slots[I].isSigned ? signExtend(getBits(wire, slots[I].lsb, slots[I].width), slots[I].width)
+                                    : getBits(wire, slots[I].lsb, slots[I].width)),
+     ...);
+  }(std::make_index_sequence<slots.size()>{});
+  return values;
+}
+
+template <size_t N, size_t M>
+std::array<int64_t, N> takeSigned(const std::array<u128, M>& values, size_t& at) {
   std::array<int64_t, N> out{};
   for (auto& v : out) v = int64_t(i128(values[at++]));
   return out;
@@ -51,78 +111,116 @@ std::array<int64_t, N> takeSigned(const std::vector<u128>& values, size_t& at) {
 
 }  // namespace
 
-Wire packFields(std::span<const FieldSpec> fields, std::span<const u128> values) {
-  const int total = recordBits(fields);
-  Wire wire(size_t(wireWords(total)), 0);
-  int msb = total;  // the first field is the most significant
-  size_t at = 0;
-  for (const FieldSpec& f : fields) {
-    msb -= f.width * f.count;
-    for (int e = 0; e < f.count; ++e) {
-      if (at >= values.size()) throw std::logic_error("packFields: too few values");
-      putBits(wire, msb + e * f.width, f.width, values[at++]);
-    }
-  }
-  if (at != values.size()) throw std::logic_error("packFields: too many values");
-  return wire;
+// ---- Allocation-free forms ------------------------------------------------------
+
+void packFields(std::span<const FieldSpec> fields, std::span<const u128> values, std::span<uint32_t> wire) {
+  checkSpans(fields, values.size(), wire.size(), "packFields");
+  std::fill_n(wire.begin(), wireWords(recordBits(fields)), 0u);
+  forEachSlot(fields, [&](size_t i, Slot slot) { putBits(wire, slot.lsb, slot.width, values[i]); });
 }
 
-std::vector<u128> unpackFields(std::span<const FieldSpec> fields, std::span<const uint32_t> wire) {
-  std::vector<u128> values;
-  int msb = recordBits(fields);
-  for (const FieldSpec& f : fields) {
-    msb -= f.width * f.count;
-    for (int e = 0; e < f.count; ++e) {
-      const u128 raw = getBits(wire, msb + e * f.width, f.width);
-      values.push_back(f.isSigned ? signExtend(raw, f.width) : raw);
-    }
-  }
-  return values;
+void unpackFields(std::span<const FieldSpec> fields, std::span<const uint32_t> wire, std::span<u128> values) {
+  checkSpans(fields, values.size(), wire.size(), "unpackFields");
+  forEachSlot(fields, [&](size_t i, Slot slot) {
+    const u128 raw = getBits(wire, slot.lsb, slot.width);
+    values[i] = slot.isSigned ? signExtend(raw, slot.width) : raw;
+  });
 }
 
-std::vector<u128> fieldValues(const QRay& r) {
+std::array<u128, kIsectRayValues> fieldArray(const QRay& r) {
   return {r.id, u128(r.org[0]), u128(r.org[1]), u128(r.org[2]),
           u128(i128(r.dir[0])), u128(i128(r.dir[1])), u128(i128(r.dir[2]))};
 }
 
-std::vector<u128> fieldValues(const QTriangle& t) {
-  std::vector<u128> values{t.id};
+std::array<u128, kIsectTriValues> fieldArray(const QTriangle& t) {
+  std::array<u128, kIsectTriValues> values{};
+  size_t at = 0;
+  values[at++] = t.id;
   for (const auto& vertex : t.v)
-    for (int64_t c : vertex) values.push_back(u128(c));
+    for (int64_t c : vertex) values[at++] = u128(c);
   return values;
 }
 
-std::vector<u128> fieldValues(const IsectResult& r) {
+std::array<u128, kIsectResValues> fieldArray(const IsectResult& r) {
   return {r.rayId, r.primId, r.hit ? 1u : 0u, r.tNum, r.det, r.uNum, r.vNum};
 }
 
-Wire packWire(const QRay& ray) { return packFields(kIsectRayFields, fieldValues(ray)); }
-Wire packWire(const QTriangle& tri) { return packFields(kIsectTriFields, fieldValues(tri)); }
-Wire packWire(const IsectResult& res) { return packFields(kIsectResFields, fieldValues(res)); }
+void packWire(const QRay& ray, std::span<uint32_t> wire) { packFixed<kIsectRayFields>(fieldArray(ray), wire); }
+void packWire(const QTriangle& tri, std::span<uint32_t> wire) { packFixed<kIsectTriFields>(fieldArray(tri), wire); }
+void packWire(const IsectResult& res, std::span<uint32_t> wire) {
+  packFixed<kIsectResFields>(fieldArray(res), wire);
+}
 
-QRay unpackRay(std::span<const uint32_t> wire) {
-  const auto values = unpackFields(kIsectRayFields, wire);
-  QRay ray;
+void unpackRay(std::span<const uint32_t> wire, QRay& ray) {
+  const auto values = unpackFixed<kIsectRayFields>(wire);
   size_t at = 0;
   ray.id = uint32_t(values[at++]);
   ray.org = takeSigned<3>(values, at);
   ray.dir = takeSigned<3>(values, at);
+}
+
+void unpackTriangle(std::span<const uint32_t> wire, QTriangle& tri) {
+  const auto values = unpackFixed<kIsectTriFields>(wire);
+  size_t at = 0;
+  tri.id = uint32_t(values[at++]);
+  for (auto& vertex : tri.v) vertex = takeSigned<3>(values, at);
+}
+
+void unpackResult(std::span<const uint32_t> wire, IsectResult& res) {
+  const auto values = unpackFixed<kIsectResFields>(wire);
+  res = IsectResult{uint32_t(values[0]), uint32_t(values[1]), values[2] != 0,
+                    values[3], values[4], values[5], values[6]};
+}
+
+// ---- Forms that return new storage: the ones above, into a fresh buffer ---------
+
+Wire packFields(std::span<const FieldSpec> fields, std::span<const u128> values) {
+  Wire wire(size_t(wireWords(recordBits(fields))));
+  packFields(fields, values, std::span<uint32_t>(wire));
+  return wire;
+}
+
+std::vector<u128> unpackFields(std::span<const FieldSpec> fields, std::span<const uint32_t> wire) {
+  std::vector<u128> values(valueCount(fields));
+  unpackFields(fields, wire, std::span<u128>(values));
+  return values;
+}
+
+template <typename Record>
+std::vector<u128> toVector(const Record& record) {
+  const auto values = fieldArray(record);
+  return {values.begin(), values.end()};
+}
+std::vector<u128> fieldValues(const QRay& r) { return toVector(r); }
+std::vector<u128> fieldValues(const QTriangle& t) { return toVector(t); }
+std::vector<u128> fieldValues(const IsectResult& r) { return toVector(r); }
+
+template <typename Record>
+Wire toWire(const Record& record, int bits) {
+  Wire wire(size_t(wireWords(bits)));
+  packWire(record, std::span<uint32_t>(wire));
+  return wire;
+}
+Wire packWire(const QRay& ray) { return toWire(ray, kIsectRayBits); }
+Wire packWire(const QTriangle& tri) { return toWire(tri, kIsectTriBits); }
+Wire packWire(const IsectResult& res) { return toWire(res, kIsectResBits); }
+
+QRay unpackRay(std::span<const uint32_t> wire) {
+  QRay ray;
+  unpackRay(wire, ray);
   return ray;
 }
 
 QTriangle unpackTriangle(std::span<const uint32_t> wire) {
-  const auto values = unpackFields(kIsectTriFields, wire);
   QTriangle tri;
-  size_t at = 0;
-  tri.id = uint32_t(values[at++]);
-  for (auto& vertex : tri.v) vertex = takeSigned<3>(values, at);
+  unpackTriangle(wire, tri);
   return tri;
 }
 
 IsectResult unpackResult(std::span<const uint32_t> wire) {
-  const auto values = unpackFields(kIsectResFields, wire);
-  return IsectResult{uint32_t(values[0]), uint32_t(values[1]), values[2] != 0,
-                     values[3], values[4], values[5], values[6]};
+  IsectResult res;
+  unpackResult(wire, res);
+  return res;
 }
 
 }  // namespace lancer::fx

@@ -128,20 +128,59 @@ struct IsectResult {
 // A record as bits: 32-bit words, least significant first (Verilator's VlWide order).
 using Wire = std::vector<uint32_t>;
 
+// Flattened field values of a record (arrays count each element).
+constexpr size_t valueCount(std::span<const FieldSpec> fields) {
+  size_t n = 0;
+  for (const FieldSpec& f : fields) n += size_t(f.count);
+  return n;
+}
+
+// Sizes known at compile time, for the allocation-free forms below.
+inline constexpr size_t kIsectRayWords = size_t(wireWords(kIsectRayBits));
+inline constexpr size_t kIsectTriWords = size_t(wireWords(kIsectTriBits));
+inline constexpr size_t kIsectResWords = size_t(wireWords(kIsectResBits));
+inline constexpr size_t kIsectRayValues = valueCount(kIsectRayFields);
+inline constexpr size_t kIsectTriValues = valueCount(kIsectTriFields);
+inline constexpr size_t kIsectResValues = valueCount(kIsectResFields);
+using RayWire = std::array<uint32_t, kIsectRayWords>;
+using TriWire = std::array<uint32_t, kIsectTriWords>;
+using ResWire = std::array<uint32_t, kIsectResWords>;
+
+// ---- Allocation-free packing (what the simulated devices use per record) ------
+// Wire images go to / come from a caller's span of at least wireWords(bits)
+// words; the words of the image are overwritten (the rest of the span is left
+// alone). A span too short throws std::logic_error.
+void packWire(const QRay& ray, std::span<uint32_t> wire);
+void packWire(const QTriangle& tri, std::span<uint32_t> wire);
+void packWire(const IsectResult& res, std::span<uint32_t> wire);
+void unpackRay(std::span<const uint32_t> wire, QRay& ray);
+void unpackTriangle(std::span<const uint32_t> wire, QTriangle& tri);
+void unpackResult(std::span<const uint32_t> wire, IsectResult& res);
+
+// The field values of a record, flattened in declaration order (arrays element 0 first).
+std::array<u128, kIsectRayValues> fieldArray(const QRay& ray);
+std::array<u128, kIsectTriValues> fieldArray(const QTriangle& tri);
+std::array<u128, kIsectResValues> fieldArray(const IsectResult& res);
+
+// Places flattened field values into a wire image by the field list, and back
+// (signed fields are sign-extended on the way out). The one implementation of
+// the bit layout: every form above and below goes through these two.
+void packFields(std::span<const FieldSpec> fields, std::span<const u128> values, std::span<uint32_t> wire);
+void unpackFields(std::span<const FieldSpec> fields, std::span<const uint32_t> wire, std::span<u128> values);
+
+// ---- Convenience forms that return new storage (tests, reports, reproducers) --
 Wire packWire(const QRay& ray);
 Wire packWire(const QTriangle& tri);
 Wire packWire(const IsectResult& res);
+// (The three unpack forms return by value and allocate nothing either.)
 QRay unpackRay(std::span<const uint32_t> wire);
 QTriangle unpackTriangle(std::span<const uint32_t> wire);
 IsectResult unpackResult(std::span<const uint32_t> wire);
 
-// The field values of a record, flattened in declaration order (arrays element 0 first).
 std::vector<u128> fieldValues(const QRay& ray);
 std::vector<u128> fieldValues(const QTriangle& tri);
 std::vector<u128> fieldValues(const IsectResult& res);
 
-// Places flattened field values into a wire image by the field list, and back
-// (signed fields are sign-extended on the way out).
 Wire packFields(std::span<const FieldSpec> fields, std::span<const u128> values);
 std::vector<u128> unpackFields(std::span<const FieldSpec> fields, std::span<const uint32_t> wire);
 

@@ -31,9 +31,18 @@ std::array<bool, rt_isect_model::NUM_STAGES> rt_isect_model::stageReady() const 
 }
 
 isect_res_t rt_isect_model::compute() const {
-  const fx::QRay ray = fx::unpackRay(fromPort<ISECT_RAY_W>(req_ray_i.read()));
-  const fx::QTriangle tri = fx::unpackTriangle(fromPort<ISECT_TRI_W>(req_tri_i.read()));
-  return toPort<ISECT_RES_W>(fx::packWire(fx::intersect(ray, tri)));
+  // Fixed-size wire images: no allocation per request.
+  fx::RayWire rayWire;
+  fx::TriWire triWire;
+  fx::ResWire resWire;
+  fromPort<ISECT_RAY_W>(req_ray_i.read(), rayWire);
+  fromPort<ISECT_TRI_W>(req_tri_i.read(), triWire);
+  fx::QRay ray;
+  fx::QTriangle tri;
+  fx::unpackRay(rayWire, ray);
+  fx::unpackTriangle(triWire, tri);
+  fx::packWire(fx::intersect(ray, tri), resWire);
+  return toPort<ISECT_RES_W>(resWire);
 }
 
 void rt_isect_model::seq() {

@@ -118,7 +118,9 @@ void rt_isect_tb::consume(uint64_t edge) {
   if (edge > RESET_CYCLES) {
     const uint64_t cycle = edge - RESET_CYCLES - 1;
     if (res_valid_o.read() && res_ready_i.read()) {
-      job_->results->push_back(fx::unpackResult(fromPort<ISECT_RES_W>(res_data_o.read())));
+      fx::ResWire wire;
+      fromPort<ISECT_RES_W>(res_data_o.read(), wire);
+      fx::unpackResult(wire, job_->results->emplace_back());
       lastProgress_ = cycle;
       if (++tally_.taken == job_->rays.size()) {
         tally_.lastTake = cycle;

@@ -65,10 +65,10 @@ vl_port_t<W> toPort(std::span<const uint32_t> wire) {
   }
 }
 
-// Port value -> wire image of fx::wireWords(W) words.
+// Port value -> wire image, into the first fx::wireWords(W) words of `wire`
+// (allocates nothing; the devices use this form on every cycle).
 template <int W>
-fx::Wire fromPort(const vl_port_t<W>& value) {
-  fx::Wire wire(size_t(fx::wireWords(W)), 0);
+void fromPort(const vl_port_t<W>& value, std::span<uint32_t> wire) {
   if constexpr (W <= 32) {
     wire[0] = uint32_t(value);
   } else if constexpr (W <= 64) {
@@ -77,6 +77,13 @@ fx::Wire fromPort(const vl_port_t<W>& value) {
   } else {
     for (int i = 0; i < fx::wireWords(W); ++i) wire[size_t(i)] = value.get_word(i);
   }
+}
+
+// Port value -> wire image of fx::wireWords(W) words.
+template <int W>
+fx::Wire fromPort(const vl_port_t<W>& value) {
+  fx::Wire wire(size_t(fx::wireWords(W)), 0);
+  fromPort<W>(value, wire);
   return wire;
 }
 
