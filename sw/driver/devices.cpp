@@ -5,7 +5,9 @@
 
 #include "common/error.h"
 #include "driver/golden_device.h"
+#include "driver/systemc_grid_device.h"
 #include "driver/systemc_isect_device.h"
+#include "driver/verilator_grid_device.h"
 #include "driver/verilator_isect_device.h"
 
 namespace lancer {
@@ -34,10 +36,19 @@ std::unique_ptr<IsectDevice> makeIsectDevice(const std::string& name) {
   unknownModel(name, isectDeviceNames(), "intersection pipeline");
 }
 
-std::vector<std::string> gridDeviceNames() { return {"golden"}; }
+std::vector<std::string> gridDeviceNames() {
+  std::vector<std::string> names{"golden", "systemc", "rtl"};
+  if (SystemCGridDevice::rtlAvailable()) names.push_back("rtl-systemc");
+  return names;
+}
 
 std::unique_ptr<GridDevice> makeGridDevice(const std::string& name) {
   if (name == "golden") return std::make_unique<GoldenGridDevice>();
+  if (name == "systemc") return std::make_unique<SystemCGridDevice>(SystemCGridDevice::Impl::Model);
+  if (name == "rtl") return std::make_unique<VerilatorGridDevice>();
+  if (name == "rtl-systemc" && SystemCGridDevice::rtlAvailable()) {
+    return std::make_unique<SystemCGridDevice>(SystemCGridDevice::Impl::Rtl);
+  }
   unknownModel(name, gridDeviceNames(), "grid unit");
 }
 

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <systemc>
 
+#include "driver/systemc_kernel.h"
 #include "isect/rt_isect_top.h"
 #include "isect/rt_isect_types.h"
 
@@ -14,34 +15,10 @@ namespace lancer {
 
 namespace {
 
-// SystemC's own messages. Its banner is switched off (before the kernel exists);
-// informational reports are dropped and warnings too unless LANCER_SC_VERBOSE is
-// set, so that programs print only their own summaries; errors and fatal errors
-// are thrown (as sc_core::sc_report) and turned into std::runtime_error by run().
-void routeReports() {
-  setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 0);
-  using sc_core::sc_report_handler;
-  const bool verbose = std::getenv("LANCER_SC_VERBOSE") != nullptr;
-  sc_report_handler::set_actions(sc_core::SC_INFO, verbose ? sc_core::SC_DISPLAY : sc_core::SC_DO_NOTHING);
-  sc_report_handler::set_actions(sc_core::SC_WARNING, verbose ? sc_core::SC_DISPLAY : sc_core::SC_DO_NOTHING);
-  sc_report_handler::set_actions(sc_core::SC_ERROR, sc_core::SC_THROW);
-  sc_report_handler::set_actions(sc_core::SC_FATAL, sc_core::SC_THROW);
-}
-
-std::mutex& kernelMutex() {
-  static std::mutex mutex;
-  return mutex;
-}
-
-// The one SystemC system of the process, elaborated on first use. It is never
-// destroyed: SystemC cannot tear down an elaborated design and start again.
-sc::rt_isect_top& isectSystem() {
-  static sc::rt_isect_top* const top = [] {
-    routeReports();
-    return new sc::rt_isect_top("lancer_isect");
-  }();
-  return *top;
-}
+// The process's one SystemC kernel and its systems, shared with the grid
+// device (sw/driver/systemc_kernel.h): elaborated together on first use.
+std::mutex& kernelMutex() { return systemc_kernel::mutex(); }
+sc::rt_isect_top& isectSystem() { return systemc_kernel::isectSystem(); }
 
 }  // namespace
 
@@ -73,9 +50,13 @@ StreamStats SystemCIsectDevice::run(std::span<const IsectRequest> requests,
   sc::rt_isect_job job;
   job.rays.reserve(requests.size());
   job.tris.reserve(requests.size());
+  fx::RayWire rayWire;  // fixed-size images: packing allocates nothing
+  fx::TriWire triWire;
   for (const IsectRequest& r : requests) {
-    job.rays.push_back(sc::toPort<sc::ISECT_RAY_W>(fx::packWire(r.ray)));
-    job.tris.push_back(sc::toPort<sc::ISECT_TRI_W>(fx::packWire(r.tri)));
+    fx::packWire(r.ray, rayWire);
+    fx::packWire(r.tri, triWire);
+    job.rays.push_back(sc::toPort<sc::ISECT_RAY_W>(rayWire));
+    job.tris.push_back(sc::toPort<sc::ISECT_TRI_W>(triWire));
   }
   job.inputIdleProbability = options.inputIdleProbability;
   job.outputStallProbability = options.outputStallProbability;

@@ -133,6 +133,7 @@ int GridDda::nextAxis() const {
 
 bool GridDda::advance() {
   const int a = nextAxis();
+  if (a < 0) return false;  // a zero direction (never quantized) stays in its first cell
   cell[a] += step[a];
   if (cell[a] < 0 || cell[a] >= res[a]) return false;
   acc[a] += inc[a];
@@ -140,6 +141,7 @@ bool GridDda::advance() {
 }
 
 bool GridDda::holds(const IsectResult& hit) const {
+  if (nextAxis() < 0) return true;
   const u128 exitAcc = acc[nextAxis()];
   return !(mul256(exitAcc * dominant, hit.det) < mul256(hit.tNum, triple));
 }

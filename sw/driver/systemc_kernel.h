@@ -1,0 +1,26 @@
+#pragma once
+
+// The one SystemC kernel of the process, shared by every SystemC device.
+//
+// SystemC elaborates once per process and cannot instantiate modules after the
+// first sc_start(), so every SystemC system a device may run (the intersection
+// pipeline's rt_isect_top, the grid unit's rt_grid_top) is built together on
+// the first use of any of them and kept for the life of the process. Runs of
+// any SystemC device are serialized by one mutex (one kernel per process).
+// The first use also routes SystemC's reports (banner off, info and warnings
+// dropped unless LANCER_SC_VERBOSE is set, errors thrown as sc_report).
+
+#include <mutex>
+
+namespace lancer::sc {
+class rt_isect_top;
+class rt_grid_top;
+}  // namespace lancer::sc
+
+namespace lancer::systemc_kernel {
+
+std::mutex& mutex();
+sc::rt_isect_top& isectSystem();
+sc::rt_grid_top& gridSystem();
+
+}  // namespace lancer::systemc_kernel

@@ -1,0 +1,141 @@
+#pragma once
+
+#include <utility>
+
+#include <systemc>
+
+#include "grid/rt_grid_mem.h"
+#include "grid/rt_grid_tb.h"
+#include "grid/rt_grid_types.h"
+
+namespace lancer::sc {
+
+// rt_grid_bench: one implementation of rt_grid (Dut: rt_grid_model or the
+// Verilated Vrt_grid_sc) with its testbench and its memory, on signals named
+// after the RTL ports they carry. The DUT, the testbench and the memory have
+// the same port names, so one binding serves all three: the binding below is
+// the wiring diagram (traversal unit <-> memory, rays in, results and visits out).
+template <class Dut>
+class rt_grid_bench : public sc_core::sc_module {
+ public:
+  sc_core::sc_signal<bool> clk_i{"clk_i"};
+  sc_core::sc_signal<bool> rst_ni{"rst_ni"};
+  sc_core::sc_signal<cfg_res_t> cfg_res_i{"cfg_res_i"};
+  sc_core::sc_signal<cfg_slots_t> cfg_slots_i{"cfg_slots_i"};
+  sc_core::sc_signal<bool> ray_valid_i{"ray_valid_i"};
+  sc_core::sc_signal<bool> ray_ready_o{"ray_ready_o"};
+  sc_core::sc_signal<isect_ray_t> ray_data_i{"ray_data_i"};
+  sc_core::sc_signal<bool> res_valid_o{"res_valid_o"};
+  sc_core::sc_signal<bool> res_ready_i{"res_ready_i"};
+  sc_core::sc_signal<grid_res_t> res_data_o{"res_data_o"};
+  sc_core::sc_signal<bool> visit_valid_o{"visit_valid_o"};
+  sc_core::sc_signal<bool> visit_ready_i{"visit_ready_i"};
+  sc_core::sc_signal<grid_visit_t> visit_data_o{"visit_data_o"};
+  sc_core::sc_signal<bool> cell_req_valid_o{"cell_req_valid_o"};
+  sc_core::sc_signal<bool> cell_req_ready_i{"cell_req_ready_i"};
+  sc_core::sc_signal<mem_addr_t> cell_req_addr_o{"cell_req_addr_o"};
+  sc_core::sc_signal<slot_t> cell_req_tag_o{"cell_req_tag_o"};
+  sc_core::sc_signal<bool> cell_rsp_valid_i{"cell_rsp_valid_i"};
+  sc_core::sc_signal<grid_cell_t> cell_rsp_data_i{"cell_rsp_data_i"};
+  sc_core::sc_signal<slot_t> cell_rsp_tag_i{"cell_rsp_tag_i"};
+  sc_core::sc_signal<bool> idx_req_valid_o{"idx_req_valid_o"};
+  sc_core::sc_signal<bool> idx_req_ready_i{"idx_req_ready_i"};
+  sc_core::sc_signal<mem_addr_t> idx_req_addr_o{"idx_req_addr_o"};
+  sc_core::sc_signal<slot_t> idx_req_tag_o{"idx_req_tag_o"};
+  sc_core::sc_signal<bool> idx_rsp_valid_i{"idx_rsp_valid_i"};
+  sc_core::sc_signal<idx_data_t> idx_rsp_data_i{"idx_rsp_data_i"};
+  sc_core::sc_signal<slot_t> idx_rsp_tag_i{"idx_rsp_tag_i"};
+  sc_core::sc_signal<bool> tri_req_valid_o{"tri_req_valid_o"};
+  sc_core::sc_signal<bool> tri_req_ready_i{"tri_req_ready_i"};
+  sc_core::sc_signal<mem_addr_t> tri_req_addr_o{"tri_req_addr_o"};
+  sc_core::sc_signal<slot_t> tri_req_tag_o{"tri_req_tag_o"};
+  sc_core::sc_signal<bool> tri_rsp_valid_i{"tri_rsp_valid_i"};
+  sc_core::sc_signal<isect_tri_t> tri_rsp_data_i{"tri_rsp_data_i"};
+  sc_core::sc_signal<slot_t> tri_rsp_tag_i{"tri_rsp_tag_i"};
+  sc_core::sc_signal<bool> perf_isect_fire_o{"perf_isect_fire_o"};
+
+  rt_grid_tb u_tb{"u_tb"};
+  rt_grid_mem u_mem{"u_mem"};
+  Dut u_dut;
+
+  template <class... DutArgs>
+  explicit rt_grid_bench(sc_core::sc_module_name name, DutArgs&&... args)
+      : sc_core::sc_module(name), u_dut("u_dut", std::forward<DutArgs>(args)...) {
+    // The DUT: every port.
+    u_dut.clk_i(clk_i);
+    u_dut.rst_ni(rst_ni);
+    u_dut.cfg_res_i(cfg_res_i);
+    u_dut.cfg_slots_i(cfg_slots_i);
+    u_dut.ray_valid_i(ray_valid_i);
+    u_dut.ray_ready_o(ray_ready_o);
+    u_dut.ray_data_i(ray_data_i);
+    u_dut.res_valid_o(res_valid_o);
+    u_dut.res_ready_i(res_ready_i);
+    u_dut.res_data_o(res_data_o);
+    u_dut.visit_valid_o(visit_valid_o);
+    u_dut.visit_ready_i(visit_ready_i);
+    u_dut.visit_data_o(visit_data_o);
+    bindMemoryPorts(u_dut);
+    u_dut.perf_isect_fire_o(perf_isect_fire_o);
+
+    // The memory: the three read ports.
+    u_mem.clk_i(clk_i);
+    bindMemoryPorts(u_mem);
+
+    // The testbench: clock, reset, configuration, streams; observes the memory ports.
+    u_tb.clk_i(clk_i);
+    u_tb.rst_ni(rst_ni);
+    u_tb.cfg_res_i(cfg_res_i);
+    u_tb.cfg_slots_i(cfg_slots_i);
+    u_tb.ray_valid_i(ray_valid_i);
+    u_tb.ray_ready_o(ray_ready_o);
+    u_tb.ray_data_i(ray_data_i);
+    u_tb.res_valid_o(res_valid_o);
+    u_tb.res_ready_i(res_ready_i);
+    u_tb.res_data_o(res_data_o);
+    u_tb.visit_valid_o(visit_valid_o);
+    u_tb.visit_ready_i(visit_ready_i);
+    u_tb.visit_data_o(visit_data_o);
+    u_tb.cell_req_valid_o(cell_req_valid_o);
+    u_tb.cell_req_addr_o(cell_req_addr_o);
+    u_tb.cell_req_tag_o(cell_req_tag_o);
+    u_tb.cell_rsp_valid_i(cell_rsp_valid_i);
+    u_tb.idx_req_valid_o(idx_req_valid_o);
+    u_tb.idx_req_addr_o(idx_req_addr_o);
+    u_tb.idx_req_tag_o(idx_req_tag_o);
+    u_tb.idx_rsp_valid_i(idx_rsp_valid_i);
+    u_tb.tri_req_valid_o(tri_req_valid_o);
+    u_tb.tri_req_addr_o(tri_req_addr_o);
+    u_tb.tri_req_tag_o(tri_req_tag_o);
+    u_tb.tri_rsp_valid_i(tri_rsp_valid_i);
+    u_tb.perf_isect_fire_o(perf_isect_fire_o);
+  }
+
+ private:
+  template <class M>
+  void bindMemoryPorts(M& m) {
+    m.cell_req_valid_o(cell_req_valid_o);
+    m.cell_req_ready_i(cell_req_ready_i);
+    m.cell_req_addr_o(cell_req_addr_o);
+    m.cell_req_tag_o(cell_req_tag_o);
+    m.cell_rsp_valid_i(cell_rsp_valid_i);
+    m.cell_rsp_data_i(cell_rsp_data_i);
+    m.cell_rsp_tag_i(cell_rsp_tag_i);
+    m.idx_req_valid_o(idx_req_valid_o);
+    m.idx_req_ready_i(idx_req_ready_i);
+    m.idx_req_addr_o(idx_req_addr_o);
+    m.idx_req_tag_o(idx_req_tag_o);
+    m.idx_rsp_valid_i(idx_rsp_valid_i);
+    m.idx_rsp_data_i(idx_rsp_data_i);
+    m.idx_rsp_tag_i(idx_rsp_tag_i);
+    m.tri_req_valid_o(tri_req_valid_o);
+    m.tri_req_ready_i(tri_req_ready_i);
+    m.tri_req_addr_o(tri_req_addr_o);
+    m.tri_req_tag_o(tri_req_tag_o);
+    m.tri_rsp_valid_i(tri_rsp_valid_i);
+    m.tri_rsp_data_i(tri_rsp_data_i);
+    m.tri_rsp_tag_i(tri_rsp_tag_i);
+  }
+};
+
+}  // namespace lancer::sc

@@ -1,0 +1,176 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <systemc>
+
+#include "golden/grid.h"
+#include "grid/rt_grid_types.h"
+#include "isect/rt_isect_top.h"
+
+namespace lancer::sc {
+
+// rt_grid_model: hand-written cycle model of rtl/grid/rt_grid.sv (with
+// rt_grid_setup, RAYS_IN_FLIGHT rt_grid_slot, rt_fifo, rt_rr_arb), meant to
+// match it cycle for cycle and bit for bit at its ports; docs/grid-unit.md is
+// the contract (slot state machine, "Per-cycle behaviour of rt_grid").
+//
+//   seq()   SC_METHOD on clk_i.posedge (and rst_ni.negedge, the RTL's async
+//           reset): every decision of the cycle from the registers at its start
+//           and the inputs (allocation, the four round-robin arbiters, FIFO
+//           room, credits, the closest-hit update, the exit test), then every
+//           register update, then the flop-driven outputs.
+//   comb()  SC_METHOD for the RTL's combinational paths from inputs: the
+//           triangle response with its slot's ray into u_isect,
+//           perf_isect_fire_o, and ray_ready_o (free slots below cfg_slots_i).
+//   u_isect the intersection pipeline, instantiated as rt_grid instantiates
+//           rt_isect (req_ready_o unused: res_ready_i is tied to 1): either the
+//           cycle model rt_isect_model or the Verilated Vrt_isect_sc, chosen
+//           at construction.
+//
+// No arithmetic is duplicated: per-ray setup, the step, the exit test and the
+// closest-hit order are fx::GridDda::setup/advance/holds and fx::closerResult
+// of the golden model (sw/golden/grid.h); the model only schedules them.
+// Latency and throughput are the RTL's: setup 3 cycles (SETUP -> VISIT), an
+// empty cell L + 3 cycles per slot, per cycle at most one ray accepted, one
+// visit, one index read, one triangle read, one test, one result update, one
+// exit test with a hit, any number of no-hit steps and one result.
+class rt_grid_model : public sc_core::sc_module {
+ public:
+  sc_core::sc_in<bool> clk_i;
+  sc_core::sc_in<bool> rst_ni;
+
+  sc_core::sc_in<cfg_res_t> cfg_res_i;
+  sc_core::sc_in<cfg_slots_t> cfg_slots_i;
+
+  sc_core::sc_in<bool> ray_valid_i;
+  sc_core::sc_out<bool> ray_ready_o;
+  sc_core::sc_in<isect_ray_t> ray_data_i;
+
+  sc_core::sc_out<bool> res_valid_o;
+  sc_core::sc_in<bool> res_ready_i;
+  sc_core::sc_out<grid_res_t> res_data_o;
+
+  sc_core::sc_out<bool> visit_valid_o;
+  sc_core::sc_in<bool> visit_ready_i;
+  sc_core::sc_out<grid_visit_t> visit_data_o;
+
+  sc_core::sc_out<bool> cell_req_valid_o;
+  sc_core::sc_in<bool> cell_req_ready_i;
+  sc_core::sc_out<mem_addr_t> cell_req_addr_o;
+  sc_core::sc_out<slot_t> cell_req_tag_o;
+  sc_core::sc_in<bool> cell_rsp_valid_i;
+  sc_core::sc_in<grid_cell_t> cell_rsp_data_i;
+  sc_core::sc_in<slot_t> cell_rsp_tag_i;
+
+  sc_core::sc_out<bool> idx_req_valid_o;
+  sc_core::sc_in<bool> idx_req_ready_i;
+  sc_core::sc_out<mem_addr_t> idx_req_addr_o;
+  sc_core::sc_out<slot_t> idx_req_tag_o;
+  sc_core::sc_in<bool> idx_rsp_valid_i;
+  sc_core::sc_in<idx_data_t> idx_rsp_data_i;
+  sc_core::sc_in<slot_t> idx_rsp_tag_i;
+
+  sc_core::sc_out<bool> tri_req_valid_o;
+  sc_core::sc_in<bool> tri_req_ready_i;
+  sc_core::sc_out<mem_addr_t> tri_req_addr_o;
+  sc_core::sc_out<slot_t> tri_req_tag_o;
+  sc_core::sc_in<bool> tri_rsp_valid_i;
+  sc_core::sc_in<isect_tri_t> tri_rsp_data_i;
+  sc_core::sc_in<slot_t> tri_rsp_tag_i;
+
+  sc_core::sc_out<bool> perf_isect_fire_o;
+
+  SC_HAS_PROCESS(rt_grid_model);
+  explicit rt_grid_model(sc_core::sc_module_name name, rt_isect_impl isect = rt_isect_impl::model);
+  ~rt_grid_model() override;
+
+ private:
+  enum class State : uint8_t { Free, Setup, Visit, WaitCell, Fetch, Check, Done };
+
+  // One rt_grid_slot.
+  struct Slot {
+    State state = State::Free;
+    uint32_t rayId = 0;         // the ray's own id (visit and result records)
+    isect_ray_t isectRay{};     // the ray with ray_id = slot index, for u_isect
+    fx::GridDda dda;            // cell, steps, accumulators, triple, dominant
+    uint32_t cells = 0, tests = 0;
+    uint32_t first = 0, count = 0, issued = 0, received = 0;
+    bool hasHit = false;
+    fx::IsectResult best;       // zero until the first hit (best_q <= '0)
+  };
+
+  // rt_fifo: Depth entries; in_ready = !full, out_valid = !empty, from the
+  // occupancy at the start of the cycle.
+  template <class T>
+  struct Fifo {
+    explicit Fifo(size_t depth) : items(depth) {}
+    std::vector<T> items;
+    size_t head = 0, size = 0;
+    bool full() const { return size == items.size(); }
+    bool empty() const { return size == 0; }
+    const T& front() const { return items[head]; }
+    void pop() { head = (head + 1) % items.size(); --size; }
+    void push(const T& v) { items[(head + size++) % items.size()] = v; }
+    void clear() { head = size = 0; }
+  };
+  struct MemReq {
+    uint32_t addr = 0, slot = 0;
+  };
+  struct Visit {
+    uint32_t rayId = 0, cellId = 0;
+  };
+
+  // rt_rr_arb: the lowest requester at or after the pointer, cyclically.
+  struct RoundRobin {
+    int ptr = 0;
+    template <class Want>
+    int pick(int n, Want want) const {
+      for (int k = ptr; k < n; ++k)
+        if (want(k)) return k;
+      for (int k = 0; k < ptr; ++k)
+        if (want(k)) return k;
+      return -1;
+    }
+    void ack(int granted, int n) { ptr = granted + 1 == n ? 0 : granted + 1; }
+  };
+
+  // rt_grid_setup's valid/slot/ray registers (the arithmetic is GridDda::setup at the slot load).
+  struct SetupStage {
+    bool valid = false;
+    int slot = 0;
+    isect_ray_t ray{};
+  };
+
+  void seq();
+  void comb();
+  void reset();
+  void writeOutputs();
+  fx::GridRes resolution() const;
+  [[noreturn]] void fail(const std::string& what) const;
+
+  // u_isect and its signals, named after rt_isect's ports as rt_grid connects them.
+  sc_core::sc_signal<bool> isect_req_valid{"isect_req_valid"};
+  sc_core::sc_signal<bool> isect_req_ready{"isect_req_ready"};
+  sc_core::sc_signal<isect_ray_t> isect_ray{"isect_ray"};
+  sc_core::sc_signal<isect_tri_t> isect_tri{"isect_tri"};
+  sc_core::sc_signal<bool> isect_res_valid{"isect_res_valid"};
+  sc_core::sc_signal<bool> isect_res_ready{"isect_res_ready"};
+  sc_core::sc_signal<isect_res_t> isect_res{"isect_res"};
+  std::unique_ptr<sc_core::sc_module> u_isect;
+
+  std::vector<Slot> slots_;
+  SetupStage s1_, s2_;
+  RoundRobin visitArb_, idxArb_, checkArb_, doneArb_;
+  Fifo<MemReq> cellQ_{MEMREQ_FIFO_DEPTH}, idxQ_{MEMREQ_FIFO_DEPTH}, triQ_{MEMREQ_FIFO_DEPTH};
+  Fifo<MemReq> idxBuf_{IDX_BUF_DEPTH};  // {triangle id, slot}
+  Fifo<Visit> visitQ_{VISIT_FIFO_DEPTH};
+  Fifo<grid_res_t> resQ_{RES_FIFO_DEPTH};
+  int credits_ = IDX_BUF_DEPTH;
+  sc_core::sc_event state_changed_;
+};
+
+}  // namespace lancer::sc

@@ -1,0 +1,213 @@
+#include "grid_sc_stimulus.h"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "driver/quantize.h"
+#include "golden/isect.h"
+#include "scene/camera.h"
+#include "scene/scene.h"
+
+namespace lancer::sctest {
+
+namespace {
+
+using fx::GridRes;
+using fx::kDirMax;
+using fx::kPosBits;
+using fx::kPosMax;
+using fx::QRay;
+using fx::QTriangle;
+
+const Scene& bunny() {
+  static const Scene scene = loadScene(std::string(LANCER_DATA_DIR) + "/scenes/bunny.obj");
+  return scene;
+}
+
+QRay normalized(QRay r) {
+  const int k = fx::dominantAxis(r.dir);
+  r.dir[k] = r.dir[k] < 0 ? -kDirMax : kDirMax;
+  return r;
+}
+
+QRay randomRay(std::mt19937_64& rng, uint32_t id) {
+  std::uniform_int_distribution<int64_t> pos(0, kPosMax), dir(-kDirMax, kDirMax);
+  return normalized(QRay{id, {pos(rng), pos(rng), pos(rng)}, {dir(rng), dir(rng), dir(rng)}});
+}
+
+std::vector<QTriangle> randomTriangles(std::mt19937_64& rng, int count, int64_t spread) {
+  std::uniform_int_distribution<int64_t> pos(0, kPosMax), off(-spread, spread);
+  std::vector<QTriangle> tris;
+  for (int i = 0; i < count; ++i) {
+    QTriangle t;
+    t.id = uint32_t(i);
+    const std::array<int64_t, 3> c{pos(rng), pos(rng), pos(rng)};
+    for (auto& v : t.v)
+      for (int a = 0; a < 3; ++a) v[a] = std::clamp<int64_t>(c[a] + off(rng), 0, kPosMax);
+    tris.push_back(t);
+  }
+  return tris;
+}
+
+}  // namespace
+
+QuantizedScene bunnyCamera(int width, int height) {
+  const Scene& scene = bunny();
+  const Quantizer quantizer(scene.bounds);
+  QuantizedScene q;
+  for (uint32_t i = 0; i < scene.size(); ++i) q.triangles.push_back(quantizer.quantize(scene.triangles[i], i));
+  CameraOptions camera;
+  camera.width = width;
+  camera.height = height;
+  const std::vector<Ray> rays = frameScene(scene, camera).generateRays();
+  for (uint32_t i = 0; i < rays.size(); ++i) {
+    if (auto r = quantizer.quantize(rays[i], i)) q.rays.push_back(r->q);
+  }
+  return q;
+}
+
+GridRunOptions roughGridOptions(uint64_t seed, int raysInFlight) {
+  GridRunOptions o;
+  o.memLatency = 7;
+  o.memLatencyJitter = 13;
+  o.raysInFlight = raysInFlight;
+  o.stream.outputStallProbability = 0.3;
+  o.stream.inputIdleProbability = 0.2;
+  o.stream.seed = seed;
+  return o;
+}
+
+std::vector<GridCase> hardGridCases() {
+  std::vector<GridCase> cases;
+  const QuantizedScene bunnyTris = bunnyCamera(1, 1);
+
+  {  // Axis-parallel float rays with +0 and -0 components, through the quantizer.
+    const Scene& scene = bunny();
+    const Quantizer quantizer(scene.bounds);
+    std::mt19937_64 rng(4);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    GridCase c{"axis-parallel signed zeros, bunny 16^3", fx::buildGridImage(bunnyTris.triangles, {16, 16, 16}), {}};
+    const glm::vec3 lo = scene.bounds.lo, hi = scene.bounds.hi;
+    for (uint32_t i = 0; i < 200; ++i) {
+      const int axis = int(i % 3);
+      Ray r;
+      for (int a = 0; a < 3; ++a) r.origin[a] = lo[a] + (hi[a] - lo[a]) * u(rng);
+      r.origin[axis] = (i & 8) ? hi[axis] + 1.0f : lo[axis] - 1.0f;
+      r.dir = glm::vec3((i & 1) ? -0.0f : 0.0f, (i & 2) ? -0.0f : 0.0f, (i & 4) ? -0.0f : 0.0f);
+      r.dir[axis] = (i & 8) ? -1.0f : 1.0f;
+      if (auto qr = quantizer.quantize(r, i)) c.rays.push_back(qr->q);
+    }
+    cases.push_back(std::move(c));
+  }
+  {  // A 16^3 grid whose boundaries lie on lattice points.
+    std::mt19937_64 rng(6);
+    GridCase c{"planes, edges, corners, faces, tiny components, 16^3",
+               fx::buildGridImage(randomTriangles(rng, 300, kPosMax / 12), {16, 16, 16}), {}};
+    const int64_t cell = int64_t(1) << (kPosBits - 4);
+    std::uniform_int_distribution<int64_t> pick(0, 16), pos(0, kPosMax), dir(-kDirMax, kDirMax);
+    auto boundary = [&] { return std::min(pick(rng) * cell, kPosMax); };
+    for (uint32_t i = 0; i < 360; ++i) {
+      QRay r{i, {pos(rng), pos(rng), pos(rng)}, {dir(rng), dir(rng), dir(rng)}};
+      switch (i % 6) {
+        case 0:  // in a plane between voxels, moving within it
+          r.org[i % 3] = boundary();
+          r.dir[i % 3] = 0;
+          break;
+        case 1:  // along a voxel edge
+          r.org[i % 3] = boundary();
+          r.org[(i + 1) % 3] = boundary();
+          r.dir[i % 3] = 0;
+          r.dir[(i + 1) % 3] = 0;
+          break;
+        case 2:  // from a voxel corner along a diagonal (exact ties on all axes)
+          for (int a = 0; a < 3; ++a) {
+            r.org[a] = boundary();
+            r.dir[a] = (dir(rng) < 0 ? -1 : 1) * kDirMax;
+          }
+          break;
+        case 3:  // on a grid face
+          r.org[i % 3] = (i & 1) ? 0 : kPosMax;
+          break;
+        case 4:  // from a corner of the grid
+          for (int a = 0; a < 3; ++a) r.org[a] = (dir(rng) < 0) ? 0 : kPosMax;
+          break;
+        default:  // one component too small to ever step
+          r.dir[i % 3] = (i & 1) ? 1 : -1;
+          break;
+      }
+      if (r.dir == std::array<int64_t, 3>{0, 0, 0}) r.dir[0] = kDirMax;
+      c.rays.push_back(normalized(r));
+    }
+    cases.push_back(std::move(c));
+  }
+  {  // One cell and the finest grid.
+    std::mt19937_64 rng(8);
+    const std::vector<QTriangle> tris = randomTriangles(rng, 40, kPosMax / 6);
+    std::vector<QRay> rays;
+    for (uint32_t i = 0; i < 40; ++i) rays.push_back(randomRay(rng, i));
+    cases.push_back({"1x1x1", fx::buildGridImage(tris, {1, 1, 1}), rays});
+    cases.push_back({"256x256x256", fx::buildGridImage(tris, {256, 256, 256}), rays});
+  }
+  {  // Mostly empty cells; triangles spanning many cells.
+    std::mt19937_64 rng(11);
+    std::vector<QTriangle> tris = randomTriangles(rng, 6, kPosMax / 64);
+    for (QTriangle t : randomTriangles(rng, 6, kPosMax)) {
+      t.id = uint32_t(tris.size());
+      tris.push_back(t);
+    }
+    GridCase c{"empty cells, large triangles, 64x48x40", fx::buildGridImage(tris, {64, 48, 40}), {}};
+    for (uint32_t i = 0; i < 200; ++i) c.rays.push_back(randomRay(rng, i));
+    cases.push_back(std::move(c));
+  }
+  {  // Thousands of triangles in one cell; rays through it and around it.
+    std::mt19937_64 rng(13);
+    std::uniform_int_distribution<int64_t> in(kPosMax / 4 + 2, kPosMax / 2 - 2);
+    std::vector<QTriangle> tris;
+    for (uint32_t i = 0; i < 2000; ++i) {
+      QTriangle t;
+      t.id = i;
+      for (auto& v : t.v)
+        for (auto& x : v) x = in(rng);
+      tris.push_back(t);
+    }
+    GridCase c{"crowded cell, 4^3", fx::buildGridImage(tris, {4, 4, 4}), {}};
+    for (uint32_t i = 0; i < 16; ++i) {
+      QRay r = randomRay(rng, i);
+      if (i % 2 == 0) r.org = {in(rng), in(rng), in(rng)};  // starts in the crowded cell
+      c.rays.push_back(r);
+    }
+    cases.push_back(std::move(c));
+  }
+  {  // Random rays at a few resolutions over the bunny.
+    std::mt19937_64 rng(2);
+    std::vector<QRay> rays;
+    for (uint32_t i = 0; i < 200; ++i) rays.push_back(randomRay(rng, i));
+    for (const GridRes& res : {GridRes{3, 7, 5}, GridRes{32, 32, 32}}) {
+      cases.push_back({fmt::format("bunny random rays {}x{}x{}", res[0], res[1], res[2]),
+                       fx::buildGridImage(bunnyTris.triangles, res), rays});
+    }
+  }
+  return cases;
+}
+
+std::string describe(const fx::QRay& r) {
+  return fmt::format("ray {} org ({:#x}, {:#x}, {:#x}) dir ({}, {}, {})", r.id, r.org[0], r.org[1], r.org[2],
+                     r.dir[0], r.dir[1], r.dir[2]);
+}
+
+std::string describe(const fx::GridTrace& t) {
+  std::string s = fmt::format("{} cells [", t.cells.size());
+  for (size_t i = 0; i < std::min<size_t>(t.cells.size(), 12); ++i) s += fmt::format("{} ", t.cells[i]);
+  if (t.cells.size() > 12) s += "...";
+  s += fmt::format("] tests {} ", t.tests);
+  if (t.hit) {
+    s += fmt::format("hit prim {} t_num {:#x} det {:#x}", t.hit->primId, uint64_t(t.hit->tNum),
+                     uint64_t(t.hit->det));
+  } else {
+    s += "miss";
+  }
+  return s;
+}
+
+}  // namespace lancer::sctest
