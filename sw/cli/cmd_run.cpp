@@ -14,6 +14,7 @@
 #include "driver/job.h"
 #include "driver/report.h"
 #include "golden/isect.h"
+#include "golden/octree.h"
 #include "ref/bvh.h"
 #include "ref/shade.h"
 #include "ref/trace.h"
@@ -57,6 +58,25 @@ void writeHardwareHits(const std::string& path, const JobResult& job) {
                hex(r.tNum), hex(r.det), hex(r.uNum), hex(r.vNum));
   }
   if (std::ferror(out.get())) throw InputError(fmt::format("{}: write failed", path));
+}
+
+// The options of the hardware path that shape what it computes or how it is
+// timed, as they would be typed: what a replay must repeat.
+std::string unitOptions(const Args& args) {
+  const JobConfig& job = args.job;
+  std::string out;
+  const auto add = [&out](const char* flag, int value) {
+    if (value) out += fmt::format(" {} {}", flag, value);
+  };
+  add("--grid-res", job.accel.gridResolution);
+  add("--octree-depth", job.accel.octreeMaxDepth);
+  add("--octree-leaf", job.accel.octreeLeafSize);
+  if (args.accel != "bvh") {
+    out += fmt::format(" --mem-latency {}", job.memLatency);
+    add("--mem-jitter", job.memLatencyJitter);
+    add("--rays-in-flight", job.raysInFlight);
+  }
+  return out;
 }
 
 void checkFormats(const Args& args) {
@@ -167,8 +187,7 @@ void run(const Args& args) {
     writeRaysFile(args.repro, {rays.rays[m.rayId]}, fmt::format("ray {} of {}: mismatch reproducer", m.rayId, rays.origin));
     const std::string replay = fmt::format("lancer run --scene {}{} --rays {} --model {} --accel {}{} --stall {} --seed {}",
                                            scene.name, args.scene.subdivide ? fmt::format(" --subdivide {}", args.scene.subdivide) : "",
-                                           args.repro, args.job.model, args.accel,
-                                           args.job.accel.gridResolution ? fmt::format(" --grid-res {}", args.job.accel.gridResolution) : "",
+                                           args.repro, args.job.model, args.accel, unitOptions(args),
                                            args.job.stream.outputStallProbability, args.job.stream.seed);
     const std::string text = fmt::format("{}  replay: {}\n", m.details, replay);
     fmt::print(stderr, "{}", text);
@@ -189,7 +208,8 @@ void addRunCommand(CLI::App& app) {
   args->scene.add(*cmd);
   args->source.add(*cmd);
   cmd->add_option("--accel", args->accel,
-                 "Hardware path: bvh (host BVH feeding the intersection pipeline) or grid (the grid unit)")
+                 "Hardware path: bvh (host BVH feeding the intersection pipeline), grid (the grid unit) or octree "
+                 "(the octree unit)")
       ->check(CLI::IsMember(hardwareAccels()))
       ->capture_default_str();
   cmd->add_option("--model", args->job.model, "Model of the hardware: golden, systemc, rtl, rtl-systemc")
@@ -200,6 +220,11 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--dir-bits", args->dirBits, "Expected direction width (must match the build)");
   cmd->add_option("--grid-res", args->job.accel.gridResolution,
                   "Grid cells per axis (default: from the triangle count)");
+  cmd->add_option("--octree-depth", args->job.accel.octreeMaxDepth,
+                  fmt::format("Octree maximum depth, 1..{} (default: from the triangle count)", fx::kOctreeMaxDepth));
+  cmd->add_option("--octree-leaf", args->job.accel.octreeLeafSize,
+                  fmt::format("Octree leaf size: split nodes holding more triangles (default {})",
+                              fx::kDefaultOctreeLeafSize));
   cmd->add_option("--mem-latency", args->job.memLatency, "Memory latency of the traversal units, in cycles")
       ->capture_default_str();
   cmd->add_option("--mem-jitter", args->job.memLatencyJitter, "Random extra memory latency per read, 0..N cycles")

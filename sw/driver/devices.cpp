@@ -52,4 +52,11 @@ std::unique_ptr<GridDevice> makeGridDevice(const std::string& name) {
   unknownModel(name, gridDeviceNames(), "grid unit");
 }
 
+std::vector<std::string> octreeDeviceNames() { return {"golden"}; }
+
+std::unique_ptr<OctreeDevice> makeOctreeDevice(const std::string& name) {
+  if (name == "golden") return std::make_unique<GoldenOctreeDevice>();
+  unknownModel(name, octreeDeviceNames(), "octree unit");
+}
+
 }  // namespace lancer

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "driver/grid_device.h"
+#include "driver/traversal_device.h"
 #include "driver/isect_device.h"
 
 namespace lancer {
@@ -18,5 +18,9 @@ std::unique_ptr<IsectDevice> makeIsectDevice(const std::string& name);
 // Every model of the grid unit (traversal + memory + intersection pipeline).
 std::vector<std::string> gridDeviceNames();
 std::unique_ptr<GridDevice> makeGridDevice(const std::string& name);
+
+// Every model of the octree unit.
+std::vector<std::string> octreeDeviceNames();
+std::unique_ptr<OctreeDevice> makeOctreeDevice(const std::string& name);
 
 }  // namespace lancer

@@ -51,8 +51,7 @@ JobResult runIsectJob(const Scene& scene, std::span<const Ray> rays, const Quant
   uint64_t inputStalls = 0;
 
   // Triangles are quantized once; shared vertices quantize to the same integers.
-  std::vector<fx::QTriangle> triangles(scene.size());
-  for (uint32_t i = 0; i < scene.size(); ++i) triangles[i] = quantizer.quantize(scene.triangles[i], i);
+  const std::vector<fx::QTriangle> triangles = quantizer.quantize(scene);
 
   std::vector<IsectRequest> requests;
   std::vector<fx::IsectResult> modelOut, goldenOut;

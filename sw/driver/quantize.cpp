@@ -37,6 +37,12 @@ fx::QTriangle Quantizer::quantize(const Triangle& tri, uint32_t id) const {
   return q;
 }
 
+std::vector<fx::QTriangle> Quantizer::quantize(const Scene& scene) const {
+  std::vector<fx::QTriangle> triangles(scene.size());
+  for (uint32_t i = 0; i < scene.size(); ++i) triangles[i] = quantize(scene.triangles[i], i);
+  return triangles;
+}
+
 std::optional<QuantizedRay> Quantizer::quantize(const Ray& ray, uint32_t id) const {
   const glm::dvec3 o = (glm::dvec3(ray.origin) - lo_) * scale_;
   const glm::dvec3 d = glm::dvec3(ray.dir) * scale_;

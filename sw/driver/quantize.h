@@ -1,6 +1,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "golden/records.h"
 #include "ref/ray.h"
@@ -26,6 +27,8 @@ class Quantizer {
 
   // Throws InputError if a vertex lies outside the lattice cube by more than half a unit.
   fx::QTriangle quantize(const Triangle& tri, uint32_t id) const;
+  // Every triangle of the scene, id = its index.
+  std::vector<fx::QTriangle> quantize(const Scene& scene) const;
   // nullopt if the ray misses the cube (or leaves it before t = 0, or before tMax).
   // The ray must already be validated (finite, non-zero direction).
   std::optional<QuantizedRay> quantize(const Ray& ray, uint32_t id) const;

@@ -49,8 +49,8 @@ bool SystemCGridDevice::rtlAvailable() { return sc::rt_grid_top::has_rtl(); }
 bool SystemCGridDevice::rtlIsectAvailable() { return sc::rt_grid_top::has_rtl_isect(); }
 bool SystemCGridDevice::wavesAvailable() { return sc::rt_grid_top::has_waves(); }
 
-GridRunStats SystemCGridDevice::run(const fx::GridImage& image, std::span<const fx::QRay> rays,
-                                    std::vector<fx::GridTrace>& traces, const GridRunOptions& options) {
+TraversalRunStats SystemCGridDevice::run(const fx::GridImage& image, std::span<const fx::QRay> rays,
+                                    std::vector<fx::GridTrace>& traces, const TraversalRunOptions& options) {
   const int maxSlots = maxRaysInFlight();
   if (options.raysInFlight < 0 || options.raysInFlight > maxSlots) {
     throw InputError(fmt::format("rays in flight {} is out of range: the SystemC grid unit ({}) has {} ray slots "
@@ -77,7 +77,7 @@ GridRunStats SystemCGridDevice::run(const fx::GridImage& image, std::span<const 
     throw std::runtime_error("rtl-systemc: this build has no FST tracing (LANCER_SC_RTL_WAVES=OFF)");
   }
 
-  GridRunStats stats;
+  TraversalRunStats stats;
   const size_t n = rays.size();
   traces.assign(n, fx::GridTrace{});
   stats.rays = n;
@@ -125,14 +125,14 @@ GridRunStats SystemCGridDevice::run(const fx::GridImage& image, std::span<const 
                                          tally.error.empty() ? "the clock stopped early" : tally.error));
   }
   for (size_t k = 0; k < n; ++k) {
-    if (tally.resultCells[k] != traces[k].cells.size()) {
+    if (tally.resultCells[k] != traces[k].visits.size()) {
       throw std::runtime_error(fmt::format("{}: ray {} reports {} cells but {} visit records came out", name(), k,
-                                           tally.resultCells[k], traces[k].cells.size()));
+                                           tally.resultCells[k], traces[k].visits.size()));
     }
   }
   stats.cycles = tally.cycles;
-  stats.voxelSteps = tally.visits;
-  stats.cellReads = tally.cellReads;
+  stats.steps = tally.visits;
+  stats.nodeReads = tally.nodeReads;
   stats.indexReads = tally.indexReads;
   stats.triangleReads = tally.triangleReads;
   stats.isectTests = tally.isectTests;

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "driver/grid_device.h"
+#include "driver/traversal_device.h"
 #include "grid/rt_grid_cycle.h"
 
 namespace lancer {
@@ -19,8 +19,8 @@ namespace lancer {
 // Each sits on its own testbench and memory model (rt_grid_tb, rt_grid_mem),
 // which drive it exactly as VerilatorGridDevice ("rtl") drives the C++
 // Verilated model: the same reset-per-run, ray ids = indices, stimulus draws
-// and memory response times for the same GridRunOptions, and the same
-// GridRunStats: cycles from the first ray offered to the last result or visit
+// and memory response times for the same TraversalRunOptions, and the same
+// TraversalRunStats: cycles from the first ray offered to the last result or visit
 // taken, reads per region from the request handshakes, tests and busy cycles
 // from perf_isect_fire_o. So "systemc", "rtl-systemc" and "rtl" can be
 // compared cycle for cycle.
@@ -40,8 +40,8 @@ class SystemCGridDevice final : public GridDevice {
 
   std::string_view name() const override;
   int maxRaysInFlight() const override;
-  GridRunStats run(const fx::GridImage& image, std::span<const fx::QRay> rays, std::vector<fx::GridTrace>& traces,
-                   const GridRunOptions& options = {}) override;
+  TraversalRunStats run(const fx::GridImage& image, std::span<const fx::QRay> rays, std::vector<fx::GridTrace>& traces,
+                   const TraversalRunOptions& options = {}) override;
 
   // Records the port activity of every cycle of the following runs into
   // *trace (appended; nullptr turns it off), from the first ray offered.

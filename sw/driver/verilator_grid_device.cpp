@@ -139,8 +139,8 @@ void VerilatorGridDevice::checkAssertions() const {
   }
 }
 
-GridRunStats VerilatorGridDevice::run(const fx::GridImage& image, std::span<const fx::QRay> rays,
-                                      std::vector<fx::GridTrace>& traces, const GridRunOptions& options) {
+TraversalRunStats VerilatorGridDevice::run(const fx::GridImage& image, std::span<const fx::QRay> rays,
+                                      std::vector<fx::GridTrace>& traces, const TraversalRunOptions& options) {
   const int maxSlots = maxRaysInFlight();
   if (options.raysInFlight < 0 || options.raysInFlight > maxSlots) {
     throw InputError(fmt::format("rays in flight {} is out of range: the RTL grid unit was built with {} ray slots "
@@ -158,7 +158,7 @@ GridRunStats VerilatorGridDevice::run(const fx::GridImage& image, std::span<cons
     }
   }
 
-  GridRunStats stats;
+  TraversalRunStats stats;
   const size_t n = rays.size();
   traces.assign(n, fx::GridTrace{});
   stats.rays = n;
@@ -248,7 +248,7 @@ GridRunStats VerilatorGridDevice::run(const fx::GridImage& image, std::span<cons
     bool progress = rayFire;
     if (top_->cell_req_valid_o) {
       cellPort.request(cycle_, top_->cell_req_addr_o, top_->cell_req_tag_o);
-      ++stats.cellReads;
+      ++stats.nodeReads;
     }
     if (top_->idx_req_valid_o) {
       idxPort.request(cycle_, top_->idx_req_addr_o, top_->idx_req_tag_o);
@@ -271,8 +271,8 @@ GridRunStats VerilatorGridDevice::run(const fx::GridImage& image, std::span<cons
       if (k >= offered) {
         throw std::runtime_error(fmt::format("rtl: a visit record for ray {} that is not in flight", k));
       }
-      traces[k].cells.push_back(uint32_t(v[1]));
-      ++stats.voxelSteps;
+      traces[k].visits.push_back(uint32_t(v[1]));
+      ++stats.steps;
       stats.cycles = edge - firstCycle + 1;
       progress = true;
     }
@@ -327,9 +327,9 @@ GridRunStats VerilatorGridDevice::run(const fx::GridImage& image, std::span<cons
     wave_.reset();
   }
   for (size_t k = 0; k < n; ++k) {
-    if (resultCells[k] != traces[k].cells.size()) {
+    if (resultCells[k] != traces[k].visits.size()) {
       throw std::runtime_error(fmt::format("rtl: ray {} reports {} cells but {} visit records came out", k,
-                                           resultCells[k], traces[k].cells.size()));
+                                           resultCells[k], traces[k].visits.size()));
     }
   }
   return stats;

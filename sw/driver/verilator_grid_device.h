@@ -5,7 +5,7 @@
 #include <memory>
 #include <random>
 
-#include "driver/grid_device.h"
+#include "driver/traversal_device.h"
 
 class Vrt_grid;
 class VerilatedContext;
@@ -45,7 +45,7 @@ class GridMemoryPort {
 // res_ready_i and visit_ready_i independently with outputStallProbability,
 // and serves the image on the three memory ports (GridMemoryPort each). Rays
 // cross the port with ray_id = their index in `rays`; the traces get the rays'
-// own ids back. Counts GridRunStats exactly: cycles from the first ray offered
+// own ids back. Counts TraversalRunStats exactly: cycles from the first ray offered
 // to the last result or visit taken, reads per port from the request
 // handshakes, isect tests and busy cycles from perf_isect_fire_o. Throws
 // InputError for raysInFlight outside 0..maxRaysInFlight(), runtime_error on a
@@ -60,8 +60,8 @@ class VerilatorGridDevice final : public GridDevice {
 
   std::string_view name() const override { return "rtl"; }
   int maxRaysInFlight() const override;
-  GridRunStats run(const fx::GridImage& image, std::span<const fx::QRay> rays, std::vector<fx::GridTrace>& traces,
-                   const GridRunOptions& options = {}) override;
+  TraversalRunStats run(const fx::GridImage& image, std::span<const fx::QRay> rays, std::vector<fx::GridTrace>& traces,
+                   const TraversalRunOptions& options = {}) override;
 
  private:
   void reset();

@@ -151,7 +151,7 @@ GridTrace traverseGrid(const GridImage& image, const QRay& ray) {
   GridDda dda = GridDda::setup(image.res, ray);
   for (;;) {
     const uint32_t id = dda.cellId();
-    trace.cells.push_back(id);
+    trace.visits.push_back(id);
     const GridCell& cell = image.cells[id];
     for (uint32_t k = 0; k < cell.count; ++k) {
       const IsectResult r = intersect(ray, image.triangles[image.indices[cell.first + k]]);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "golden/records.h"
+#include "golden/trace.h"
 
 namespace lancer::fx {
 
@@ -71,12 +72,7 @@ struct GridDda {
   bool holds(const IsectResult& hit) const;
 };
 
-struct GridTrace {
-  std::vector<uint32_t> cells;       // cell ids in visiting order
-  uint64_t tests = 0;                // ray-triangle tests issued
-  std::optional<IsectResult> hit;    // closest hit (closerResult order)
-  bool operator==(const GridTrace&) const = default;
-};
+using GridTrace = TraversalTrace;
 
 // The reference behaviour of the unit for one ray: visit a cell, test its
 // triangles, stop if the closest hit so far lies within the cell, else step.

@@ -90,7 +90,7 @@ struct Walker {
 
   void visit(uint32_t index, const Box& box, const std::array<OctT, 3>& t0, const std::array<OctT, 3>& t1) {
     if (negative(t1[0]) || negative(t1[1]) || negative(t1[2])) return;  // behind the origin
-    trace.nodes.push_back(index);
+    trace.visits.push_back(index);
     const OctreeNode& node = image.nodes[index];
     if (node.leaf) {
       for (uint32_t k = 0; k < node.count; ++k) {

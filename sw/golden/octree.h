@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "golden/records.h"
+#include "golden/trace.h"
 
 namespace lancer::fx {
 
@@ -60,12 +61,7 @@ struct OctT {
   bool operator==(const OctT& o) const = default;
 };
 
-struct OctreeTrace {
-  std::vector<uint32_t> nodes;     // nodes entered, in order (interior nodes and leaves)
-  uint64_t tests = 0;              // ray-triangle tests issued
-  std::optional<IsectResult> hit;  // closest hit (closerResult order)
-  bool operator==(const OctreeTrace&) const = default;
-};
+using OctreeTrace = TraversalTrace;
 
 // The per-ray setup of the unit: mirroring (origin o' = min + max - o, i.e.
 // 2^P - o, for a negative component; `mirror` gets 4/2/1 for x/y/z) and the

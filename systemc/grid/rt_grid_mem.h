@@ -58,7 +58,7 @@ class rt_grid_mem_port {
 // requests of the cycle that ends (req_ready is always 1) and drives the
 // responses of the next one. Seeds seed*3+1, +2, +3 for the cell, index and
 // triangle ports, as the C++ Verilated device, so that for the same
-// GridRunOptions both see the same response times.
+// TraversalRunOptions both see the same response times.
 // Ports carry the names of the rt_grid ports they connect to.
 SC_MODULE(rt_grid_mem) {
   sc_core::sc_in<bool> clk_i;

@@ -130,7 +130,7 @@ void rt_grid_tb::sample(uint64_t cycle) {
   const bool tracing = job_->trace != nullptr && started_;
   if (cell_req_valid_o.read()) {
     ++requests_[0];
-    ++tally_.cellReads;
+    ++tally_.nodeReads;
     c.cellReq = true;
     c.cellAddr = uint32_t(cell_req_addr_o.read());
     c.cellTag = uint32_t(cell_req_tag_o.read());
@@ -164,7 +164,7 @@ void rt_grid_tb::sample(uint64_t cycle) {
       const auto v = fx::unpackFields(fx::kGridVisitFields, wire);
       const size_t k = size_t(v[0]);
       if (k >= offered_) return abandon(fmt::format("a visit record for ray {} that is not in flight", k));
-      (*job_->traces)[k].cells.push_back(uint32_t(v[1]));
+      (*job_->traces)[k].visits.push_back(uint32_t(v[1]));
       ++tally_.visits;
       tally_.cycles = cycle - firstCycle_ + 1;
       progress = true;

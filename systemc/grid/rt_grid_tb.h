@@ -27,11 +27,11 @@ struct rt_grid_job {
   uint64_t watchdogCycles = 1'000'000;           // give up after this many cycles without progress
 };
 
-// What the testbench counted (GridRunStats' semantics; cycles after reset).
+// What the testbench counted (TraversalRunStats' semantics; cycles after reset).
 struct rt_grid_tally {
   uint64_t cycles = 0;  // first ray offered .. last result or visit taken, both included
   uint64_t accepted = 0, results = 0, visits = 0;
-  uint64_t cellReads = 0, indexReads = 0, triangleReads = 0;
+  uint64_t nodeReads = 0, indexReads = 0, triangleReads = 0;
   uint64_t isectTests = 0;
   std::vector<uint32_t> resultCells;  // grid_res_t.cells per ray
   bool busy = false;

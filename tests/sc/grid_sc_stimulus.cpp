@@ -67,8 +67,8 @@ QuantizedScene bunnyCamera(int width, int height) {
   return q;
 }
 
-GridRunOptions roughGridOptions(uint64_t seed, int raysInFlight) {
-  GridRunOptions o;
+TraversalRunOptions roughGridOptions(uint64_t seed, int raysInFlight) {
+  TraversalRunOptions o;
   o.memLatency = 7;
   o.memLatencyJitter = 13;
   o.raysInFlight = raysInFlight;
@@ -197,9 +197,9 @@ std::string describe(const fx::QRay& r) {
 }
 
 std::string describe(const fx::GridTrace& t) {
-  std::string s = fmt::format("{} cells [", t.cells.size());
-  for (size_t i = 0; i < std::min<size_t>(t.cells.size(), 12); ++i) s += fmt::format("{} ", t.cells[i]);
-  if (t.cells.size() > 12) s += "...";
+  std::string s = fmt::format("{} cells [", t.visits.size());
+  for (size_t i = 0; i < std::min<size_t>(t.visits.size(), 12); ++i) s += fmt::format("{} ", t.visits[i]);
+  if (t.visits.size() > 12) s += "...";
   s += fmt::format("] tests {} ", t.tests);
   if (t.hit) {
     s += fmt::format("hit prim {} t_num {:#x} det {:#x}", t.hit->primId, uint64_t(t.hit->tNum),

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "driver/grid_device.h"
+#include "driver/traversal_device.h"
 #include "golden/grid.h"
 
 namespace lancer::sctest {
@@ -35,7 +35,7 @@ QuantizedScene bunnyCamera(int width, int height);
 std::vector<GridCase> hardGridCases();
 
 // Adverse conditions: memory jitter, output stalls, input bubbles.
-GridRunOptions roughGridOptions(uint64_t seed, int raysInFlight = 0);
+TraversalRunOptions roughGridOptions(uint64_t seed, int raysInFlight = 0);
 
 std::string describe(const fx::QRay& ray);
 std::string describe(const fx::GridTrace& trace);

@@ -44,12 +44,12 @@ bool available(Impl impl) {
 }
 
 // Runs golden and `device`, expects identical traces and golden's counters.
-GridRunStats expectSameTraces(GridDevice& device, const fx::GridImage& image, const std::vector<fx::QRay>& rays,
-                              const GridRunOptions& options, const std::string& what) {
+TraversalRunStats expectSameTraces(GridDevice& device, const fx::GridImage& image, const std::vector<fx::QRay>& rays,
+                              const TraversalRunOptions& options, const std::string& what) {
   GoldenGridDevice golden;
   std::vector<fx::GridTrace> want, got;
-  const GridRunStats g = golden.run(image, rays, want, options);
-  const GridRunStats r = device.run(image, rays, got, options);
+  const TraversalRunStats g = golden.run(image, rays, want, options);
+  const TraversalRunStats r = device.run(image, rays, got, options);
   EXPECT_EQ(got.size(), want.size()) << what;
   int reported = 0;
   for (size_t k = 0; k < std::min(got.size(), want.size()); ++k) {
@@ -60,8 +60,8 @@ GridRunStats expectSameTraces(GridDevice& device, const fx::GridImage& image, co
     if (++reported == 5) break;
   }
   EXPECT_EQ(r.rays, rays.size()) << what;
-  EXPECT_EQ(r.voxelSteps, g.voxelSteps) << what;
-  EXPECT_EQ(r.cellReads, g.cellReads) << what;
+  EXPECT_EQ(r.steps, g.steps) << what;
+  EXPECT_EQ(r.nodeReads, g.nodeReads) << what;
   EXPECT_EQ(r.indexReads, g.indexReads) << what;
   EXPECT_EQ(r.triangleReads, g.triangleReads) << what;
   EXPECT_EQ(r.isectTests, g.isectTests) << what;
@@ -71,11 +71,11 @@ GridRunStats expectSameTraces(GridDevice& device, const fx::GridImage& image, co
   return r;
 }
 
-void expectSameStats(const GridRunStats& a, const GridRunStats& b, const std::string& what) {
+void expectSameStats(const TraversalRunStats& a, const TraversalRunStats& b, const std::string& what) {
   EXPECT_EQ(a.cycles, b.cycles) << what;
   EXPECT_EQ(a.rays, b.rays) << what;
-  EXPECT_EQ(a.voxelSteps, b.voxelSteps) << what;
-  EXPECT_EQ(a.cellReads, b.cellReads) << what;
+  EXPECT_EQ(a.steps, b.steps) << what;
+  EXPECT_EQ(a.nodeReads, b.nodeReads) << what;
   EXPECT_EQ(a.indexReads, b.indexReads) << what;
   EXPECT_EQ(a.triangleReads, b.triangleReads) << what;
   EXPECT_EQ(a.isectTests, b.isectTests) << what;
@@ -124,7 +124,7 @@ TEST_P(ScGrid, MatchesGoldenWithOneSlotAllSlotsAndNoBackpressure) {
   SystemCGridDevice device(GetParam());
   expectSameTraces(device, image, q.rays, roughGridOptions(15, 1), "one slot");
   expectSameTraces(device, image, q.rays, roughGridOptions(16, device.maxRaysInFlight()), "all slots");
-  GridRunOptions fast;  // no jitter, no stalls, latency 1
+  TraversalRunOptions fast;  // no jitter, no stalls, latency 1
   fast.memLatency = 1;
   expectSameTraces(device, image, q.rays, fast, "latency 1, no backpressure");
 }
@@ -134,10 +134,10 @@ TEST_P(ScGrid, RepeatedRunsAreIndependentAndReproducible) {
   const fx::GridImage image = fx::buildGridImage(q.triangles, fx::chooseGridResolution(q.triangles));
   std::vector<fx::GridTrace> a, b, c;
   SystemCGridDevice first(GetParam());
-  const GridRunStats sa = first.run(image, q.rays, a, roughGridOptions(3));
-  const GridRunStats other = first.run(image, q.rays, b, roughGridOptions(4));
+  const TraversalRunStats sa = first.run(image, q.rays, a, roughGridOptions(3));
+  const TraversalRunStats other = first.run(image, q.rays, b, roughGridOptions(4));
   SystemCGridDevice second(GetParam());
-  const GridRunStats sc = second.run(image, q.rays, c, roughGridOptions(3));
+  const TraversalRunStats sc = second.run(image, q.rays, c, roughGridOptions(3));
   EXPECT_EQ(a, c);
   EXPECT_EQ(a, b);  // traces do not depend on the timing
   expectSameStats(sa, sc, "same seed, new device");
@@ -148,11 +148,11 @@ TEST_P(ScGrid, EmptyRunAndInvalidOptions) {
   SystemCGridDevice device(GetParam());
   const fx::GridImage image = fx::buildGridImage({}, {1, 1, 1});
   std::vector<fx::GridTrace> traces(3);
-  const GridRunStats s = device.run(image, std::vector<fx::QRay>{}, traces);
+  const TraversalRunStats s = device.run(image, std::vector<fx::QRay>{}, traces);
   EXPECT_TRUE(traces.empty());
   EXPECT_EQ(s.cycles, 0u);
   const std::vector<fx::QRay> one{fx::QRay{0, {0, 0, 0}, {fx::kDirMax, 0, 0}}};
-  GridRunOptions o;
+  TraversalRunOptions o;
   o.raysInFlight = device.maxRaysInFlight() + 1;
   try {
     device.run(image, one, traces, o);
@@ -177,9 +177,9 @@ TEST_P(ScGrid, EmptyRunAndInvalidOptions) {
 
 // ---- Cycle accuracy -------------------------------------------------------------
 
-std::vector<GridRunOptions> timingSettings() {
-  std::vector<GridRunOptions> all;
-  GridRunOptions o;
+std::vector<TraversalRunOptions> timingSettings() {
+  std::vector<TraversalRunOptions> all;
+  TraversalRunOptions o;
   all.push_back(o);  // latency 20, nothing random
   o.memLatency = 1;
   all.push_back(o);
@@ -194,7 +194,7 @@ std::vector<GridRunOptions> timingSettings() {
   return all;
 }
 
-std::string optionsText(const GridRunOptions& o) {
+std::string optionsText(const TraversalRunOptions& o) {
   return fmt::format("latency {} jitter {} slots {} stall {} idle {} seed {}", o.memLatency, o.memLatencyJitter,
                      o.raysInFlight, o.stream.outputStallProbability, o.stream.inputIdleProbability, o.stream.seed);
 }
@@ -209,14 +209,14 @@ TEST(ScGridCycleAccuracy, ModelMatchesVerilatedRtlCycleForCycle) {
   }
   SystemCGridDevice model(Impl::Model), rtl(Impl::Rtl);
   for (const sctest::GridCase& c : cases) {
-    for (const GridRunOptions& o : timingSettings()) {
+    for (const TraversalRunOptions& o : timingSettings()) {
       const std::string what = c.name + ", " + optionsText(o);
       std::vector<sc::GridCycle> mt, rt;
       std::vector<fx::GridTrace> a, b;
       model.setCycleTrace(&mt);
       rtl.setCycleTrace(&rt);
-      const GridRunStats sm = model.run(c.image, c.rays, a, o);
-      const GridRunStats sr = rtl.run(c.image, c.rays, b, o);
+      const TraversalRunStats sm = model.run(c.image, c.rays, a, o);
+      const TraversalRunStats sr = rtl.run(c.image, c.rays, b, o);
       model.setCycleTrace(nullptr);
       rtl.setCycleTrace(nullptr);
       expectSameStats(sm, sr, what);
@@ -242,12 +242,12 @@ TEST(ScGridCycleAccuracy, StatsEqualTheCxxVerilatedDevice) {
   std::vector<Impl> impls{Impl::Model};
   if (SystemCGridDevice::rtlAvailable()) impls.push_back(Impl::Rtl);
   if (SystemCGridDevice::rtlIsectAvailable()) impls.push_back(Impl::ModelRtlIsect);
-  for (const GridRunOptions& o : timingSettings()) {
+  for (const TraversalRunOptions& o : timingSettings()) {
     std::vector<fx::GridTrace> want, got;
-    const GridRunStats ref = cxx.run(image, q.rays, want, o);
+    const TraversalRunStats ref = cxx.run(image, q.rays, want, o);
     for (Impl impl : impls) {
       SystemCGridDevice device(impl);
-      const GridRunStats s = device.run(image, q.rays, got, o);
+      const TraversalRunStats s = device.run(image, q.rays, got, o);
       const std::string what = fmt::format("{} vs rtl, {}", device.name(), optionsText(o));
       expectSameStats(s, ref, what);
       EXPECT_EQ(got, want) << what;
@@ -291,7 +291,7 @@ TEST(ScGridDevice, WaveformOfTheRtlOnRequest) {
   }
   const sctest::QuantizedScene q = sctest::bunnyCamera(3, 3);
   const fx::GridImage image = fx::buildGridImage(q.triangles, {8, 8, 8});
-  GridRunOptions o = roughGridOptions(50);
+  TraversalRunOptions o = roughGridOptions(50);
   o.stream.wavePath = ::testing::TempDir() + "rt_grid_sc_wave.fst";
   std::remove(o.stream.wavePath.c_str());
   SystemCGridDevice rtl(Impl::Rtl);

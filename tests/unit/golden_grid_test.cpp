@@ -63,7 +63,7 @@ TEST_P(GoldenGridScenes, ClosestHitEqualsBruteForceOnTheBunny) {
     const QRay ray = randomRay(rng, i);
     const GridTrace trace = traverseGrid(image, ray);
     ASSERT_EQ(trace.hit, bruteForce(tris, ray)) << "ray " << i << " at resolution " << r;
-    expectFaceConnected(image, trace.cells);
+    expectFaceConnected(image, trace.visits);
   }
 }
 INSTANTIATE_TEST_SUITE_P(Resolutions, GoldenGridScenes, ::testing::Values(0, 1, 2, 7, 32, 128));
@@ -87,9 +87,9 @@ TEST(GoldenGrid, AxisParallelRaysStepOnOneAxisOnly) {
       ray.dir[axis] = sign * kDirMax;
       const GridTrace trace = traverseGrid(image, ray);
       EXPECT_EQ(trace.hit, bruteForce(tris, ray));
-      expectFaceConnected(image, trace.cells);
+      expectFaceConnected(image, trace.visits);
       // Only `axis` changes along the walk.
-      for (uint32_t id : trace.cells) {
+      for (uint32_t id : trace.visits) {
         const std::array<int, 3> c{int(id % 8), int(id / 8 % 8), int(id / 64)};
         for (int k = 0; k < 3; ++k) {
           if (k != axis) EXPECT_EQ(c[k], int((mid * 8) >> kPosBits));
@@ -110,7 +110,7 @@ TEST(GoldenGrid, RaysThroughCellCornersVisitOneAxisAtATime) {
   const std::vector<uint32_t> expected{image.cellId({1, 1, 1}), image.cellId({2, 1, 1}), image.cellId({2, 2, 1}),
                                        image.cellId({2, 2, 2}), image.cellId({3, 2, 2}), image.cellId({3, 3, 2}),
                                        image.cellId({3, 3, 3})};
-  EXPECT_EQ(trace.cells, expected);
+  EXPECT_EQ(trace.visits, expected);
 }
 
 TEST(GoldenGrid, RayInThePlaneBetweenCellsAndAlongAnEdge) {
@@ -122,7 +122,7 @@ TEST(GoldenGrid, RayInThePlaneBetweenCellsAndAlongAnEdge) {
                           QRay{2, {boundary, boundary, kPosMax}, {0, -0, -kDirMax}}}) {
     const GridTrace trace = traverseGrid(image, ray);
     EXPECT_EQ(trace.hit, bruteForce(tris, ray)) << ray.id;
-    expectFaceConnected(image, trace.cells);
+    expectFaceConnected(image, trace.visits);
   }
 }
 
@@ -131,7 +131,7 @@ TEST(GoldenGrid, TinyComponentCrossesTheGridWithoutSteppingOnItsAxis) {
   const GridImage image = buildGridImage(tris, {16, 16, 16});
   const QRay ray{0, {0, 10, 10}, {kDirMax, 1, 0}};
   const GridTrace trace = traverseGrid(image, ray);
-  ASSERT_EQ(trace.cells.size(), 16u);  // straight along x
+  ASSERT_EQ(trace.visits.size(), 16u);  // straight along x
   EXPECT_EQ(trace.hit, bruteForce(tris, ray));
   ASSERT_TRUE(trace.hit.has_value());
 }

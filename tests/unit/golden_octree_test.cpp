@@ -61,8 +61,8 @@ TEST_P(GoldenOctreeConfigs, ClosestHitEqualsBruteForceOnTheBunny) {
     const QRay ray = randomRay(rng, i);
     const OctreeTrace trace = traverseOctree(image, ray);
     ASSERT_EQ(trace.hit, bruteForce(tris, ray)) << "ray " << i << " depth " << c.depth << " leaf " << c.leaf;
-    ASSERT_FALSE(trace.nodes.empty());
-    EXPECT_EQ(trace.nodes.front(), 0u) << "the walk starts at the root";
+    ASSERT_FALSE(trace.visits.empty());
+    EXPECT_EQ(trace.visits.front(), 0u) << "the walk starts at the root";
   }
 }
 INSTANTIATE_TEST_SUITE_P(DepthsAndLeaves, GoldenOctreeConfigs,

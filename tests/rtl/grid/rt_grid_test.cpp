@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
-#include "driver/grid_device.h"
+#include "driver/traversal_device.h"
 #include "driver/quantize.h"
 #include "driver/verilator_grid_device.h"
 #include "golden/isect.h"
@@ -41,9 +41,9 @@ std::string hex(const QRay& r) {
 }
 
 std::string describe(const fx::GridTrace& t) {
-  std::string s = fmt::format("{} cells [", t.cells.size());
-  for (size_t i = 0; i < std::min<size_t>(t.cells.size(), 12); ++i) s += fmt::format("{} ", t.cells[i]);
-  if (t.cells.size() > 12) s += "...";
+  std::string s = fmt::format("{} cells [", t.visits.size());
+  for (size_t i = 0; i < std::min<size_t>(t.visits.size(), 12); ++i) s += fmt::format("{} ", t.visits[i]);
+  if (t.visits.size() > 12) s += "...";
   s += fmt::format("] tests {} ", t.tests);
   if (t.hit) {
     s += fmt::format("hit prim {} t_num {:#x} det {:#x}", t.hit->primId, uint64_t(t.hit->tNum),
@@ -55,11 +55,11 @@ std::string describe(const fx::GridTrace& t) {
 }
 
 // Runs both devices, expects equal traces per ray; returns the RTL's stats.
-GridRunStats expectSameTraces(const GridImage& image, const std::vector<QRay>& rays, const GridRunOptions& options) {
+TraversalRunStats expectSameTraces(const GridImage& image, const std::vector<QRay>& rays, const TraversalRunOptions& options) {
   GoldenGridDevice golden;
   std::vector<fx::GridTrace> want, got;
-  const GridRunStats g = golden.run(image, rays, want, options);
-  const GridRunStats r = rtl().run(image, rays, got, options);
+  const TraversalRunStats g = golden.run(image, rays, want, options);
+  const TraversalRunStats r = rtl().run(image, rays, got, options);
   EXPECT_EQ(got.size(), want.size());
   int reported = 0;
   for (size_t k = 0; k < std::min(got.size(), want.size()); ++k) {
@@ -68,8 +68,8 @@ GridRunStats expectSameTraces(const GridImage& image, const std::vector<QRay>& r
                   << "\n  rtl:    " << describe(got[k]) << "\n  golden: " << describe(want[k]);
     if (++reported == 5) break;
   }
-  EXPECT_EQ(r.voxelSteps, g.voxelSteps);
-  EXPECT_EQ(r.cellReads, g.cellReads);
+  EXPECT_EQ(r.steps, g.steps);
+  EXPECT_EQ(r.nodeReads, g.nodeReads);
   EXPECT_EQ(r.indexReads, g.indexReads);
   EXPECT_EQ(r.triangleReads, g.triangleReads);
   EXPECT_EQ(r.isectTests, g.isectTests);
@@ -79,8 +79,8 @@ GridRunStats expectSameTraces(const GridImage& image, const std::vector<QRay>& r
 }
 
 // Adverse conditions: memory jitter, output stalls, input bubbles.
-GridRunOptions rough(uint64_t seed, int raysInFlight = 0) {
-  GridRunOptions o;
+TraversalRunOptions rough(uint64_t seed, int raysInFlight = 0) {
+  TraversalRunOptions o;
   o.memLatency = 7;
   o.memLatencyJitter = 13;
   o.raysInFlight = raysInFlight;
@@ -278,7 +278,7 @@ TEST(RtGrid, OneRayInFlightAndAllSlots) {
   const GridImage image = fx::buildGridImage(q.triangles, fx::chooseGridResolution(q.triangles));
   expectSameTraces(image, q.rays, rough(15, 1));
   expectSameTraces(image, q.rays, rough(16, rtl().maxRaysInFlight()));
-  GridRunOptions fast;  // no jitter, no stalls, latency 1
+  TraversalRunOptions fast;  // no jitter, no stalls, latency 1
   fast.memLatency = 1;
   expectSameTraces(image, q.rays, fast);
 }
@@ -286,7 +286,7 @@ TEST(RtGrid, OneRayInFlightAndAllSlots) {
 TEST(RtGrid, RejectsTooManyRaysInFlight) {
   const GridImage image = fx::buildGridImage({}, {1, 1, 1});
   std::vector<fx::GridTrace> traces;
-  GridRunOptions o;
+  TraversalRunOptions o;
   o.raysInFlight = rtl().maxRaysInFlight() + 1;
   try {
     rtl().run(image, std::vector<QRay>{QRay{0, {0, 0, 0}, {kDirMax, 0, 0}}}, traces, o);
@@ -305,7 +305,7 @@ TEST(RtGrid, WritesAnFstWaveformWhenAsked) {
   const GridImage image = fx::buildGridImage(randomTriangles(rng, 20, kPosMax / 4), {4, 4, 4});
   std::vector<QRay> rays;
   for (uint32_t i = 0; i < 8; ++i) rays.push_back(randomRay(rng, i));
-  GridRunOptions o = rough(18);
+  TraversalRunOptions o = rough(18);
   o.stream.wavePath = ::testing::TempDir() + "rt_grid_wave.fst";
   std::remove(o.stream.wavePath.c_str());
   expectSameTraces(image, rays, o);
@@ -330,16 +330,16 @@ TEST(RtGrid, DISABLED_Sweep) {
   fmt::print("{:>6} {:>7} {:>10} {:>9} {:>11} {:>10} {:>13} {:>11}\n", "slots", "latency", "cycles", "tests/cyc",
              "steps/cyc", "isect busy", "Mrays/s@500M", "host ray/s");
   auto one = [&](int slots, int latency) {
-    GridRunOptions o;
+    TraversalRunOptions o;
     o.memLatency = latency;
     o.raysInFlight = slots;
     std::vector<fx::GridTrace> traces;
     const auto start = std::chrono::steady_clock::now();
-    const GridRunStats st = rtl().run(image, q.rays, traces, o);
+    const TraversalRunStats st = rtl().run(image, q.rays, traces, o);
     const double host = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double c = double(st.cycles);
     fmt::print("{:>6} {:>7} {:>10} {:>9.3f} {:>11.3f} {:>9.1f}% {:>13.2f} {:>11.0f}\n", slots, latency, st.cycles,
-               double(st.isectTests) / c, double(st.voxelSteps) / c, 100.0 * double(st.isectBusyCycles) / c,
+               double(st.isectTests) / c, double(st.steps) / c, 100.0 * double(st.isectBusyCycles) / c,
                double(st.rays) / c * 500.0, double(st.rays) / host);
   };
   const int max = rtl().maxRaysInFlight();

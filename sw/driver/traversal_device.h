@@ -1,0 +1,77 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "driver/isect_device.h"
+#include "golden/grid.h"
+#include "golden/octree.h"
+#include "golden/trace.h"
+
+namespace lancer {
+
+// How a run of a traversal unit (grid, octree) is driven.
+struct TraversalRunOptions {
+  StreamOptions stream;      // ray input bubbles, result/visit output stalls, seed, waveform
+  int memLatency = 20;       // cycles from a memory request to its response (>= 1)
+  int memLatencyJitter = 0;  // extra 0..jitter cycles per request, random (seeded); responses stay in order per port
+  int raysInFlight = 0;      // ray slots to use; 0 = all the unit was built with
+};
+
+// What the unit did, in clock cycles of the simulated chip.
+struct TraversalRunStats {
+  uint64_t cycles = 0;           // first ray offered to last result taken
+  uint64_t rays = 0;
+  uint64_t steps = 0;            // cells (grid) or nodes (octree) entered, summed over rays
+  uint64_t stepReadyCycles = 0;  // cycles in which some ray slot could take a step
+  uint64_t nodeReads = 0;        // memory reads per region: cell table / child groups,
+  uint64_t indexReads = 0;       // index list,
+  uint64_t triangleReads = 0;    // triangle table
+  uint64_t isectTests = 0;       // pairs the intersection pipeline accepted
+  uint64_t isectBusyCycles = 0;  // cycles in which it accepted one
+  bool cycleAccurate = true;     // false for the golden model (no timing)
+
+  uint64_t memoryReads() const { return nodeReads + indexReads + triangleReads; }
+};
+
+// The one interface over every model of a traversal unit (traversal + memory +
+// intersection pipeline): golden, SystemC, Verilated RTL. `Image` is the
+// memory image the unit reads (fx::GridImage, fx::OctreeImage). `traces[k]`
+// answers `rays[k]`: the elements it entered in order, the tests it issued,
+// its closest hit.
+template <class Image>
+class TraversalDevice {
+ public:
+  virtual ~TraversalDevice() = default;
+  virtual std::string_view name() const = 0;
+  // Ray slots the model was built with: the largest valid TraversalRunOptions::raysInFlight.
+  virtual int maxRaysInFlight() const = 0;
+  virtual TraversalRunStats run(const Image& image, std::span<const fx::QRay> rays,
+                                std::vector<fx::TraversalTrace>& traces, const TraversalRunOptions& options = {}) = 0;
+};
+
+using GridDevice = TraversalDevice<fx::GridImage>;
+using OctreeDevice = TraversalDevice<fx::OctreeImage>;
+
+// The golden models: the traversals of sw/golden/, no timing. Memory reads are
+// what the hardware would issue: one per cell (grid) or per interior node
+// entered (octree: its child group), one index and one triangle read per test.
+class GoldenGridDevice final : public GridDevice {
+ public:
+  std::string_view name() const override { return "golden"; }
+  int maxRaysInFlight() const override { return 1 << 16; }
+  TraversalRunStats run(const fx::GridImage& image, std::span<const fx::QRay> rays,
+                        std::vector<fx::TraversalTrace>& traces, const TraversalRunOptions& options = {}) override;
+};
+
+class GoldenOctreeDevice final : public OctreeDevice {
+ public:
+  std::string_view name() const override { return "golden"; }
+  int maxRaysInFlight() const override { return 1 << 16; }
+  TraversalRunStats run(const fx::OctreeImage& image, std::span<const fx::QRay> rays,
+                        std::vector<fx::TraversalTrace>& traces, const TraversalRunOptions& options = {}) override;
+};
+
+}  // namespace lancer

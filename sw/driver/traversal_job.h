@@ -1,0 +1,40 @@
+#pragma once
+
+// The hardware job of a traversal unit (grid, octree): rays through the unit's
+// model and its golden model, compared per ray bit for bit, with the unit's
+// counters for the summary and the JSON report. One implementation for every
+// unit; what differs per unit (names, image counters) is in TraversalUnit<Image>.
+
+#include <string>
+
+#include "driver/job.h"
+#include "driver/traversal_device.h"
+
+namespace lancer {
+
+// The grid's memory image for a scene: triangles quantized, resolution from
+// AccelOptions::gridResolution (a cube of that many cells a side) or the
+// golden model's heuristic.
+fx::GridImage buildGridImageFor(const Scene& scene, const Quantizer& quantizer, const AccelOptions& options);
+
+// The octree's memory image: depth from AccelOptions::octreeMaxDepth (0: the
+// golden model's default for the triangle count), leaf size from
+// octreeLeafSize (0: fx::kDefaultOctreeLeafSize).
+fx::OctreeImage buildOctreeImageFor(const Scene& scene, const Quantizer& quantizer, const AccelOptions& options);
+
+// Runs every ray that enters the lattice through `model` and `golden` and
+// compares, per ray, bit for bit: the elements visited in order, the tests
+// issued, and the closest hit record. Throws InputError for a rays-in-flight
+// count or memory latency the model cannot run.
+template <class Image>
+JobResult runTraversalJob(const Image& image, std::span<const Ray> rays, const Quantizer& quantizer,
+                          TraversalDevice<Image>& model, TraversalDevice<Image>& golden, const JobConfig& config,
+                          const ProgressFn& onProgress = {});
+
+// The reproducer text of a mismatch: the ray, both visit sequences from the
+// first difference, both hit records. `unit` is "grid", "octree"; `element`
+// names what is visited ("cells", "nodes").
+std::string describeTraversalMismatch(std::string_view unit, std::string_view element, const fx::QRay& ray,
+                                      const fx::TraversalTrace& model, const fx::TraversalTrace& golden);
+
+}  // namespace lancer
