@@ -9,7 +9,10 @@
 #include <fmt/format.h>
 
 #include "Vrt_grid.h"
+#include "driver/verilated_port.h"
 #include "common/error.h"
+#include "golden/stimulus.h"
+#include "golden/stimulus.h"
 #include "verilated.h"
 #include "verilated_fst_c.h"
 
@@ -27,63 +30,7 @@ constexpr size_t kCellWords = size_t(fx::wireWords(fx::kGridCellBits));
 constexpr size_t kVisitWords = size_t(fx::wireWords(fx::kGridVisitBits));
 constexpr size_t kResWords = size_t(fx::wireWords(fx::kGridResultBits));
 
-// Verilator holds a port of up to 64 bits in an integer and a wider one in a
-// VlWide<N> of 32-bit words, least significant first (fx::Wire's order).
-template <typename Port>
-void writePort(Port& port, const uint32_t* words, size_t count) {
-  if constexpr (std::is_integral_v<Port>) {
-    uint64_t value = words[0];
-    if (count > 1) value |= uint64_t(words[1]) << 32;
-    port = Port(value);
-  } else {
-    std::memcpy(port.data(), words, count * sizeof(uint32_t));
-  }
-}
-
-template <typename Port>
-void readPort(const Port& port, uint32_t* words, size_t count) {
-  if constexpr (std::is_integral_v<Port>) {
-    const uint64_t value = port;
-    words[0] = uint32_t(value);
-    if (count > 1) words[1] = uint32_t(value >> 32);
-  } else {
-    std::memcpy(words, port.data(), count * sizeof(uint32_t));
-  }
-}
-
-// Bernoulli draws that cost nothing when the probability is zero.
-class Coin {
- public:
-  Coin(double p, std::mt19937_64& rng) : threshold_(toThreshold(p)), rng_(rng) {}
-  bool operator()() { return threshold_ != 0 && rng_() < threshold_; }
-
- private:
-  static uint64_t toThreshold(double p) {
-    if (!(p > 0.0)) return 0;
-    if (p >= 1.0) return ~uint64_t(0);
-    return uint64_t(p * 18446744073709551616.0);  // p * 2^64
-  }
-  uint64_t threshold_;
-  std::mt19937_64& rng_;
-};
-
 }  // namespace
-
-void GridMemoryPort::request(uint64_t cycle, uint32_t addr, uint32_t tag) {
-  uint64_t due = cycle + uint64_t(latency_);
-  if (jitter_ > 0) due += rng_() % uint64_t(jitter_ + 1);
-  due = std::max(due, lastDue_ + 1);  // in order, one response per cycle
-  lastDue_ = due;
-  pending_.push_back({due, addr, tag});
-}
-
-bool GridMemoryPort::respond(uint64_t cycle, uint32_t& addr, uint32_t& tag) {
-  if (pending_.empty() || pending_.front().due > cycle) return false;
-  addr = pending_.front().addr;
-  tag = pending_.front().tag;
-  pending_.pop_front();
-  return true;
-}
 
 VerilatorGridDevice::VerilatorGridDevice() : context_(std::make_unique<VerilatedContext>()) {
   context_->traceEverOn(true);
@@ -180,12 +127,12 @@ TraversalRunStats VerilatorGridDevice::run(const fx::GridImage& image, std::span
   }
 
   std::mt19937_64 rng(options.stream.seed);
-  Coin idle(options.stream.inputIdleProbability, rng);
-  Coin stallRes(options.stream.outputStallProbability, rng);
-  Coin stallVisit(options.stream.outputStallProbability, rng);
-  GridMemoryPort cellPort(options.memLatency, options.memLatencyJitter, options.stream.seed * 3 + 1);
-  GridMemoryPort idxPort(options.memLatency, options.memLatencyJitter, options.stream.seed * 3 + 2);
-  GridMemoryPort triPort(options.memLatency, options.memLatencyJitter, options.stream.seed * 3 + 3);
+  fx::Coin idle(options.stream.inputIdleProbability, rng);
+  fx::Coin stallRes(options.stream.outputStallProbability, rng);
+  fx::Coin stallVisit(options.stream.outputStallProbability, rng);
+  fx::MemoryReadPort cellPort(options.memLatency, options.memLatencyJitter, options.stream.seed * 3 + 1);
+  fx::MemoryReadPort idxPort(options.memLatency, options.memLatencyJitter, options.stream.seed * 3 + 2);
+  fx::MemoryReadPort triPort(options.memLatency, options.memLatencyJitter, options.stream.seed * 3 + 3);
 
   std::vector<uint8_t> finished(n, 0);
   std::vector<uint32_t> resultCells(n, 0);

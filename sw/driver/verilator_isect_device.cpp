@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 
 #include "Vrt_isect.h"
+#include "driver/verilated_port.h"
+#include "golden/stimulus.h"
 #include "verilated.h"
 #include "verilated_fst_c.h"
 
@@ -21,40 +23,6 @@ constexpr size_t kRayWords = size_t(fx::wireWords(fx::kIsectRayBits));
 constexpr size_t kTriWords = size_t(fx::wireWords(fx::kIsectTriBits));
 constexpr size_t kResWords = size_t(fx::wireWords(fx::kIsectResBits));
 
-// Verilator holds a port of up to 64 bits in an integer and a wider one in a
-// VlWide<N> of 32-bit words, least significant first: the same order as
-// fx::Wire, so a record crosses the port as a block copy.
-template <typename Port>
-constexpr size_t portWords() {
-  if constexpr (std::is_integral_v<Port>) {
-    return (sizeof(Port) + 3) / 4;
-  } else {
-    return sizeof(Port) / sizeof(uint32_t);
-  }
-}
-
-template <typename Port>
-void writePort(Port& port, const uint32_t* words, size_t count) {
-  if constexpr (std::is_integral_v<Port>) {
-    uint64_t value = words[0];
-    if (count > 1) value |= uint64_t(words[1]) << 32;
-    port = Port(value);
-  } else {
-    std::memcpy(port.data(), words, count * sizeof(uint32_t));
-  }
-}
-
-template <typename Port>
-void readPort(const Port& port, uint32_t* words, size_t count) {
-  if constexpr (std::is_integral_v<Port>) {
-    const uint64_t value = port;
-    words[0] = uint32_t(value);
-    if (count > 1) words[1] = uint32_t(value >> 32);
-  } else {
-    std::memcpy(words, port.data(), count * sizeof(uint32_t));
-  }
-}
-
 using RayPort = std::remove_reference_t<decltype(std::declval<Vrt_isect>().req_ray_i)>;
 using TriPort = std::remove_reference_t<decltype(std::declval<Vrt_isect>().req_tri_i)>;
 using ResPort = std::remove_reference_t<decltype(std::declval<Vrt_isect>().res_data_o)>;
@@ -65,21 +33,6 @@ static_assert(portWords<TriPort>() >= kTriWords && portWords<TriPort>() < kTriWo
 static_assert(portWords<ResPort>() >= kResWords && portWords<ResPort>() < kResWords + 2,
               "res_data_o does not match fx::kIsectResBits: rebuild rt_pkg");
 
-// Bernoulli draws that cost nothing when the probability is zero.
-class Coin {
- public:
-  Coin(double p, std::mt19937_64& rng) : threshold_(toThreshold(p)), rng_(rng) {}
-  bool operator()() { return threshold_ != 0 && rng_() < threshold_; }
-
- private:
-  static uint64_t toThreshold(double p) {
-    if (!(p > 0.0)) return 0;
-    if (p >= 1.0) return ~uint64_t(0);
-    return uint64_t(p * 18446744073709551616.0);  // p * 2^64
-  }
-  uint64_t threshold_;
-  std::mt19937_64& rng_;
-};
 
 }  // namespace
 
@@ -158,8 +111,8 @@ StreamStats VerilatorIsectDevice::run(std::span<const IsectRequest> requests,
   }
 
   std::mt19937_64 rng(options.seed);
-  Coin idle(options.inputIdleProbability, rng);
-  Coin stall(options.outputStallProbability, rng);
+  fx::Coin idle(options.inputIdleProbability, rng);
+  fx::Coin stall(options.outputStallProbability, rng);
 
   // Without a transfer for this long the RTL has lost a request or a result
   // (a stalled stream moves every 1 / (1 - p) cycles: 10^4 at p = 0.9999).

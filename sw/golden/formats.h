@@ -98,8 +98,12 @@ inline constexpr int kOctreeMaxDepth = kPosBits;
 // T = (plane - o') * prod(|d_b|, b != a), |plane - o'| <= 2^P, prod < 2^(2(D-1))
 // ............................................................. P+2D signed
 inline constexpr int kOctreeTBits = kPosBits + 2 * kDirBits;
-// Stack entry: node index, the six plane parameters, the next child (0..8).
+// Common denominator C = prod(|d_a|, active a) < 2^(3(D-1)) ....... 3D-3 unsigned
+inline constexpr int kOctreeCommonBits = 3 * (kDirBits - 1);
+// The walk holds one entry per level, root included: at most P + 1.
 inline constexpr int kOctreeStackDepth = kOctreeMaxDepth + 1;
+// A child group: an interior node's eight children, read as one memory word.
+inline constexpr int kOctreeChildren = 8;
 
 // Memory image address width (every region: cells, index list, triangles).
 #ifndef LANCER_MEM_ADDR_BITS

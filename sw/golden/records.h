@@ -85,13 +85,41 @@ inline constexpr FieldSpec kGridResFields[] = {
     {"v_num", kBaryBits, 1, false, "as isect_res_t"},
 };
 
+// ---- octree_node_t: one entry of the octree unit's node table ---------------------
+inline constexpr FieldSpec kOctreeNodeFields[] = {
+    {"leaf", 1, 1, false, "1: a leaf; 0: an interior node"},
+    {"count", 31, 1, false, "leaf: triangles listed; interior: 0"},
+    {"first", 32, 1, false, "leaf: first index-list entry; interior: node index of child 0"},
+};
+// ---- octree_visit_t: one node entered, on the unit's trace stream ------------------
+inline constexpr FieldSpec kOctreeVisitFields[] = {
+    {"ray_id", kRayIdBits, 1, false, "ray id"},
+    {"node_id", 32, 1, false, "node index in the node table"},
+};
+// ---- octree_res_t: a ray's answer from the octree unit ------------------------------
+inline constexpr FieldSpec kOctreeResFields[] = {
+    {"ray_id", kRayIdBits, 1, false, "ray id"},
+    {"nodes", 32, 1, false, "nodes entered"},
+    {"tests", 32, 1, false, "ray-triangle tests issued"},
+    {"hit", 1, 1, false, "1 if the ray hit a triangle"},
+    {"prim_id", kPrimIdBits, 1, false, "closest triangle (zero on a miss)"},
+    {"t_num", kTNumBits, 1, false, "as isect_res_t"},
+    {"det", kDetAbsBits, 1, false, "as isect_res_t"},
+    {"u_num", kBaryBits, 1, false, "as isect_res_t"},
+    {"v_num", kBaryBits, 1, false, "as isect_res_t"},
+};
+
 inline constexpr RecordSpec kIsectRay{"isect_ray_t", "a quantized ray", kIsectRayFields};
 inline constexpr RecordSpec kIsectTri{"isect_tri_t", "a quantized triangle", kIsectTriFields};
 inline constexpr RecordSpec kIsectRes{"isect_res_t", "an intersection result", kIsectResFields};
 inline constexpr RecordSpec kGridCell{"grid_cell_t", "a grid cell table entry", kGridCellFields};
 inline constexpr RecordSpec kGridVisit{"grid_visit_t", "a grid unit voxel step", kGridVisitFields};
 inline constexpr RecordSpec kGridRes{"grid_res_t", "a grid unit ray result", kGridResFields};
-inline constexpr RecordSpec kAllRecords[] = {kIsectRay, kIsectTri, kIsectRes, kGridCell, kGridVisit, kGridRes};
+inline constexpr RecordSpec kOctreeNode{"octree_node_t", "an octree node table entry", kOctreeNodeFields};
+inline constexpr RecordSpec kOctreeVisit{"octree_visit_t", "an octree unit node step", kOctreeVisitFields};
+inline constexpr RecordSpec kOctreeRes{"octree_res_t", "an octree unit ray result", kOctreeResFields};
+inline constexpr RecordSpec kAllRecords[] = {kIsectRay,  kIsectTri,   kIsectRes,    kGridCell, kGridVisit,
+                                             kGridRes,   kOctreeNode, kOctreeVisit, kOctreeRes};
 
 inline constexpr int kIsectRayBits = recordBits(kIsectRayFields);
 inline constexpr int kIsectTriBits = recordBits(kIsectTriFields);
@@ -99,6 +127,11 @@ inline constexpr int kIsectResBits = recordBits(kIsectResFields);
 inline constexpr int kGridCellBits = recordBits(kGridCellFields);
 inline constexpr int kGridVisitBits = recordBits(kGridVisitFields);
 inline constexpr int kGridResultBits = recordBits(kGridResFields);
+inline constexpr int kOctreeNodeBits = recordBits(kOctreeNodeFields);
+inline constexpr int kOctreeVisitBits = recordBits(kOctreeVisitFields);
+inline constexpr int kOctreeResultBits = recordBits(kOctreeResFields);
+static_assert(kMemAddrBits <= 31, "a leaf's count (up to the index list's size) must fit octree_node_t.count");
+static_assert(kOctreeNodeBits == 64, "a node is one 64-bit word; a child group one 512-bit line");
 
 // ---- The C++ views of the records ----------------------------------------------
 struct QRay {

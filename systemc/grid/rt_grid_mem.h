@@ -1,56 +1,14 @@
 #pragma once
 
 #include <cstdint>
-#include <deque>
-#include <random>
 
 #include <systemc>
 
 #include "golden/grid.h"
+#include "golden/stimulus.h"
 #include "grid/rt_grid_types.h"
 
 namespace lancer::sc {
-
-// One read port's timing: the scheme of lancer::GridMemoryPort
-// (sw/driver/verilator_grid_device.*), repeated here so that the SystemC
-// library does not depend on the C++ Verilated driver. A request accepted in
-// cycle c is answered in cycle c + latency + U(0..jitter) (one mt19937_64 draw
-// per request, only if jitter > 0), but never before or in the same cycle as
-// the port's previous response: in order, at most one response per cycle.
-class rt_grid_mem_port {
- public:
-  void restart(int latency, int jitter, uint64_t seed) {
-    latency_ = latency;
-    jitter_ = jitter;
-    rng_.seed(seed);
-    pending_.clear();
-    lastDue_ = 0;
-  }
-  void request(uint64_t cycle, uint32_t addr, uint32_t tag) {
-    uint64_t due = cycle + uint64_t(latency_);
-    if (jitter_ > 0) due += rng_() % uint64_t(jitter_ + 1);
-    due = std::max(due, lastDue_ + 1);
-    lastDue_ = due;
-    pending_.push_back({due, addr, tag});
-  }
-  bool respond(uint64_t cycle, uint32_t& addr, uint32_t& tag) {
-    if (pending_.empty() || pending_.front().due > cycle) return false;
-    addr = pending_.front().addr;
-    tag = pending_.front().tag;
-    pending_.pop_front();
-    return true;
-  }
-
- private:
-  struct Pending {
-    uint64_t due;
-    uint32_t addr, tag;
-  };
-  int latency_ = 1, jitter_ = 0;
-  std::mt19937_64 rng_;
-  std::deque<Pending> pending_;
-  uint64_t lastDue_ = 0;
-};
 
 // rt_grid_mem: the memory behind rt_grid's three read ports, serving one
 // fx::GridImage (cell table, index list, triangle table). Behavioural model of
@@ -100,7 +58,7 @@ SC_MODULE(rt_grid_mem) {
   void edge();
 
   const fx::GridImage* image_ = nullptr;
-  rt_grid_mem_port cell_, idx_, tri_;
+  fx::MemoryReadPort cell_, idx_, tri_;  // timing: sw/golden/stimulus.h
   uint64_t cycle_ = 0;
 };
 

@@ -2,17 +2,9 @@
 
 #include <fmt/format.h>
 
+#include "golden/stimulus.h"
+
 namespace lancer::sc {
-
-namespace {
-
-uint64_t threshold(double p) {
-  if (!(p > 0.0)) return 0;
-  if (p >= 1.0) return ~uint64_t(0);
-  return uint64_t(p * 18446744073709551616.0);  // p * 2^64
-}
-
-}  // namespace
 
 rt_grid_tb::rt_grid_tb(sc_core::sc_module_name name)
     : sc_core::sc_module(name),
@@ -59,8 +51,8 @@ void rt_grid_tb::start(const rt_grid_job& job) {
   finished_.assign(job.rays.size(), 0);
   edge_ = 0;
   rng_.seed(job.seed);
-  idleThreshold_ = threshold(job.inputIdleProbability);
-  stallThreshold_ = threshold(job.outputStallProbability);
+  idleThreshold_ = fx::Coin::thresholdFor(job.inputIdleProbability);
+  stallThreshold_ = fx::Coin::thresholdFor(job.outputStallProbability);
   offered_ = 0;
   offering_ = started_ = false;
   firstCycle_ = lastProgress_ = 0;

@@ -2,18 +2,9 @@
 
 #include <fmt/format.h>
 
+#include "golden/stimulus.h"
+
 namespace lancer::sc {
-
-namespace {
-
-// rng() < threshold happens with probability p (0 never draws, see coin()).
-uint64_t threshold(double p) {
-  if (!(p > 0.0)) return 0;
-  if (p >= 1.0) return ~uint64_t(0);
-  return uint64_t(p * 18446744073709551616.0);  // p * 2^64
-}
-
-}  // namespace
 
 rt_isect_tb::rt_isect_tb(sc_core::sc_module_name name)
     : sc_core::sc_module(name),
@@ -45,8 +36,8 @@ void rt_isect_tb::start(const rt_isect_job& job) {
   tally_.busy = true;
   edge_ = monitorEdge_ = 0;
   rng_.seed(job.seed);
-  idleThreshold_ = threshold(job.inputIdleProbability);
-  stallThreshold_ = threshold(job.outputStallProbability);
+  idleThreshold_ = fx::Coin::thresholdFor(job.inputIdleProbability);
+  stallThreshold_ = fx::Coin::thresholdFor(job.outputStallProbability);
   next_ = 0;
   offered_ = false;
   lastProgress_ = 0;

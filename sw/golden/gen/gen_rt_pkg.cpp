@@ -49,6 +49,9 @@ int main(int argc, char** argv) {
       {"GRID_POS_W", kGridPosBits}, {"GRID_DIR_W", kGridDirBits}, {"GRID_PAIR_W", kGridPairBits},
       {"GRID_TRIPLE_W", kGridTripleBits}, {"GRID_ACC_W", kGridAccBits}, {"MEM_ADDR_W", kMemAddrBits},
       {"GRID_CELL_W", kGridCellBits}, {"GRID_VISIT_W", kGridVisitBits}, {"GRID_RESULT_W", kGridResultBits},
+      {"OCTREE_MAX_DEPTH", kOctreeMaxDepth}, {"OCTREE_STACK_DEPTH", kOctreeStackDepth},
+      {"OCTREE_T_W", kOctreeTBits}, {"OCTREE_COMMON_W", kOctreeCommonBits}, {"OCTREE_CHILDREN", kOctreeChildren},
+      {"OCTREE_NODE_W", kOctreeNodeBits}, {"OCTREE_VISIT_W", kOctreeVisitBits}, {"OCTREE_RESULT_W", kOctreeResultBits},
   };
   for (const auto& [name, value] : params) {
     out << fmt::format("  localparam int {} = {};\n", name, value);
