@@ -1,6 +1,7 @@
 // lancer run: rays from the reference tracer through a model of the hardware,
 // checked bit for bit against the golden model.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <algorithm>
 #include <memory>
@@ -133,7 +134,10 @@ void run(const Args& args) {
     fmt::print("  intersection tests  {} (golden model: no cycle timing{})\n", job.intersectionTests,
                job.cycles ? fmt::format(", ideal pipeline {} cycles", job.cycles) : "");
   }
-  for (const JobCounter& c : job.counters) fmt::print("  {:<19} {:g}\n", c.label, c.value);
+  for (const JobCounter& c : job.counters) {
+    const bool whole = c.value == std::floor(c.value) && std::fabs(c.value) < 1e15;
+    fmt::print("  {:<19} {}\n", c.label, whole ? fmt::format("{}", int64_t(c.value)) : fmt::format("{:.4g}", c.value));
+  }
   fmt::print("  host                {:.2f} s in all, {:.2f} s in the model ({:.0f} rays/s), {:.2f} s in golden\n",
              hostSeconds, job.modelSeconds, job.modelSeconds > 0 ? double(inLattice) / job.modelSeconds : 0.0,
              job.goldenSeconds);
@@ -221,10 +225,12 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--grid-res", args->job.accel.gridResolution,
                   "Grid cells per axis (default: from the triangle count)");
   cmd->add_option("--octree-depth", args->job.accel.octreeMaxDepth,
-                  fmt::format("Octree maximum depth, 1..{} (default: from the triangle count)", fx::kOctreeMaxDepth));
+                  fmt::format("Octree maximum depth, 1..{} (default: from the triangle count)", fx::kOctreeMaxDepth))
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--octree-leaf", args->job.accel.octreeLeafSize,
                   fmt::format("Octree leaf size: split nodes holding more triangles (default {})",
-                              fx::kDefaultOctreeLeafSize));
+                              fx::kDefaultOctreeLeafSize))
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--mem-latency", args->job.memLatency, "Memory latency of the traversal units, in cycles")
       ->capture_default_str();
   cmd->add_option("--mem-jitter", args->job.memLatencyJitter, "Random extra memory latency per read, 0..N cycles")

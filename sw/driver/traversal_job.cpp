@@ -174,7 +174,7 @@ JobResult runTraversalJob(const Image& image, std::span<const Ray> rays, const Q
   if (job.cycleAccurate) {  // timing figures mean nothing for the golden model
     job.addCounter("steps_per_cycle", fmt::format("{}/cycle", Unit::kStepsLabel), double(total.steps) / cycles);
     if (total.stepReadyCycles) {
-      job.addCounter("steps_per_ready_cycle", fmt::format("{}/cycle with a step ready", Unit::kStepsLabel),
+      job.addCounter("steps_per_ready_cycle", "steps/ready cycle",
                      double(total.steps) / double(total.stepReadyCycles));
     }
     job.addCounter("isect_utilization", "isect busy fraction", double(total.isectBusyCycles) / cycles);

@@ -7,6 +7,7 @@
 
 #include "common/error.h"
 #include "golden/isect.h"
+#include "golden/memory_image.h"
 #include "golden/wide.h"
 
 namespace lancer::fx {
@@ -41,14 +42,8 @@ GridImage buildGridImage(std::vector<QTriangle> triangles, const GridRes& res) {
   GridImage image;
   image.res = res;
   const uint64_t cellCount = uint64_t(res[0]) * uint64_t(res[1]) * uint64_t(res[2]);
-  const uint64_t capacity = uint64_t(1) << kMemAddrBits;
-  auto checkFits = [&](const char* region, uint64_t entries) {
-    if (entries > capacity) {
-      throw InputError(fmt::format("the grid's memory image does not fit the {}-bit address width: the {} needs {} "
-                                   "entries (at most {}); lower --grid-res or rebuild with a larger "
-                                   "LANCER_MEM_ADDR_BITS",
-                                   kMemAddrBits, region, entries, capacity));
-    }
+  auto checkFits = [](const char* region, uint64_t entries) {
+    checkRegionFits("grid", region, entries, "lower --grid-res");
   };
   checkFits("cell table", cellCount);
   checkFits("triangle table", triangles.size());

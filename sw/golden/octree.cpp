@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "golden/isect.h"
+#include "golden/memory_image.h"
 #include "golden/wide.h"
 
 namespace lancer::fx {
@@ -159,16 +160,9 @@ OctreeImage buildOctreeImage(std::vector<QTriangle> triangles, int maxDepth, int
   for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
   image.nodes.resize(1);
   Builder{image}.build(0, Box{}, 0, all);
-  const uint64_t capacity = uint64_t(1) << kMemAddrBits;
-  for (const auto& [region, entries] : {std::pair<const char*, uint64_t>{"node table", image.nodes.size()},
-                                       {"index list", image.indices.size()},
-                                       {"triangle table", image.triangles.size()}}) {
-    if (entries > capacity) {
-      throw InputError(fmt::format("the octree's memory image does not fit the {}-bit address width: the {} needs {} "
-                                   "entries (at most {}); lower --octree-depth or raise --octree-leaf",
-                                   kMemAddrBits, region, entries, capacity));
-    }
-  }
+  checkRegionFits("octree", "node table", image.nodes.size(), "lower --octree-depth or raise --octree-leaf");
+  checkRegionFits("octree", "index list", image.indices.size(), "lower --octree-depth or raise --octree-leaf");
+  checkRegionFits("octree", "triangle table", image.triangles.size(), "use a smaller scene");
   return image;
 }
 

@@ -5,6 +5,7 @@
 #include "common/error.h"
 #include "driver/quantize.h"
 #include "golden/isect.h"
+#include "golden/memory_image.h"
 #include "golden/octree.h"
 #include "scene/scene.h"
 #include "test_paths.h"
@@ -207,6 +208,19 @@ TEST(GoldenOctree, BadConfigurationsAreErrors) {
   }
   EXPECT_THROW(buildOctreeImage(tris, 4, 0), InputError);
   EXPECT_GE(defaultOctreeDepth(3674), 1);
+  // The address-width check every unit's image builder uses, at a width small
+  // enough to reach: the octree of the Cornell box at depth 4 has 73 nodes.
+  const OctreeImage image = buildOctreeImage(tris, 4, 8);
+  EXPECT_NO_THROW(checkRegionFits("octree", "node table", image.nodes.size(), "", 7));
+  try {
+    checkRegionFits("octree", "node table", image.nodes.size(), "lower --octree-depth", 6);
+    FAIL() << "expected the node table not to fit 6 address bits";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("octree's memory image does not fit the 6-bit address width: the node "
+                                         "table needs 73 entries (at most 64); lower --octree-depth"),
+              std::string::npos)
+        << e.what();
+  }
   EXPECT_LE(defaultOctreeDepth(100000000), kOctreeMaxDepth);
 }
 
