@@ -61,6 +61,9 @@ void writeHardwareHits(const std::string& path, const JobResult& job) {
   if (std::ferror(out.get())) throw InputError(fmt::format("{}: write failed", path));
 }
 
+// Counts print and serialize as integers, ratios as decimals.
+bool isWhole(double v) { return v == std::floor(v) && std::fabs(v) < 1e15; }
+
 // The options of the hardware path that shape what it computes or how it is
 // timed, as they would be typed: what a replay must repeat.
 std::string unitOptions(const Args& args) {
@@ -135,8 +138,7 @@ void run(const Args& args) {
                job.cycles ? fmt::format(", ideal pipeline {} cycles", job.cycles) : "");
   }
   for (const JobCounter& c : job.counters) {
-    const bool whole = c.value == std::floor(c.value) && std::fabs(c.value) < 1e15;
-    fmt::print("  {:<19} {}\n", c.label, whole ? fmt::format("{}", int64_t(c.value)) : fmt::format("{:.4g}", c.value));
+    fmt::print("  {:<19} {}\n", c.label, isWhole(c.value) ? fmt::format("{}", int64_t(c.value)) : fmt::format("{:.4g}", c.value));
   }
   fmt::print("  host                {:.2f} s in all, {:.2f} s in the model ({:.0f} rays/s), {:.2f} s in golden\n",
              hostSeconds, job.modelSeconds, job.modelSeconds > 0 ? double(inLattice) / job.modelSeconds : 0.0,
@@ -185,7 +187,13 @@ void run(const Args& args) {
       {"output_stall_probability", args.job.stream.outputStallProbability},
       {"seed", args.job.stream.seed},
   };
-  for (const JobCounter& c : job.counters) report[c.key] = c.value;
+  for (const JobCounter& c : job.counters) {
+    if (isWhole(c.value)) {
+      report[c.key] = int64_t(c.value);
+    } else {
+      report[c.key] = c.value;
+    }
+  }
   if (job.firstMismatch) {
     const MismatchReport& m = *job.firstMismatch;
     writeRaysFile(args.repro, {rays.rays[m.rayId]}, fmt::format("ray {} of {}: mismatch reproducer", m.rayId, rays.origin));
