@@ -1,14 +1,19 @@
 // rt_grid_setup: per-ray setup of the integer DDA (fx::GridDda::setup), bit exact.
 //
-// Multiplications only, in two register stages plus the output logic:
+// Multiplications only, in two register stages:
 //   stage 1  X[a] = o[a] * R[a] (scaled origin), |D[a]| = |d[a]| * R[a],
 //            step direction and activity, dominant = max |d[a]|
 //   stage 2  cell[a] = min(X[a] >> P, R[a]-1), dist[a] to the next boundary,
-//            pair[a] = product of the other stepping axes' |D| (1 if none)
-//   output   acc[a] = dist[a] * pair[a], triple = pair[x] * |D[x]| (x stepping),
-//            cell id = (z * Ry + y) * Rx + x
-// A ray with no stepping axis (all-zero direction) gets active = 0; the slot
-// then ends it after its first cell.
+//            pair[a] = product of the other stepping axes' |D| (1 if none),
+//            then acc[a] = dist[a] * pair[a], triple = pair[x] * |D[x]| (x
+//            stepping), cell id = (z * Ry + y) * Rx + x
+// The outputs are the stage-2 registers. A ray with no stepping axis
+// (all-zero direction) gets active = 0; the slot then ends it after its first
+// cell.
+//
+// Each stage computes in the block that loads its registers (local variables
+// of an always_ff, i.e. the combinational logic in front of enabled flops), so
+// a simulator evaluates the arithmetic only in the cycle a ray passes.
 //
 // Latency:    a ray accepted at edge t (valid_i high in the cycle before t) is on
 //             valid_o after edge t+1; the slot loads it at edge t+2.
@@ -17,25 +22,25 @@
 module rt_grid_setup #(
   parameter int unsigned SlotW = 5  // width of the slot index carried along
 ) (
-  input  logic                               clk_i,
-  input  logic                               rst_ni,
+  input  logic                                   clk_i,
+  input  logic                                   rst_ni,
   input  logic [3*rt_pkg::GRID_RESOLUTION_W-1:0] cfg_res_i,   // {Rz, Ry, Rx}
 
-  input  logic                               valid_i,
-  input  logic [SlotW-1:0]                   slot_i,
-  input  rt_pkg::isect_ray_t                 ray_i,
+  input  logic                                   valid_i,
+  input  logic [SlotW-1:0]                       slot_i,
+  input  rt_pkg::isect_ray_t                     ray_i,
 
-  output logic                               valid_o,
-  output logic [SlotW-1:0]                   slot_o,
-  output rt_pkg::isect_ray_t                 ray_o,
-  output logic [3*rt_pkg::CELL_INDEX_W-1:0]  cell_o,        // {z, y, x}
-  output logic [3*rt_pkg::CELL_INDEX_W-1:0]  cell_id_o,
-  output logic [2:0]                         active_o,      // axis steps
-  output logic [2:0]                         neg_o,         // axis steps by -1
-  output logic [3*rt_pkg::GRID_ACC_W-1:0]    acc_o,         // {z, y, x}
-  output logic [3*rt_pkg::GRID_PAIR_W-1:0]   pair_o,        // {z, y, x}
-  output logic [rt_pkg::GRID_TRIPLE_W-1:0]   triple_o,
-  output logic [rt_pkg::DIR_W-1:0]           dom_o
+  output logic                                   valid_o,
+  output logic [SlotW-1:0]                       slot_o,
+  output rt_pkg::isect_ray_t                     ray_o,
+  output logic [3*rt_pkg::CELL_INDEX_W-1:0]      cell_o,        // {z, y, x}
+  output logic [3*rt_pkg::CELL_INDEX_W-1:0]      cell_id_o,
+  output logic [2:0]                             active_o,      // axis steps
+  output logic [2:0]                             neg_o,         // axis steps by -1
+  output logic [3*rt_pkg::GRID_ACC_W-1:0]        acc_o,         // {z, y, x}
+  output logic [3*rt_pkg::GRID_PAIR_W-1:0]       pair_o,        // {z, y, x}
+  output logic [rt_pkg::GRID_TRIPLE_W-1:0]       triple_o,
+  output logic [rt_pkg::DIR_W-1:0]               dom_o
 );
 
   localparam int POS_W    = rt_pkg::POS_W;
@@ -59,27 +64,6 @@ module rt_grid_setup #(
   logic [2:0]           s1_active_q, s1_neg_q;
   logic [DIR_W-1:0]     s1_dom_q;
 
-  logic [3*GPOS_W-1:0]  x_d;
-  logic [3*GDIR_W-1:0]  absd_d;
-  logic [2:0]           active_d, neg_d;
-  logic [DIR_W-1:0]     dom_d;
-
-  always_comb begin
-    dom_d = '0;
-    for (int a = 0; a < 3; a++) begin
-      logic [DIR_W-1:0] d, mag;
-      logic [RES_W-1:0] r;
-      d = ray_i.dir[a];
-      r = cfg_res_i[a*RES_W +: RES_W];
-      mag = d[DIR_W-1] ? DIR_W'(-d) : d;
-      active_d[a] = (d != '0);
-      neg_d[a]    = d[DIR_W-1];
-      x_d[a*GPOS_W +: GPOS_W]    = GPOS_W'(ray_i.org[a]) * GPOS_W'(r);
-      absd_d[a*GDIR_W +: GDIR_W] = GDIR_W'(mag) * GDIR_W'(r);
-      if (mag > dom_d) dom_d = mag;
-    end
-  end
-
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       s1_valid_q <= 1'b0;
@@ -89,14 +73,23 @@ module rt_grid_setup #(
   end
 
   always_ff @(posedge clk_i) begin
-    if (valid_i) begin
-      s1_slot_q   <= slot_i;
-      s1_ray_q    <= ray_i;
-      s1_x_q      <= x_d;
-      s1_absd_q   <= absd_d;
-      s1_active_q <= active_d;
-      s1_neg_q    <= neg_d;
-      s1_dom_q    <= dom_d;
+    if (valid_i) begin : b_stage1
+      logic [DIR_W-1:0] d, mag, dom;
+      logic [RES_W-1:0] r;
+      dom = '0;
+      for (int a = 0; a < 3; a++) begin
+        d   = ray_i.dir[a];
+        r   = cfg_res_i[a*RES_W +: RES_W];
+        mag = d[DIR_W-1] ? DIR_W'(-d) : d;
+        s1_active_q[a]               <= (d != '0);
+        s1_neg_q[a]                  <= d[DIR_W-1];
+        s1_x_q[a*GPOS_W +: GPOS_W]    <= GPOS_W'(ray_i.org[a]) * GPOS_W'(r);
+        s1_absd_q[a*GDIR_W +: GDIR_W] <= GDIR_W'(mag) * GDIR_W'(r);
+        if (mag > dom) dom = mag;
+      end
+      s1_dom_q  <= dom;
+      s1_slot_q <= slot_i;
+      s1_ray_q  <= ray_i;
     end
   end
 
@@ -105,41 +98,12 @@ module rt_grid_setup #(
   logic [SlotW-1:0]     s2_slot_q;
   rt_pkg::isect_ray_t   s2_ray_q;
   logic [3*CELL_W-1:0]  s2_cell_q;
-  logic [3*DIST_W-1:0]  s2_dist_q;
+  logic [ID_W-1:0]      s2_cell_id_q;
+  logic [3*ACC_W-1:0]   s2_acc_q;
   logic [3*PAIR_W-1:0]  s2_pair_q;
-  logic [GDIR_W-1:0]    s2_mx_q;    // |D[x]|, or 1 if x does not step
+  logic [TRIPLE_W-1:0]  s2_triple_q;
   logic [2:0]           s2_active_q, s2_neg_q;
   logic [DIR_W-1:0]     s2_dom_q;
-
-  logic [3*CELL_W-1:0]  cell_d;
-  logic [3*DIST_W-1:0]  dist_d;
-  logic [3*PAIR_W-1:0]  pair_d;
-  logic [3*GDIR_W-1:0]  m;          // |D| masked to 1 on axes that do not step
-
-  always_comb begin
-    for (int a = 0; a < 3; a++) begin
-      m[a*GDIR_W +: GDIR_W] = s1_active_q[a] ? s1_absd_q[a*GDIR_W +: GDIR_W] : GDIR_W'(1);
-    end
-    for (int a = 0; a < 3; a++) begin
-      logic [GPOS_W-1:0] xs, lower;
-      logic [RES_W-1:0]  r, c;
-      xs = s1_x_q[a*GPOS_W +: GPOS_W];
-      r  = cfg_res_i[a*RES_W +: RES_W];
-      c  = RES_W'(xs >> POS_W);
-      if (c > r - 1'b1) c = r - 1'b1;
-      cell_d[a*CELL_W +: CELL_W] = CELL_W'(c);
-      lower = GPOS_W'(c) << POS_W;
-      // Distance to the boundary crossed next: upper - X stepping up, else X - lower.
-      if (s1_active_q[a] && !s1_neg_q[a]) begin
-        dist_d[a*DIST_W +: DIST_W] = DIST_W'(lower + (GPOS_W'(1) << POS_W) - xs);
-      end else begin
-        dist_d[a*DIST_W +: DIST_W] = DIST_W'(xs - lower);
-      end
-    end
-    pair_d[0*PAIR_W +: PAIR_W] = PAIR_W'(m[1*GDIR_W +: GDIR_W]) * PAIR_W'(m[2*GDIR_W +: GDIR_W]);
-    pair_d[1*PAIR_W +: PAIR_W] = PAIR_W'(m[0*GDIR_W +: GDIR_W]) * PAIR_W'(m[2*GDIR_W +: GDIR_W]);
-    pair_d[2*PAIR_W +: PAIR_W] = PAIR_W'(m[0*GDIR_W +: GDIR_W]) * PAIR_W'(m[1*GDIR_W +: GDIR_W]);
-  end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -150,39 +114,58 @@ module rt_grid_setup #(
   end
 
   always_ff @(posedge clk_i) begin
-    if (s1_valid_q) begin
-      s2_slot_q   <= s1_slot_q;
-      s2_ray_q    <= s1_ray_q;
-      s2_cell_q   <= cell_d;
-      s2_dist_q   <= dist_d;
-      s2_pair_q   <= pair_d;
-      s2_mx_q     <= m[0 +: GDIR_W];
-      s2_active_q <= s1_active_q;
-      s2_neg_q    <= s1_neg_q;
-      s2_dom_q    <= s1_dom_q;
+    if (s1_valid_q) begin : b_stage2
+      logic [3*GDIR_W-1:0] m;     // |D| masked to 1 on axes that do not step
+      logic [3*CELL_W-1:0] cel;
+      logic [3*PAIR_W-1:0] pair;
+      logic [GPOS_W-1:0]   xs, lower;
+      logic [DIST_W-1:0]   dst;
+      logic [RES_W-1:0]    r, c;
+      for (int a = 0; a < 3; a++) begin
+        m[a*GDIR_W +: GDIR_W] = s1_active_q[a] ? s1_absd_q[a*GDIR_W +: GDIR_W] : GDIR_W'(1);
+      end
+      pair[0*PAIR_W +: PAIR_W] = PAIR_W'(m[1*GDIR_W +: GDIR_W]) * PAIR_W'(m[2*GDIR_W +: GDIR_W]);
+      pair[1*PAIR_W +: PAIR_W] = PAIR_W'(m[0*GDIR_W +: GDIR_W]) * PAIR_W'(m[2*GDIR_W +: GDIR_W]);
+      pair[2*PAIR_W +: PAIR_W] = PAIR_W'(m[0*GDIR_W +: GDIR_W]) * PAIR_W'(m[1*GDIR_W +: GDIR_W]);
+      for (int a = 0; a < 3; a++) begin
+        xs = s1_x_q[a*GPOS_W +: GPOS_W];
+        r  = cfg_res_i[a*RES_W +: RES_W];
+        c  = RES_W'(xs >> POS_W);
+        if (c > r - 1'b1) c = r - 1'b1;
+        cel[a*CELL_W +: CELL_W] = CELL_W'(c);
+        lower = GPOS_W'(c) << POS_W;
+        // Distance to the boundary crossed next: upper - X stepping up, else X - lower.
+        if (s1_active_q[a] && !s1_neg_q[a]) begin
+          dst = DIST_W'(lower + (GPOS_W'(1) << POS_W) - xs);
+        end else begin
+          dst = DIST_W'(xs - lower);
+        end
+        s2_acc_q[a*ACC_W +: ACC_W] <= ACC_W'(dst) * ACC_W'(pair[a*PAIR_W +: PAIR_W]);
+      end
+      s2_cell_q    <= cel;
+      s2_cell_id_q <= (ID_W'(cel[2*CELL_W +: CELL_W]) * ID_W'(cfg_res_i[RES_W +: RES_W]) +
+                       ID_W'(cel[CELL_W +: CELL_W])) * ID_W'(cfg_res_i[0 +: RES_W]) +
+                      ID_W'(cel[0 +: CELL_W]);
+      s2_pair_q    <= pair;
+      s2_triple_q  <= TRIPLE_W'(pair[0 +: PAIR_W]) * TRIPLE_W'(m[0 +: GDIR_W]);
+      s2_slot_q    <= s1_slot_q;
+      s2_ray_q     <= s1_ray_q;
+      s2_active_q  <= s1_active_q;
+      s2_neg_q     <= s1_neg_q;
+      s2_dom_q     <= s1_dom_q;
     end
   end
 
-  // ---- Output: the initial accumulators, triple and cell id ------------------
-  logic [RES_W-1:0] res_x, res_y;
-  assign res_x = cfg_res_i[0 +: RES_W];
-  assign res_y = cfg_res_i[RES_W +: RES_W];
-
-  always_comb begin
-    for (int a = 0; a < 3; a++) begin
-      acc_o[a*ACC_W +: ACC_W] = ACC_W'(s2_dist_q[a*DIST_W +: DIST_W]) * ACC_W'(s2_pair_q[a*PAIR_W +: PAIR_W]);
-    end
-  end
-  assign triple_o  = TRIPLE_W'(s2_pair_q[0 +: PAIR_W]) * TRIPLE_W'(s2_mx_q);
-  assign cell_id_o = (ID_W'(s2_cell_q[2*CELL_W +: CELL_W]) * ID_W'(res_y) + ID_W'(s2_cell_q[CELL_W +: CELL_W]))
-                     * ID_W'(res_x) + ID_W'(s2_cell_q[0 +: CELL_W]);
-  assign valid_o  = s2_valid_q;
-  assign slot_o   = s2_slot_q;
-  assign ray_o    = s2_ray_q;
-  assign cell_o   = s2_cell_q;
-  assign active_o = s2_active_q;
-  assign neg_o    = s2_neg_q;
-  assign pair_o   = s2_pair_q;
-  assign dom_o    = s2_dom_q;
+  assign valid_o   = s2_valid_q;
+  assign slot_o    = s2_slot_q;
+  assign ray_o     = s2_ray_q;
+  assign cell_o    = s2_cell_q;
+  assign cell_id_o = s2_cell_id_q;
+  assign active_o  = s2_active_q;
+  assign neg_o     = s2_neg_q;
+  assign acc_o     = s2_acc_q;
+  assign pair_o    = s2_pair_q;
+  assign triple_o  = s2_triple_q;
+  assign dom_o     = s2_dom_q;
 
 endmodule

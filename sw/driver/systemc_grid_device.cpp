@@ -136,6 +136,7 @@ TraversalRunStats SystemCGridDevice::run(const fx::GridImage& image, std::span<c
   stats.indexReads = tally.indexReads;
   stats.triangleReads = tally.triangleReads;
   stats.isectTests = tally.isectTests;
+  stats.stepReadyCycles = tally.stepReadyCycles;
   stats.isectBusyCycles = tally.isectTests;  // at most one pair enters per cycle
   stats.cycleAccurate = true;
   return stats;

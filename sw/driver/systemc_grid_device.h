@@ -22,8 +22,8 @@ namespace lancer {
 // and memory response times for the same TraversalRunOptions, and the same
 // TraversalRunStats: cycles from the first ray offered to the last result or visit
 // taken, reads per region from the request handshakes, tests and busy cycles
-// from perf_isect_fire_o. So "systemc", "rtl-systemc" and "rtl" can be
-// compared cycle for cycle.
+// from perf_isect_fire_o, cycles with a step ready from perf_step_ready_o. So
+// "systemc", "rtl-systemc" and "rtl" can be compared cycle for cycle.
 //
 // Throws InputError for raysInFlight outside 0..maxRaysInFlight() (naming both),
 // a memory latency < 1 or a negative jitter, a resolution outside 1..256, and

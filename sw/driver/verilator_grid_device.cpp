@@ -1,6 +1,7 @@
 #include "driver/verilator_grid_device.h"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -11,7 +12,6 @@
 #include "Vrt_grid.h"
 #include "driver/verilated_port.h"
 #include "common/error.h"
-#include "golden/stimulus.h"
 #include "golden/stimulus.h"
 #include "verilated.h"
 #include "verilated_fst_c.h"
@@ -29,6 +29,25 @@ constexpr size_t kTriWords = size_t(fx::wireWords(fx::kIsectTriBits));
 constexpr size_t kCellWords = size_t(fx::wireWords(fx::kGridCellBits));
 constexpr size_t kVisitWords = size_t(fx::wireWords(fx::kGridVisitBits));
 constexpr size_t kResWords = size_t(fx::wireWords(fx::kGridResultBits));
+
+// Bit offset of field `index` in a record: the first field is the most significant.
+constexpr int fieldLsb(std::span<const fx::FieldSpec> fields, size_t index) {
+  int lsb = 0;
+  for (size_t i = index + 1; i < fields.size(); ++i) lsb += fields[i].width * fields[i].count;
+  return lsb;
+}
+
+// The two records that cross a port every cycle fit 64 bits: their fields are
+// placed and taken directly (the generic packers of golden/records.h agree;
+// the tests compare every visit and every cell the unit reads).
+static_assert(fx::kGridCellBits <= 64 && fx::kGridVisitBits <= 64);
+constexpr int kCellFirstLsb = fieldLsb(fx::kGridCellFields, 0);
+constexpr int kCellCountLsb = fieldLsb(fx::kGridCellFields, 1);
+constexpr int kVisitRayLsb = fieldLsb(fx::kGridVisitFields, 0);
+constexpr int kVisitCellLsb = fieldLsb(fx::kGridVisitFields, 1);
+constexpr uint64_t kVisitCellMask = (uint64_t(1) << fx::kGridVisitFields[1].width) - 1;
+static_assert(fx::kGridCellFields[0].width == 32 && fx::kGridCellFields[1].width == 32 &&
+              fx::kGridVisitFields[0].width == 32 && kVisitRayLsb + 32 == fx::kGridVisitBits);
 
 }  // namespace
 
@@ -134,9 +153,18 @@ TraversalRunStats VerilatorGridDevice::run(const fx::GridImage& image, std::span
   fx::MemoryReadPort idxPort(options.memLatency, options.memLatencyJitter, options.stream.seed * 3 + 2);
   fx::MemoryReadPort triPort(options.memLatency, options.memLatencyJitter, options.stream.seed * 3 + 3);
 
+  // Wire images packed once per run; records cross the ports by block copies
+  // and the allocation-free packers of golden/records.h (nothing is allocated per cycle).
+  std::vector<fx::TriWire> triWires(image.triangles.size());
+  for (size_t t = 0; t < triWires.size(); ++t) fx::packWire(image.triangles[t], triWires[t]);
+  std::array<uint32_t, kRayWords> rayWire{};
+  std::array<uint32_t, kCellWords> cellWire{};
+  std::array<uint32_t, kVisitWords> visitWire{};
+  std::array<uint32_t, kResWords> resWire{};
+  std::array<fx::u128, fx::valueCount(fx::kGridResFields)> res{};
+
   std::vector<uint8_t> finished(n, 0);
   std::vector<uint32_t> resultCells(n, 0);
-  fx::Wire resWire(kResWords), visitWire(kVisitWords);
   const uint64_t kWatchdog = 1000000;
   size_t offered = 0, results = 0;
   bool offering = false, started = false;
@@ -153,7 +181,8 @@ TraversalRunStats VerilatorGridDevice::run(const fx::GridImage& image, std::span
     if (!offering && offered < n && !idle()) {
       fx::QRay wireRay = rays[offered];
       wireRay.id = uint32_t(offered);
-      writePort(top_->ray_data_i, fx::packWire(wireRay).data(), kRayWords);
+      fx::packWire(wireRay, rayWire);
+      writePort(top_->ray_data_i, rayWire.data(), kRayWords);
       offering = true;
       if (!started) {
         started = true;
@@ -172,8 +201,10 @@ TraversalRunStats VerilatorGridDevice::run(const fx::GridImage& image, std::span
     if (top_->cell_rsp_valid_i) {
       checkAddr("cell table", addr, image.cells.size());
       const fx::GridCell& c = image.cells[addr];
-      const fx::u128 values[] = {c.first, c.count};
-      writePort(top_->cell_rsp_data_i, fx::packFields(fx::kGridCellFields, values).data(), kCellWords);
+      const uint64_t cell = (uint64_t(c.first) << kCellFirstLsb) | (uint64_t(c.count) << kCellCountLsb);
+      cellWire[0] = uint32_t(cell);
+      if (kCellWords > 1) cellWire[kCellWords - 1] = uint32_t(cell >> 32);
+      writePort(top_->cell_rsp_data_i, cellWire.data(), kCellWords);
       top_->cell_rsp_tag_i = tag;
     }
     top_->idx_rsp_valid_i = idxPort.respond(cycle_, addr, tag);
@@ -185,7 +216,7 @@ TraversalRunStats VerilatorGridDevice::run(const fx::GridImage& image, std::span
     top_->tri_rsp_valid_i = triPort.respond(cycle_, addr, tag);
     if (top_->tri_rsp_valid_i) {
       checkAddr("triangle table", addr, image.triangles.size());
-      writePort(top_->tri_rsp_data_i, fx::packWire(image.triangles[addr]).data(), kTriWords);
+      writePort(top_->tri_rsp_data_i, triWires[addr].data(), kTriWords);
       top_->tri_rsp_tag_i = tag;
     }
     top_->eval();
@@ -210,39 +241,40 @@ TraversalRunStats VerilatorGridDevice::run(const fx::GridImage& image, std::span
       ++stats.isectBusyCycles;
       progress = true;
     }
+    if (started && top_->perf_step_ready_o) ++stats.stepReadyCycles;
     const uint64_t edge = cycle_;
     if (top_->visit_valid_o && visitReady) {
       readPort(top_->visit_data_o, visitWire.data(), kVisitWords);
-      const auto v = fx::unpackFields(fx::kGridVisitFields, visitWire);
-      const size_t k = size_t(v[0]);
+      const uint64_t visit = uint64_t(visitWire[0]) | (kVisitWords > 1 ? uint64_t(visitWire[kVisitWords - 1]) << 32 : 0);
+      const size_t k = size_t(uint32_t(visit >> kVisitRayLsb));
       if (k >= offered) {
         throw std::runtime_error(fmt::format("rtl: a visit record for ray {} that is not in flight", k));
       }
-      traces[k].visits.push_back(uint32_t(v[1]));
+      traces[k].visits.push_back(uint32_t((visit >> kVisitCellLsb) & kVisitCellMask));
       ++stats.steps;
       stats.cycles = edge - firstCycle + 1;
       progress = true;
     }
     if (top_->res_valid_o && resReady) {
       readPort(top_->res_data_o, resWire.data(), kResWords);
-      const auto v = fx::unpackFields(fx::kGridResFields, resWire);
-      const size_t k = size_t(v[0]);
+      fx::unpackFields(fx::kGridResFields, resWire, res);
+      const size_t k = size_t(res[0]);
       if (k >= offered || finished[k]) {
         throw std::runtime_error(fmt::format("rtl: a result for ray {} that is not in flight", k));
       }
       finished[k] = 1;
-      resultCells[k] = uint32_t(v[1]);
+      resultCells[k] = uint32_t(res[1]);
       fx::GridTrace& t = traces[k];
-      t.tests = uint64_t(v[2]);
-      if (v[3]) {
+      t.tests = uint64_t(res[2]);
+      if (res[3]) {
         fx::IsectResult hit;
         hit.rayId = rays[k].id;
-        hit.primId = uint32_t(v[4]);
+        hit.primId = uint32_t(res[4]);
         hit.hit = true;
-        hit.tNum = v[5];
-        hit.det = v[6];
-        hit.uNum = v[7];
-        hit.vNum = v[8];
+        hit.tNum = res[5];
+        hit.det = res[6];
+        hit.uNum = res[7];
+        hit.vNum = res[8];
         t.hit = hit;
       }
       ++results;

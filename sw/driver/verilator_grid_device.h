@@ -20,7 +20,8 @@ namespace lancer {
 // cross the port with ray_id = their index in `rays`; the traces get the rays'
 // own ids back. Counts TraversalRunStats exactly: cycles from the first ray offered
 // to the last result or visit taken, reads per port from the request
-// handshakes, isect tests and busy cycles from perf_isect_fire_o. Throws
+// handshakes, isect tests and busy cycles from perf_isect_fire_o, cycles with
+// a step ready (stepReadyCycles) from perf_step_ready_o. Throws
 // InputError for raysInFlight outside 0..maxRaysInFlight(), runtime_error on a
 // failed assertion, an out-of-range address, an inconsistent stream, or 10^6
 // cycles without progress. StreamOptions::wavePath writes an FST waveform.

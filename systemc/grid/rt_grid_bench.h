@@ -53,6 +53,7 @@ class rt_grid_bench : public sc_core::sc_module {
   sc_core::sc_signal<isect_tri_t> tri_rsp_data_i{"tri_rsp_data_i"};
   sc_core::sc_signal<slot_t> tri_rsp_tag_i{"tri_rsp_tag_i"};
   sc_core::sc_signal<bool> perf_isect_fire_o{"perf_isect_fire_o"};
+  sc_core::sc_signal<bool> perf_step_ready_o{"perf_step_ready_o"};
 
   rt_grid_tb u_tb{"u_tb"};
   rt_grid_mem u_mem{"u_mem"};
@@ -77,6 +78,7 @@ class rt_grid_bench : public sc_core::sc_module {
     u_dut.visit_data_o(visit_data_o);
     bindMemoryPorts(u_dut);
     u_dut.perf_isect_fire_o(perf_isect_fire_o);
+    u_dut.perf_step_ready_o(perf_step_ready_o);
 
     // The memory: the three read ports.
     u_mem.clk_i(clk_i);
@@ -109,6 +111,7 @@ class rt_grid_bench : public sc_core::sc_module {
     u_tb.tri_req_tag_o(tri_req_tag_o);
     u_tb.tri_rsp_valid_i(tri_rsp_valid_i);
     u_tb.perf_isect_fire_o(perf_isect_fire_o);
+    u_tb.perf_step_ready_o(perf_step_ready_o);
   }
 
  private:

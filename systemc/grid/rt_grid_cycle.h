@@ -18,6 +18,7 @@ struct GridCycle {
   bool cellReq = false, idxReq = false, triReq = false;
   uint32_t cellAddr = 0, cellTag = 0, idxAddr = 0, idxTag = 0, triAddr = 0, triTag = 0;
   bool perfIsectFire = false;      // perf_isect_fire_o
+  bool perfStepReady = false;      // perf_step_ready_o
   std::vector<uint32_t> resData;   // res_data_o's wire image while res_valid_o, else empty
   std::vector<uint32_t> visitData; // visit_data_o's wire image while visit_valid_o, else empty
   bool operator==(const GridCycle&) const = default;

@@ -1,5 +1,7 @@
 #include "grid/rt_grid_mem.h"
 
+#include <array>
+
 #include <fmt/format.h>
 
 namespace lancer::sc {
@@ -70,7 +72,9 @@ void rt_grid_mem::edge() {
     check("cell table", addr, image_->cells.size());
     const fx::GridCell& e = image_->cells[addr];
     const fx::u128 values[] = {e.first, e.count};
-    cell_rsp_data_i.write(toPort<GRID_CELL_W>(fx::packFields(fx::kGridCellFields, values)));
+    std::array<uint32_t, size_t(fx::wireWords(GRID_CELL_W))> wire{};
+    fx::packFields(fx::kGridCellFields, values, wire);
+    cell_rsp_data_i.write(toPort<GRID_CELL_W>(wire));
     cell_rsp_tag_i.write(slot_t(tag));
   }
   const bool idx = idx_.respond(c + 1, addr, tag);
@@ -84,7 +88,9 @@ void rt_grid_mem::edge() {
   tri_rsp_valid_i.write(tri);
   if (tri) {
     check("triangle table", addr, image_->triangles.size());
-    tri_rsp_data_i.write(toPort<ISECT_TRI_W>(fx::packWire(image_->triangles[addr])));
+    fx::TriWire wire{};
+    fx::packWire(image_->triangles[addr], wire);
+    tri_rsp_data_i.write(toPort<ISECT_TRI_W>(wire));
     tri_rsp_tag_i.write(slot_t(tag));
   }
 }

@@ -80,6 +80,7 @@ rt_grid_model::rt_grid_model(sc_core::sc_module_name name, rt_isect_impl isect)
       tri_rsp_data_i("tri_rsp_data_i"),
       tri_rsp_tag_i("tri_rsp_tag_i"),
       perf_isect_fire_o("perf_isect_fire_o"),
+      perf_step_ready_o("perf_step_ready_o"),
       slots_(size_t(N)) {
   if (isect == rt_isect_impl::model) {
     auto m = std::make_unique<rt_isect_model>("u_isect");
@@ -102,8 +103,7 @@ rt_grid_model::rt_grid_model(sc_core::sc_module_name name, rt_isect_impl isect)
   dont_initialize();
 
   SC_METHOD(comb);
-  sensitive << cfg_slots_i << tri_rsp_valid_i << tri_rsp_tag_i << tri_rsp_data_i << isect_req_ready
-            << state_changed_;
+  sensitive << cfg_slots_i << isect_req_ready << state_changed_;
 }
 
 rt_grid_model::~rt_grid_model() = default;
@@ -120,9 +120,10 @@ fx::GridRes rt_grid_model::resolution() const {
 }
 
 void rt_grid_model::reset() {
-  for (Slot& s : slots_) s.state = State::Free;
+  for (Slot& s : slots_) s = Slot{};
   s1_.valid = s2_.valid = false;
-  visitArb_ = idxArb_ = checkArb_ = doneArb_ = RoundRobin{};
+  cellRsp_.valid = triRsp_.valid = false;
+  cellArb_ = visitArb_ = idxArb_ = checkArb_ = doneArb_ = RoundRobin{};
   cellQ_.clear();
   idxQ_.clear();
   triQ_.clear();
@@ -130,6 +131,34 @@ void rt_grid_model::reset() {
   visitQ_.clear();
   resQ_.clear();
   credits_ = IDX_BUF_DEPTH;
+}
+
+void rt_grid_model::startCell(Slot& s, const fx::GridCell& data) {
+  s.first = data.first;
+  s.count = data.count;
+  s.tests += data.count;
+  s.issued = s.received = 0;
+  if (data.count > 0) {
+    s.state = State::Fetch;
+  } else {
+    cellDone(s);
+  }
+}
+
+void rt_grid_model::cellDone(Slot& s) {
+  if (s.hasHit) {
+    s.state = State::Check;
+  } else if (s.queue[size_t(s.head)].last) {
+    s.state = State::Done;
+  } else {
+    nextCell(s);
+  }
+}
+
+void rt_grid_model::nextCell(Slot& s) {
+  s.head = (s.head + 1) % CELL_QUEUE;
+  --s.queued;
+  s.state = State::Visit;
 }
 
 void rt_grid_model::seq() {
@@ -151,36 +180,57 @@ void rt_grid_model::seq() {
   }
   const bool rayFire = ray_valid_i.read() && alloc >= 0;
 
-  const int visitIdx = visitArb_.pick(N, [&](int k) { return slots_[size_t(k)].state == State::Visit; });
-  const bool visitGo = visitIdx >= 0 && !cellQ_.full() && !visitQ_.full();
+  auto inFlight = [](const Slot& s) {
+    return s.state == State::Visit || s.state == State::WaitCell || s.state == State::Fetch ||
+           s.state == State::Check;
+  };
+  const int cellIdx = cellArb_.pick(N, [&](int k) {
+    const Slot& s = slots_[size_t(k)];
+    return inFlight(s) && s.frontierValid && s.queued < CELL_QUEUE;
+  });
+  const bool cellGo = cellIdx >= 0 && !cellQ_.full();
+  const int visitIdx = visitArb_.pick(N, [&](int k) {
+    const Slot& s = slots_[size_t(k)];
+    return s.state == State::Visit && s.queued > 0;
+  });
+  const bool visitGo = visitIdx >= 0 && !visitQ_.full();
   const int idxIdx = idxArb_.pick(N, [&](int k) {
     const Slot& s = slots_[size_t(k)];
     return s.state == State::Fetch && s.issued != s.count;
   });
   const bool idxGo = idxIdx >= 0 && !idxQ_.full() && credits_ != 0;
-  const int checkIdx = checkArb_.pick(N, [&](int k) {
+  const int checkIdx = checkArb_.pick(N, [&](int k) { return slots_[size_t(k)].state == State::Check; });
+  const int doneIdx = doneArb_.pick(N, [&](int k) {
     const Slot& s = slots_[size_t(k)];
-    return s.state == State::Check && s.hasHit;
+    return s.state == State::Done && s.outstanding == 0;
   });
-  const int doneIdx = doneArb_.pick(N, [&](int k) { return slots_[size_t(k)].state == State::Done; });
   const bool doneGo = doneIdx >= 0 && !resQ_.full();
   const bool idxBufPop = !idxBuf_.empty() && !triQ_.full();
 
-  // Memory responses (the RTL's assertions a_cell_rsp_slot, a_tri_rsp_slot, a_idx_buf_room).
-  const bool cellRsp = cell_rsp_valid_i.read();
+  // Memory responses: cell and triangle responses from the boundary registers
+  // (the RTL's assertions a_cell_rsp_slot, a_cell_rsp_head, a_tri_rsp_slot,
+  // a_idx_buf_room).
+  const bool cellRsp = cellRsp_.valid;
   int cellSlot = -1;
   fx::GridCell cellData;
   if (cellRsp) {
-    cellSlot = int(uint32_t(cell_rsp_tag_i.read()) & SLOT_MASK);
-    if (cellSlot >= N || slots_[size_t(cellSlot)].state != State::WaitCell) {
-      fail(fmt::format("cell response for slot {}, which does not wait for one", cellSlot));
+    cellSlot = int(cellRsp_.tag & SLOT_MASK);
+    if (cellSlot >= N || slots_[size_t(cellSlot)].outstanding == 0) {
+      fail(fmt::format("cell response for slot {}, which has no cell read outstanding", cellSlot));
     }
-    const auto v = fx::unpackFields(fx::kGridCellFields, fromPort<GRID_CELL_W>(cell_rsp_data_i.read()));
+    const Slot& s = slots_[size_t(cellSlot)];
+    if (s.state == State::WaitCell && s.outstanding != s.queued) {
+      fail(fmt::format("cell response for slot {} in WAIT_CELL is not its head's", cellSlot));
+    }
+    std::array<uint32_t, size_t(fx::wireWords(GRID_CELL_W))> wire{};
+    fromPort<GRID_CELL_W>(cellRsp_.data, wire);
+    std::array<fx::u128, 2> v{};
+    fx::unpackFields(fx::kGridCellFields, wire, v);
     cellData.first = uint32_t(v[0]);
     cellData.count = uint32_t(v[1]);
   }
-  if (tri_rsp_valid_i.read()) {
-    const uint32_t t = uint32_t(tri_rsp_tag_i.read()) & SLOT_MASK;
+  if (triRsp_.valid) {
+    const uint32_t t = triRsp_.tag & SLOT_MASK;
     if (t >= uint32_t(N) || slots_[t].state != State::Fetch) {
       fail(fmt::format("triangle response for slot {}, which is not fetching", t));
     }
@@ -194,27 +244,33 @@ void rt_grid_model::seq() {
   bool resTake = false;
   fx::IsectResult res;
   if (resValid) {
-    res = fx::unpackResult(fromPort<ISECT_RES_W>(isect_res.read()));
+    std::array<uint32_t, fx::kIsectResWords> wire{};
+    fromPort<ISECT_RES_W>(isect_res.read(), wire);
+    fx::unpackResult(wire, res);
     resSlot = int(res.rayId & SLOT_MASK);
     if (resSlot >= N) fail(fmt::format("rt_isect result for slot {}", resSlot));
     const Slot& s = slots_[size_t(resSlot)];
     resTake = res.hit && (!s.hasHit || fx::closerResult(res, s.best));
   }
 
-  // The exit test of the granted slot (no stepping axis: the ray ends anyway).
-  bool checkHolds = false;
+  // The exit test of the granted slot, in its current cell (no stepping axis: the ray ends anyway).
+  bool checkStops = false;
   if (checkIdx >= 0) {
     const Slot& s = slots_[size_t(checkIdx)];
-    checkHolds = s.dda.nextAxis() < 0 || s.dda.holds(s.best);
+    const CellEntry& e = s.queue[size_t(s.head)];
+    checkStops = e.last || e.dda.nextAxis() < 0 || e.dda.holds(s.best);
   }
 
   // Records pushed this cycle, from the registers at the start of the cycle.
   Visit visitRec;
   MemReq cellReq, idxReq;
+  if (cellGo) {
+    const Slot& s = slots_[size_t(cellIdx)];
+    cellReq = {addrOf(s.frontier.cellId()), uint32_t(cellIdx)};
+  }
   if (visitGo) {
     const Slot& s = slots_[size_t(visitIdx)];
-    visitRec = {s.rayId, s.dda.cellId()};
-    cellReq = {addrOf(s.dda.cellId()), uint32_t(visitIdx)};
+    visitRec = {s.rayId, s.queue[size_t(s.head)].cellId};
   }
   if (idxGo) {
     const Slot& s = slots_[size_t(idxIdx)];
@@ -225,77 +281,100 @@ void rt_grid_model::seq() {
     const Slot& s = slots_[size_t(doneIdx)];
     const fx::u128 values[] = {s.rayId, s.cells, s.tests, s.hasHit ? 1u : 0u, s.best.primId,
                                s.best.tNum, s.best.det, s.best.uNum, s.best.vNum};
-    doneRec = toPort<GRID_RESULT_W>(fx::packFields(fx::kGridResFields, values));
+    std::array<uint32_t, size_t(fx::wireWords(GRID_RESULT_W))> wire{};
+    fx::packFields(fx::kGridResFields, values, wire);
+    doneRec = toPort<GRID_RESULT_W>(wire);
   }
 
-  // ---- Register updates: the slots.
-  for (int k = 0; k < N; ++k) {
-    Slot& s = slots_[size_t(k)];
-    State next = s.state;
-    bool step = false;
-    fx::GridDda stepped;
-    switch (s.state) {
-      case State::Free:
-        if (rayFire && k == alloc) next = State::Setup;
-        break;
-      case State::Setup:
-        if (s2_.valid && s2_.slot == k) next = State::Visit;
-        break;
-      case State::Visit:
-        if (visitGo && k == visitIdx) next = State::WaitCell;
-        break;
-      case State::WaitCell:
-        if (cellRsp && k == cellSlot) next = cellData.count == 0 ? State::Check : State::Fetch;
-        break;
-      case State::Fetch:
-        if (s.received == s.count) next = State::Check;
-        break;
-      case State::Check:
-        if (!s.hasHit || k == checkIdx) {
-          const bool holds = s.hasHit && checkHolds;
-          stepped = s.dda;
-          const bool stays = !holds && stepped.nextAxis() >= 0 && stepped.advance();
-          step = stays;
-          next = stays ? State::Visit : State::Done;
-        }
-        break;
-      case State::Done:
-        if (doneGo && k == doneIdx) next = State::Free;
-        break;
-    }
-    // Datapath (each register written only in its state, as the RTL's).
-    if (s2_.valid && s2_.slot == k) {
-      fx::QRay ray = fx::unpackRay(fromPort<ISECT_RAY_W>(s2_.ray));
-      s.rayId = ray.id;
-      s.dda = fx::GridDda::setup(resolution(), ray);
-      ray.id = uint32_t(k);
-      s.isectRay = toPort<ISECT_RAY_W>(fx::packWire(ray));
-      s.cells = s.tests = 0;
-      s.hasHit = false;
-      s.best = fx::IsectResult{};
-    }
-    if (step) s.dda = stepped;
-    if (visitGo && k == visitIdx) ++s.cells;
-    if (s.state == State::WaitCell && cellRsp && k == cellSlot) {
-      s.first = cellData.first;
-      s.count = cellData.count;
-      s.tests += cellData.count;
-      s.issued = s.received = 0;
-    }
-    if (idxGo && k == idxIdx) ++s.issued;
-    if (resValid && k == resSlot) {
-      ++s.received;
-      if (resTake) {
-        s.hasHit = true;
-        s.best = res;
-      }
-    }
-    s.state = next;
+  // ---- Register updates of the slots, event by event (each names another slot,
+  // except the cell grant and the cell response, which touch only the queue
+  // bookkeeping and may meet any other event of their slot).
+  // Queue positions from the start of the cycle: the pushed entry goes behind
+  // the queued ones, a response fills the oldest entry still waiting for one.
+  int pushAt = -1, fillAt = -1;
+  if (cellGo) {
+    const Slot& s = slots_[size_t(cellIdx)];
+    pushAt = (s.head + s.queued) % CELL_QUEUE;
   }
+  if (cellRsp) {
+    const Slot& s = slots_[size_t(cellSlot)];
+    fillAt = (s.head + s.queued - s.outstanding) % CELL_QUEUE;
+  }
+  const bool visitHeadIn =  // the granted visit's cell data is in, or arrives now
+      visitGo && (slots_[size_t(visitIdx)].outstanding < slots_[size_t(visitIdx)].queued || cellSlot == visitIdx);
+
+  if (rayFire) slots_[size_t(alloc)].state = State::Setup;
+  if (s2_.valid) {
+    Slot& s = slots_[size_t(s2_.slot)];
+    fx::QRay ray;
+    std::array<uint32_t, fx::kIsectRayWords> wire{};
+    fromPort<ISECT_RAY_W>(s2_.ray, wire);
+    fx::unpackRay(wire, ray);
+    s.rayId = ray.id;
+    s.frontier = fx::GridDda::setup(resolution(), ray);
+    s.frontierValid = true;
+    ray.id = uint32_t(s2_.slot);
+    fx::packWire(ray, wire);
+    s.isectRay = toPort<ISECT_RAY_W>(wire);
+    s.head = s.queued = 0;
+    s.cells = s.tests = 0;
+    s.hasHit = false;
+    s.best = fx::IsectResult{};
+    s.state = State::Visit;
+  }
+  if (cellRsp) {
+    Slot& s = slots_[size_t(cellSlot)];
+    s.queue[size_t(fillAt)].data = cellData;
+    --s.outstanding;
+  }
+  if (cellGo) {
+    // The frontier's read: it joins the queue with its exit test, and the DDA steps.
+    Slot& s = slots_[size_t(cellIdx)];
+    CellEntry& e = s.queue[size_t(pushAt)];
+    e.dda = s.frontier;
+    e.cellId = s.frontier.cellId();
+    const bool stays = s.frontier.nextAxis() >= 0 && s.frontier.advance();
+    e.last = !stays;
+    if (!stays) s.frontierValid = false;
+    ++s.queued;
+    ++s.outstanding;
+  }
+  if (visitGo) {
+    Slot& s = slots_[size_t(visitIdx)];
+    ++s.cells;
+    if (visitHeadIn) {
+      startCell(s, s.queue[size_t(s.head)].data);  // (filled above if it arrived now)
+    } else {
+      s.state = State::WaitCell;
+    }
+  }
+  if (cellRsp && slots_[size_t(cellSlot)].state == State::WaitCell && cellSlot != visitIdx) {
+    Slot& s = slots_[size_t(cellSlot)];
+    startCell(s, cellData);
+  }
+  if (idxGo) ++slots_[size_t(idxIdx)].issued;
+  if (resValid) {
+    Slot& s = slots_[size_t(resSlot)];
+    ++s.received;
+    if (resTake) {
+      s.hasHit = true;
+      s.best = res;
+    }
+    if (s.received == s.count) cellDone(s);
+  }
+  if (checkIdx >= 0) {
+    Slot& s = slots_[size_t(checkIdx)];
+    if (checkStops) {
+      s.state = State::Done;
+    } else {
+      nextCell(s);
+    }
+  }
+  if (doneGo) slots_[size_t(doneIdx)].state = State::Free;
 
   // ---- FIFOs, credits, arbiter pointers, setup pipeline.
   if (!cellQ_.empty() && cell_req_ready_i.read()) cellQ_.pop();
-  if (visitGo) cellQ_.push(cellReq);
+  if (cellGo) cellQ_.push(cellReq);
   if (!visitQ_.empty() && visit_ready_i.read()) visitQ_.pop();
   if (visitGo) visitQ_.push(visitRec);
   if (!idxQ_.empty() && idx_req_ready_i.read()) idxQ_.pop();
@@ -311,6 +390,7 @@ void rt_grid_model::seq() {
   if (idxGo && !idxBufPop) --credits_;
   if (idxBufPop && !idxGo) ++credits_;
 
+  if (cellGo) cellArb_.ack(cellIdx, N);
   if (visitGo) visitArb_.ack(visitIdx, N);
   if (idxGo) idxArb_.ack(idxIdx, N);
   if (checkIdx >= 0) checkArb_.ack(checkIdx, N);
@@ -326,6 +406,17 @@ void rt_grid_model::seq() {
     s1_.ray = ray_data_i.read();
   }
   s1_.valid = rayFire;
+
+  cellRsp_.valid = cell_rsp_valid_i.read();
+  if (cellRsp_.valid) {
+    cellRsp_.tag = uint32_t(cell_rsp_tag_i.read());
+    cellRsp_.data = cell_rsp_data_i.read();
+  }
+  triRsp_.valid = tri_rsp_valid_i.read();
+  if (triRsp_.valid) {
+    triRsp_.tag = uint32_t(tri_rsp_tag_i.read());
+    triRsp_.data = tri_rsp_data_i.read();
+  }
 
   writeOutputs();
   state_changed_.notify();  // immediate: comb() runs in this evaluation phase
@@ -350,10 +441,15 @@ void rt_grid_model::writeOutputs() {
   visit_valid_o.write(!visitQ_.empty());
   if (!visitQ_.empty()) {
     const fx::u128 values[] = {visitQ_.front().rayId, visitQ_.front().cellId};
-    visit_data_o.write(toPort<GRID_VISIT_W>(fx::packFields(fx::kGridVisitFields, values)));
+    std::array<uint32_t, size_t(fx::wireWords(GRID_VISIT_W))> wire{};
+    fx::packFields(fx::kGridVisitFields, values, wire);
+    visit_data_o.write(toPort<GRID_VISIT_W>(wire));
   }
   res_valid_o.write(!resQ_.empty());
   if (!resQ_.empty()) res_data_o.write(resQ_.front());
+  bool stepReady = false;
+  for (const Slot& s : slots_) stepReady = stepReady || (s.state == State::Visit && s.queued > 0);
+  perf_step_ready_o.write(stepReady);
 }
 
 void rt_grid_model::comb() {
@@ -362,10 +458,10 @@ void rt_grid_model::comb() {
   bool ready = false;
   for (int s = 0; s < usable && !ready; ++s) ready = slots_[size_t(s)].state == State::Free;
   ray_ready_o.write(ready);
-  const bool valid = tri_rsp_valid_i.read();
-  const uint32_t tag = uint32_t(tri_rsp_tag_i.read()) & SLOT_MASK;
+  const bool valid = triRsp_.valid;
+  const uint32_t tag = triRsp_.tag & SLOT_MASK;
   if (valid && tag < uint32_t(N)) isect_ray.write(slots_[tag].isectRay);
-  isect_tri.write(tri_rsp_data_i.read());
+  if (valid) isect_tri.write(triRsp_.data);
   isect_req_valid.write(valid);
   perf_isect_fire_o.write(valid && isect_req_ready.read());
 }

@@ -14,18 +14,20 @@
 namespace lancer::sc {
 
 // rt_grid_model: hand-written cycle model of rtl/grid/rt_grid.sv (with
-// rt_grid_setup, RAYS_IN_FLIGHT rt_grid_slot, rt_fifo, rt_rr_arb), meant to
-// match it cycle for cycle and bit for bit at its ports; docs/grid-unit.md is
-// the contract (slot state machine, "Per-cycle behaviour of rt_grid").
+// rt_grid_setup, rt_grid_slots, rt_fifo, rt_rr_arb), meant to match it cycle
+// for cycle and bit for bit at its ports; docs/grid-unit.md is the contract
+// (slot state machine, cell prefetch, "Per-cycle behaviour of rt_grid").
 //
 //   seq()   SC_METHOD on clk_i.posedge (and rst_ni.negedge, the RTL's async
 //           reset): every decision of the cycle from the registers at its start
-//           and the inputs (allocation, the four round-robin arbiters, FIFO
-//           room, credits, the closest-hit update, the exit test), then every
-//           register update, then the flop-driven outputs.
-//   comb()  SC_METHOD for the RTL's combinational paths from inputs: the
+//           and the inputs (allocation, the five round-robin arbiters, FIFO
+//           room, credits, the cell responses, the closest-hit update, the exit
+//           test), then every register update, then the flop-driven outputs.
+//   comb()  SC_METHOD for the RTL's combinational paths: the registered
 //           triangle response with its slot's ray into u_isect,
 //           perf_isect_fire_o, and ray_ready_o (free slots below cfg_slots_i).
+// Cell and triangle responses are registered at the boundary, as in the RTL:
+// a response sampled at the edge ending cycle c is used in cycle c+1.
 //   u_isect the intersection pipeline, instantiated as rt_grid instantiates
 //           rt_isect (req_ready_o unused: res_ready_i is tied to 1): either the
 //           cycle model rt_isect_model or the Verilated Vrt_isect_sc, chosen
@@ -33,11 +35,14 @@ namespace lancer::sc {
 //
 // No arithmetic is duplicated: per-ray setup, the step, the exit test and the
 // closest-hit order are fx::GridDda::setup/advance/holds and fx::closerResult
-// of the golden model (sw/golden/grid.h); the model only schedules them.
-// Latency and throughput are the RTL's: setup 3 cycles (SETUP -> VISIT), an
-// empty cell L + 3 cycles per slot, per cycle at most one ray accepted, one
-// visit, one index read, one triangle read, one test, one result update, one
-// exit test with a hit, any number of no-hit steps and one result.
+// of the golden model (sw/golden/grid.h); the model only schedules them. Each
+// slot is a C++ record (state, frontier DDA, a ring of CELL_QUEUE cell
+// entries with counts), the RTL's one-hot vectors and thermometer codes are
+// not mirrored: the two are independent formulations of the same contract.
+// Latency and throughput are the RTL's: setup 3 cycles (SETUP -> VISIT), per
+// cycle at most one ray accepted, one cell read (one DDA step), one visit,
+// one index read, one triangle read, one test, one result update, one exit
+// test and one result.
 class rt_grid_model : public sc_core::sc_module {
  public:
   sc_core::sc_in<bool> clk_i;
@@ -83,6 +88,7 @@ class rt_grid_model : public sc_core::sc_module {
   sc_core::sc_in<slot_t> tri_rsp_tag_i;
 
   sc_core::sc_out<bool> perf_isect_fire_o;
+  sc_core::sc_out<bool> perf_step_ready_o;
 
   SC_HAS_PROCESS(rt_grid_model);
   explicit rt_grid_model(sc_core::sc_module_name name, rt_isect_impl isect = rt_isect_impl::model);
@@ -91,16 +97,29 @@ class rt_grid_model : public sc_core::sc_module {
  private:
   enum class State : uint8_t { Free, Setup, Visit, WaitCell, Fetch, Check, Done };
 
-  // One rt_grid_slot.
+  // One entry of a slot's cell queue: a cell whose read has been issued.
+  struct CellEntry {
+    fx::GridDda dda;       // the DDA in this cell (its exit test)
+    uint32_t cellId = 0;
+    bool last = false;     // the ray leaves the grid after this cell
+    fx::GridCell data;     // the cell table entry, once its response is in
+  };
+
+  // One ray slot of rt_grid_slots.
   struct Slot {
     State state = State::Free;
     uint32_t rayId = 0;         // the ray's own id (visit and result records)
     isect_ray_t isectRay{};     // the ray with ray_id = slot index, for u_isect
-    fx::GridDda dda;            // cell, steps, accumulators, triple, dominant
+    fx::GridDda frontier;       // the next cell to request
+    bool frontierValid = false; // it lies in the grid
+    std::array<CellEntry, CELL_QUEUE> queue{};
+    int head = 0;               // queue[head]: the cell being entered or visited
+    int queued = 0;             // entries: cells requested and not finished
+    int outstanding = 0;        // cell reads without their response (the newest entries)
     uint32_t cells = 0, tests = 0;
-    uint32_t first = 0, count = 0, issued = 0, received = 0;
+    uint32_t first = 0, count = 0, issued = 0, received = 0;  // the current cell
     bool hasHit = false;
-    fx::IsectResult best;       // zero until the first hit (best_q <= '0)
+    fx::IsectResult best;       // zero until the first hit
   };
 
   // rt_fifo: Depth entries; in_ready = !full, out_valid = !empty, from the
@@ -138,6 +157,18 @@ class rt_grid_model : public sc_core::sc_module {
     void ack(int granted, int n) { ptr = granted + 1 == n ? 0 : granted + 1; }
   };
 
+  // The boundary registers of the cell and triangle responses.
+  struct CellRsp {
+    bool valid = false;
+    uint32_t tag = 0;
+    grid_cell_t data{};
+  };
+  struct TriRsp {
+    bool valid = false;
+    uint32_t tag = 0;
+    isect_tri_t data{};
+  };
+
   // rt_grid_setup's valid/slot/ray registers (the arithmetic is GridDda::setup at the slot load).
   struct SetupStage {
     bool valid = false;
@@ -147,6 +178,12 @@ class rt_grid_model : public sc_core::sc_module {
 
   void seq();
   void comb();
+  // A cell's data is in: its tests begin, or it is done at once (no triangles).
+  void startCell(Slot& s, const fx::GridCell& data);
+  // Every result of the current cell is in: CHECK with a hit, else DONE after
+  // the last cell, else on to the next cell.
+  static void cellDone(Slot& s);
+  static void nextCell(Slot& s);
   void reset();
   void writeOutputs();
   fx::GridRes resolution() const;
@@ -164,7 +201,9 @@ class rt_grid_model : public sc_core::sc_module {
 
   std::vector<Slot> slots_;
   SetupStage s1_, s2_;
-  RoundRobin visitArb_, idxArb_, checkArb_, doneArb_;
+  CellRsp cellRsp_;
+  TriRsp triRsp_;
+  RoundRobin cellArb_, visitArb_, idxArb_, checkArb_, doneArb_;
   Fifo<MemReq> cellQ_{MEMREQ_FIFO_DEPTH}, idxQ_{MEMREQ_FIFO_DEPTH}, triQ_{MEMREQ_FIFO_DEPTH};
   Fifo<MemReq> idxBuf_{IDX_BUF_DEPTH};  // {triangle id, slot}
   Fifo<Visit> visitQ_{VISIT_FIFO_DEPTH};

@@ -1,5 +1,7 @@
 #include "grid/rt_grid_tb.h"
 
+#include <array>
+
 #include <fmt/format.h>
 
 #include "golden/stimulus.h"
@@ -33,7 +35,8 @@ rt_grid_tb::rt_grid_tb(sc_core::sc_module_name name)
       tri_req_addr_o("tri_req_addr_o"),
       tri_req_tag_o("tri_req_tag_o"),
       tri_rsp_valid_i("tri_rsp_valid_i"),
-      perf_isect_fire_o("perf_isect_fire_o") {
+      perf_isect_fire_o("perf_isect_fire_o"),
+      perf_step_ready_o("perf_step_ready_o") {
   SC_METHOD(clock);
   sensitive << start_;
   dont_initialize();
@@ -149,11 +152,17 @@ void rt_grid_tb::sample(uint64_t cycle) {
     c.perfIsectFire = true;
     progress = true;
   }
+  if (started_ && perf_step_ready_o.read()) {
+    ++tally_.stepReadyCycles;
+    c.perfStepReady = true;
+  }
   const bool visitReady = visit_ready_i.read(), resReady = res_ready_i.read();
   if (visit_valid_o.read()) {
-    const fx::Wire wire = fromPort<GRID_VISIT_W>(visit_data_o.read());
+    std::array<uint32_t, size_t(fx::wireWords(GRID_VISIT_W))> wire{};
+    fromPort<GRID_VISIT_W>(visit_data_o.read(), wire);
     if (visitReady) {
-      const auto v = fx::unpackFields(fx::kGridVisitFields, wire);
+      std::array<fx::u128, fx::valueCount(fx::kGridVisitFields)> v{};
+      fx::unpackFields(fx::kGridVisitFields, wire, v);
       const size_t k = size_t(v[0]);
       if (k >= offered_) return abandon(fmt::format("a visit record for ray {} that is not in flight", k));
       (*job_->traces)[k].visits.push_back(uint32_t(v[1]));
@@ -161,12 +170,14 @@ void rt_grid_tb::sample(uint64_t cycle) {
       tally_.cycles = cycle - firstCycle_ + 1;
       progress = true;
     }
-    if (tracing) c.visitData = wire;
+    if (tracing) c.visitData.assign(wire.begin(), wire.end());
   }
   if (res_valid_o.read()) {
-    const fx::Wire wire = fromPort<GRID_RESULT_W>(res_data_o.read());
+    std::array<uint32_t, size_t(fx::wireWords(GRID_RESULT_W))> wire{};
+    fromPort<GRID_RESULT_W>(res_data_o.read(), wire);
     if (resReady) {
-      const auto v = fx::unpackFields(fx::kGridResFields, wire);
+      std::array<fx::u128, fx::valueCount(fx::kGridResFields)> v{};
+      fx::unpackFields(fx::kGridResFields, wire, v);
       const size_t k = size_t(v[0]);
       if (k >= offered_ || finished_[k]) {
         return abandon(fmt::format("a result for ray {} that is not in flight", k));
@@ -190,7 +201,7 @@ void rt_grid_tb::sample(uint64_t cycle) {
       tally_.cycles = cycle - firstCycle_ + 1;
       progress = true;
     }
-    if (tracing) c.resData = wire;
+    if (tracing) c.resData.assign(wire.begin(), wire.end());
   }
   if (tracing) {
     c.cycle = cycle - firstCycle_;

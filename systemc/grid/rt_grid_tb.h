@@ -33,6 +33,7 @@ struct rt_grid_tally {
   uint64_t accepted = 0, results = 0, visits = 0;
   uint64_t nodeReads = 0, indexReads = 0, triangleReads = 0;
   uint64_t isectTests = 0;
+  uint64_t stepReadyCycles = 0;  // cycles with perf_step_ready_o, from the first ray offered
   std::vector<uint32_t> resultCells;  // grid_res_t.cells per ray
   bool busy = false;
   std::string error;
@@ -50,7 +51,8 @@ struct rt_grid_tally {
 //             in, no memory response is outstanding and visit_valid_o is low;
 //             otherwise the cycle's handshakes are counted (reads from the
 //             request valids — req_ready is always 1 —, tests from
-//             perf_isect_fire_o, visits and results taken), and the next
+//             perf_isect_fire_o, cycles with a step ready from
+//             perf_step_ready_o, visits and results taken), and the next
 //             cycle's stimulus drawn from one std::mt19937_64(seed): the idle
 //             draw (only with no ray on offer and rays left) before the result
 //             stall draw before the visit stall draw, a draw only for a
@@ -90,6 +92,7 @@ SC_MODULE(rt_grid_tb) {
   sc_core::sc_in<slot_t> tri_req_tag_o;
   sc_core::sc_in<bool> tri_rsp_valid_i;
   sc_core::sc_in<bool> perf_isect_fire_o;
+  sc_core::sc_in<bool> perf_step_ready_o;
 
   SC_HAS_PROCESS(rt_grid_tb);
   explicit rt_grid_tb(sc_core::sc_module_name name);

@@ -14,6 +14,9 @@
 #ifndef LANCER_GRID_RAYS_IN_FLIGHT
 #error "LANCER_GRID_RAYS_IN_FLIGHT must come from the build (rtl/CMakeLists.txt, systemc/CMakeLists.txt)"
 #endif
+#ifndef LANCER_GRID_CELL_QUEUE
+#error "LANCER_GRID_CELL_QUEUE must come from the build (rtl/CMakeLists.txt, systemc/CMakeLists.txt)"
+#endif
 
 namespace lancer::sc {
 
@@ -23,10 +26,11 @@ constexpr int clog2(uint64_t n) {
   return bits;
 }
 
-// rt_grid's parameters as the Verilated model is built (-GRaysInFlight=...),
+// rt_grid's parameters as the Verilated model is built (-GRaysInFlight=..., -GCellQueue=...),
 // and the derived widths under the RTL's names.
 inline constexpr int RAYS_IN_FLIGHT = LANCER_GRID_RAYS_IN_FLIGHT;
 inline constexpr int IDX_BUF_DEPTH = 64;
+inline constexpr int CELL_QUEUE = LANCER_GRID_CELL_QUEUE;  // CellQueue: cells per slot read and not finished
 inline constexpr int SLOT_W = RAYS_IN_FLIGHT > 1 ? clog2(RAYS_IN_FLIGHT) : 1;
 inline constexpr int CFG_SLOTS_W = clog2(RAYS_IN_FLIGHT + 1);
 inline constexpr int GRID_RESOLUTION_W = fx::kGridResolutionBits;

@@ -18,24 +18,25 @@
 #include "driver/systemc_grid_device.h"
 #include "driver/systemc_isect_device.h"
 #include "driver/verilator_grid_device.h"
-#include "grid_sc_stimulus.h"
+#include "support/grid_cases.h"
 
 namespace lancer {
 namespace sc {
 void PrintTo(const GridCycle& c, std::ostream* os) {
   *os << fmt::format(
-      "cycle {}: ray {}{} res {}{} visit {}{} cell {}@{:#x}/{} idx {}@{:#x}/{} tri {}@{:#x}/{} fire {} res [{:x}] "
-      "visit [{:x}]",
+      "cycle {}: ray {}{} res {}{} visit {}{} cell {}@{:#x}/{} idx {}@{:#x}/{} tri {}@{:#x}/{} fire {} step ready {} "
+      "res [{:x}] visit [{:x}]",
       c.cycle, int(c.rayValid), int(c.rayReady), int(c.resValid), int(c.resReady), int(c.visitValid),
       int(c.visitReady), int(c.cellReq), c.cellAddr, c.cellTag, int(c.idxReq), c.idxAddr, c.idxTag, int(c.triReq),
-      c.triAddr, c.triTag, int(c.perfIsectFire), fmt::join(c.resData, "_"), fmt::join(c.visitData, "_"));
+      c.triAddr, c.triTag, int(c.perfIsectFire), int(c.perfStepReady), fmt::join(c.resData, "_"),
+      fmt::join(c.visitData, "_"));
 }
 }  // namespace sc
 
 namespace {
 
 using Impl = SystemCGridDevice::Impl;
-using sctest::roughGridOptions;
+using test::roughGridOptions;
 
 bool available(Impl impl) {
   if (impl == Impl::Rtl) return SystemCGridDevice::rtlAvailable();
@@ -55,13 +56,15 @@ TraversalRunStats expectSameTraces(GridDevice& device, const fx::GridImage& imag
   for (size_t k = 0; k < std::min(got.size(), want.size()); ++k) {
     if (got[k] == want[k]) continue;
     ADD_FAILURE() << what << ": grid " << image.res[0] << "x" << image.res[1] << "x" << image.res[2] << ", "
-                  << sctest::describe(rays[k]) << "\n  " << device.name() << ": " << sctest::describe(got[k])
-                  << "\n  golden: " << sctest::describe(want[k]);
+                  << test::describeGridRay(rays[k]) << "\n  " << device.name() << ": " << test::describeGridTrace(got[k])
+                  << "\n  golden: " << test::describeGridTrace(want[k]);
     if (++reported == 5) break;
   }
   EXPECT_EQ(r.rays, rays.size()) << what;
   EXPECT_EQ(r.steps, g.steps) << what;
-  EXPECT_EQ(r.nodeReads, g.nodeReads) << what;
+  // Cell reads: every cell entered, plus at most CellQueue - 1 prefetched past the last one per ray.
+  EXPECT_GE(r.nodeReads, g.nodeReads) << what;
+  EXPECT_LE(r.nodeReads, g.nodeReads + (test::kGridCellQueue - 1) * rays.size()) << what;
   EXPECT_EQ(r.indexReads, g.indexReads) << what;
   EXPECT_EQ(r.triangleReads, g.triangleReads) << what;
   EXPECT_EQ(r.isectTests, g.isectTests) << what;
@@ -80,6 +83,7 @@ void expectSameStats(const TraversalRunStats& a, const TraversalRunStats& b, con
   EXPECT_EQ(a.triangleReads, b.triangleReads) << what;
   EXPECT_EQ(a.isectTests, b.isectTests) << what;
   EXPECT_EQ(a.isectBusyCycles, b.isectBusyCycles) << what;
+  EXPECT_EQ(a.stepReadyCycles, b.stepReadyCycles) << what;
 }
 
 // ---- Each implementation against the golden model ---------------------------
@@ -103,7 +107,7 @@ std::string implName(const ::testing::TestParamInfo<Impl>& info) {
 INSTANTIATE_TEST_SUITE_P(Impl, ScGrid, ::testing::Values(Impl::Model, Impl::Rtl, Impl::ModelRtlIsect), implName);
 
 TEST_P(ScGrid, MatchesGoldenOnBunnyCameraRays) {
-  const sctest::QuantizedScene q = sctest::bunnyCamera(32, 32);
+  const test::GridScene q = test::bunnyCamera(32, 32);
   const fx::GridImage image = fx::buildGridImage(q.triangles, fx::chooseGridResolution(q.triangles));
   SystemCGridDevice device(GetParam());
   expectSameTraces(device, image, q.rays, roughGridOptions(1), "bunny 32x32, rough");
@@ -112,14 +116,14 @@ TEST_P(ScGrid, MatchesGoldenOnBunnyCameraRays) {
 TEST_P(ScGrid, MatchesGoldenOnHardCases) {
   SystemCGridDevice device(GetParam());
   uint64_t seed = 20;
-  for (const sctest::GridCase& c : sctest::hardGridCases()) {
+  for (const test::GridCase& c : test::gridHardCases()) {
     SCOPED_TRACE(c.name);
     expectSameTraces(device, c.image, c.rays, roughGridOptions(++seed), c.name);
   }
 }
 
 TEST_P(ScGrid, MatchesGoldenWithOneSlotAllSlotsAndNoBackpressure) {
-  const sctest::QuantizedScene q = sctest::bunnyCamera(10, 10);
+  const test::GridScene q = test::bunnyCamera(10, 10);
   const fx::GridImage image = fx::buildGridImage(q.triangles, fx::chooseGridResolution(q.triangles));
   SystemCGridDevice device(GetParam());
   expectSameTraces(device, image, q.rays, roughGridOptions(15, 1), "one slot");
@@ -130,7 +134,7 @@ TEST_P(ScGrid, MatchesGoldenWithOneSlotAllSlotsAndNoBackpressure) {
 }
 
 TEST_P(ScGrid, RepeatedRunsAreIndependentAndReproducible) {
-  const sctest::QuantizedScene q = sctest::bunnyCamera(6, 6);
+  const test::GridScene q = test::bunnyCamera(6, 6);
   const fx::GridImage image = fx::buildGridImage(q.triangles, fx::chooseGridResolution(q.triangles));
   std::vector<fx::GridTrace> a, b, c;
   SystemCGridDevice first(GetParam());
@@ -201,14 +205,14 @@ std::string optionsText(const TraversalRunOptions& o) {
 
 TEST(ScGridCycleAccuracy, ModelMatchesVerilatedRtlCycleForCycle) {
   if (!SystemCGridDevice::rtlAvailable()) GTEST_SKIP() << "no Verilated rt_grid in this build";
-  const sctest::QuantizedScene q = sctest::bunnyCamera(16, 16);
+  const test::GridScene q = test::bunnyCamera(16, 16);
   const fx::GridImage image = fx::buildGridImage(q.triangles, fx::chooseGridResolution(q.triangles));
-  std::vector<sctest::GridCase> cases{{"bunny 16x16", image, q.rays}};
-  for (sctest::GridCase& c : sctest::hardGridCases()) {
+  std::vector<test::GridCase> cases{{"bunny 16x16", image, q.rays}};
+  for (test::GridCase& c : test::gridHardCases()) {
     if (c.name.rfind("crowded", 0) == 0 || c.name.rfind("planes", 0) == 0) cases.push_back(std::move(c));
   }
   SystemCGridDevice model(Impl::Model), rtl(Impl::Rtl);
-  for (const sctest::GridCase& c : cases) {
+  for (const test::GridCase& c : cases) {
     for (const TraversalRunOptions& o : timingSettings()) {
       const std::string what = c.name + ", " + optionsText(o);
       std::vector<sc::GridCycle> mt, rt;
@@ -236,7 +240,7 @@ TEST(ScGridCycleAccuracy, ModelMatchesVerilatedRtlCycleForCycle) {
 }
 
 TEST(ScGridCycleAccuracy, StatsEqualTheCxxVerilatedDevice) {
-  const sctest::QuantizedScene q = sctest::bunnyCamera(16, 16);
+  const test::GridScene q = test::bunnyCamera(16, 16);
   const fx::GridImage image = fx::buildGridImage(q.triangles, fx::chooseGridResolution(q.triangles));
   VerilatorGridDevice cxx;
   std::vector<Impl> impls{Impl::Model};
@@ -269,7 +273,7 @@ TEST(ScGridDevice, NamesAndFactory) {
 
 TEST(ScGridDevice, GridAndIsectDevicesShareOneKernel) {
   // Either unit's SystemC system may run first; both are elaborated together.
-  const sctest::QuantizedScene q = sctest::bunnyCamera(4, 4);
+  const test::GridScene q = test::bunnyCamera(4, 4);
   const fx::GridImage image = fx::buildGridImage(q.triangles, {8, 8, 8});
   std::vector<IsectRequest> pairs;
   for (size_t i = 0; i < 20; ++i) pairs.push_back({q.rays[i % q.rays.size()], q.triangles[i]});
@@ -289,7 +293,7 @@ TEST(ScGridDevice, WaveformOfTheRtlOnRequest) {
   if (!SystemCGridDevice::rtlAvailable() || !SystemCGridDevice::wavesAvailable()) {
     GTEST_SKIP() << "no Verilated rt_grid with FST tracing in this build";
   }
-  const sctest::QuantizedScene q = sctest::bunnyCamera(3, 3);
+  const test::GridScene q = test::bunnyCamera(3, 3);
   const fx::GridImage image = fx::buildGridImage(q.triangles, {8, 8, 8});
   TraversalRunOptions o = roughGridOptions(50);
   o.stream.wavePath = ::testing::TempDir() + "rt_grid_sc_wave.fst";

@@ -1,15 +1,19 @@
-#include "grid_sc_stimulus.h"
+#include "support/grid_cases.h"
 
 #include <algorithm>
+#include <array>
 
 #include <fmt/format.h>
 
 #include "driver/quantize.h"
 #include "golden/isect.h"
 #include "scene/camera.h"
-#include "scene/scene.h"
 
-namespace lancer::sctest {
+#ifndef LANCER_DATA_DIR
+#error "LANCER_DATA_DIR must come from tests/CMakeLists.txt"
+#endif
+
+namespace lancer::test {
 
 namespace {
 
@@ -20,23 +24,45 @@ using fx::kPosMax;
 using fx::QRay;
 using fx::QTriangle;
 
-const Scene& bunny() {
-  static const Scene scene = loadScene(std::string(LANCER_DATA_DIR) + "/scenes/bunny.obj");
-  return scene;
-}
-
+// The quantizer's direction rule: the dominant component is exactly +-kDirMax.
 QRay normalized(QRay r) {
   const int k = fx::dominantAxis(r.dir);
   r.dir[k] = r.dir[k] < 0 ? -kDirMax : kDirMax;
   return r;
 }
 
-QRay randomRay(std::mt19937_64& rng, uint32_t id) {
+}  // namespace
+
+const Scene& bunnyScene() {
+  static const Scene scene = loadScene(std::string(LANCER_DATA_DIR) + "/scenes/bunny.obj");
+  return scene;
+}
+
+GridScene bunnyCamera(int width, int height) {
+  const Scene& scene = bunnyScene();
+  const Quantizer quantizer(scene.bounds);
+  GridScene q;
+  for (uint32_t i = 0; i < scene.size(); ++i) q.triangles.push_back(quantizer.quantize(scene.triangles[i], i));
+  CameraOptions camera;
+  camera.width = width;
+  camera.height = height;
+  const std::vector<Ray> rays = frameScene(scene, camera).generateRays();
+  for (uint32_t i = 0; i < rays.size(); ++i) {
+    if (auto r = quantizer.quantize(rays[i], i)) q.rays.push_back(r->q);
+  }
+  return q;
+}
+
+fx::GridImage defaultGridImage(const GridScene& scene) {
+  return fx::buildGridImage(scene.triangles, fx::chooseGridResolution(scene.triangles));
+}
+
+QRay randomGridRay(std::mt19937_64& rng, uint32_t id) {
   std::uniform_int_distribution<int64_t> pos(0, kPosMax), dir(-kDirMax, kDirMax);
   return normalized(QRay{id, {pos(rng), pos(rng), pos(rng)}, {dir(rng), dir(rng), dir(rng)}});
 }
 
-std::vector<QTriangle> randomTriangles(std::mt19937_64& rng, int count, int64_t spread) {
+std::vector<QTriangle> randomGridTriangles(std::mt19937_64& rng, int count, int64_t spread) {
   std::uniform_int_distribution<int64_t> pos(0, kPosMax), off(-spread, spread);
   std::vector<QTriangle> tris;
   for (int i = 0; i < count; ++i) {
@@ -50,23 +76,6 @@ std::vector<QTriangle> randomTriangles(std::mt19937_64& rng, int count, int64_t 
   return tris;
 }
 
-}  // namespace
-
-QuantizedScene bunnyCamera(int width, int height) {
-  const Scene& scene = bunny();
-  const Quantizer quantizer(scene.bounds);
-  QuantizedScene q;
-  for (uint32_t i = 0; i < scene.size(); ++i) q.triangles.push_back(quantizer.quantize(scene.triangles[i], i));
-  CameraOptions camera;
-  camera.width = width;
-  camera.height = height;
-  const std::vector<Ray> rays = frameScene(scene, camera).generateRays();
-  for (uint32_t i = 0; i < rays.size(); ++i) {
-    if (auto r = quantizer.quantize(rays[i], i)) q.rays.push_back(r->q);
-  }
-  return q;
-}
-
 TraversalRunOptions roughGridOptions(uint64_t seed, int raysInFlight) {
   TraversalRunOptions o;
   o.memLatency = 7;
@@ -78,36 +87,36 @@ TraversalRunOptions roughGridOptions(uint64_t seed, int raysInFlight) {
   return o;
 }
 
-std::vector<GridCase> hardGridCases() {
+std::vector<GridCase> gridHardCases() {
   std::vector<GridCase> cases;
-  const QuantizedScene bunnyTris = bunnyCamera(1, 1);
+  const GridScene bunny = bunnyCamera(1, 1);
 
   {  // Axis-parallel float rays with +0 and -0 components, through the quantizer.
-    const Scene& scene = bunny();
+    const Scene& scene = bunnyScene();
     const Quantizer quantizer(scene.bounds);
     std::mt19937_64 rng(4);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    GridCase c{"axis-parallel signed zeros, bunny 16^3", fx::buildGridImage(bunnyTris.triangles, {16, 16, 16}), {}};
+    GridCase c{"axis-parallel signed zeros, bunny 16^3", fx::buildGridImage(bunny.triangles, {16, 16, 16}), {}};
     const glm::vec3 lo = scene.bounds.lo, hi = scene.bounds.hi;
-    for (uint32_t i = 0; i < 200; ++i) {
+    for (uint32_t i = 0; i < 300; ++i) {
       const int axis = int(i % 3);
       Ray r;
       for (int a = 0; a < 3; ++a) r.origin[a] = lo[a] + (hi[a] - lo[a]) * u(rng);
       r.origin[axis] = (i & 8) ? hi[axis] + 1.0f : lo[axis] - 1.0f;
       r.dir = glm::vec3((i & 1) ? -0.0f : 0.0f, (i & 2) ? -0.0f : 0.0f, (i & 4) ? -0.0f : 0.0f);
       r.dir[axis] = (i & 8) ? -1.0f : 1.0f;
-      if (auto qr = quantizer.quantize(r, i)) c.rays.push_back(qr->q);
+      if (auto qr = quantizer.quantize(r, uint32_t(c.rays.size()))) c.rays.push_back(qr->q);
     }
     cases.push_back(std::move(c));
   }
-  {  // A 16^3 grid whose boundaries lie on lattice points.
+  {  // A 16^3 grid whose boundaries lie on lattice points (2^P / 16 apart).
     std::mt19937_64 rng(6);
     GridCase c{"planes, edges, corners, faces, tiny components, 16^3",
-               fx::buildGridImage(randomTriangles(rng, 300, kPosMax / 12), {16, 16, 16}), {}};
+               fx::buildGridImage(randomGridTriangles(rng, 300, kPosMax / 12), {16, 16, 16}), {}};
     const int64_t cell = int64_t(1) << (kPosBits - 4);
     std::uniform_int_distribution<int64_t> pick(0, 16), pos(0, kPosMax), dir(-kDirMax, kDirMax);
     auto boundary = [&] { return std::min(pick(rng) * cell, kPosMax); };
-    for (uint32_t i = 0; i < 360; ++i) {
+    for (uint32_t i = 0; i < 480; ++i) {
       QRay r{i, {pos(rng), pos(rng), pos(rng)}, {dir(rng), dir(rng), dir(rng)}};
       switch (i % 6) {
         case 0:  // in a plane between voxels, moving within it
@@ -143,28 +152,28 @@ std::vector<GridCase> hardGridCases() {
   }
   {  // One cell and the finest grid.
     std::mt19937_64 rng(8);
-    const std::vector<QTriangle> tris = randomTriangles(rng, 40, kPosMax / 6);
+    const std::vector<QTriangle> tris = randomGridTriangles(rng, 40, kPosMax / 6);
     std::vector<QRay> rays;
-    for (uint32_t i = 0; i < 40; ++i) rays.push_back(randomRay(rng, i));
+    for (uint32_t i = 0; i < 50; ++i) rays.push_back(randomGridRay(rng, i));
     cases.push_back({"1x1x1", fx::buildGridImage(tris, {1, 1, 1}), rays});
     cases.push_back({"256x256x256", fx::buildGridImage(tris, {256, 256, 256}), rays});
   }
   {  // Mostly empty cells; triangles spanning many cells.
     std::mt19937_64 rng(11);
-    std::vector<QTriangle> tris = randomTriangles(rng, 6, kPosMax / 64);
-    for (QTriangle t : randomTriangles(rng, 6, kPosMax)) {
+    std::vector<QTriangle> tris = randomGridTriangles(rng, 6, kPosMax / 64);
+    for (QTriangle t : randomGridTriangles(rng, 6, kPosMax)) {
       t.id = uint32_t(tris.size());
       tris.push_back(t);
     }
     GridCase c{"empty cells, large triangles, 64x48x40", fx::buildGridImage(tris, {64, 48, 40}), {}};
-    for (uint32_t i = 0; i < 200; ++i) c.rays.push_back(randomRay(rng, i));
+    for (uint32_t i = 0; i < 250; ++i) c.rays.push_back(randomGridRay(rng, i));
     cases.push_back(std::move(c));
   }
   {  // Thousands of triangles in one cell; rays through it and around it.
     std::mt19937_64 rng(13);
     std::uniform_int_distribution<int64_t> in(kPosMax / 4 + 2, kPosMax / 2 - 2);
     std::vector<QTriangle> tris;
-    for (uint32_t i = 0; i < 2000; ++i) {
+    for (uint32_t i = 0; i < 2500; ++i) {
       QTriangle t;
       t.id = i;
       for (auto& v : t.v)
@@ -172,31 +181,33 @@ std::vector<GridCase> hardGridCases() {
       tris.push_back(t);
     }
     GridCase c{"crowded cell, 4^3", fx::buildGridImage(tris, {4, 4, 4}), {}};
-    for (uint32_t i = 0; i < 16; ++i) {
-      QRay r = randomRay(rng, i);
+    for (uint32_t i = 0; i < 20; ++i) {
+      QRay r = randomGridRay(rng, i);
       if (i % 2 == 0) r.org = {in(rng), in(rng), in(rng)};  // starts in the crowded cell
       c.rays.push_back(r);
     }
     cases.push_back(std::move(c));
   }
-  {  // Random rays at a few resolutions over the bunny.
+  {  // Random rays over the bunny; one cell tests every triangle per ray, so fewer rays there.
     std::mt19937_64 rng(2);
     std::vector<QRay> rays;
-    for (uint32_t i = 0; i < 200; ++i) rays.push_back(randomRay(rng, i));
-    for (const GridRes& res : {GridRes{3, 7, 5}, GridRes{32, 32, 32}}) {
+    for (uint32_t i = 0; i < 300; ++i) rays.push_back(randomGridRay(rng, i));
+    for (const GridRes& res : {GridRes{1, 1, 1}, GridRes{3, 7, 5}, GridRes{32, 32, 32}}) {
+      const size_t count = res[0] == 1 ? 40 : rays.size();
       cases.push_back({fmt::format("bunny random rays {}x{}x{}", res[0], res[1], res[2]),
-                       fx::buildGridImage(bunnyTris.triangles, res), rays});
+                       fx::buildGridImage(bunny.triangles, res),
+                       std::vector<QRay>(rays.begin(), rays.begin() + ptrdiff_t(count))});
     }
   }
   return cases;
 }
 
-std::string describe(const fx::QRay& r) {
+std::string describeGridRay(const fx::QRay& r) {
   return fmt::format("ray {} org ({:#x}, {:#x}, {:#x}) dir ({}, {}, {})", r.id, r.org[0], r.org[1], r.org[2],
                      r.dir[0], r.dir[1], r.dir[2]);
 }
 
-std::string describe(const fx::GridTrace& t) {
+std::string describeGridTrace(const fx::TraversalTrace& t) {
   std::string s = fmt::format("{} cells [", t.visits.size());
   for (size_t i = 0; i < std::min<size_t>(t.visits.size(), 12); ++i) s += fmt::format("{} ", t.visits[i]);
   if (t.visits.size() > 12) s += "...";
@@ -210,4 +221,4 @@ std::string describe(const fx::GridTrace& t) {
   return s;
 }
 
-}  // namespace lancer::sctest
+}  // namespace lancer::test

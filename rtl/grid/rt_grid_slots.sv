@@ -1,0 +1,546 @@
+// rt_grid_slots: the ray slots of rt_grid — per-slot state machines, DDA
+// registers, cell queues, counters and closest hits — updated by the unit's
+// events, each addressed to one slot by index.
+//
+// Slot state machine (docs/grid-unit.md, "Slot state machine"):
+//   FREE -alloc-> SETUP -init-> VISIT -visit grant-> WAIT_CELL | FETCH | (cell done)
+//   WAIT_CELL -its cell arrives-> FETCH | (cell done)
+//   FETCH: one index read per index grant; (cell done) with its last result
+//   (cell done): a hit so far -> CHECK; else the last cell -> DONE; else the
+//                next cell -> VISIT
+//   CHECK -check grant-> DONE if the hit lies in the cell or it is the last,
+//                        else the next cell -> VISIT
+//   DONE -result grant (no cell read outstanding)-> FREE
+//
+// Cell prefetch. Each slot reads its cells ahead of the traversal: the DDA
+// registers hold the frontier, the next cell not yet requested; while the slot
+// has fewer than CellQueue cells requested and not finished, and the frontier
+// is in the grid, it asks for a cell read, and on the grant the frontier's id,
+// its exit accumulator (N of the crossing that leaves it) and whether it is the
+// last cell enter the slot's cell queue and the DDA steps (one shared stepper:
+// one grant per cycle). Responses fill the queue in order. The head of the
+// queue is the cell the ray is entering (VISIT) or in; its visit record is
+// written only when the ray really enters it, and a cell read past the cell
+// where the ray stops is simply dropped. A slot ends only when none of its
+// cell reads is outstanding, so a response never meets the slot's next ray.
+//
+// Storage: one-hot state vectors and thermometer-coded queue counts (N bits
+// each, reset), per-slot registers as arrays written by index (no reset;
+// written before read). Every update is addressed by an event's slot index, so
+// no logic runs per slot per cycle.
+//
+// Latency: every transition takes one clock edge. Throughput: per cycle one
+// allocation, one init, one cell grant (one DDA step), one cell response, one
+// visit, one index grant, one isect result (one closest-hit update), one check
+// grant (one exit test), one result.
+module rt_grid_slots #(
+  parameter int unsigned N         = 32,  // ray slots
+  parameter int unsigned CellQueue = 2,   // cells per slot requested and not finished (power of 2, >= 2)
+  parameter int unsigned SlotW     = (N > 1) ? $clog2(N) : 1,            // derived
+  parameter int unsigned QW        = (CellQueue > 1) ? $clog2(CellQueue) : 1  // derived
+) (
+  input  logic                                   clk_i,
+  input  logic                                   rst_ni,
+  input  logic [3*rt_pkg::GRID_RESOLUTION_W-1:0] cfg_res_i,     // {Rz, Ry, Rx}
+
+  // Allocation and per-ray setup.
+  output logic [N-1:0]                           free_o,
+  input  logic                                   alloc_i,
+  input  logic [SlotW-1:0]                       alloc_slot_i,
+  input  logic                                   init_i,
+  input  logic [SlotW-1:0]                       init_slot_i,
+  input  rt_pkg::isect_ray_t                     init_ray_i,
+  input  logic [3*rt_pkg::CELL_INDEX_W-1:0]      init_cell_i,
+  input  logic [3*rt_pkg::CELL_INDEX_W-1:0]      init_cell_id_i,
+  input  logic [2:0]                             init_active_i,
+  input  logic [2:0]                             init_neg_i,
+  input  logic [3*rt_pkg::GRID_ACC_W-1:0]        init_acc_i,
+  input  logic [3*rt_pkg::GRID_PAIR_W-1:0]       init_pair_i,
+  input  logic [rt_pkg::GRID_TRIPLE_W-1:0]       init_triple_i,
+  input  logic [rt_pkg::DIR_W-1:0]               init_dom_i,
+
+  // Cell reads: a granted slot's frontier cell is read and the DDA steps.
+  output logic [N-1:0]                           want_cell_o,
+  input  logic                                   cell_go_i,
+  input  logic [SlotW-1:0]                       cell_slot_i,
+  output logic [3*rt_pkg::CELL_INDEX_W-1:0]      cell_id_o,     // frontier of cell_slot_i
+  input  logic                                   cell_rsp_valid_i,
+  input  logic [SlotW-1:0]                       cell_rsp_tag_i,
+  input  rt_pkg::grid_cell_t                     cell_rsp_data_i,
+
+  // Visits: a granted slot enters the cell at the head of its queue.
+  output logic [N-1:0]                           want_visit_o,
+  input  logic                                   visit_go_i,
+  input  logic [SlotW-1:0]                       visit_slot_i,
+  output logic [31:0]                            visit_ray_id_o,
+  output logic [3*rt_pkg::CELL_INDEX_W-1:0]      visit_cell_id_o,
+
+  // Index reads of the current cell.
+  output logic [N-1:0]                           want_idx_o,
+  input  logic                                   idx_go_i,
+  input  logic [SlotW-1:0]                       idx_slot_i,
+  output logic [rt_pkg::MEM_ADDR_W-1:0]          idx_addr_o,    // first + issued
+
+  // Intersection: the ray of a triangle response, and the results.
+  input  logic                                   tri_valid_i,
+  input  logic [SlotW-1:0]                       tri_slot_i,
+  output rt_pkg::isect_ray_t                     tri_ray_o,     // ray_id = slot index
+  input  logic                                   res_valid_i,
+  input  rt_pkg::isect_res_t                     res_data_i,    // ray_id = slot index
+
+  // Exit tests of slots with a hit.
+  output logic [N-1:0]                           want_check_o,
+  input  logic                                   check_go_i,
+  input  logic [SlotW-1:0]                       check_slot_i,
+
+  // Results.
+  output logic [N-1:0]                           want_done_o,
+  input  logic                                   done_go_i,
+  input  logic [SlotW-1:0]                       done_slot_i,
+  output rt_pkg::grid_res_t                      done_rec_o,
+
+  // Performance: some slot can enter a cell this cycle.
+  output logic                                   step_ready_o
+);
+
+  localparam int RES_W    = rt_pkg::GRID_RESOLUTION_W;
+  localparam int CELL_W   = rt_pkg::CELL_INDEX_W;
+  localparam int ID_W     = 3 * CELL_W;
+  localparam int ACC_W    = rt_pkg::GRID_ACC_W;
+  localparam int PAIR_W   = rt_pkg::GRID_PAIR_W;
+  localparam int TRIPLE_W = rt_pkg::GRID_TRIPLE_W;
+  localparam int DIR_W    = rt_pkg::DIR_W;
+  localparam int POS_W    = rt_pkg::POS_W;
+  localparam int T_NUM_W  = rt_pkg::T_NUM_W;
+  localparam int BARY_W   = rt_pkg::BARY_W;
+  localparam int ADDR_W   = rt_pkg::MEM_ADDR_W;
+  localparam int DET_W    = rt_pkg::DET_ABS_W;
+  localparam int RAY_W    = rt_pkg::ISECT_RAY_W;
+  localparam int D        = CellQueue;
+  localparam int NE       = (2 ** SlotW) * D;   // entries addressed {slot, entry}
+  localparam int QW1      = QW + 1;
+  // Exit test: exit_acc * dominant * det  vs  t_num * triple.
+  localparam int LHS_W    = ACC_W + DIR_W + DET_W;
+  localparam int RHS_W    = T_NUM_W + TRIPLE_W;
+  localparam int CHK_W    = (LHS_W > RHS_W) ? LHS_W : RHS_W;
+  // Closest hit: t_num * det of the other.
+  localparam int CLO_W    = T_NUM_W + DET_W;
+
+  // ---- State vectors (bit s = slot s) -------------------------------------------
+  logic [N-1:0]   free_q, setup_q, visit_q, wait_q, fetch_q, check_q, done_q;
+  logic [N-1:0]   hit_q;     // a closest hit so far
+  logic [N-1:0]   iss_q;     // FETCH with index reads left to issue
+  logic [N-1:0]   front_q;   // the frontier lies in the grid (cells left to request)
+  logic [D*N-1:0] qc_q;      // bit j*N+s: slot s has more than j cells queued
+  logic [D*N-1:0] oc_q;      // bit j*N+s: more than j of its cell reads outstanding
+  logic [QW*N-1:0] hd_q;     // bit b*N+s: bit b of slot s's queue head entry
+
+  // ---- Per-slot registers (arrays, no reset) ----------------------------------------
+  logic [RAY_W-1:0]    ray_q   [N];   // the ray with ray_id = slot index (for rt_isect)
+  logic [31:0]         rid_q   [N];   // the ray's own id
+  logic [3*CELL_W-1:0] fcell_q [N];   // frontier cell {z, y, x}
+  logic [ID_W-1:0]     fid_q   [N];   // frontier cell id
+  logic [3*ACC_W-1:0]  facc_q  [N];   // frontier accumulators N[a]
+  logic [3*PAIR_W-1:0] pair_q  [N];
+  logic [2:0]          act_q   [N];
+  logic [2:0]          neg_q   [N];
+  logic [TRIPLE_W-1:0] triple_q[N];
+  logic [DIR_W-1:0]    dom_q   [N];
+  logic [31:0]         first_q [N], count_q [N], issued_q [N], received_q [N];  // the current cell
+  logic [31:0]         cells_q [N], tests_q [N];
+  // Closest hit (zero until the first): prim id, t_num, det, u_num, v_num.
+  logic [31:0]         bprim_q [N];
+  logic [T_NUM_W-1:0]  btnum_q [N];
+  logic [DET_W-1:0]    bdet_q  [N];
+  logic [BARY_W-1:0]   bu_q    [N], bv_q [N];
+  // Cell queue entries, index {slot, entry}.
+  logic [ID_W-1:0]     ecid_q  [NE];  // cell id
+  logic [ACC_W-1:0]    eexit_q [NE];  // exit accumulator of the cell
+  logic                elast_q [NE];  // the ray leaves the grid after this cell
+  logic [31:0]         efirst_q[NE];  // cell table entry, once the response is in
+  logic [31:0]         ecount_q[NE];
+
+  // Registered configuration: the stepper runs at least three cycles after a
+  // ray's acceptance, and the configuration is static while rays are in flight.
+  logic [3*RES_W-1:0]  cfg_q;
+  logic [ID_W-1:0]     stride_y_q, stride_z_q;
+  always_ff @(posedge clk_i) begin
+    cfg_q      <= cfg_res_i;
+    stride_y_q <= ID_W'(cfg_res_i[0 +: RES_W]);
+    stride_z_q <= ID_W'(cfg_res_i[0 +: RES_W]) * ID_W'(cfg_res_i[RES_W +: RES_W]);
+  end
+
+  // ---- Per-slot lookups in the coded vectors ------------------------------------------
+  // Queue count / outstanding reads (thermometer code) and queue head of slot s.
+  function automatic logic [QW:0] therm(input logic [D*N-1:0] t, input logic [SlotW-1:0] s);
+    therm = '0;
+    for (int j = 0; j < D; j++) begin
+      if (t[j*N + 32'(s)]) therm = QW1'(j + 1);
+    end
+  endfunction
+
+  function automatic logic [QW-1:0] head(input logic [QW*N-1:0] h, input logic [SlotW-1:0] s);
+    for (int b = 0; b < QW; b++) head[b] = h[b*N + 32'(s)];
+  endfunction
+
+  function automatic logic [N-1:0] onehot(input logic valid, input logic [SlotW-1:0] s);
+    onehot = valid ? (N'(1) << s) : '0;
+  endfunction
+
+  // ---- The DDA step of the granted frontier (fx::GridDda::nextAxis/advance) ---------
+  // Axis = argmin of N over the stepping axes, exact ties to the lowest; the
+  // exit accumulator is N[axis]; the ray leaves if the coordinate is 0 stepping
+  // down or R-1 stepping up (or no axis steps); else coordinate +-1, cell id
+  // +- stride, N[axis] += pair[axis] << P.
+  logic [ACC_W-1:0]    st_exit;
+  logic                st_leaves;
+  logic [3*CELL_W-1:0] st_cell;
+  logic [ID_W-1:0]     st_id;
+  logic [3*ACC_W-1:0]  st_acc;
+
+  always_comb begin : b_step
+    logic [3*ACC_W-1:0]  acc;
+    logic [3*PAIR_W-1:0] pair;
+    logic [3*CELL_W-1:0] cel;
+    logic [2:0]          act, neg;
+    logic [1:0]          axis;
+    logic [CELL_W-1:0]   coord;
+    logic [RES_W-1:0]    res_a;
+    logic [ID_W-1:0]     stride_a;
+    // Defaults for the cycles without a grant (every path assigns every variable).
+    acc       = '0;
+    pair      = '0;
+    cel       = '0;
+    act       = '0;
+    neg       = '0;
+    axis      = '0;
+    coord     = '0;
+    res_a     = '0;
+    stride_a  = '0;
+    st_exit   = '0;
+    st_leaves = 1'b0;
+    st_cell   = '0;
+    st_id     = '0;
+    st_acc    = '0;
+    if (cell_go_i) begin
+      acc  = facc_q[cell_slot_i];
+      pair = pair_q[cell_slot_i];
+      cel  = fcell_q[cell_slot_i];
+      act  = act_q[cell_slot_i];
+      neg  = neg_q[cell_slot_i];
+      // Strict < keeps the lowest axis on exact ties, as fx::GridDda::nextAxis().
+      st_exit = acc[0 +: ACC_W];
+      if (!act[0] || (act[1] && acc[ACC_W +: ACC_W] < st_exit)) begin
+        axis    = 2'd1;
+        st_exit = acc[ACC_W +: ACC_W];
+      end
+      if (act[2] && (!act[axis] || acc[2*ACC_W +: ACC_W] < st_exit)) begin
+        axis    = 2'd2;
+        st_exit = acc[2*ACC_W +: ACC_W];
+      end
+      coord    = cel[axis*CELL_W +: CELL_W];
+      res_a    = cfg_q[axis*RES_W +: RES_W];
+      stride_a = (axis == 2'd0) ? ID_W'(1) : ((axis == 2'd1) ? stride_y_q : stride_z_q);
+      st_leaves = (act == '0) || (neg[axis] ? (coord == '0) : (RES_W'(coord) == res_a - 1'b1));
+      st_cell   = cel;
+      st_cell[axis*CELL_W +: CELL_W] = neg[axis] ? coord - 1'b1 : coord + 1'b1;
+      st_id     = neg[axis] ? fid_q[cell_slot_i] - stride_a : fid_q[cell_slot_i] + stride_a;
+      st_acc    = acc;
+      st_acc[axis*ACC_W +: ACC_W] = st_exit + (ACC_W'(pair[axis*PAIR_W +: PAIR_W]) << POS_W);
+    end
+  end
+
+  // ---- Closest hit: one result per cycle against its slot's best ---------------------
+  // fx::closerResult: t1 < t2 as t_num1 * det2 < t_num2 * det1, ties to the lower prim id.
+  logic [SlotW-1:0] r_slot;
+  logic             take;
+  assign r_slot = res_data_i.ray_id[SlotW-1:0];
+
+  always_comb begin : b_closest
+    logic [CLO_W-1:0] clo_new, clo_old;
+    take    = 1'b0;
+    clo_new = '0;
+    clo_old = '0;
+    if (res_valid_i && res_data_i.hit) begin
+      clo_new = CLO_W'(res_data_i.t_num) * CLO_W'(bdet_q[r_slot]);
+      clo_old = CLO_W'(btnum_q[r_slot]) * CLO_W'(res_data_i.det);
+      take    = !hit_q[r_slot] || clo_new < clo_old ||
+                (clo_new == clo_old && res_data_i.prim_id < bprim_q[r_slot]);
+    end
+  end
+
+  // ---- Exit test of the check grant (fx::GridDda::holds) -----------------------------
+  // The hit lies within the cell: !(N_exit * dominant * det < t_num * triple).
+  logic [QW-1:0] k_hd;
+  logic          holds;
+  assign k_hd = head(hd_q, check_slot_i);
+
+  always_comb begin : b_exit
+    logic [CHK_W-1:0] lhs, rhs;
+    holds = 1'b0;
+    lhs   = '0;
+    rhs   = '0;
+    if (check_go_i) begin
+      lhs   = CHK_W'(eexit_q[{check_slot_i, k_hd}]) * CHK_W'(dom_q[check_slot_i]) * CHK_W'(bdet_q[check_slot_i]);
+      rhs   = CHK_W'(btnum_q[check_slot_i]) * CHK_W'(triple_q[check_slot_i]);
+      holds = !(lhs < rhs);
+    end
+  end
+
+  // ---- This cycle's events, per slot index --------------------------------------------
+  // Cell grant g: the new entry goes behind the queued ones.
+  logic [QW-1:0] g_push;
+  // Cell response t: it fills the oldest entry still waiting for its data.
+  logic [QW:0]   t_cnt, t_out;
+  logic [QW-1:0] t_fill;
+  // Visit v: the head entry, and whether its data is still outstanding.
+  logic [QW:0]   v_cnt, v_out;
+  logic [QW-1:0] v_hd;
+  logic          v_pending;
+  // Starts of a cell (its data is in): at the visit grant, or a WAIT_CELL slot's response.
+  logic          stv, stw;
+  rt_pkg::grid_cell_t v_data;
+  // Cells done (every result in) and what follows: a check, the end, or the next cell.
+  logic          cv, cw, cr;
+  logic          last_v, last_t, last_r, last_k;
+  logic [N-1:0]  check_set, done_set, pop_set, fetch_set;
+
+  always_comb begin
+    g_push    = head(hd_q, cell_slot_i) + QW'(therm(qc_q, cell_slot_i));
+    t_cnt     = therm(qc_q, cell_rsp_tag_i);
+    t_out     = therm(oc_q, cell_rsp_tag_i);
+    t_fill    = head(hd_q, cell_rsp_tag_i) + QW'(t_cnt - t_out);
+    v_cnt     = therm(qc_q, visit_slot_i);
+    v_out     = therm(oc_q, visit_slot_i);
+    v_hd      = head(hd_q, visit_slot_i);
+    v_pending = (v_cnt == v_out);
+    stv       = visit_go_i && (!v_pending || (cell_rsp_valid_i && cell_rsp_tag_i == visit_slot_i));
+    stw       = cell_rsp_valid_i && wait_q[cell_rsp_tag_i];
+    v_data    = v_pending ? cell_rsp_data_i : {efirst_q[{visit_slot_i, v_hd}], ecount_q[{visit_slot_i, v_hd}]};
+    cv        = stv && (v_data.count == '0);
+    cw        = stw && (cell_rsp_data_i.count == '0);
+    cr        = res_valid_i && (received_q[r_slot] + 1'b1 == count_q[r_slot]);
+    last_v    = elast_q[{visit_slot_i, v_hd}];
+    last_t    = elast_q[{cell_rsp_tag_i, head(hd_q, cell_rsp_tag_i)}];
+    last_r    = elast_q[{r_slot, head(hd_q, r_slot)}];
+    last_k    = elast_q[{check_slot_i, k_hd}];
+
+    fetch_set = onehot(stv && !cv, visit_slot_i) | onehot(stw && !cw, cell_rsp_tag_i);
+    // A hit so far: CHECK. No hit: DONE after the last cell, else the next cell.
+    check_set = onehot(cv && hit_q[visit_slot_i], visit_slot_i) |
+                onehot(cw && hit_q[cell_rsp_tag_i], cell_rsp_tag_i) |
+                onehot(cr && (hit_q[r_slot] || take), r_slot);
+    done_set  = onehot(cv && !hit_q[visit_slot_i] && last_v, visit_slot_i) |
+                onehot(cw && !hit_q[cell_rsp_tag_i] && last_t, cell_rsp_tag_i) |
+                onehot(cr && !(hit_q[r_slot] || take) && last_r, r_slot) |
+                onehot(check_go_i && (holds || last_k), check_slot_i);
+    pop_set   = onehot(cv && !hit_q[visit_slot_i] && !last_v, visit_slot_i) |
+                onehot(cw && !hit_q[cell_rsp_tag_i] && !last_t, cell_rsp_tag_i) |
+                onehot(cr && !(hit_q[r_slot] || take) && !last_r, r_slot) |
+                onehot(check_go_i && !(holds || last_k), check_slot_i);
+  end
+
+  // ---- State vectors ----------------------------------------------------------------
+  logic [N-1:0] alloc_oh, init_oh, cgo_oh, rsp_oh, vgo_oh, igo_oh, res_oh, chk_oh, done_oh;
+  assign alloc_oh = onehot(alloc_i, alloc_slot_i);
+  assign init_oh  = onehot(init_i, init_slot_i);
+  assign cgo_oh   = onehot(cell_go_i, cell_slot_i);
+  assign rsp_oh   = onehot(cell_rsp_valid_i, cell_rsp_tag_i);
+  assign vgo_oh   = onehot(visit_go_i, visit_slot_i);
+  assign igo_oh   = onehot(idx_go_i && (issued_q[idx_slot_i] + 1'b1 == count_q[idx_slot_i]), idx_slot_i);
+  assign res_oh   = onehot(cr, r_slot);
+  assign chk_oh   = onehot(check_go_i, check_slot_i);
+  assign done_oh  = onehot(done_go_i, done_slot_i);
+
+  // Thermometer counts: +1 where only inc, -1 where only dec.
+  logic [N-1:0] q_inc, q_dec, o_inc, o_dec;
+  logic [D*N-1:0] qc_d, oc_d;
+  assign q_inc = cgo_oh & ~pop_set;
+  assign q_dec = pop_set & ~cgo_oh;
+  assign o_inc = cgo_oh & ~rsp_oh;
+  assign o_dec = rsp_oh & ~cgo_oh;
+  for (genvar j = 0; j < D; j++) begin : g_therm
+    logic [N-1:0] q_below, q_above, o_below, o_above;
+    assign q_below = (j == 0) ? '1 : qc_q[(j > 0 ? j - 1 : 0)*N +: N];
+    assign q_above = (j == D - 1) ? '0 : qc_q[(j < D - 1 ? j + 1 : j)*N +: N];
+    assign o_below = (j == 0) ? '1 : oc_q[(j > 0 ? j - 1 : 0)*N +: N];
+    assign o_above = (j == D - 1) ? '0 : oc_q[(j < D - 1 ? j + 1 : j)*N +: N];
+    assign qc_d[j*N +: N] = ((q_inc & q_below) | (q_dec & q_above) | (~q_inc & ~q_dec & qc_q[j*N +: N]))
+                            & ~init_oh;
+    assign oc_d[j*N +: N] = (o_inc & o_below) | (o_dec & o_above) | (~o_inc & ~o_dec & oc_q[j*N +: N]);
+  end
+
+  // Queue heads: +1 (mod CellQueue) per pop, bit-sliced; 0 at init.
+  logic [QW*N-1:0] hd_d;
+  always_comb begin : b_head
+    logic [N-1:0] carry;
+    carry = pop_set;
+    for (int b = 0; b < QW; b++) begin
+      hd_d[b*N +: N] = (hd_q[b*N +: N] ^ carry) & ~init_oh;
+      carry          = carry & hd_q[b*N +: N];
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      free_q  <= '1;
+      setup_q <= '0;
+      visit_q <= '0;
+      wait_q  <= '0;
+      fetch_q <= '0;
+      check_q <= '0;
+      done_q  <= '0;
+      hit_q   <= '0;
+      iss_q   <= '0;
+      front_q <= '0;
+      qc_q    <= '0;
+      oc_q    <= '0;
+      hd_q    <= '0;
+    end else begin
+      free_q  <= (free_q & ~alloc_oh) | done_oh;
+      setup_q <= (setup_q & ~init_oh) | alloc_oh;
+      visit_q <= (visit_q & ~vgo_oh) | init_oh | pop_set;
+      wait_q  <= (wait_q & ~onehot(stw, cell_rsp_tag_i)) | (vgo_oh & ~onehot(stv, visit_slot_i));
+      fetch_q <= (fetch_q & ~res_oh) | fetch_set;
+      check_q <= (check_q & ~chk_oh) | check_set;
+      done_q  <= (done_q & ~done_oh) | done_set;
+      hit_q   <= (hit_q & ~init_oh) | onehot(res_valid_i && take, r_slot);
+      iss_q   <= (iss_q & ~igo_oh) | fetch_set;
+      front_q <= (front_q & ~onehot(cell_go_i && st_leaves, cell_slot_i)) | init_oh;
+      qc_q    <= qc_d;
+      oc_q    <= oc_d;
+      hd_q    <= hd_d;
+    end
+  end
+
+  // ---- Per-slot registers ---------------------------------------------------------------
+  // The ray as rt_isect sees it: the slot index in the ray id field.
+  rt_pkg::isect_ray_t init_isect_ray;
+  logic [31:0]        init_slot_id;
+  assign init_slot_id = 32'(init_slot_i);
+  always_comb begin
+    init_isect_ray        = init_ray_i;
+    init_isect_ray.ray_id = init_slot_id;
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (init_i) begin
+      ray_q[init_slot_i]    <= init_isect_ray;
+      rid_q[init_slot_i]    <= init_ray_i.ray_id;
+      fcell_q[init_slot_i]  <= init_cell_i;
+      fid_q[init_slot_i]    <= init_cell_id_i;
+      facc_q[init_slot_i]   <= init_acc_i;
+      pair_q[init_slot_i]   <= init_pair_i;
+      act_q[init_slot_i]    <= init_active_i;
+      neg_q[init_slot_i]    <= init_neg_i;
+      triple_q[init_slot_i] <= init_triple_i;
+      dom_q[init_slot_i]    <= init_dom_i;
+      cells_q[init_slot_i]  <= '0;
+      tests_q[init_slot_i]  <= '0;
+      bprim_q[init_slot_i]  <= '0;
+      btnum_q[init_slot_i]  <= '0;
+      bdet_q[init_slot_i]   <= '0;
+      bu_q[init_slot_i]     <= '0;
+      bv_q[init_slot_i]     <= '0;
+    end
+    if (cell_go_i) begin
+      ecid_q[{cell_slot_i, g_push}]  <= fid_q[cell_slot_i];
+      eexit_q[{cell_slot_i, g_push}] <= st_exit;
+      elast_q[{cell_slot_i, g_push}] <= st_leaves;
+      if (!st_leaves) begin
+        fcell_q[cell_slot_i] <= st_cell;
+        fid_q[cell_slot_i]   <= st_id;
+        facc_q[cell_slot_i]  <= st_acc;
+      end
+    end
+    if (cell_rsp_valid_i) begin
+      efirst_q[{cell_rsp_tag_i, t_fill}] <= cell_rsp_data_i.first;
+      ecount_q[{cell_rsp_tag_i, t_fill}] <= cell_rsp_data_i.count;
+    end
+    if (visit_go_i) cells_q[visit_slot_i] <= cells_q[visit_slot_i] + 1'b1;
+    if (stv) begin
+      first_q[visit_slot_i]    <= v_data.first;
+      count_q[visit_slot_i]    <= v_data.count;
+      tests_q[visit_slot_i]    <= tests_q[visit_slot_i] + v_data.count;
+      issued_q[visit_slot_i]   <= '0;
+      received_q[visit_slot_i] <= '0;
+    end
+    if (stw) begin
+      first_q[cell_rsp_tag_i]    <= cell_rsp_data_i.first;
+      count_q[cell_rsp_tag_i]    <= cell_rsp_data_i.count;
+      tests_q[cell_rsp_tag_i]    <= tests_q[cell_rsp_tag_i] + cell_rsp_data_i.count;
+      issued_q[cell_rsp_tag_i]   <= '0;
+      received_q[cell_rsp_tag_i] <= '0;
+    end
+    if (idx_go_i) issued_q[idx_slot_i] <= issued_q[idx_slot_i] + 1'b1;
+    if (res_valid_i) begin
+      received_q[r_slot] <= received_q[r_slot] + 1'b1;
+      if (take) begin
+        bprim_q[r_slot] <= res_data_i.prim_id;
+        btnum_q[r_slot] <= res_data_i.t_num;
+        bdet_q[r_slot]  <= res_data_i.det;
+        bu_q[r_slot]    <= res_data_i.u_num;
+        bv_q[r_slot]    <= res_data_i.v_num;
+      end
+    end
+  end
+
+  // ---- Outputs ----------------------------------------------------------------------------
+  assign free_o          = free_q;
+  assign want_cell_o     = (visit_q | wait_q | fetch_q | check_q) & front_q & ~qc_q[(D-1)*N +: N];
+  assign want_visit_o    = visit_q & qc_q[0 +: N];
+  assign want_idx_o      = iss_q;
+  assign want_check_o    = check_q;
+  assign want_done_o     = done_q & ~oc_q[0 +: N];
+  assign step_ready_o    = (want_visit_o != '0);
+  assign cell_id_o       = fid_q[cell_slot_i];
+  assign visit_ray_id_o  = rid_q[visit_slot_i];
+  assign visit_cell_id_o = ecid_q[{visit_slot_i, v_hd}];
+  assign idx_addr_o      = ADDR_W'(first_q[idx_slot_i] + issued_q[idx_slot_i]);
+  assign tri_ray_o       = ray_q[tri_slot_i];
+
+  always_comb begin
+    done_rec_o.ray_id  = rid_q[done_slot_i];
+    done_rec_o.cells   = cells_q[done_slot_i];
+    done_rec_o.tests   = tests_q[done_slot_i];
+    done_rec_o.hit     = hit_q[done_slot_i];
+    done_rec_o.prim_id = bprim_q[done_slot_i];
+    done_rec_o.t_num   = btnum_q[done_slot_i];
+    done_rec_o.det     = bdet_q[done_slot_i];
+    done_rec_o.u_num   = bu_q[done_slot_i];
+    done_rec_o.v_num   = bv_q[done_slot_i];
+  end
+
+`ifdef RT_ASSERT_ON
+  logic r_expected;  // a result is due: fewer received than issued
+  assign r_expected = received_q[r_slot] != issued_q[r_slot];
+
+  // Events name slots in the right state.
+  a_alloc_free : assert property (@(posedge clk_i) disable iff (!rst_ni) alloc_i |-> free_q[alloc_slot_i]);
+  a_init_setup : assert property (@(posedge clk_i) disable iff (!rst_ni) init_i |-> setup_q[init_slot_i]);
+  a_cell_go    : assert property (@(posedge clk_i) disable iff (!rst_ni) cell_go_i |-> want_cell_o[cell_slot_i]);
+  a_visit_go   : assert property (@(posedge clk_i) disable iff (!rst_ni) visit_go_i |-> want_visit_o[visit_slot_i]);
+  a_idx_go     : assert property (@(posedge clk_i) disable iff (!rst_ni) idx_go_i |-> iss_q[idx_slot_i]);
+  a_check_go   : assert property (@(posedge clk_i) disable iff (!rst_ni) check_go_i |-> check_q[check_slot_i]);
+  a_done_go    : assert property (@(posedge clk_i) disable iff (!rst_ni) done_go_i |-> want_done_o[done_slot_i]);
+  // Responses: a cell response answers an outstanding read of its slot (the
+  // head's, for a slot waiting in WAIT_CELL); triangles and results arrive for
+  // a slot in FETCH that expects them.
+  a_cell_rsp_slot : assert property (@(posedge clk_i) disable iff (!rst_ni)
+      cell_rsp_valid_i |-> t_out != '0);
+  a_cell_rsp_head : assert property (@(posedge clk_i) disable iff (!rst_ni)
+      cell_rsp_valid_i && wait_q[cell_rsp_tag_i] |-> t_cnt == t_out);
+  a_tri_rsp_slot : assert property (@(posedge clk_i) disable iff (!rst_ni)
+      tri_valid_i |-> fetch_q[tri_slot_i]);
+  a_res_fetch : assert property (@(posedge clk_i) disable iff (!rst_ni)
+      res_valid_i |-> fetch_q[r_slot] && r_expected);
+  // Every slot is in one state (parity catches any slot in two).
+  a_states : assert property (@(posedge clk_i) disable iff (!rst_ni)
+      (free_q | setup_q | visit_q | wait_q | fetch_q | check_q | done_q) == '1 &&
+      (free_q ^ setup_q ^ visit_q ^ wait_q ^ fetch_q ^ check_q ^ done_q) == '1);
+  if (CellQueue < 2 || (CellQueue & (CellQueue - 1)) != 0) begin : g_queue_check
+    $error("rt_grid_slots: CellQueue must be a power of two >= 2");
+  end
+`endif
+
+endmodule
