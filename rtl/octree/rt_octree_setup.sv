@@ -1,0 +1,182 @@
+// rt_octree_setup: per-ray setup of the parametric octree walk
+// (fx::OctreeRaySetup::setup), bit exact.
+//
+// Multiplications only, in two register stages plus the output logic:
+//   stage 1  mirror bits a (4, 2, 1 for a negative x, y, z), the mirrored
+//            origin o' = 2^P - o on mirrored axes (P+1 bits), |d|, the active
+//            axes (d != 0), dominant = max |d|
+//   stage 2  pair[a] = product of |d_b| over the other active axes (1 if none),
+//            common = product of |d| over all active axes (1 if none)
+//   output   the root's plane parameters over the common denominator,
+//            T0[a] = -o'[a] * pair[a], T1[a] = (2^P - o'[a]) * pair[a]
+//            (inactive axes: -inf / +inf, values 0), and the root test
+//            max t0 < min t1 over the active axes (true with none active)
+//
+// Latency:    a ray accepted at edge t (valid_i high in the cycle before t) is on
+//             valid_o after edge t+1; the slot loads it at edge t+2.
+// Throughput: one ray per cycle; the pipeline never stalls (the slot is
+//             reserved when the ray is accepted).
+module rt_octree_setup #(
+  parameter int unsigned SlotW = 5  // width of the slot index carried along
+) (
+  input  logic                                   clk_i,
+  input  logic                                   rst_ni,
+
+  input  logic                                   valid_i,
+  input  logic [SlotW-1:0]                       slot_i,
+  input  rt_pkg::isect_ray_t                     ray_i,
+
+  output logic                                   valid_o,
+  output logic [SlotW-1:0]                       slot_o,
+  output rt_pkg::isect_ray_t                     ray_o,
+  output logic [2:0]                             mirror_o,  // a: bit 2 = x
+  output logic [2:0]                             active_o,  // bit a = axis a crosses planes
+  output logic [3*(rt_pkg::POS_W+1)-1:0]         origin_o,  // o' {z, y, x}
+  output logic [3*rt_pkg::OCTREE_T_W-1:0]        t0_o,      // {z, y, x}, signed each
+  output logic [3*rt_pkg::OCTREE_T_W-1:0]        t1_o,      // {z, y, x}, signed each
+  output logic [rt_pkg::OCTREE_COMMON_W-1:0]     common_o,
+  output logic [rt_pkg::DIR_W-1:0]               dom_o,
+  output logic                                   enter_o    // the ray meets the root
+);
+
+  localparam int P      = rt_pkg::POS_W;
+  localparam int DIR_W  = rt_pkg::DIR_W;
+  localparam int MAG_W  = DIR_W - 1;             // |d| <= DIR_MAX < 2^(D-1)
+  localparam int PAIR_W = 2 * MAG_W;
+  localparam int COM_W  = rt_pkg::OCTREE_COMMON_W;
+  localparam int T_W    = rt_pkg::OCTREE_T_W;
+  localparam int ORG_W  = P + 1;
+
+  // ---- Stage 1 ---------------------------------------------------------------
+  logic                 s1_valid_q;
+  logic [SlotW-1:0]     s1_slot_q;
+  rt_pkg::isect_ray_t   s1_ray_q;
+  logic [2:0]           s1_active_q, s1_neg_q;
+  logic [3*MAG_W-1:0]   s1_mag_q;
+  logic [3*ORG_W-1:0]   s1_org_q;
+  logic [DIR_W-1:0]     s1_dom_q;
+
+  logic [2:0]           active_d, neg_d;
+  logic [3*MAG_W-1:0]   mag_d;
+  logic [3*ORG_W-1:0]   org_d;
+  logic [DIR_W-1:0]     dom_d;
+
+  always_comb begin
+    dom_d = '0;
+    for (int a = 0; a < 3; a++) begin
+      logic [DIR_W-1:0] d, mag;
+      logic [ORG_W-1:0] o;
+      d = ray_i.dir[a];
+      o = ORG_W'(ray_i.org[a]);
+      mag = d[DIR_W-1] ? DIR_W'(-d) : d;
+      active_d[a] = (d != '0);
+      neg_d[a]    = d[DIR_W-1];
+      mag_d[a*MAG_W +: MAG_W] = mag[MAG_W-1:0];
+      // min + max - o: mirrored about the root's centre, not about 0.
+      org_d[a*ORG_W +: ORG_W] = d[DIR_W-1] ? (ORG_W'(1) << P) - o : o;
+      if (mag > dom_d) dom_d = mag;
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      s1_valid_q <= 1'b0;
+    end else begin
+      s1_valid_q <= valid_i;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (valid_i) begin
+      s1_slot_q   <= slot_i;
+      s1_ray_q    <= ray_i;
+      s1_active_q <= active_d;
+      s1_neg_q    <= neg_d;
+      s1_mag_q    <= mag_d;
+      s1_org_q    <= org_d;
+      s1_dom_q    <= dom_d;
+    end
+  end
+
+  // ---- Stage 2 ---------------------------------------------------------------
+  logic                 s2_valid_q;
+  logic [SlotW-1:0]     s2_slot_q;
+  rt_pkg::isect_ray_t   s2_ray_q;
+  logic [2:0]           s2_active_q, s2_neg_q;
+  logic [3*ORG_W-1:0]   s2_org_q;
+  logic [3*PAIR_W-1:0]  s2_pair_q;
+  logic [COM_W-1:0]     s2_common_q;
+  logic [DIR_W-1:0]     s2_dom_q;
+
+  logic [3*MAG_W-1:0]   m;           // |d| masked to 1 on inactive axes
+  logic [3*PAIR_W-1:0]  pair_d;
+  logic [COM_W-1:0]     common_d;
+
+  always_comb begin
+    for (int a = 0; a < 3; a++) begin
+      m[a*MAG_W +: MAG_W] = s1_active_q[a] ? s1_mag_q[a*MAG_W +: MAG_W] : MAG_W'(1);
+    end
+    pair_d[0*PAIR_W +: PAIR_W] = PAIR_W'(m[1*MAG_W +: MAG_W]) * PAIR_W'(m[2*MAG_W +: MAG_W]);
+    pair_d[1*PAIR_W +: PAIR_W] = PAIR_W'(m[0*MAG_W +: MAG_W]) * PAIR_W'(m[2*MAG_W +: MAG_W]);
+    pair_d[2*PAIR_W +: PAIR_W] = PAIR_W'(m[0*MAG_W +: MAG_W]) * PAIR_W'(m[1*MAG_W +: MAG_W]);
+    common_d = COM_W'(pair_d[0*PAIR_W +: PAIR_W]) * COM_W'(m[0*MAG_W +: MAG_W]);
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      s2_valid_q <= 1'b0;
+    end else begin
+      s2_valid_q <= s1_valid_q;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (s1_valid_q) begin
+      s2_slot_q   <= s1_slot_q;
+      s2_ray_q    <= s1_ray_q;
+      s2_active_q <= s1_active_q;
+      s2_neg_q    <= s1_neg_q;
+      s2_org_q    <= s1_org_q;
+      s2_pair_q   <= pair_d;
+      s2_common_q <= common_d;
+      s2_dom_q    <= s1_dom_q;
+    end
+  end
+
+  // ---- Output: the root's plane parameters and the root test ------------------
+  // |plane - o'| <= 2^P and pair < 2^(2(D-1)): every product fits T_W signed.
+  logic signed [T_W-1:0] t0 [3];
+  logic signed [T_W-1:0] t1 [3];
+
+  always_comb begin
+    for (int a = 0; a < 3; a++) begin
+      logic [T_W-1:0] low, high;
+      low  = T_W'(s2_org_q[a*ORG_W +: ORG_W]) * T_W'(s2_pair_q[a*PAIR_W +: PAIR_W]);
+      high = (T_W'(s2_pair_q[a*PAIR_W +: PAIR_W]) << P) - low;
+      t0[a] = s2_active_q[a] ? -$signed(low) : '0;
+      t1[a] = s2_active_q[a] ? $signed(high) : '0;
+      t0_o[a*T_W +: T_W] = t0[a];
+      t1_o[a*T_W +: T_W] = t1[a];
+    end
+  end
+
+  // Revelles' root test: the ray meets the root's interior, enter < leave.
+  always_comb begin
+    enter_o = 1'b1;
+    for (int a = 0; a < 3; a++) begin
+      for (int b = 0; b < 3; b++) begin
+        if (s2_active_q[a] && s2_active_q[b] && !(t0[a] < t1[b])) enter_o = 1'b0;
+      end
+    end
+  end
+
+  assign valid_o  = s2_valid_q;
+  assign slot_o   = s2_slot_q;
+  assign ray_o    = s2_ray_q;
+  assign mirror_o = {s2_neg_q[0], s2_neg_q[1], s2_neg_q[2]};
+  assign active_o = s2_active_q;
+  assign origin_o = s2_org_q;
+  assign common_o = s2_common_q;
+  assign dom_o    = s2_dom_q;
+
+endmodule

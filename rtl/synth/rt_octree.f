@@ -1,0 +1,8 @@
+# Sources of rt_octree for scripts/synth, relative to rtl/, in compile order
+# (the generated package is read first by the script).
+lib/rt_fifo.sv
+lib/rt_rr_arb.sv
+isect/rt_isect.sv
+octree/rt_octree_setup.sv
+octree/rt_octree_slot.sv
+octree/rt_octree.sv

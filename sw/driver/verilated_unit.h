@@ -1,0 +1,178 @@
+#pragma once
+
+// What every Verilated traversal-unit device (rt_octree; rt_grid could use it
+// too) does the same way around its own ports: owning the Verilated model,
+// clocking it one cycle at a time with one evaluation per cycle, the FST
+// waveform, turning a failed SVA assertion into an exception, checking the
+// run options, and the seeded stimulus (input bubbles, output stalls, the
+// three memory read ports) that every model of a unit draws in the same order.
+
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "driver/traversal_device.h"
+#include "golden/stimulus.h"
+#include "verilated.h"
+#include "verilated_fst_c.h"
+
+namespace lancer {
+
+// A Verilated model (`Top`, with ports clk_i and rst_ni) and its clock.
+//
+// Cycle discipline (two evaluations per cycle): at the start of a cycle the
+// outputs that depend on registers only are valid (the previous edge's
+// evaluation computed them); the caller reads them, sets the inputs of the
+// cycle and calls settle(), which evaluates the combinational logic with clk_i
+// low (outputs combinational in an input are then valid too), then tick(),
+// the rising edge that samples those inputs. The SVA checks sample their
+// signals at the edge, so the inputs must be settled before it.
+template <class Top>
+class VerilatedUnit {
+ public:
+  explicit VerilatedUnit(std::string name) : name_(std::move(name)), context_(std::make_unique<VerilatedContext>()) {
+    context_->traceEverOn(true);
+    context_->fatalOnError(false);  // a failed assertion becomes an exception (checkAssertions)
+    top_ = std::make_unique<Top>(context_.get(), name_.c_str());
+  }
+  // Verilator reports errors (a failed assertion's $stop) to, and destroys
+  // scopes through, the calling thread's current context: the last one
+  // created or selected, whichever model it belongs to. So the unit selects
+  // its own context before it runs the model (reset) and before destroying it,
+  // then hands the thread back to the context that was current.
+  ~VerilatedUnit() {
+    VerilatedContext* const previous = Verilated::threadContextp();
+    VerilatedContext* const mine = context_.get();
+    select();
+    closeWave();
+    if (top_) top_->final();
+    top_.reset();
+    context_.reset();
+    Verilated::threadContextp(previous != mine ? previous : Verilated::defaultContextp());
+  }
+  VerilatedUnit(const VerilatedUnit&) = delete;
+  VerilatedUnit& operator=(const VerilatedUnit&) = delete;
+
+  Top& top() { return *top_; }
+  uint64_t cycle() const { return cycle_; }
+
+  // rst_ni low for two cycles, then high for one, with every input at the
+  // idle values `idle(top)` sets; clears the error of an earlier run.
+  template <class Idle>
+  void reset(Idle idle) {
+    select();
+    context_->gotError(false);  // a failed assertion of an earlier run is reported already
+    context_->gotFinish(false);
+    top_->rst_ni = 0;
+    idle(*top_);
+    for (int i = 0; i < 2; ++i) {
+      settle();
+      tick();
+    }
+    top_->rst_ni = 1;
+    settle();
+    tick();
+  }
+
+  // The inputs set for this cycle through the combinational logic (clk_i low).
+  void settle() {
+    top_->clk_i = 0;
+    top_->eval();
+  }
+
+  // The rising edge that ends the current cycle (after settle()).
+  void tick() {
+    if (wave_) wave_->dump(2 * cycle_);
+    context_->time(2 * cycle_ + 1);
+    top_->clk_i = 1;
+    top_->eval();
+    if (wave_) wave_->dump(2 * cycle_ + 1);
+    ++cycle_;
+    context_->time(2 * cycle_);
+    checkAssertions();
+  }
+
+  // Makes this unit's context the calling thread's (see the destructor).
+  void select() { Verilated::threadContextp(context_.get()); }
+
+  void checkAssertions() const {
+    if (context_->gotError()) {
+      throw std::runtime_error(
+          fmt::format("rtl: an assertion of {} failed near cycle {} (see the %Error line above)", name_, cycle_));
+    }
+  }
+
+  void openWave(const std::string& path) {
+    closeWave();
+    if (path.empty()) return;
+    wave_ = std::make_unique<VerilatedFstC>();
+    top_->trace(wave_.get(), 99);
+    wave_->open(path.c_str());
+    if (!wave_->isOpen()) {
+      wave_.reset();
+      throw std::runtime_error("rtl: cannot write waveform " + path);
+    }
+  }
+  void closeWave() {
+    if (!wave_) return;
+    wave_->dump(2 * cycle_);
+    wave_->close();
+    wave_.reset();
+  }
+
+ private:
+  std::string name_;
+  std::unique_ptr<VerilatedContext> context_;
+  std::unique_ptr<Top> top_;
+  std::unique_ptr<VerilatedFstC> wave_;
+  uint64_t cycle_ = 0;
+};
+
+// InputError for options a Verilated traversal unit cannot run: raysInFlight
+// outside 0..maxSlots, a memory latency below 1, a negative jitter.
+// `unit` names it ("grid", "octree"), `cmakeVariable` the build option for more slots.
+inline void checkTraversalOptions(const TraversalRunOptions& options, int maxSlots, const char* unit,
+                                  const char* cmakeVariable) {
+  if (options.raysInFlight < 0 || options.raysInFlight > maxSlots) {
+    throw InputError(fmt::format("rays in flight {} is out of range: the RTL {} unit was built with {} ray slots "
+                                 "(use 1..{}, or 0 for all; rebuild with -D{} for more)",
+                                 options.raysInFlight, unit, maxSlots, maxSlots, cmakeVariable));
+  }
+  if (options.memLatency < 1 || options.memLatencyJitter < 0) {
+    throw InputError(fmt::format("memory latency {} (jitter {}) is out of range: latency >= 1, jitter >= 0",
+                                 options.memLatency, options.memLatencyJitter));
+  }
+}
+
+// The seeded stimulus of a traversal-unit run, drawn in the same order by
+// every model: per cycle one draw each for the input bubble (only while no ray
+// is on offer), the result stall and the visit stall; the node/cell, index
+// and triangle ports are fx::MemoryReadPort with seeds seed*3+1, +2, +3.
+struct TraversalStimulus {
+  explicit TraversalStimulus(const TraversalRunOptions& o)
+      : rng(o.stream.seed),
+        idle(o.stream.inputIdleProbability, rng),
+        stallRes(o.stream.outputStallProbability, rng),
+        stallVisit(o.stream.outputStallProbability, rng),
+        nodePort(o.memLatency, o.memLatencyJitter, o.stream.seed * 3 + 1),
+        idxPort(o.memLatency, o.memLatencyJitter, o.stream.seed * 3 + 2),
+        triPort(o.memLatency, o.memLatencyJitter, o.stream.seed * 3 + 3) {}
+  TraversalStimulus(const TraversalStimulus&) = delete;
+  TraversalStimulus& operator=(const TraversalStimulus&) = delete;
+
+  bool memoryIdle() const { return nodePort.idle() && idxPort.idle() && triPort.idle(); }
+
+  std::mt19937_64 rng;
+  fx::Coin idle, stallRes, stallVisit;
+  fx::MemoryReadPort nodePort, idxPort, triPort;
+};
+
+// No progress (a ray accepted, a test, a visit or a result) for this many cycles ends a run.
+inline constexpr uint64_t kTraversalWatchdogCycles = 1000000;
+
+}  // namespace lancer

@@ -1,0 +1,302 @@
+// The Verilated rt_octree against the golden octree model (fx::traverseOctree):
+// for every ray the same nodes in the same order, the same number of tests and
+// the same closest hit, bit for bit, under memory latency jitter, output
+// backpressure and input bubbles; the same memory reads as the golden device
+// counts them (one child group per interior node entered, one per refill).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "driver/devices.h"
+#include "driver/traversal_device.h"
+#include "driver/verilator_octree_device.h"
+#include "golden/isect.h"
+#include "scene/scene.h"
+#include "support/octree_cases.h"
+
+namespace lancer {
+namespace {
+
+using fx::kDirMax;
+using fx::kPosMax;
+using fx::OctreeImage;
+using fx::QRay;
+using test::describeRay;
+using test::describeTrace;
+using test::OctreeCase;
+using test::roughOctreeOptions;
+
+VerilatorOctreeDevice& rtl() {
+  static VerilatorOctreeDevice device;
+  return device;
+}
+
+// Runs both devices, expects equal traces per ray and equal counts; returns the RTL's stats.
+TraversalRunStats expectSameTraces(const OctreeImage& image, const std::vector<QRay>& rays,
+                                   const TraversalRunOptions& options) {
+  GoldenOctreeDevice golden;
+  std::vector<fx::TraversalTrace> want, got;
+  const TraversalRunStats g = golden.run(image, rays, want, options);
+  const TraversalRunStats r = rtl().run(image, rays, got, options);
+  EXPECT_EQ(got.size(), want.size());
+  int reported = 0;
+  for (size_t k = 0; k < std::min(got.size(), want.size()); ++k) {
+    if (got[k] == want[k]) continue;
+    ADD_FAILURE() << "octree depth " << image.depth << " (" << image.nodes.size() << " nodes), " << describeRay(rays[k])
+                  << "\n  rtl:    " << describeTrace(got[k]) << "\n  golden: " << describeTrace(want[k]);
+    if (++reported == 5) break;
+  }
+  EXPECT_EQ(r.steps, g.steps);
+  EXPECT_EQ(r.nodeReads, g.nodeReads);
+  EXPECT_EQ(r.indexReads, g.indexReads);
+  EXPECT_EQ(r.triangleReads, g.triangleReads);
+  EXPECT_EQ(r.isectTests, g.isectTests);
+  EXPECT_EQ(r.isectBusyCycles, r.isectTests);
+  EXPECT_EQ(r.rays, rays.size());
+  EXPECT_TRUE(r.cycleAccurate);
+  EXPECT_GT(r.cycles, 0u);
+  if (g.steps > 0) {
+    EXPECT_GT(r.stepReadyCycles, 0u);
+    EXPECT_LE(r.stepReadyCycles, r.cycles + 8);
+  }
+  return r;
+}
+
+// The hard cases, built once.
+const std::vector<OctreeCase>& hardCases() {
+  static const std::vector<OctreeCase> cases = test::octreeHardCases();
+  return cases;
+}
+
+std::vector<std::string> hardCaseNames() {
+  std::vector<std::string> names;
+  for (const OctreeCase& c : hardCases()) names.push_back(c.name);
+  return names;
+}
+
+const OctreeCase& hardCase(const std::string& name) {
+  for (const OctreeCase& c : hardCases()) {
+    if (c.name == name) return c;
+  }
+  throw std::logic_error("no octree case " + name);
+}
+
+class RtOctreeHardCases : public ::testing::TestWithParam<std::string> {};
+
+// Every case with all slots under jitter, stalls and bubbles; then one slot.
+TEST_P(RtOctreeHardCases, MatchGolden) {
+  const OctreeCase& c = hardCase(GetParam());
+  const uint64_t seed = std::hash<std::string>{}(c.name) % 1000;
+  expectSameTraces(c.image, c.rays, roughOctreeOptions(seed));
+  // One slot walks the rays one after the other: a third of them keeps it quick.
+  const std::vector<QRay> some(c.rays.begin(), c.rays.begin() + std::max<size_t>(1, c.rays.size() / 3));
+  expectSameTraces(c.image, some, roughOctreeOptions(seed + 1, 1));
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, RtOctreeHardCases, ::testing::ValuesIn(hardCaseNames()),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+
+const Scene& bunny() {
+  static const Scene scene = loadScene(std::string(LANCER_DATA_DIR) + "/scenes/bunny.obj");
+  return scene;
+}
+
+OctreeImage defaultImage(const std::vector<fx::QTriangle>& triangles) {
+  return fx::buildOctreeImage(triangles, fx::defaultOctreeDepth(triangles.size()), fx::kDefaultOctreeLeafSize);
+}
+
+TEST(RtOctree, BunnyCameraRays) {
+  const test::QuantizedScene q = test::quantizedCamera(bunny(), 40, 40);
+  expectSameTraces(defaultImage(q.triangles), q.rays, roughOctreeOptions(1));
+}
+
+TEST(RtOctree, BunnyRandomRaysAtSeveralDepthsAndLeafSizes) {
+  const test::QuantizedScene q = test::quantizedCamera(bunny(), 1, 1);
+  std::mt19937_64 rng(2);
+  std::uniform_int_distribution<int64_t> pos(0, kPosMax), dir(-kDirMax, kDirMax);
+  std::vector<QRay> rays;
+  for (uint32_t i = 0; i < 300; ++i) {
+    QRay r{i, {pos(rng), pos(rng), pos(rng)}, {dir(rng), dir(rng), dir(rng)}};
+    const int k = fx::dominantAxis(r.dir);
+    r.dir[k] = r.dir[k] < 0 ? -kDirMax : kDirMax;
+    rays.push_back(r);
+  }
+  for (const auto& [depth, leaf] : {std::pair{1, 8}, {4, 8}, {8, 1}, {fx::kOctreeMaxDepth, 2}}) {
+    SCOPED_TRACE(fmt::format("depth {} leaf {}", depth, leaf));
+    // A shallow tree tests hundreds of triangles per leaf: fewer rays there.
+    const std::vector<QRay> some(rays.begin(), rays.begin() + (depth == 1 ? 40 : 300));
+    expectSameTraces(fx::buildOctreeImage(q.triangles, depth, leaf), some, roughOctreeOptions(3 + depth));
+  }
+}
+
+TEST(RtOctree, OneRayInFlightAllSlotsAndNoStalls) {
+  const test::QuantizedScene q = test::quantizedCamera(bunny(), 12, 12);
+  const OctreeImage image = defaultImage(q.triangles);
+  expectSameTraces(image, q.rays, roughOctreeOptions(15, 1));
+  expectSameTraces(image, q.rays, roughOctreeOptions(16, rtl().maxRaysInFlight()));
+  TraversalRunOptions fast;  // no jitter, no stalls, latency 1
+  fast.memLatency = 1;
+  const TraversalRunStats s = expectSameTraces(image, q.rays, fast);
+  // Repeated runs on one device give the same cycles.
+  std::vector<fx::TraversalTrace> again;
+  EXPECT_EQ(rtl().run(image, q.rays, again, fast).cycles, s.cycles);
+}
+
+// One ray alone, memory latency L, no stalls: the cycle count follows the
+// micro-architecture's timing (docs/octree-unit.md): setup 3 cycles, an
+// interior node L + 4, an empty leaf 2, plus the result.
+TEST(RtOctree, TimingOfOneRayThroughEmptyLeaves) {
+  // Two tiny triangles in one corner: the root splits, the ray below crosses
+  // empty children of the root only.
+  const std::vector<fx::QTriangle> tris{
+      fx::QTriangle{0, {{{1, 1, 1}, {3, 1, 1}, {1, 3, 1}}}}, fx::QTriangle{1, {{{2, 2, 2}, {3, 2, 2}, {2, 3, 3}}}}};
+  const OctreeImage image = fx::buildOctreeImage(tris, 1, 1);
+  ASSERT_EQ(image.nodes.size(), 9u);
+  const int64_t half = (kPosMax + 1) / 2;
+  // From the upper half on every axis along -x: visits the root, child 7 (empty), child 3 (empty).
+  const std::vector<QRay> rays{QRay{0, {half + 5, half + 7, half + 9}, {-kDirMax, 0, 0}}};
+  for (int latency : {1, 5, 20}) {
+    TraversalRunOptions o;
+    o.memLatency = latency;
+    const TraversalRunStats s = expectSameTraces(image, rays, o);
+    // Accepted in cycle 0, ENTER root in 3, GROUP_REQ 4, the request on the
+    // port 5, the response 5 + L, DESCEND 6 + L, ENTER child 7 in 7 + L, CHECK
+    // 8 + L (no hit: advance to the sibling), ENTER child 3 in 9 + L, CHECK
+    // 10 + L (advance: pop to the root: DONE), DONE 11 + L (result FIFO), the
+    // result taken in 12 + L: 13 + L cycles.
+    EXPECT_EQ(s.cycles, uint64_t(13 + latency)) << "latency " << latency;
+    EXPECT_EQ(s.nodeReads, 1u);
+  }
+}
+
+TEST(RtOctree, RejectsBadConfigurations) {
+  const OctreeImage image = fx::buildOctreeImage({}, 1, 8);
+  const std::vector<QRay> one{QRay{0, {0, 0, 0}, {kDirMax, 0, 0}}};
+  std::vector<fx::TraversalTrace> traces;
+  TraversalRunOptions o;
+  o.raysInFlight = rtl().maxRaysInFlight() + 1;
+  try {
+    rtl().run(image, one, traces, o);
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(std::to_string(o.raysInFlight)), std::string::npos) << what;
+    EXPECT_NE(what.find(std::to_string(rtl().maxRaysInFlight())), std::string::npos) << what;
+    EXPECT_NE(what.find("LANCER_OCTREE_RAYS_IN_FLIGHT"), std::string::npos) << what;
+  }
+  o.raysInFlight = -1;
+  EXPECT_THROW(rtl().run(image, one, traces, o), InputError);
+  o.raysInFlight = 0;
+  o.memLatency = 0;
+  EXPECT_THROW(rtl().run(image, one, traces, o), InputError);
+  o.memLatency = 3;
+  o.memLatencyJitter = -1;
+  EXPECT_THROW(rtl().run(image, one, traces, o), InputError);
+  o.memLatencyJitter = 0;
+  EXPECT_THROW(rtl().run(image, std::vector<QRay>{QRay{0, {1, 2, 3}, {0, 0, 0}}}, traces, o), InputError);
+  EXPECT_THROW(rtl().run(OctreeImage{}, one, traces, o), InputError);
+  // A corrupt image: an interior node whose children lie outside the node table.
+  OctreeImage broken = image;
+  broken.nodes[0] = fx::OctreeNode{false, 5, 0};
+  try {
+    rtl().run(broken, one, traces, o);
+    FAIL() << "no runtime_error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("outside the node table"), std::string::npos) << e.what();
+  }
+  // The device still works afterwards.
+  expectSameTraces(image, one, o);
+  // The factory knows it.
+  EXPECT_EQ(makeOctreeDevice("rtl")->name(), "rtl");
+  EXPECT_EQ(makeOctreeDevice("rtl")->maxRaysInFlight(), LANCER_OCTREE_RAYS_IN_FLIGHT);
+}
+
+// The SVA checks are compiled in and turn into exceptions: a malformed image
+// whose interior nodes go one level deeper than the formats allow (a node one
+// lattice unit wide split again) trips a_stack_depth in DESCEND.
+TEST(RtOctree, AssertionsAreLive) {
+  OctreeImage image;
+  image.maxDepth = fx::kOctreeMaxDepth;
+  image.leafSize = 1;
+  image.depth = fx::kOctreeMaxDepth + 1;
+  image.nodes.push_back(fx::OctreeNode{false, 1, 0});
+  for (int level = 0; level <= fx::kOctreeMaxDepth; ++level) {
+    const uint32_t base = uint32_t(image.nodes.size());
+    for (int i = 0; i < 8; ++i) image.nodes.push_back(fx::OctreeNode{true, 0, 0});
+    image.nodes[base] = fx::OctreeNode{false, base + 8, 0};  // child 0 splits again
+  }
+  for (int i = 0; i < 8; ++i) image.nodes.push_back(fx::OctreeNode{true, 0, 0});
+  // From the corner at 0 along the diagonal: child 0 at every level.
+  const std::vector<QRay> rays{QRay{0, {0, 0, 0}, {kDirMax, kDirMax, kDirMax}}};
+  std::vector<fx::TraversalTrace> traces;
+  try {
+    rtl().run(image, rays, traces, TraversalRunOptions{});
+    FAIL() << "no assertion fired";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("assertion of rt_octree failed"), std::string::npos) << e.what();
+  }
+  // The next run resets the unit and works.
+  const OctreeCase& c = hardCase("octants");
+  expectSameTraces(c.image, c.rays, roughOctreeOptions(19));
+}
+
+TEST(RtOctree, WritesAnFstWaveformWhenAsked) {
+  const OctreeCase& c = hardCase("octants");
+  const std::vector<QRay> rays(c.rays.begin(), c.rays.begin() + 8);
+  TraversalRunOptions o = roughOctreeOptions(18);
+  o.stream.wavePath = ::testing::TempDir() + "rt_octree_wave.fst";
+  std::remove(o.stream.wavePath.c_str());
+  expectSameTraces(c.image, rays, o);
+  std::FILE* f = std::fopen(o.stream.wavePath.c_str(), "rb");
+  ASSERT_NE(f, nullptr) << o.stream.wavePath;
+  std::fseek(f, 0, SEEK_END);
+  EXPECT_GT(std::ftell(f), 1000);
+  std::fclose(f);
+  std::remove(o.stream.wavePath.c_str());
+  // The next run writes no waveform and still matches.
+  o.stream.wavePath.clear();
+  expectSameTraces(c.image, rays, o);
+}
+
+// Performance sweep, not a check (docs/octree-unit.md has the table). Run with
+//   build/tests/rtl/rtl_octree_tests --gtest_also_run_disabled_tests --gtest_filter='*Sweep*'
+// LANCER_OCTREE_SWEEP_SIZE sets the image side (default 256).
+TEST(RtOctree, DISABLED_Sweep) {
+  const char* sizeEnv = std::getenv("LANCER_OCTREE_SWEEP_SIZE");
+  const int side = sizeEnv ? std::atoi(sizeEnv) : 256;
+  const test::QuantizedScene q = test::quantizedCamera(bunny(), side, side);
+  const OctreeImage image = defaultImage(q.triangles);
+  fmt::print("bunny {} tris, octree depth {} (max {}), leaf {}, {} nodes, {} camera rays ({}x{})\n",
+             q.triangles.size(), image.depth, image.maxDepth, image.leafSize, image.nodes.size(), q.rays.size(), side,
+             side);
+  fmt::print("{:>6} {:>7} {:>10} {:>9} {:>10} {:>11} {:>10} {:>13} {:>11}\n", "slots", "latency", "cycles",
+             "tests/cyc", "steps/cyc", "steps/ready", "isect busy", "Mrays/s@500M", "host ray/s");
+  auto one = [&](int slots, int latency) {
+    TraversalRunOptions o;
+    o.memLatency = latency;
+    o.raysInFlight = slots;
+    std::vector<fx::TraversalTrace> traces;
+    const auto start = std::chrono::steady_clock::now();
+    const TraversalRunStats st = rtl().run(image, q.rays, traces, o);
+    const double host = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double c = double(st.cycles);
+    fmt::print("{:>6} {:>7} {:>10} {:>9.3f} {:>10.3f} {:>11.3f} {:>9.1f}% {:>13.2f} {:>11.0f}\n", slots, latency,
+               st.cycles, double(st.isectTests) / c, double(st.steps) / c,
+               double(st.steps) / double(std::max<uint64_t>(1, st.stepReadyCycles)),
+               100.0 * double(st.isectBusyCycles) / c, double(st.rays) / c * 500.0, double(st.rays) / host);
+  };
+  const int max = rtl().maxRaysInFlight();
+  for (int slots : {1, 4, 8, 16, 32}) {
+    if (slots <= max) one(slots, 20);
+  }
+  for (int latency : {1, 10, 50, 100}) one(max, latency);
+}
+
+}  // namespace
+}  // namespace lancer
