@@ -7,8 +7,10 @@
 #include "driver/golden_device.h"
 #include "driver/systemc_grid_device.h"
 #include "driver/systemc_isect_device.h"
+#include "driver/systemc_octree_device.h"
 #include "driver/verilator_grid_device.h"
 #include "driver/verilator_isect_device.h"
+#include "driver/verilator_octree_device.h"
 
 namespace lancer {
 
@@ -52,10 +54,19 @@ std::unique_ptr<GridDevice> makeGridDevice(const std::string& name) {
   unknownModel(name, gridDeviceNames(), "grid unit");
 }
 
-std::vector<std::string> octreeDeviceNames() { return {"golden"}; }
+std::vector<std::string> octreeDeviceNames() {
+  std::vector<std::string> names{"golden", "systemc", "rtl"};
+  if (SystemCOctreeDevice::rtlAvailable()) names.push_back("rtl-systemc");
+  return names;
+}
 
 std::unique_ptr<OctreeDevice> makeOctreeDevice(const std::string& name) {
   if (name == "golden") return std::make_unique<GoldenOctreeDevice>();
+  if (name == "systemc") return std::make_unique<SystemCOctreeDevice>(SystemCOctreeDevice::Impl::Model);
+  if (name == "rtl") return std::make_unique<VerilatorOctreeDevice>();
+  if (name == "rtl-systemc" && SystemCOctreeDevice::rtlAvailable()) {
+    return std::make_unique<SystemCOctreeDevice>(SystemCOctreeDevice::Impl::Rtl);
+  }
   unknownModel(name, octreeDeviceNames(), "octree unit");
 }
 

@@ -6,6 +6,7 @@
 
 #include "grid/rt_grid_top.h"
 #include "isect/rt_isect_top.h"
+#include "octree/rt_octree_top.h"
 
 namespace lancer::systemc_kernel {
 
@@ -28,6 +29,7 @@ void routeReports() {
 struct Systems {
   sc::rt_isect_top* isect;
   sc::rt_grid_top* grid;
+  sc::rt_octree_top* octree;
 };
 
 // Never destroyed: SystemC cannot tear down an elaborated design and start again.
@@ -36,7 +38,8 @@ Systems& systems() {
     routeReports();
     // The grid top first: it gives the Verilated SystemC models their context.
     auto* grid = new sc::rt_grid_top("lancer_grid");
-    return new Systems{new sc::rt_isect_top("lancer_isect"), grid};
+    auto* isect = new sc::rt_isect_top("lancer_isect");
+    return new Systems{isect, grid, new sc::rt_octree_top("lancer_octree")};
   }();
   return *all;
 }
@@ -59,6 +62,12 @@ sc::rt_grid_top& gridSystem() {
   Systems& all = systems();
   sc::rt_grid_top::use_verilated_context();
   return *all.grid;
+}
+
+sc::rt_octree_top& octreeSystem() {
+  Systems& all = systems();
+  sc::rt_grid_top::use_verilated_context();  // the one context of every Verilated SystemC model
+  return *all.octree;
 }
 
 }  // namespace lancer::systemc_kernel

@@ -4,7 +4,8 @@
 //
 // SystemC elaborates once per process and cannot instantiate modules after the
 // first sc_start(), so every SystemC system a device may run (the intersection
-// pipeline's rt_isect_top, the grid unit's rt_grid_top) is built together on
+// pipeline's rt_isect_top, the grid unit's rt_grid_top, the octree unit's
+// rt_octree_top) is built together on
 // the first use of any of them and kept for the life of the process. Runs of
 // any SystemC device are serialized by one mutex (one kernel per process).
 // The first use also routes SystemC's reports (banner off, info and warnings
@@ -15,6 +16,7 @@
 namespace lancer::sc {
 class rt_isect_top;
 class rt_grid_top;
+class rt_octree_top;
 }  // namespace lancer::sc
 
 namespace lancer::systemc_kernel {
@@ -22,5 +24,6 @@ namespace lancer::systemc_kernel {
 std::mutex& mutex();
 sc::rt_isect_top& isectSystem();
 sc::rt_grid_top& gridSystem();
+sc::rt_octree_top& octreeSystem();
 
 }  // namespace lancer::systemc_kernel

@@ -1,0 +1,551 @@
+#include "octree/rt_octree_model.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "common/rt_record_bits.h"
+#include "golden/isect.h"
+
+namespace lancer::sc {
+
+using namespace octree;
+
+namespace {
+
+constexpr uint32_t SLOT_MASK = (uint32_t(1) << SLOT_W) - 1;
+constexpr size_t kNodeWords = size_t(fx::wireWords(NODE_W));
+constexpr size_t kGroupWords = size_t(fx::wireWords(GROUP_W));
+constexpr size_t kNodeValues = fx::valueCount(fx::kOctreeNodeFields);
+constexpr size_t kVisitValues = fx::valueCount(fx::kOctreeVisitFields);
+constexpr size_t kResValues = fx::valueCount(fx::kOctreeResFields);
+static_assert(kNodeValues == 3 && kVisitValues == 2 && kResValues == 9, "octree record layouts changed");
+
+// ADDR_W'(value): the RTL truncates node, index-list and triangle addresses to the address width.
+constexpr uint32_t addrOf(uint32_t value) {
+  return MEM_ADDR_W >= 32 ? value : value & ((uint32_t(1) << MEM_ADDR_W) - 1);
+}
+
+fx::OctreeNode unpackNode(const uint32_t* wire) {  // {leaf, count, first}
+  return fx::OctreeNode{getField<fx::kOctreeNodeFields, 0>(wire) != 0,
+                        uint32_t(getField<fx::kOctreeNodeFields, 2>(wire)),
+                        uint32_t(getField<fx::kOctreeNodeFields, 1>(wire))};
+}
+
+// isect_tri_t {prim_id, v0[3], v1[3], v2[3]} from its wire image.
+fx::QTriangle unpackTriangle(const uint32_t* wire) {
+  fx::QTriangle t;
+  t.id = uint32_t(getField<fx::kIsectTriFields, 0>(wire));
+  [&]<size_t... I>(std::index_sequence<I...>) {
+    ((t.v[I / 3][I % 3] = getField<fx::kIsectTriFields, 1 + I>(wire)), ...);
+  }(std::make_index_sequence<9>{});
+  return t;
+}
+static_assert(fx::kIsectTriValues == 10, "isect_tri_t layout changed");
+
+bool negative(const fx::OctT& t) { return t.inf < 0 || (t.inf == 0 && t.value < 0); }
+
+bool anyNegative(const std::array<fx::OctT, 3>& t) { return negative(t[0]) || negative(t[1]) || negative(t[2]); }
+
+constexpr fx::OctT kMinusInf{0, -1}, kPlusInf{0, 1};
+
+}  // namespace
+
+// ---- SlotMask -----------------------------------------------------------------
+
+bool rt_octree_model::SlotMask::any() const {
+  for (uint64_t w : w_)
+    if (w) return true;
+  return false;
+}
+
+int rt_octree_model::SlotMask::lowest() const {
+  for (int i = 0; i < kWords; ++i)
+    if (w_[size_t(i)]) return i * 64 + __builtin_ctzll(w_[size_t(i)]);
+  return -1;
+}
+
+int rt_octree_model::SlotMask::lowestBelow(int limit) const {
+  const int k = lowest();
+  return k >= 0 && k < limit ? k : -1;
+}
+
+int rt_octree_model::SlotMask::pickFrom(int from) const {
+  const int first = from >> 6;
+  const uint64_t upper = w_[size_t(first)] & (~uint64_t(0) << (from & 63));
+  if (upper) return first * 64 + __builtin_ctzll(upper);
+  for (int i = first + 1; i < kWords; ++i)
+    if (w_[size_t(i)]) return i * 64 + __builtin_ctzll(w_[size_t(i)]);
+  return lowest();  // wraps around: every member lies below `from`, or there is none
+}
+
+rt_octree_model::SlotMask rt_octree_model::SlotMask::operator|(const SlotMask& o) const {
+  SlotMask r;
+  for (int i = 0; i < kWords; ++i) r.w_[size_t(i)] = w_[size_t(i)] | o.w_[size_t(i)];
+  return r;
+}
+
+// ---- The module -----------------------------------------------------------------
+
+rt_octree_model::rt_octree_model(sc_core::sc_module_name name)
+    : sc_core::sc_module(name),
+      clk_i("clk_i"),
+      rst_ni("rst_ni"),
+      cfg_slots_i("cfg_slots_i"),
+      cfg_root_i("cfg_root_i"),
+      ray_valid_i("ray_valid_i"),
+      ray_ready_o("ray_ready_o"),
+      ray_data_i("ray_data_i"),
+      res_valid_o("res_valid_o"),
+      res_ready_i("res_ready_i"),
+      res_data_o("res_data_o"),
+      visit_valid_o("visit_valid_o"),
+      visit_ready_i("visit_ready_i"),
+      visit_data_o("visit_data_o"),
+      node_req_valid_o("node_req_valid_o"),
+      node_req_ready_i("node_req_ready_i"),
+      node_req_addr_o("node_req_addr_o"),
+      node_req_tag_o("node_req_tag_o"),
+      node_rsp_valid_i("node_rsp_valid_i"),
+      node_rsp_data_i("node_rsp_data_i"),
+      node_rsp_tag_i("node_rsp_tag_i"),
+      idx_req_valid_o("idx_req_valid_o"),
+      idx_req_ready_i("idx_req_ready_i"),
+      idx_req_addr_o("idx_req_addr_o"),
+      idx_req_tag_o("idx_req_tag_o"),
+      idx_rsp_valid_i("idx_rsp_valid_i"),
+      idx_rsp_data_i("idx_rsp_data_i"),
+      idx_rsp_tag_i("idx_rsp_tag_i"),
+      tri_req_valid_o("tri_req_valid_o"),
+      tri_req_ready_i("tri_req_ready_i"),
+      tri_req_addr_o("tri_req_addr_o"),
+      tri_req_tag_o("tri_req_tag_o"),
+      tri_rsp_valid_i("tri_rsp_valid_i"),
+      tri_rsp_data_i("tri_rsp_data_i"),
+      tri_rsp_tag_i("tri_rsp_tag_i"),
+      perf_isect_fire_o("perf_isect_fire_o"),
+      perf_step_ready_o("perf_step_ready_o") {
+  reset();
+
+  SC_METHOD(seq);
+  sensitive << clk_i.pos() << rst_ni.neg();
+  dont_initialize();
+
+  SC_METHOD(comb);
+  sensitive << tri_rsp_valid_i;
+}
+
+void rt_octree_model::fail(const std::string& what) const {
+  SC_REPORT_ERROR(name(), what.c_str());
+  throw std::runtime_error(what);  // not reached with SC_THROW
+}
+
+void rt_octree_model::reset() {
+  for (Slot& s : slots_) s.state = State::Free;
+  free_.clear();
+  enter_.clear();
+  nodeWant_.clear();
+  idxWant_.clear();
+  checkWant_.clear();
+  done_.clear();
+  self_.clear();
+  for (int k = 0; k < N; ++k) free_.set(k);
+  s1_.valid = s2_.valid = false;
+  visitArb_ = nodeArb_ = idxArb_ = checkArb_ = doneArb_ = RoundRobin{};
+  nodeQ_.clear();
+  idxQ_.clear();
+  triQ_.clear();
+  idxBuf_.clear();
+  visitQ_.clear();
+  resQ_.clear();
+  credits_ = IDX_BUF_DEPTH;
+  for (IsectStage& st : isect_) st.valid = false;
+  isectPos_ = 0;
+  nodeHead_ = idxHead_ = triHead_ = visitHead_ = resHead_ = true;
+}
+
+// The state register with the request vectors and the self-acting set derived from it.
+void rt_octree_model::setState(int k, State next) {
+  Slot& s = slots_[size_t(k)];
+  switch (s.state) {  // leave the old state's sets
+    case State::Free: free_.reset(k); break;
+    case State::Enter: enter_.reset(k); break;
+    case State::GroupReq:
+    case State::RefillReq: nodeWant_.reset(k); break;
+    case State::Fetch:
+      idxWant_.reset(k);
+      self_.reset(k);
+      break;
+    case State::Check:
+      checkWant_.reset(k);
+      self_.reset(k);
+      break;
+    case State::Descend:
+    case State::Next: self_.reset(k); break;
+    case State::Done: done_.reset(k); break;
+    default: break;
+  }
+  s.state = next;
+  switch (next) {
+    case State::Free: free_.set(k); break;
+    case State::Enter: enter_.set(k); break;
+    case State::GroupReq:
+    case State::RefillReq: nodeWant_.set(k); break;
+    case State::Fetch:
+      if (s.issued != s.rec.count) idxWant_.set(k);
+      if (s.received == s.rec.count) self_.set(k);
+      break;
+    case State::Check:
+      if (s.hasHit) {
+        checkWant_.set(k);
+      } else {
+        self_.set(k);
+      }
+      break;
+    case State::Descend:
+    case State::Next: self_.set(k); break;
+    case State::Done: done_.set(k); break;
+    default: break;
+  }
+}
+
+// SETUP -> ENTER | DONE at the end of accept + 2: the per-ray setup and the root test.
+void rt_octree_model::load(int k, const isect_ray_t& port) {
+  Slot& s = slots_[size_t(k)];
+  std::array<uint32_t, fx::kIsectRayWords> wire{};
+  fromPort<ISECT_RAY_W>(port, wire);
+  fx::unpackRay(wire, s.ray);
+  s.rayId = s.ray.id;
+  s.ray.id = uint32_t(k);  // rt_isect carries the slot index in ray_id
+  s.setup = fx::OctreeRaySetup::setup(s.ray);
+  s.t0 = s.setup.t0;
+  s.t1 = s.setup.t1;
+  s.nodeId = 0;
+  std::array<uint32_t, kNodeWords> root{};
+  fromPort<NODE_W>(cfg_root_i.read(), root);
+  s.rec = unpackNode(root.data());
+  s.depth = 0;
+  s.groupValid = false;
+  s.nodes = s.tests = s.issued = s.received = 0;
+  s.hasHit = false;
+  s.best = fx::IsectResult{};
+  const fx::OctT enter = std::max({s.t0[0], s.t0[1], s.t0[2]});
+  const fx::OctT leave = std::min({s.t1[0], s.t1[1], s.t1[2]});
+  setState(k, enter < leave ? State::Enter : State::Done);
+}
+
+// ENTER on the visit grant (the visit record is pushed by the caller).
+void rt_octree_model::enter(int k) {
+  Slot& s = slots_[size_t(k)];
+  ++s.nodes;
+  if (!s.rec.leaf) {
+    setState(k, State::GroupReq);
+  } else if (s.rec.count > 0) {
+    s.tests += s.rec.count;
+    s.issued = s.received = 0;
+    setState(k, State::Fetch);
+  } else {
+    setState(k, State::Check);
+  }
+}
+
+// DESCEND: into the first child the ray enters, from the parameters and the group.
+void rt_octree_model::descend(int k) {
+  Slot& s = slots_[size_t(k)];
+  if (s.depth >= MAX_STACK) fail(fmt::format("slot {}: an interior node at depth {} (the stack has {} levels)", k,
+                                             s.depth, MAX_STACK));
+  std::array<fx::OctT, 3> tm{};
+  for (int a = 0; a < 3; ++a) {
+    if (s.setup.active[a]) {
+      tm[a] = fx::OctT{(s.t0[a].value + s.t1[a].value) >> 1, 0};  // exact: the sum is even
+    } else {
+      // The node's mid-plane on this axis, from the path (mirrored frame): the
+      // node's lower corner is the sum of the upper halves taken on the way down.
+      int64_t lo = 0;
+      for (int j = 0; j < s.depth; ++j) {
+        if ((s.stack[size_t(j)].child >> (2 - a)) & 1) lo += int64_t(1) << (fx::kPosBits - 1 - j);
+      }
+      const int64_t mid = lo + (int64_t(1) << (fx::kPosBits - 1 - s.depth));
+      tm[a] = s.setup.origin[a] < mid ? kPlusInf : kMinusInf;
+    }
+  }
+  const int c = fx::firstChild(s.t0, tm);
+  s.stack[size_t(s.depth)] = StackEntry{s.rec.first, uint8_t(c)};
+  ++s.depth;
+  for (int a = 0; a < 3; ++a) {
+    if ((c >> (2 - a)) & 1) {
+      s.t0[a] = tm[a];
+    } else {
+      s.t1[a] = tm[a];
+    }
+  }
+  const int stored = c ^ s.setup.mirror;
+  s.nodeId = s.rec.first + uint32_t(stored);
+  s.rec = s.group[size_t(stored)];
+  setState(k, anyNegative(s.t1) ? State::Next : State::Enter);
+}
+
+// advance (NEXT, and CHECK when the leaf does not end the ray): the sibling or up.
+void rt_octree_model::advance(int k) {
+  Slot& s = slots_[size_t(k)];
+  if (s.depth == 0) {
+    setState(k, State::Done);
+    return;
+  }
+  StackEntry& top = s.stack[size_t(s.depth - 1)];
+  const int c = top.child;
+  const int next = fx::nextChild(c, s.t1);  // exit axis: argmin t1, exact ties to the later axis
+  if (next < fx::kOctreeChildren) {
+    const int x = (next ^ c) == 4 ? 0 : ((next ^ c) == 2 ? 1 : 2);
+    const fx::OctT t1 = s.t1[x];
+    s.t1[x] = fx::OctT{2 * t1.value - s.t0[x].value, 0};
+    s.t0[x] = t1;
+    top.child = uint8_t(next);
+    const int stored = next ^ s.setup.mirror;
+    s.nodeId = top.first + uint32_t(stored);
+    if (s.groupValid) s.rec = s.group[size_t(stored)];
+    setState(k, anyNegative(s.t1) ? State::Next : (s.groupValid ? State::Enter : State::RefillReq));
+    return;
+  }
+  for (int y = 0; y < 3; ++y) {
+    if (!s.setup.active[y]) continue;
+    if ((c >> (2 - y)) & 1) {
+      s.t0[y] = fx::OctT{2 * s.t0[y].value - s.t1[y].value, 0};
+    } else {
+      s.t1[y] = fx::OctT{2 * s.t1[y].value - s.t0[y].value, 0};
+    }
+  }
+  --s.depth;
+  s.groupValid = false;
+  setState(k, s.depth == 0 ? State::Done : State::Next);
+}
+
+void rt_octree_model::seq() {
+  if (!rst_ni.read()) {
+    reset();
+    writeOutputs(true);
+    return;
+  }
+
+  // ---- Decisions of this cycle, from the registers at its start and the inputs.
+  const int usable = std::min<int>(int(cfg_slots_i.read()), N);
+  const int alloc = free_.lowestBelow(usable);
+  const bool rayFire = ray_valid_i.read() && alloc >= 0;
+
+  const int visitIdx = visitArb_.pick(enter_);
+  const bool visitGo = visitIdx >= 0 && !visitQ_.full();
+  const int nodeIdx = nodeArb_.pick(nodeWant_);
+  const bool nodeGo = nodeIdx >= 0 && !nodeQ_.full();
+  const int idxIdx = idxArb_.pick(idxWant_);
+  const bool idxGo = idxIdx >= 0 && !idxQ_.full() && credits_ != 0;
+  const int checkIdx = checkArb_.pick(checkWant_);
+  const int doneIdx = doneArb_.pick(done_);
+  const bool doneGo = doneIdx >= 0 && !resQ_.full();
+  const bool idxBufPop = !idxBuf_.empty() && !triQ_.full();
+  const SlotMask self = self_;
+  const bool setupLoad = s2_.valid;
+  const int setupSlot = s2_.slot;
+
+  // Memory responses (the RTL's assertions on the response tags and the index buffer).
+  const bool nodeRsp = node_rsp_valid_i.read();
+  int nodeSlot = -1;
+  if (nodeRsp) {
+    nodeSlot = int(uint32_t(node_rsp_tag_i.read()) & SLOT_MASK);
+    const State st = nodeSlot < N ? slots_[size_t(nodeSlot)].state : State::Free;
+    if (st != State::WaitGroup && st != State::WaitRefill) {
+      fail(fmt::format("node response for slot {}, which does not wait for one", nodeSlot));
+    }
+  }
+  const bool triRsp = tri_rsp_valid_i.read();
+  int triSlot = -1;
+  if (triRsp) {
+    triSlot = int(uint32_t(tri_rsp_tag_i.read()) & SLOT_MASK);
+    if (triSlot >= N || slots_[size_t(triSlot)].state != State::Fetch) {
+      fail(fmt::format("triangle response for slot {}, which is not fetching", triSlot));
+    }
+  }
+  const bool idxRsp = idx_rsp_valid_i.read();
+  if (idxRsp && idxBuf_.full()) fail("index response with the index buffer full (credit error)");
+
+  // u_isect: the result leaving the last stage in this cycle, and the pair entering.
+  IsectStage& stage = isect_[isectPos_];
+  const IsectStage out = stage;
+  stage.valid = triRsp;
+  if (triRsp) {
+    std::array<uint32_t, fx::kIsectTriWords> wire{};
+    fromPort<ISECT_TRI_W>(tri_rsp_data_i.read(), wire);
+    stage.res = fx::intersect(slots_[size_t(triSlot)].ray, unpackTriangle(wire.data()));
+  }
+  isectPos_ = isectPos_ + 1 == size_t(ISECT_LATENCY) ? 0 : isectPos_ + 1;
+
+  // ---- FIFO pops (heads of the cycle leave on ready).
+  const bool nodePop = !nodeQ_.empty() && node_req_ready_i.read();
+  const bool idxPop = !idxQ_.empty() && idx_req_ready_i.read();
+  const bool triPop = !triQ_.empty() && tri_req_ready_i.read();
+  const bool visitPop = !visitQ_.empty() && visit_ready_i.read();
+  const bool resPop = !resQ_.empty() && res_ready_i.read();
+  if (nodePop) nodeQ_.pop();
+  if (idxPop) idxQ_.pop();
+  if (triPop) triQ_.pop();
+  if (visitPop) visitQ_.pop();
+  if (resPop) resQ_.pop();
+
+  // ---- The slots: at most one state-changing event per slot and cycle, each
+  // reading that slot's registers as they were at the start of the cycle.
+  if (visitGo) {
+    const Slot& s = slots_[size_t(visitIdx)];
+    visitHead_ |= visitQ_.empty();
+    visitQ_.push(Visit{s.rayId, s.nodeId});
+    enter(visitIdx);
+    visitArb_.ack(visitIdx);
+  }
+  if (nodeGo) {
+    const Slot& s = slots_[size_t(nodeIdx)];
+    const bool group = s.state == State::GroupReq;
+    nodeHead_ |= nodeQ_.empty();
+    nodeQ_.push(MemReq{addrOf(group ? s.rec.first : s.stack[size_t(s.depth - 1)].first), uint32_t(nodeIdx)});
+    setState(nodeIdx, group ? State::WaitGroup : State::WaitRefill);
+    nodeArb_.ack(nodeIdx);
+  }
+  if (nodeRsp) {
+    Slot& s = slots_[size_t(nodeSlot)];
+    std::array<uint32_t, kGroupWords> wire{};
+    fromPort<GROUP_W>(node_rsp_data_i.read(), wire);
+    for (size_t i = 0; i < size_t(fx::kOctreeChildren); ++i) s.group[i] = unpackNode(wire.data() + i * kNodeWords);
+    s.groupValid = true;
+    if (s.state == State::WaitGroup) {
+      setState(nodeSlot, State::Descend);
+    } else {
+      s.rec = s.group[size_t(s.stack[size_t(s.depth - 1)].child ^ s.setup.mirror)];
+      setState(nodeSlot, State::Enter);
+    }
+  }
+  if (out.valid) {  // one closest-hit update per cycle
+    const int k = int(out.res.rayId & SLOT_MASK);
+    Slot& s = k < N ? slots_[size_t(k)] : slots_[0];
+    if (k >= N || s.state != State::Fetch || s.received == s.issued) {
+      fail(fmt::format("rt_isect result for slot {}, which expects none", k));
+    }
+    if (out.res.hit && (!s.hasHit || fx::closerResult(out.res, s.best))) {
+      s.hasHit = true;
+      s.best = out.res;
+    }
+    if (++s.received == s.rec.count) self_.set(k);  // -> CHECK in the next cycle
+  }
+  if (idxGo) {
+    Slot& s = slots_[size_t(idxIdx)];
+    idxHead_ |= idxQ_.empty();
+    idxQ_.push(MemReq{addrOf(s.rec.first + s.issued), uint32_t(idxIdx)});
+    if (++s.issued == s.rec.count) idxWant_.reset(idxIdx);
+    idxArb_.ack(idxIdx);
+  }
+  if (checkIdx >= 0) {
+    const Slot& s = slots_[size_t(checkIdx)];
+    if (fx::hitWithin(s.best, s.t1, s.setup)) {
+      setState(checkIdx, State::Done);
+    } else {
+      advance(checkIdx);
+    }
+    checkArb_.ack(checkIdx);
+  }
+  self.forEach([&](int k) {
+    switch (slots_[size_t(k)].state) {
+      case State::Descend: descend(k); break;
+      case State::Next:
+      case State::Check: advance(k); break;  // CHECK without a hit: no arbitration
+      case State::Fetch: setState(k, State::Check); break;  // every result is in
+      default: break;
+    }
+  });
+  if (doneGo) {
+    const Slot& s = slots_[size_t(doneIdx)];
+    const fx::u128 values[kResValues] = {s.rayId,         s.nodes,       s.tests,
+                                         s.hasHit ? 1u : 0u, s.best.primId, s.best.tNum,
+                                         s.best.det,      s.best.uNum,   s.best.vNum};
+    std::array<uint32_t, size_t(fx::wireWords(RESULT_W))> wire{};
+    fx::packFields(fx::kOctreeResFields, values, wire);
+    resHead_ |= resQ_.empty();
+    resQ_.push(toPort<RESULT_W>(wire));
+    setState(doneIdx, State::Free);
+    doneArb_.ack(doneIdx);
+  }
+  if (setupLoad) load(setupSlot, s2_.ray);
+  if (rayFire) setState(alloc, State::Setup);
+
+  // ---- Index buffer, triangle requests, credits, setup pipeline.
+  if (idxBufPop) {
+    triHead_ |= triQ_.empty();
+    triQ_.push(idxBuf_.front());
+    idxBuf_.pop();
+  }
+  if (idxRsp) idxBuf_.push(MemReq{addrOf(uint32_t(idx_rsp_data_i.read())), uint32_t(idx_rsp_tag_i.read()) & SLOT_MASK});
+  if (idxGo && !idxBufPop) --credits_;
+  if (idxBufPop && !idxGo) ++credits_;
+
+  if (s1_.valid) {
+    s2_.slot = s1_.slot;
+    s2_.ray = s1_.ray;
+  }
+  s2_.valid = s1_.valid;
+  if (rayFire) {
+    s1_.slot = alloc;
+    s1_.ray = ray_data_i.read();
+  }
+  s1_.valid = rayFire;
+
+  nodeHead_ |= nodePop;
+  idxHead_ |= idxPop;
+  triHead_ |= triPop;
+  visitHead_ |= visitPop;
+  resHead_ |= resPop;
+  writeOutputs(false);
+}
+
+// A flag output is written only when it changes (the signal keeps its value),
+// which saves the kernel call; `all` (reset) writes every output.
+void rt_octree_model::writeFlag(sc_core::sc_out<bool>& port, Flag f, bool value, bool all) {
+  if (all || flags_[f] != value) {
+    port.write(value);
+    flags_[f] = value;
+  }
+}
+
+void rt_octree_model::writeOutputs(bool all) {
+  writeFlag(node_req_valid_o, NODE_VALID, !nodeQ_.empty(), all);
+  if (!nodeQ_.empty() && (nodeHead_ || all)) {
+    node_req_addr_o.write(mem_addr_t(nodeQ_.front().addr));
+    node_req_tag_o.write(slot_t(nodeQ_.front().slot));
+  }
+  writeFlag(idx_req_valid_o, IDX_VALID, !idxQ_.empty(), all);
+  if (!idxQ_.empty() && (idxHead_ || all)) {
+    idx_req_addr_o.write(mem_addr_t(idxQ_.front().addr));
+    idx_req_tag_o.write(slot_t(idxQ_.front().slot));
+  }
+  writeFlag(tri_req_valid_o, TRI_VALID, !triQ_.empty(), all);
+  if (!triQ_.empty() && (triHead_ || all)) {
+    tri_req_addr_o.write(mem_addr_t(triQ_.front().addr));
+    tri_req_tag_o.write(slot_t(triQ_.front().slot));
+  }
+  writeFlag(visit_valid_o, VISIT_VALID, !visitQ_.empty(), all);
+  if (!visitQ_.empty() && (visitHead_ || all)) {
+    std::array<uint32_t, size_t(fx::wireWords(VISIT_W))> wire{};
+    putField<fx::kOctreeVisitFields, 0>(wire.data(), visitQ_.front().rayId);
+    putField<fx::kOctreeVisitFields, 1>(wire.data(), visitQ_.front().nodeId);
+    visit_data_o.write(toPort<VISIT_W>(wire));
+  }
+  writeFlag(res_valid_o, RES_VALID, !resQ_.empty(), all);
+  if (!resQ_.empty() && (resHead_ || all)) res_data_o.write(resQ_.front());
+  nodeHead_ = idxHead_ = triHead_ = visitHead_ = resHead_ = false;
+
+  const int usable = std::min<int>(int(cfg_slots_i.read()), N);
+  writeFlag(ray_ready_o, RAY_READY, free_.lowestBelow(usable) >= 0, all);
+  writeFlag(perf_step_ready_o, STEP_READY, enter_.any(), all);
+}
+
+void rt_octree_model::comb() {
+  perf_isect_fire_o.write(tri_rsp_valid_i.read());  // rt_isect's req_ready_o is 1: it never stalls
+}
+
+}  // namespace lancer::sc

@@ -1,0 +1,410 @@
+// The SystemC side of rt_octree: the cycle model ("systemc") and the Verilated
+// RTL in SystemC ("rtl-systemc") against the golden octree walk
+// (fx::traverseOctree), against the timing the micro-architecture prescribes
+// (docs/octree-unit.md), against each other cycle for cycle, and against the
+// C++ Verilated device ("rtl") when the build has them.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "common/error.h"
+#include "driver/devices.h"
+#include "driver/systemc_grid_device.h"
+#include "driver/systemc_octree_device.h"
+#include "golden/octree.h"
+#include "scene/scene.h"
+#include "support/octree_cases.h"
+
+namespace lancer {
+namespace sc {
+void PrintTo(const TraversalCycle& c, std::ostream* os) {
+  *os << fmt::format(
+      "cycle {}: ray {}{} res {}{} visit {}{} node {}@{:#x}/{} idx {}@{:#x}/{} tri {}@{:#x}/{} fire {} step {} "
+      "res [{:x}] visit [{:x}]",
+      c.cycle, int(c.rayValid), int(c.rayReady), int(c.resValid), int(c.resReady), int(c.visitValid),
+      int(c.visitReady), int(c.nodeReq), c.nodeAddr, c.nodeTag, int(c.idxReq), c.idxAddr, c.idxTag, int(c.triReq),
+      c.triAddr, c.triTag, int(c.perfIsectFire), int(c.perfStepReady), fmt::join(c.resData, "_"),
+      fmt::join(c.visitData, "_"));
+}
+}  // namespace sc
+
+namespace {
+
+using Impl = SystemCOctreeDevice::Impl;
+using fx::kDirMax;
+using fx::kPosBits;
+using fx::QRay;
+using fx::QTriangle;
+
+// ---- Stimulus: the unit's shared hard cases (tests/support/octree_cases.h) ----------
+
+using test::OctreeCase;
+using test::QuantizedScene;
+
+QuantizedScene bunnyCamera(int width, int height) {
+  static const Scene scene = loadScene(std::string(LANCER_DATA_DIR) + "/scenes/bunny.obj");
+  return test::quantizedCamera(scene, width, height);
+}
+
+fx::OctreeImage bunnyImage(const QuantizedScene& q) {
+  return fx::buildOctreeImage(q.triangles, fx::defaultOctreeDepth(q.triangles.size()), fx::kDefaultOctreeLeafSize);
+}
+
+TraversalRunOptions roughOptions(uint64_t seed, int raysInFlight = 0) {
+  return test::roughOctreeOptions(seed, raysInFlight);
+}
+
+std::string describe(const QRay& r) { return test::describeRay(r); }
+std::string describe(const fx::TraversalTrace& t) { return test::describeTrace(t); }
+
+std::string optionsText(const TraversalRunOptions& o) {
+  return fmt::format("latency {} jitter {} slots {} stall {} idle {} seed {}", o.memLatency, o.memLatencyJitter,
+                     o.raysInFlight, o.stream.outputStallProbability, o.stream.inputIdleProbability, o.stream.seed);
+}
+
+bool available(Impl impl) { return impl == Impl::Model || SystemCOctreeDevice::rtlAvailable(); }
+
+// Runs golden and `device`, expects identical traces and golden's counters.
+TraversalRunStats expectSameTraces(OctreeDevice& device, const fx::OctreeImage& image, const std::vector<QRay>& rays,
+                                   const TraversalRunOptions& options, const std::string& what) {
+  GoldenOctreeDevice golden;
+  std::vector<fx::TraversalTrace> want, got;
+  const TraversalRunStats g = golden.run(image, rays, want, options);
+  const TraversalRunStats r = device.run(image, rays, got, options);
+  EXPECT_EQ(got.size(), want.size()) << what;
+  int reported = 0;
+  for (size_t k = 0; k < std::min(got.size(), want.size()); ++k) {
+    if (got[k] == want[k]) continue;
+    ADD_FAILURE() << what << ": octree depth " << image.depth << ", " << describe(rays[k]) << "\n  " << device.name()
+                  << ": " << describe(got[k]) << "\n  golden: " << describe(want[k]);
+    if (++reported == 5) break;
+  }
+  EXPECT_EQ(r.rays, rays.size()) << what;
+  EXPECT_EQ(r.steps, g.steps) << what;
+  EXPECT_EQ(r.nodeReads, g.nodeReads) << what;
+  EXPECT_EQ(r.indexReads, g.indexReads) << what;
+  EXPECT_EQ(r.triangleReads, g.triangleReads) << what;
+  EXPECT_EQ(r.isectTests, g.isectTests) << what;
+  EXPECT_EQ(r.isectBusyCycles, r.isectTests) << what;
+  EXPECT_TRUE(r.cycleAccurate) << what;
+  EXPECT_GT(r.cycles, 0u) << what;
+  EXPECT_LE(r.stepReadyCycles, r.cycles + 1) << what;
+  if (r.steps > 0) {
+    EXPECT_GT(r.stepReadyCycles, 0u) << what;
+  }
+  return r;
+}
+
+void expectSameStats(const TraversalRunStats& a, const TraversalRunStats& b, const std::string& what) {
+  EXPECT_EQ(a.cycles, b.cycles) << what;
+  EXPECT_EQ(a.rays, b.rays) << what;
+  EXPECT_EQ(a.steps, b.steps) << what;
+  EXPECT_EQ(a.stepReadyCycles, b.stepReadyCycles) << what;
+  EXPECT_EQ(a.nodeReads, b.nodeReads) << what;
+  EXPECT_EQ(a.indexReads, b.indexReads) << what;
+  EXPECT_EQ(a.triangleReads, b.triangleReads) << what;
+  EXPECT_EQ(a.isectTests, b.isectTests) << what;
+  EXPECT_EQ(a.isectBusyCycles, b.isectBusyCycles) << what;
+}
+
+// ---- Each implementation against the golden model -------------------------------------
+
+class ScOctree : public ::testing::TestWithParam<Impl> {
+ protected:
+  void SetUp() override {
+    if (!available(GetParam())) GTEST_SKIP() << "this build has no Verilated rt_octree";
+  }
+};
+
+std::string implName(const ::testing::TestParamInfo<Impl>& info) {
+  return info.param == Impl::Model ? "Model" : "Rtl";
+}
+
+INSTANTIATE_TEST_SUITE_P(Impl, ScOctree, ::testing::Values(Impl::Model, Impl::Rtl), implName);
+
+TEST_P(ScOctree, MatchesGoldenOnBunnyCameraRays) {
+  const QuantizedScene q = bunnyCamera(32, 32);
+  const fx::OctreeImage image = bunnyImage(q);
+  SystemCOctreeDevice device(GetParam());
+  expectSameTraces(device, image, q.rays, roughOptions(1), "bunny 32x32, rough");
+}
+
+TEST_P(ScOctree, MatchesGoldenOnHardCasesWithOneSlotAndAllSlots) {
+  SystemCOctreeDevice device(GetParam());
+  uint64_t seed = 20;
+  for (const OctreeCase& c : test::octreeHardCases()) {
+    SCOPED_TRACE(c.name);
+    expectSameTraces(device, c.image, c.rays, roughOptions(++seed), c.name + ", all slots");
+    expectSameTraces(device, c.image, c.rays, roughOptions(++seed, 1), c.name + ", one slot");
+  }
+}
+
+TEST_P(ScOctree, MatchesGoldenWithoutBackpressure) {
+  const QuantizedScene q = bunnyCamera(10, 10);
+  const fx::OctreeImage image = bunnyImage(q);
+  SystemCOctreeDevice device(GetParam());
+  TraversalRunOptions fast;  // no jitter, no stalls, latency 1
+  fast.memLatency = 1;
+  expectSameTraces(device, image, q.rays, fast, "latency 1, no backpressure");
+  expectSameTraces(device, image, q.rays, {}, "latency 20, no backpressure");
+  TraversalRunOptions slow = roughOptions(9, 3);
+  slow.memLatency = 60;
+  slow.memLatencyJitter = 60;
+  slow.stream.outputStallProbability = 0.7;
+  expectSameTraces(device, image, q.rays, slow, "latency 60 + jitter 60, stalls 0.7, 3 slots");
+}
+
+TEST_P(ScOctree, RepeatedRunsAreIndependentAndReproducible) {
+  const QuantizedScene q = bunnyCamera(6, 6);
+  const fx::OctreeImage image = bunnyImage(q);
+  std::vector<fx::TraversalTrace> a, b, c;
+  SystemCOctreeDevice first(GetParam());
+  const TraversalRunStats sa = first.run(image, q.rays, a, roughOptions(3));
+  const TraversalRunStats other = first.run(image, q.rays, b, roughOptions(4));
+  SystemCOctreeDevice second(GetParam());
+  const TraversalRunStats sc = second.run(image, q.rays, c, roughOptions(3));
+  EXPECT_EQ(a, c);
+  EXPECT_EQ(a, b);  // traces do not depend on the timing
+  expectSameStats(sa, sc, "same seed, new device");
+  EXPECT_NE(sa.cycles, other.cycles);
+}
+
+TEST_P(ScOctree, EmptyRunAndInvalidOptions) {
+  SystemCOctreeDevice device(GetParam());
+  const fx::OctreeImage image = fx::buildOctreeImage({}, 1, 1);
+  std::vector<fx::TraversalTrace> traces(3);
+  const TraversalRunStats s = device.run(image, std::vector<QRay>{}, traces);
+  EXPECT_TRUE(traces.empty());
+  EXPECT_EQ(s.cycles, 0u);
+  const std::vector<QRay> one{QRay{0, {0, 0, 0}, {kDirMax, 0, 0}}};
+  TraversalRunOptions o;
+  o.raysInFlight = device.maxRaysInFlight() + 1;
+  try {
+    device.run(image, one, traces, o);
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(std::to_string(o.raysInFlight)), std::string::npos) << what;
+    EXPECT_NE(what.find(std::to_string(device.maxRaysInFlight())), std::string::npos) << what;
+  }
+  o = {};
+  o.raysInFlight = -1;
+  EXPECT_THROW(device.run(image, one, traces, o), InputError);
+  o = {};
+  o.memLatency = 0;
+  EXPECT_THROW(device.run(image, one, traces, o), InputError);
+  o = {};
+  o.memLatencyJitter = -1;
+  EXPECT_THROW(device.run(image, one, traces, o), InputError);
+  o = {};
+  o.stream.outputStallProbability = 1.0;
+  EXPECT_THROW(device.run(image, one, traces, o), InputError);
+  o = {};
+  o.stream.inputIdleProbability = -0.1;
+  EXPECT_THROW(device.run(image, one, traces, o), InputError);
+  // Still usable afterwards.
+  expectSameTraces(device, image, one, {}, "after errors");
+}
+
+// ---- The timing the micro-architecture prescribes (docs/octree-unit.md) ---------------
+
+// One ray, latency L, nothing random: the cycle count follows from the state
+// machine: accept in 0, ENTER from 3; per node entered one visit-grant cycle;
+// an interior node then GROUP_REQ, the request on the port, L, DESCEND; ...
+uint64_t oneRayCycles(OctreeDevice& device, const fx::OctreeImage& image, const QRay& ray, int latency,
+                      fx::TraversalTrace* trace = nullptr) {
+  TraversalRunOptions o;
+  o.memLatency = latency;
+  std::vector<fx::TraversalTrace> traces;
+  const TraversalRunStats s = device.run(image, std::vector<QRay>{ray}, traces, o);
+  if (trace) *trace = traces.at(0);
+  return s.cycles;
+}
+
+TEST_P(ScOctree, OneRayTimingFollowsTheStateMachine) {
+  SystemCOctreeDevice device(GetParam());
+  const int64_t side = int64_t(1) << kPosBits;
+  // A ray that misses the root: accepted in 0, DONE in 3 (no node), result
+  // pushed at the end of 3, on the port in 4 and taken there: 5 cycles.
+  {
+    const fx::OctreeImage image = fx::buildOctreeImage({}, 1, 1);
+    // Leaves through the corner edge it starts on: t0 = 0 on x (entering), t1 = 0 on y (mirrored, leaving).
+    const QRay miss{0, {0, 0, side / 2}, {kDirMax, -kDirMax / 2, 0}};
+    fx::TraversalTrace t;
+    EXPECT_EQ(oneRayCycles(device, image, miss, 20, &t), 5u) << "root missed";
+    EXPECT_TRUE(t.visits.empty());
+  }
+  // An empty root leaf: ENTER 3 (visit grant), CHECK 4 (no hit: advance at
+  // depth 0 -> DONE), DONE 5 (done grant), result on the port in 6: 7 cycles.
+  {
+    const fx::OctreeImage image = fx::buildOctreeImage({}, 1, 1);
+    const QRay ray{0, {side / 2, side / 2, side / 2}, {kDirMax, 0, 0}};
+    fx::TraversalTrace t;
+    EXPECT_EQ(oneRayCycles(device, image, ray, 20, &t), 7u) << "empty root leaf";
+    EXPECT_EQ(t.visits.size(), 1u);
+  }
+  // Two empty levels: the root interior, its children empty leaves. A ray along
+  // x through the lower half on y and z enters the root, then children 0 and 4
+  // (mirrored numbering: x lower, then x upper). Cycles per the state machine,
+  // with L the latency: root ENTER 3, GROUP_REQ 4, request on the port 5,
+  // response in 5+L, DESCEND 6+L, child ENTER 7+L, CHECK 8+L (sibling, group
+  // valid) -> ENTER 9+L, CHECK 10+L (advance: pop to depth 0 -> DONE), DONE
+  // 11+L, result taken in 12+L: 13 + L cycles; an interior node costs L + 4.
+  {
+    std::vector<QTriangle> tris;
+    for (int i = 0; i < 20; ++i) {  // in the upper y half: the root splits, its lower-y children stay empty
+      QTriangle t{uint32_t(i), {}};
+      t.v[0] = {side / 8 + i, side - 10, side - 10};
+      t.v[1] = {side / 8 + i + 1, side - 10, side - 9};
+      t.v[2] = {side / 8 + i, side - 9, side - 10};
+      tris.push_back(t);
+    }
+    const fx::OctreeImage image = fx::buildOctreeImage(tris, 1, 1);
+    ASSERT_FALSE(image.nodes[0].leaf);
+    const QRay ray{0, {0, side / 4, side / 4}, {kDirMax, 0, 0}};
+    for (int latency : {1, 5, 20}) {
+      fx::TraversalTrace t;
+      const uint64_t cycles = oneRayCycles(device, image, ray, latency, &t);
+      ASSERT_EQ(t.visits.size(), 3u) << describe(t);
+      ASSERT_TRUE(image.nodes[t.visits[1]].leaf && image.nodes[t.visits[1]].count == 0) << describe(t);
+      ASSERT_TRUE(image.nodes[t.visits[2]].leaf && image.nodes[t.visits[2]].count == 0) << describe(t);
+      EXPECT_EQ(cycles, uint64_t(13 + latency)) << "latency " << latency;
+    }
+  }
+}
+
+// ---- Cycle accuracy ---------------------------------------------------------------------
+
+// Plain (latency 20, latency 1), rough with all slots and with 3, and slow
+// with heavy stalls (the FIFOs fill, the arbiters skip full queues). One slot
+// is left to the golden tests above: it makes runs long and arbitration trivial.
+std::vector<TraversalRunOptions> timingSettings() {
+  std::vector<TraversalRunOptions> all;
+  TraversalRunOptions o;
+  all.push_back(o);
+  o.memLatency = 1;
+  all.push_back(o);
+  all.push_back(roughOptions(31));
+  all.push_back(roughOptions(33, 3));
+  o = roughOptions(34);
+  o.memLatency = 40;
+  o.memLatencyJitter = 40;
+  o.stream.outputStallProbability = 0.6;
+  all.push_back(o);
+  return all;
+}
+
+std::vector<OctreeCase> cycleCases() {
+  const QuantizedScene q = bunnyCamera(16, 16);
+  std::vector<OctreeCase> cases{{"bunny 16x16", bunnyImage(q), q.rays}};
+  for (OctreeCase& c : test::octreeHardCases()) cases.push_back(std::move(c));
+  return cases;
+}
+
+TEST(ScOctreeCycleAccuracy, ModelMatchesVerilatedRtlCycleForCycle) {
+  if (!SystemCOctreeDevice::rtlAvailable()) GTEST_SKIP() << "no Verilated rt_octree in this build";
+  SystemCOctreeDevice model(Impl::Model), rtl(Impl::Rtl);
+  for (const OctreeCase& c : cycleCases()) {
+    for (const TraversalRunOptions& o : timingSettings()) {
+      const std::string what = c.name + ", " + optionsText(o);
+      std::vector<sc::TraversalCycle> mt, rt;
+      std::vector<fx::TraversalTrace> a, b;
+      model.setCycleTrace(&mt);
+      rtl.setCycleTrace(&rt);
+      const TraversalRunStats sm = model.run(c.image, c.rays, a, o);
+      const TraversalRunStats sr = rtl.run(c.image, c.rays, b, o);
+      model.setCycleTrace(nullptr);
+      rtl.setCycleTrace(nullptr);
+      expectSameStats(sm, sr, what);
+      EXPECT_EQ(a, b) << what;
+      EXPECT_EQ(mt.size(), rt.size()) << what;
+      size_t differing = 0;
+      for (size_t i = 0; i < std::min(mt.size(), rt.size()); ++i) {
+        if (mt[i] == rt[i]) continue;
+        if (++differing <= 3) {
+          ADD_FAILURE() << what << ", first differing cycles\n  model: " << ::testing::PrintToString(mt[i])
+                        << "\n  rtl:   " << ::testing::PrintToString(rt[i]);
+        }
+      }
+      EXPECT_EQ(differing, 0u) << what << ": cycles whose port activity differs";
+    }
+  }
+}
+
+TEST(ScOctreeCycleAccuracy, StatsEqualTheCxxVerilatedDevice) {
+  const std::vector<std::string> names = octreeDeviceNames();
+  if (std::find(names.begin(), names.end(), "rtl") == names.end()) {
+    GTEST_SKIP() << "no C++ Verilated octree device (\"rtl\") in this build";
+  }
+  // The cycle model against the C++-driven RTL ("rtl-systemc" equals the model
+  // cycle for cycle, above): the same stimulus and memory timing give the same
+  // counters, cycles included.
+  const auto cxx = makeOctreeDevice("rtl");
+  const std::vector<TraversalRunOptions> settings = timingSettings();
+  SystemCOctreeDevice model(Impl::Model);
+  for (const OctreeCase& c : cycleCases()) {
+    for (const TraversalRunOptions& o : {settings[0], settings[2], settings[4]}) {
+      std::vector<fx::TraversalTrace> want, got;
+      const TraversalRunStats ref = cxx->run(c.image, c.rays, want, o);
+      const TraversalRunStats s = model.run(c.image, c.rays, got, o);
+      const std::string what = fmt::format("systemc vs rtl, {}, {}", c.name, optionsText(o));
+      expectSameStats(s, ref, what);
+      EXPECT_EQ(got, want) << what;
+    }
+  }
+}
+
+// ---- The device in the process ------------------------------------------------------------
+
+TEST(ScOctreeDevice, NamesAndFactory) {
+  const std::vector<std::string> names = octreeDeviceNames();
+  EXPECT_NE(std::find(names.begin(), names.end(), "systemc"), names.end());
+  EXPECT_EQ(std::find(names.begin(), names.end(), "rtl-systemc") != names.end(),
+            SystemCOctreeDevice::rtlAvailable());
+  for (const std::string& n : names) EXPECT_EQ(makeOctreeDevice(n)->name(), n);
+  EXPECT_EQ(makeOctreeDevice("systemc")->maxRaysInFlight(), LANCER_OCTREE_RAYS_IN_FLIGHT);
+  EXPECT_THROW(makeOctreeDevice("nope"), InputError);
+}
+
+TEST(ScOctreeDevice, SharesTheKernelWithTheGridUnit) {
+  // Any SystemC system may run first; all are elaborated together.
+  const QuantizedScene q = bunnyCamera(4, 4);
+  const fx::OctreeImage octree = bunnyImage(q);
+  const fx::GridImage grid = fx::buildGridImage(q.triangles, {8, 8, 8});
+  for (int round = 0; round < 2; ++round) {
+    std::vector<fx::TraversalTrace> want, got;
+    GoldenGridDevice().run(grid, q.rays, want);
+    SystemCGridDevice().run(grid, q.rays, got, roughOptions(40 + round));
+    EXPECT_EQ(got, want);
+    SystemCOctreeDevice device;
+    expectSameTraces(device, octree, q.rays, roughOptions(50 + round), "interleaved");
+  }
+}
+
+TEST(ScOctreeDevice, WaveformOfTheRtlOnRequest) {
+  if (!SystemCOctreeDevice::rtlAvailable() || !SystemCOctreeDevice::wavesAvailable()) {
+    GTEST_SKIP() << "no Verilated rt_octree with FST tracing in this build";
+  }
+  const QuantizedScene q = bunnyCamera(3, 3);
+  const fx::OctreeImage image = bunnyImage(q);
+  TraversalRunOptions o = roughOptions(60);
+  o.stream.wavePath = ::testing::TempDir() + "rt_octree_sc_wave.fst";
+  std::remove(o.stream.wavePath.c_str());
+  SystemCOctreeDevice rtl(Impl::Rtl);
+  expectSameTraces(rtl, image, q.rays, o, "with waves");
+  std::FILE* f = std::fopen(o.stream.wavePath.c_str(), "rb");
+  ASSERT_NE(f, nullptr) << o.stream.wavePath;
+  std::fseek(f, 0, SEEK_END);
+  EXPECT_GT(std::ftell(f), 1000);
+  std::fclose(f);
+  std::remove(o.stream.wavePath.c_str());
+}
+
+}  // namespace
+}  // namespace lancer
