@@ -94,11 +94,6 @@ module rt_isect (
   // which Yosys 0.23 reads only inside structs.
   // ---------------------------------------------------------------------------
   typedef struct packed {
-    logic [POS_W-1:0] z;
-    logic [POS_W-1:0] y;
-    logic [POS_W-1:0] x;
-  } pos_vec_t;
-  typedef struct packed {
     logic [DIR_W-1:0] z;
     logic [DIR_W-1:0] y;
     logic [DIR_W-1:0] x;
@@ -116,107 +111,143 @@ module rt_isect (
   } shear_vec_t;
 
   // ---------------------------------------------------------------------------
-  // Stage 1: dominant axis and vertices relative to the origin.
+  // Datapath functions. Each stage computes only in the always_ff branch where
+  // it loads, so the Verilated model skips the wide products of empty or
+  // stalled stages (continuous assigns were evaluated every cycle).
+  // Yosys 0.23 reads neither struct-typed arguments, results nor locals here:
+  // they are flat vectors, split with {z, y, x} = v.
   // ---------------------------------------------------------------------------
-  dir_vec_t dir_in;
-  pos_vec_t org_in, v0_in, v1_in, v2_in;
 
-  assign dir_in = req_ray_i.dir;
-  assign org_in = req_ray_i.org;
-  assign v0_in  = req_tri_i.v0;
-  assign v1_in  = req_tri_i.v1;
-  assign v2_in  = req_tri_i.v2;
+  // |d|: the most negative code -2^(DIR_W-1) gives 2^(DIR_W-1), DIR_W unsigned bits.
+  function automatic logic [DIR_W-1:0] abs_dir(logic [DIR_W-1:0] d);
+    abs_dir = d[DIR_W-1] ? -d : d;
+  endfunction
 
-  // |d| of the most negative code -2^(DIR_W-1) is 2^(DIR_W-1): DIR_W unsigned bits.
-  logic [DIR_W-1:0] abs_dx, abs_dy, abs_dz;
-  logic [1:0]       kz;
-
-  assign abs_dx = dir_in.x[DIR_W-1] ? -dir_in.x : dir_in.x;
-  assign abs_dy = dir_in.y[DIR_W-1] ? -dir_in.y : dir_in.y;
-  assign abs_dz = dir_in.z[DIR_W-1] ? -dir_in.z : dir_in.z;
-
-  // Ties go to the lower axis, as in fx::dominantAxis().
-  always_comb begin
-    if (abs_dx >= abs_dy && abs_dx >= abs_dz) begin
-      kz = 2'd0;
-    end else if (abs_dy >= abs_dz) begin
-      kz = 2'd1;
+  // Dominant axis of d; ties go to the lower axis, as in fx::dominantAxis().
+  function automatic logic [1:0] dominant_axis(logic [3*DIR_W-1:0] d);
+    logic [DIR_W-1:0] dx, dy, dz;
+    {dz, dy, dx} = d;
+    dx = abs_dir(dx);
+    dy = abs_dir(dy);
+    dz = abs_dir(dz);
+    if (dx >= dy && dx >= dz) begin
+      dominant_axis = 2'd0;
+    end else if (dy >= dz) begin
+      dominant_axis = 2'd1;
     end else begin
-      kz = 2'd2;
+      dominant_axis = 2'd2;
     end
-  end
+  endfunction
 
-  // Rotate the axes so that x = kx = (kz+1)%3, y = ky = (kz+2)%3, z = kz.
-  dir_vec_t dir_r;
-  pos_vec_t org_r, v0_r, v1_r, v2_r;
+  // v - org, |.| < 2^POS_W. Both operands are zero-extended to REL_W = POS_W + 1,
+  // so the wrapped difference is the exact two's complement.
+  function automatic logic [3*REL_W-1:0] rel_vertex(logic [3*POS_W-1:0] v,
+                                                    logic [3*POS_W-1:0] org);
+    logic [POS_W-1:0] vx, vy, vz, ox, oy, oz;
+    logic [REL_W-1:0] rx, ry, rz;
+    {vz, vy, vx} = v;
+    {oz, oy, ox} = org;
+    rx = REL_W'(vx) - REL_W'(ox);
+    ry = REL_W'(vy) - REL_W'(oy);
+    rz = REL_W'(vz) - REL_W'(oz);
+    rel_vertex = {rz, ry, rx};
+  endfunction
 
-  assign dir_r = (kz == 2'd0) ? {dir_in.x, dir_in.z, dir_in.y} :
-                 (kz == 2'd1) ? {dir_in.y, dir_in.x, dir_in.z} : dir_in;
-  assign org_r = (kz == 2'd0) ? {org_in.x, org_in.z, org_in.y} :
-                 (kz == 2'd1) ? {org_in.y, org_in.x, org_in.z} : org_in;
-  assign v0_r  = (kz == 2'd0) ? {v0_in.x, v0_in.z, v0_in.y} :
-                 (kz == 2'd1) ? {v0_in.y, v0_in.x, v0_in.z} : v0_in;
-  assign v1_r  = (kz == 2'd0) ? {v1_in.x, v1_in.z, v1_in.y} :
-                 (kz == 2'd1) ? {v1_in.y, v1_in.x, v1_in.z} : v1_in;
-  assign v2_r  = (kz == 2'd0) ? {v2_in.x, v2_in.z, v2_in.y} :
-                 (kz == 2'd1) ? {v2_in.y, v2_in.x, v2_in.z} : v2_in;
+  // Rotate the axes so that x = kx = (kz+1)%3, y = ky = (kz+2)%3, z = kz (no
+  // kx/ky swap). One function per width: SystemVerilog functions have no
+  // width parameter that Yosys reads.
+  function automatic logic [3*REL_W-1:0] rotate_rel(logic [3*REL_W-1:0] v, logic [1:0] kz);
+    logic [REL_W-1:0] x, y, z;
+    {z, y, x} = v;
+    case (kz)
+      2'd0:    rotate_rel = {x, z, y};
+      2'd1:    rotate_rel = {y, x, z};
+      default: rotate_rel = v;
+    endcase
+  endfunction
+  function automatic logic [3*DIR_W-1:0] rotate_dir(logic [3*DIR_W-1:0] v, logic [1:0] kz);
+    logic [DIR_W-1:0] x, y, z;
+    {z, y, x} = v;
+    case (kz)
+      2'd0:    rotate_dir = {x, z, y};
+      2'd1:    rotate_dir = {y, x, z};
+      default: rotate_dir = v;
+    endcase
+  endfunction
 
-  // a, b, c = v0, v1, v2 - org, |.| < 2^POS_W. Both operands are zero-extended
-  // to REL_W = POS_W + 1, so the wrapped difference is the exact two's complement.
-  rel_vec_t a_d, b_d, c_d, a_q, b_q, c_q;
+  // Shear of one vertex r, scaled by d[kz]: sx = d[kz]*r.x - d[kx]*r.z,
+  // sy = d[kz]*r.y - d[ky]*r.z, z kept. |d| <= 2^(DIR_W-1) and |r| < 2^POS_W,
+  // so each product is below 2^(POS_W+DIR_W-1) and the difference fits
+  // SHEAR_W signed. A vertex shared by two triangles gets bit-identical values.
+  function automatic logic [REL_W+2*SHEAR_W-1:0] shear_vertex(logic [3*REL_W-1:0] r,
+                                                              logic [3*DIR_W-1:0] d);
+    logic signed [REL_W-1:0]   rx, ry, rz;
+    logic signed [DIR_W-1:0]   dx, dy, dz;
+    logic signed [SHEAR_W-1:0] sx, sy;
+    {rz, ry, rx} = r;
+    {dz, dy, dx} = d;
+    sx = SHEAR_W'(dz) * SHEAR_W'(rx) - SHEAR_W'(dx) * SHEAR_W'(rz);
+    sy = SHEAR_W'(dz) * SHEAR_W'(ry) - SHEAR_W'(dy) * SHEAR_W'(rz);
+    shear_vertex = {rz, sy, sx};
+  endfunction
 
-  assign a_d = {REL_W'(v0_r.z) - REL_W'(org_r.z), REL_W'(v0_r.y) - REL_W'(org_r.y),
-                REL_W'(v0_r.x) - REL_W'(org_r.x)};
-  assign b_d = {REL_W'(v1_r.z) - REL_W'(org_r.z), REL_W'(v1_r.y) - REL_W'(org_r.y),
-                REL_W'(v1_r.x) - REL_W'(org_r.x)};
-  assign c_d = {REL_W'(v2_r.z) - REL_W'(org_r.z), REL_W'(v2_r.y) - REL_W'(org_r.y),
-                REL_W'(v2_r.x) - REL_W'(org_r.x)};
+  // Edge function of the sheared vertices p, q: p.x*q.y - p.y*q.x.
+  // |s| < 2^(POS_W+DIR_W), so each product is below 2^(2(POS_W+DIR_W)) and the
+  // difference fits EDGE_W.
+  function automatic logic signed [EDGE_W-1:0] edge_fn(logic signed [SHEAR_W-1:0] px,
+                                                       logic signed [SHEAR_W-1:0] py,
+                                                       logic signed [SHEAR_W-1:0] qx,
+                                                       logic signed [SHEAR_W-1:0] qy);
+    edge_fn = EDGE_W'(px) * EDGE_W'(qy) - EDGE_W'(py) * EDGE_W'(qx);
+  endfunction
 
+  // Edge function times the relative z of the opposite vertex, one term of T.
+  // |U*az| < 2^(3POS_W+2DIR_W+1).
+  function automatic logic signed [T_W-1:0] t_term(logic signed [EDGE_W-1:0] e,
+                                                   logic signed [REL_W-1:0]  z);
+    t_term = T_W'(e) * T_W'(z);
+  endfunction
+
+  // e > 0
+  function automatic logic is_pos(logic [EDGE_W-1:0] e);
+    is_pos = !e[EDGE_W-1] && (|e);
+  endfunction
+
+  // ---------------------------------------------------------------------------
+  // Stage 1: dominant axis, vertices relative to the origin, axes rotated
+  // (a rotation commutes with the per-axis difference).
+  // ---------------------------------------------------------------------------
+  rel_vec_t             a_q, b_q, c_q;
   dir_vec_t             dir1_q;
   logic [RAY_ID_W-1:0]  ray_id1_q;
   logic [PRIM_ID_W-1:0] prim_id1_q;
 
   always_ff @(posedge clk_i) begin
-    if (stage_load[0]) begin
-      a_q        <= a_d;
-      b_q        <= b_d;
-      c_q        <= c_d;
-      dir1_q     <= dir_r;
+    if (stage_load[0]) begin : s1_load
+      logic [1:0] kz;
+      kz         = dominant_axis(req_ray_i.dir);
+      a_q        <= rotate_rel(rel_vertex(req_tri_i.v0, req_ray_i.org), kz);
+      b_q        <= rotate_rel(rel_vertex(req_tri_i.v1, req_ray_i.org), kz);
+      c_q        <= rotate_rel(rel_vertex(req_tri_i.v2, req_ray_i.org), kz);
+      dir1_q     <= rotate_dir(req_ray_i.dir, kz);
       ray_id1_q  <= req_ray_i.ray_id;
       prim_id1_q <= req_tri_i.prim_id;
     end
   end
 
   // ---------------------------------------------------------------------------
-  // Stage 2: shear scaled by d[kz]:  sx = d[kz]*r.x - d[kx]*r.z,
-  // sy = d[kz]*r.y - d[ky]*r.z. |d| <= 2^(DIR_W-1) and |r| < 2^POS_W, so each
-  // product is below 2^(POS_W+DIR_W-1) and the difference fits SHEAR_W signed.
-  // A vertex shared by two triangles gets bit-identical sheared values.
+  // Stage 2: shear scaled by d[kz].
   // ---------------------------------------------------------------------------
-  logic signed [SHEAR_W-1:0] dx_s, dy_s, dz_s;
-
-  assign dx_s = SHEAR_W'($signed(dir1_q.x));
-  assign dy_s = SHEAR_W'($signed(dir1_q.y));
-  assign dz_s = SHEAR_W'($signed(dir1_q.z));
-
-  shear_vec_t sa_d, sb_d, sc_d, sa_q, sb_q, sc_q;
-
-  assign sa_d = {a_q.z, dz_s * SHEAR_W'($signed(a_q.y)) - dy_s * SHEAR_W'($signed(a_q.z)),
-                        dz_s * SHEAR_W'($signed(a_q.x)) - dx_s * SHEAR_W'($signed(a_q.z))};
-  assign sb_d = {b_q.z, dz_s * SHEAR_W'($signed(b_q.y)) - dy_s * SHEAR_W'($signed(b_q.z)),
-                        dz_s * SHEAR_W'($signed(b_q.x)) - dx_s * SHEAR_W'($signed(b_q.z))};
-  assign sc_d = {c_q.z, dz_s * SHEAR_W'($signed(c_q.y)) - dy_s * SHEAR_W'($signed(c_q.z)),
-                        dz_s * SHEAR_W'($signed(c_q.x)) - dx_s * SHEAR_W'($signed(c_q.z))};
-
+  shear_vec_t           sa_q, sb_q, sc_q;
   logic                 dz_neg2_q;
   logic [RAY_ID_W-1:0]  ray_id2_q;
   logic [PRIM_ID_W-1:0] prim_id2_q;
 
   always_ff @(posedge clk_i) begin
     if (stage_load[1]) begin
-      sa_q       <= sa_d;
-      sb_q       <= sb_d;
-      sc_q       <= sc_d;
+      sa_q       <= shear_vertex(a_q, dir1_q);
+      sb_q       <= shear_vertex(b_q, dir1_q);
+      sc_q       <= shear_vertex(c_q, dir1_q);
       dz_neg2_q  <= dir1_q.z[DIR_W-1];
       ray_id2_q  <= ray_id1_q;
       prim_id2_q <= prim_id1_q;
@@ -224,37 +255,21 @@ module rt_isect (
   end
 
   // ---------------------------------------------------------------------------
-  // Stage 3: edge functions, d[kz]^2 times Woop's. |s| < 2^(POS_W+DIR_W), so
-  // each product is below 2^(2(POS_W+DIR_W)) and the difference fits EDGE_W.
+  // Stage 3: edge functions, d[kz]^2 times Woop's.
   //   U = cx*by - cy*bx,  V = ax*cy - ay*cx,  W = bx*ay - by*ax
   // A shared edge gives the exact negation in the neighbour: no ray leaks.
   // ---------------------------------------------------------------------------
-  logic signed [EDGE_W-1:0] ax_e, ay_e, bx_e, by_e, cx_e, cy_e;
-
-  assign ax_e = EDGE_W'($signed(sa_q.x));
-  assign ay_e = EDGE_W'($signed(sa_q.y));
-  assign bx_e = EDGE_W'($signed(sb_q.x));
-  assign by_e = EDGE_W'($signed(sb_q.y));
-  assign cx_e = EDGE_W'($signed(sc_q.x));
-  assign cy_e = EDGE_W'($signed(sc_q.y));
-
-  logic signed [EDGE_W-1:0] edge_u_d, edge_v_d, edge_w_d;
   logic signed [EDGE_W-1:0] edge_u_q, edge_v_q, edge_w_q;
-
-  assign edge_u_d = cx_e * by_e - cy_e * bx_e;
-  assign edge_v_d = ax_e * cy_e - ay_e * cx_e;
-  assign edge_w_d = bx_e * ay_e - by_e * ax_e;
-
-  rel_vec_t             sz3_q;
-  logic                 dz_neg3_q;
-  logic [RAY_ID_W-1:0]  ray_id3_q;
-  logic [PRIM_ID_W-1:0] prim_id3_q;
+  rel_vec_t                 sz3_q;
+  logic                     dz_neg3_q;
+  logic [RAY_ID_W-1:0]      ray_id3_q;
+  logic [PRIM_ID_W-1:0]     prim_id3_q;
 
   always_ff @(posedge clk_i) begin
     if (stage_load[2]) begin
-      edge_u_q   <= edge_u_d;
-      edge_v_q   <= edge_v_d;
-      edge_w_q   <= edge_w_d;
+      edge_u_q   <= edge_fn(sc_q.x, sc_q.y, sb_q.x, sb_q.y);
+      edge_v_q   <= edge_fn(sa_q.x, sa_q.y, sc_q.x, sc_q.y);
+      edge_w_q   <= edge_fn(sb_q.x, sb_q.y, sa_q.x, sa_q.y);
       sz3_q      <= {sc_q.z, sb_q.z, sa_q.z};
       dz_neg3_q  <= dz_neg2_q;
       ray_id3_q  <= ray_id2_q;
@@ -266,24 +281,9 @@ module rt_isect (
   // Stage 4: sign test and determinant; the three products of T.
   // Inside unless the signs of U, V, W disagree (zero agrees with both);
   // det = U + V + W, |det| < 3 * 2^(EDGE_W-1) fits DET_W, and det == 0 (ray in
-  // the plane, degenerate triangle) is a miss. |U*az| < 2^(3POS_W+2DIR_W+1).
+  // the plane, degenerate triangle) is a miss.
   // ---------------------------------------------------------------------------
-  logic any_neg, any_pos, in_tri;
-  logic signed [DET_W-1:0] det_d;
-
-  assign any_neg = edge_u_q[EDGE_W-1] || edge_v_q[EDGE_W-1] || edge_w_q[EDGE_W-1];
-  assign any_pos = (!edge_u_q[EDGE_W-1] && (|edge_u_q)) ||
-                   (!edge_v_q[EDGE_W-1] && (|edge_v_q)) ||
-                   (!edge_w_q[EDGE_W-1] && (|edge_w_q));
-  assign in_tri  = !(any_neg && any_pos);
-  assign det_d   = DET_W'(edge_u_q) + DET_W'(edge_v_q) + DET_W'(edge_w_q);
-
-  logic signed [T_W-1:0] tp_u_d, tp_v_d, tp_w_d, tp_u_q, tp_v_q, tp_w_q;
-
-  assign tp_u_d = T_W'(edge_u_q) * T_W'($signed(sz3_q.x));
-  assign tp_v_d = T_W'(edge_v_q) * T_W'($signed(sz3_q.y));
-  assign tp_w_d = T_W'(edge_w_q) * T_W'($signed(sz3_q.z));
-
+  logic signed [T_W-1:0]    tp_u_q, tp_v_q, tp_w_q;
   logic                     cand4_q;
   logic signed [DET_W-1:0]  det4_q;
   logic signed [EDGE_W-1:0] edge_v4_q, edge_w4_q;
@@ -292,12 +292,17 @@ module rt_isect (
   logic [PRIM_ID_W-1:0]     prim_id4_q;
 
   always_ff @(posedge clk_i) begin
-    if (stage_load[3]) begin
-      tp_u_q     <= tp_u_d;
-      tp_v_q     <= tp_v_d;
-      tp_w_q     <= tp_w_d;
-      cand4_q    <= in_tri && (|det_d);
-      det4_q     <= det_d;
+    if (stage_load[3]) begin : s4_load
+      logic                    any_neg, any_pos;
+      logic signed [DET_W-1:0] det;
+      any_neg    = edge_u_q[EDGE_W-1] || edge_v_q[EDGE_W-1] || edge_w_q[EDGE_W-1];
+      any_pos    = is_pos(edge_u_q) || is_pos(edge_v_q) || is_pos(edge_w_q);
+      det        = DET_W'(edge_u_q) + DET_W'(edge_v_q) + DET_W'(edge_w_q);
+      tp_u_q     <= t_term(edge_u_q, sz3_q.x);
+      tp_v_q     <= t_term(edge_v_q, sz3_q.y);
+      tp_w_q     <= t_term(edge_w_q, sz3_q.z);
+      cand4_q    <= !(any_neg && any_pos) && (|det);
+      det4_q     <= det;
       edge_v4_q  <= edge_v_q;
       edge_w4_q  <= edge_w_q;
       dz_neg4_q  <= dz_neg3_q;
@@ -311,13 +316,6 @@ module rt_isect (
   // t = T / (d[kz] * det) > 0 iff T != 0 and T has the sign of d[kz] * det
   // (flip: det and d[kz] have opposite signs, so T must be negative).
   // ---------------------------------------------------------------------------
-  logic signed [T_W-1:0] t_d;
-  logic                  flip_d, hit_d;
-
-  assign t_d    = tp_u_q + tp_v_q + tp_w_q;
-  assign flip_d = det4_q[DET_W-1] ^ dz_neg4_q;
-  assign hit_d  = cand4_q && (|t_d) && (t_d[T_W-1] == flip_d);
-
   logic                     hit5_q, flip5_q;
   logic signed [T_W-1:0]    t5_q;
   logic signed [DET_W-1:0]  det5_q;
@@ -326,10 +324,14 @@ module rt_isect (
   logic [PRIM_ID_W-1:0]     prim_id5_q;
 
   always_ff @(posedge clk_i) begin
-    if (stage_load[4]) begin
-      hit5_q     <= hit_d;
-      flip5_q    <= flip_d;
-      t5_q       <= t_d;
+    if (stage_load[4]) begin : s5_load
+      logic signed [T_W-1:0] t;
+      logic                  flip;
+      t          = tp_u_q + tp_v_q + tp_w_q;
+      flip       = det4_q[DET_W-1] ^ dz_neg4_q;
+      hit5_q     <= cand4_q && (|t) && (t[T_W-1] == flip);
+      flip5_q    <= flip;
+      t5_q       <= t;
       det5_q     <= det4_q;
       edge_v5_q  <= edge_v4_q;
       edge_w5_q  <= edge_w4_q;
@@ -343,35 +345,19 @@ module rt_isect (
   // negated when flipped, det, V and W when det < 0 (then V, W <= 0). The
   // magnitudes fit the one-bit-narrower output fields. A miss is all zeros.
   // ---------------------------------------------------------------------------
-  logic              det_neg;
-  logic [T_NUM_W-1:0]   t_abs;
-  logic [DET_ABS_W-1:0] det_abs;
-  logic [BARY_W-1:0]    u_abs, v_abs;
-
-  assign det_neg = det5_q[DET_W-1];
-  assign t_abs   = T_NUM_W'(flip5_q ? -t5_q : t5_q);
-  assign det_abs = DET_ABS_W'(det_neg ? -det5_q : det5_q);
-  assign u_abs   = BARY_W'(det_neg ? -edge_v5_q : edge_v5_q);
-  assign v_abs   = BARY_W'(det_neg ? -edge_w5_q : edge_w5_q);
-
-  rt_pkg::isect_res_t res_d, res_q;
-
-  always_comb begin
-    res_d         = '0;
-    res_d.ray_id  = ray_id5_q;
-    res_d.prim_id = prim_id5_q;
-    if (hit5_q) begin
-      res_d.hit   = 1'b1;
-      res_d.t_num = t_abs;
-      res_d.det   = det_abs;
-      res_d.u_num = u_abs;
-      res_d.v_num = v_abs;
-    end
-  end
+  rt_pkg::isect_res_t res_q;
 
   always_ff @(posedge clk_i) begin
-    if (stage_load[5]) begin
-      res_q <= res_d;
+    if (stage_load[5]) begin : s6_load
+      logic det_neg;
+      det_neg       = det5_q[DET_W-1];
+      res_q.ray_id  <= ray_id5_q;
+      res_q.prim_id <= prim_id5_q;
+      res_q.hit     <= hit5_q;
+      res_q.t_num   <= hit5_q ? T_NUM_W'(flip5_q ? -t5_q : t5_q) : '0;
+      res_q.det     <= hit5_q ? DET_ABS_W'(det_neg ? -det5_q : det5_q) : '0;
+      res_q.u_num   <= hit5_q ? BARY_W'(det_neg ? -edge_v5_q : edge_v5_q) : '0;
+      res_q.v_num   <= hit5_q ? BARY_W'(det_neg ? -edge_w5_q : edge_w5_q) : '0;
     end
   end
 
