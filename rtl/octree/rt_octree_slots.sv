@@ -112,7 +112,7 @@ module rt_octree_slots #(
   localparam int DEPTH_W = $clog2(rt_pkg::OCTREE_MAX_DEPTH + 1);
   localparam int STACK   = rt_pkg::OCTREE_MAX_DEPTH;             // levels 0 .. P-1
   localparam int STK_W   = (STACK > 1) ? $clog2(STACK) : 1;
-  localparam int ENTRY_W = 35;                                   // {group base, child}
+  localparam int NS      = (2 ** SlotW) * (2 ** STK_W);          // entries addressed {slot, level}
 
   // Rank of a parameter in the order -inf < finite < +inf.
   localparam logic [1:0] NEG_INF = 2'd0;
@@ -172,10 +172,7 @@ module rt_octree_slots #(
   logic [31:0]            count_q    [N];
   logic [31:0]            issued_q   [N];
   logic [31:0]            received_q [N];
-  // The ancestors' entries, a word per slot: a slot's advance reads its own
-  // word only (one memory of all slots' entries would give every slot's
-  // advance a read port over all of them).
-  logic [STACK*ENTRY_W-1:0] stack_q  [N];
+  logic [34:0]            stack_q    [NS];  // {group base, child} of the ancestors
   // Written by the advance too.
   logic [3*T_W-1:0]       t0_q       [N];   // the current node's parameters {z, y, x}
   logic [3*T_W-1:0]       t1_q       [N];
@@ -291,7 +288,7 @@ module rt_octree_slots #(
                     end
                   end
                 end
-                parent     = stack_q[s][32'(STK_W'(depth_q[s] - DEPTH_W'(2))) * ENTRY_W +: ENTRY_W];
+                parent     = stack_q[{SlotW'(s), STK_W'(depth_q[s] - DEPTH_W'(2))}];
                 grp_q[s]   <= parent[34:3];
                 child_q[s] <= parent[2:0];
                 depth_q[s] <= depth_q[s] - 1'b1;
@@ -340,7 +337,7 @@ module rt_octree_slots #(
           end
         end
         if (depth != '0) begin
-          stack_q[desc_slot_q][32'(STK_W'(depth - 1'b1)) * ENTRY_W +: ENTRY_W] <= {grp_q[desc_slot_q], child_q[desc_slot_q]};
+          stack_q[{desc_slot_q, STK_W'(depth - 1'b1)}] <= {grp_q[desc_slot_q], child_q[desc_slot_q]};
         end
         grp_q[desc_slot_q]   <= first_q[desc_slot_q];
         child_q[desc_slot_q] <= c;
