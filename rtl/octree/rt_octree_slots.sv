@@ -35,7 +35,9 @@
 // fails, any number per cycle: one stepper per slot, as a loop over the slots.
 //
 // Storage: one-hot state vectors (N bits each, reset); per-slot registers as
-// arrays written by index (no reset; written before read). The current node's
+// arrays written by index (no reset; written before read), except those the
+// advance writes, which are packed vectors (a simulator then keeps one shadow
+// copy of each instead of one pending write per slot). The current node's
 // entry {group base, child} sits in registers; the stack below it is written
 // only by DESCEND. A slot's node id (group base + (child ^ a)) and its node
 // read address are formed when they are granted.
@@ -173,12 +175,11 @@ module rt_octree_slots #(
   logic [31:0]            issued_q   [N];
   logic [31:0]            received_q [N];
   logic [34:0]            stack_q    [NS];  // {group base, child} of the ancestors
-  // Written by the advance too.
-  logic [3*T_W-1:0]       t0_q       [N];   // the current node's parameters {z, y, x}
-  logic [3*T_W-1:0]       t1_q       [N];
-  logic [DEPTH_W-1:0]     depth_q    [N];
-  logic [31:0]            grp_q      [N];   // base of the child group holding the current node
-  logic [2:0]             child_q    [N];   // the current node's child index (mirrored space)
+  // Written by the advance too (packed vectors, element s = slot s).
+  logic [N-1:0][2:0][T_W-1:0]   t0_q, t1_q;   // the current node's parameters
+  logic [N-1:0][DEPTH_W-1:0]    depth_q;
+  logic [N-1:0][31:0]           grp_q;        // base of the child group holding the current node
+  logic [N-1:0][2:0]            child_q;      // the current node's child index (mirrored space)
 
   // ---- Events ----------------------------------------------------------------------------
   logic [N-1:0] alloc_oh, init_oh, visit_oh, node_oh, rsp_oh, check_oh, done_oh, desc_oh, fin_oh;
@@ -258,8 +259,8 @@ module rt_octree_slots #(
               to_done[s] = 1'b1;
             end else begin
               for (int a = 0; a < 3; a++) begin
-                t0[a] = t0_q[s][a*T_W +: T_W];
-                t1[a] = t1_q[s][a*T_W +: T_W];
+                t0[a] = t0_q[s][a];
+                t1[a] = t1_q[s][a];
               end
               xa   = exit_axis(active_q[s], t1[0], t1[1], t1[2]);
               bits = 3'b100 >> xa;
@@ -272,8 +273,8 @@ module rt_octree_slots #(
                 to_next[s]   = behind;
                 to_enter[s]  = !behind && gv_q[s];
                 to_refill[s] = !behind && !gv_q[s];
-                t0_q[s][xa*T_W +: T_W]  <= t1[xa];
-                t1_q[s][xa*T_W +: T_W]  <= up;
+                t0_q[s][xa]  <= t1[xa];
+                t1_q[s][xa]  <= up;
                 child_q[s]   <= child_q[s] | bits;
               end else begin
                 popped[s]  = 1'b1;
@@ -282,9 +283,9 @@ module rt_octree_slots #(
                 for (int a = 0; a < 3; a++) begin
                   if (active_q[s][a]) begin
                     if (child_q[s][2-a]) begin
-                      t0_q[s][a*T_W +: T_W] <= (t0[a] <<< 1) - t1[a];
+                      t0_q[s][a] <= (t0[a] <<< 1) - t1[a];
                     end else begin
-                      t1_q[s][a*T_W +: T_W] <= (t1[a] <<< 1) - t0[a];
+                      t1_q[s][a] <= (t1[a] <<< 1) - t0[a];
                     end
                   end
                 end
@@ -307,8 +308,8 @@ module rt_octree_slots #(
         depth   = depth_q[desc_slot_q];
         mid_bit = DEPTH_W'(P - 1) - depth;
         for (int a = 0; a < 3; a++) begin
-          t0[a]  = t0_q[desc_slot_q][a*T_W +: T_W];
-          t1[a]  = t1_q[desc_slot_q][a*T_W +: T_W];
+          t0[a]  = t0_q[desc_slot_q][a];
+          t1[a]  = t1_q[desc_slot_q][a];
           org[a] = org_q[desc_slot_q][a*ORG_W +: ORG_W];
           // (t0 + t1) / 2 without the carry bit: t0 and t1 have the same parity.
           tm[a] = (t0[a] >>> 1) + (t1[a] >>> 1) + $signed({{(T_W-1){1'b0}}, t0[a][0] & t1[a][0]});
@@ -328,10 +329,10 @@ module rt_octree_slots #(
         for (int a = 0; a < 3; a++) begin
           if (active[a]) begin
             if (c[2-a]) begin
-              t0_q[desc_slot_q][a*T_W +: T_W] <= tm[a];
+              t0_q[desc_slot_q][a] <= tm[a];
               if (t1[a] < 0) behind = 1'b1;
             end else begin
-              t1_q[desc_slot_q][a*T_W +: T_W] <= tm[a];
+              t1_q[desc_slot_q][a] <= tm[a];
               if (tm[a] < 0) behind = 1'b1;
             end
           end
@@ -345,8 +346,8 @@ module rt_octree_slots #(
       end
       if (init_i) begin
         for (int a = 0; a < 3; a++) begin
-          t0_q[init_slot_i][a*T_W +: T_W] <= init_t0_i[a*T_W +: T_W];
-          t1_q[init_slot_i][a*T_W +: T_W] <= init_t1_i[a*T_W +: T_W];
+          t0_q[init_slot_i][a] <= init_t0_i[a*T_W +: T_W];
+          t1_q[init_slot_i][a] <= init_t1_i[a*T_W +: T_W];
         end
         depth_q[init_slot_i]  <= '0;
         grp_q[init_slot_i]    <= '0;
@@ -396,8 +397,8 @@ module rt_octree_slots #(
   assign visit_node_id_o = visit_at_root_o ? '0 : grp_q[visit_slot_i] + 32'(visit_sel);
   assign node_addr_o     = ADDR_W'(group_req_q[node_slot_i] ? first_q[node_slot_i] : grp_q[node_slot_i]);
   assign idx_addr_o      = ADDR_W'(first_q[idx_slot_i] + issued_q[idx_slot_i]);
-  assign check_exit_o    = min_active(active_q[check_slot_i], t1_q[check_slot_i][0*T_W +: T_W], t1_q[check_slot_i][1*T_W +: T_W],
-                                      t1_q[check_slot_i][2*T_W +: T_W]);
+  assign check_exit_o    = min_active(active_q[check_slot_i], t1_q[check_slot_i][0], t1_q[check_slot_i][1],
+                                      t1_q[check_slot_i][2]);
 
   assign free_o         = free_q;
   assign want_visit_o   = enter_q;
