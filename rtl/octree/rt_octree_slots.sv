@@ -252,48 +252,46 @@ module rt_octree_slots #(
       to_next   = '0;
       to_done   = '0;
       popped    = '0;
-      if (adv != '0) begin  // (a simulator skips the loop in cycles without an advance)
-        for (int s = 0; s < N; s++) begin
-          if (adv[s]) begin
-            if (depth_q[s] == '0) begin
-              to_done[s] = 1'b1;
-            end else begin
+      for (int s = 0; s < N; s++) begin
+        if (adv[s]) begin
+          if (depth_q[s] == '0) begin
+            to_done[s] = 1'b1;
+          end else begin
+            for (int a = 0; a < 3; a++) begin
+              t0[a] = t0_q[s][a];
+              t1[a] = t1_q[s][a];
+            end
+            xa   = exit_axis(active_q[s], t1[0], t1[1], t1[2]);
+            bits = 3'b100 >> xa;
+            if ((child_q[s] & bits) == '0) begin
+              up     = (t1[xa] <<< 1) - t0[xa];
+              behind = active_q[s][xa] && up < 0;
               for (int a = 0; a < 3; a++) begin
-                t0[a] = t0_q[s][a];
-                t1[a] = t1_q[s][a];
+                if (32'(a) != 32'(xa) && active_q[s][a] && t1[a] < 0) behind = 1'b1;
               end
-              xa   = exit_axis(active_q[s], t1[0], t1[1], t1[2]);
-              bits = 3'b100 >> xa;
-              if ((child_q[s] & bits) == '0) begin
-                up     = (t1[xa] <<< 1) - t0[xa];
-                behind = active_q[s][xa] && up < 0;
-                for (int a = 0; a < 3; a++) begin
-                  if (32'(a) != 32'(xa) && active_q[s][a] && t1[a] < 0) behind = 1'b1;
-                end
-                to_next[s]   = behind;
-                to_enter[s]  = !behind && gv_q[s];
-                to_refill[s] = !behind && !gv_q[s];
-                t0_q[s][xa]  <= t1[xa];
-                t1_q[s][xa]  <= up;
-                child_q[s]   <= child_q[s] | bits;
-              end else begin
-                popped[s]  = 1'b1;
-                to_done[s] = (depth_q[s] == DEPTH_W'(1));
-                to_next[s] = (depth_q[s] != DEPTH_W'(1));
-                for (int a = 0; a < 3; a++) begin
-                  if (active_q[s][a]) begin
-                    if (child_q[s][2-a]) begin
-                      t0_q[s][a] <= (t0[a] <<< 1) - t1[a];
-                    end else begin
-                      t1_q[s][a] <= (t1[a] <<< 1) - t0[a];
-                    end
+              to_next[s]   = behind;
+              to_enter[s]  = !behind && gv_q[s];
+              to_refill[s] = !behind && !gv_q[s];
+              t0_q[s][xa]  <= t1[xa];
+              t1_q[s][xa]  <= up;
+              child_q[s]   <= child_q[s] | bits;
+            end else begin
+              popped[s]  = 1'b1;
+              to_done[s] = (depth_q[s] == DEPTH_W'(1));
+              to_next[s] = (depth_q[s] != DEPTH_W'(1));
+              for (int a = 0; a < 3; a++) begin
+                if (active_q[s][a]) begin
+                  if (child_q[s][2-a]) begin
+                    t0_q[s][a] <= (t0[a] <<< 1) - t1[a];
+                  end else begin
+                    t1_q[s][a] <= (t1[a] <<< 1) - t0[a];
                   end
                 end
-                parent     = stack_q[{SlotW'(s), STK_W'(depth_q[s] - DEPTH_W'(2))}];
-                grp_q[s]   <= parent[34:3];
-                child_q[s] <= parent[2:0];
-                depth_q[s] <= depth_q[s] - 1'b1;
               end
+              parent     = stack_q[{SlotW'(s), STK_W'(depth_q[s] - DEPTH_W'(2))}];
+              grp_q[s]   <= parent[34:3];
+              child_q[s] <= parent[2:0];
+              depth_q[s] <= depth_q[s] - 1'b1;
             end
           end
         end
