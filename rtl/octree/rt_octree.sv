@@ -10,7 +10,7 @@
 //
 //   ray_*      rays in (valid/ready); accepted while a usable slot is free
 //   u_setup    per-ray setup, multiplications only (2 stages)
-//   g_slot     RaysInFlight slots (rt_octree_slot): walk state, stack, FSM
+//   u_slots    RaysInFlight slots (rt_octree_slots): walk state, stacks, steps
 //   visit_*    one record per node entered (round robin over slots in ENTER)
 //   node port  one child-group read per interior node entered, and one per
 //              refill of a group lost to a pop (round robin over slots)
@@ -24,7 +24,7 @@
 //
 // The records read by slot index are kept here in arrays (the ray, the closest
 // hit, the node and test counters, the setup's dominant and common, the child
-// group); a slot keeps its walk.
+// group); rt_octree_slots keeps the walks.
 //
 // Memory ports: requests are valid/ready (a 2-entry FIFO holds each port's
 // request stream); responses have no ready: the unit always accepts them
@@ -101,6 +101,7 @@ module rt_octree #(
 );
 
   localparam int N         = RaysInFlight;
+  localparam int NP1       = RaysInFlight + 1;
   localparam int P         = rt_pkg::POS_W;
   localparam int ADDR_W    = rt_pkg::MEM_ADDR_W;
   localparam int T_W       = rt_pkg::OCTREE_T_W;
@@ -127,15 +128,11 @@ module rt_octree #(
 
   // ---- Per-slot signals ---------------------------------------------------------
   logic [N-1:0]        free, usable, want_visit, want_node, want_idx, want_check, want_done;
-  logic                fetching [N];
-  logic                waiting_node [N];
-  logic                at_root [N];
-  logic [N-1:0]        alloc, init, visit_gnt, node_gnt, node_rsp, idx_gnt, res_slot_hit, check_gnt, done_gnt;
-  logic [2:0]          slot_sel [N];
-  logic [31:0]         slot_node_id [N];
-  logic [31:0]         slot_node_addr [N];
-  logic [31:0]         slot_idx_addr [N];
-  logic [T_W-1:0]      slot_exit [N];
+  logic [N-1:0]        fetching, waiting_node;
+  logic                visit_at_root;
+  logic [2:0]          visit_sel;
+  logic [31:0]         visit_node_id;
+  logic [T_W-1:0]      check_exit;
 
   // ---- Records kept by slot index -------------------------------------------------
   // The ray as two records: its id (for the visit and result records) and its
@@ -155,30 +152,19 @@ module rt_octree #(
   group_t              group_q [N];
 
   // ---- Ray input and slot allocation --------------------------------------------
-  // The lowest free usable slot takes the ray; ray_ready_o depends on slot state only.
+  // The lowest free usable slot takes the ray (a fixed-priority arbiter: an
+  // rt_rr_arb whose pointer never moves); ray_ready_o depends on slot state only.
   logic [SlotW-1:0] alloc_idx;
+  logic [N-1:0]     unused_alloc_gnt;
   logic             ray_fire;
 
-  always_comb begin
-    for (int s = 0; s < N; s++) begin
-      usable[s] = (CfgSlotsW'(s) < cfg_slots_i);
-    end
-  end
+  assign usable = N'((NP1'(1) << cfg_slots_i) - 1'b1);
 
-  always_comb begin
-    alloc_idx = '0;
-    for (int s = N - 1; s >= 0; s--) begin
-      if (free[s] && usable[s]) alloc_idx = SlotW'(s);
-    end
-  end
+  rt_rr_arb #(.N(N)) u_alloc_arb (
+    .clk_i, .rst_ni, .req_i(free & usable), .ack_i(1'b0),
+    .valid_o(ray_ready_o), .gnt_o(unused_alloc_gnt), .idx_o(alloc_idx));
 
-  assign ray_ready_o = |(free & usable);
-  assign ray_fire    = ray_valid_i && ray_ready_o;
-
-  always_comb begin
-    alloc = '0;
-    alloc[alloc_idx] = ray_fire;
-  end
+  assign ray_fire = ray_valid_i && ray_ready_o;
 
   // ---- Setup ---------------------------------------------------------------------
   logic                 su_valid, su_enter;
@@ -209,11 +195,6 @@ module rt_octree #(
     .enter_o  (su_enter)
   );
 
-  always_comb begin
-    init = '0;
-    init[su_slot] = su_valid;
-  end
-
   ray_geom_t su_geom;
   assign su_geom.org = su_ray.org;
   assign su_geom.dir = su_ray.dir;
@@ -221,7 +202,7 @@ module rt_octree #(
   // ---- Arbiters -------------------------------------------------------------------
   logic             visit_any, node_any, idx_any, check_any, done_any;
   logic [SlotW-1:0] visit_idx, node_idx, idx_idx, check_idx, done_idx;
-  logic [N-1:0]     visit_oh, node_oh, idx_oh, check_oh, done_oh;
+  logic [N-1:0]     unused_visit_gnt, unused_node_gnt, unused_idx_gnt, unused_check_gnt, unused_done_gnt;
   logic             visit_go, node_go, idx_go, done_go;
   logic             nodeq_ready, visitq_ready, idxq_ready, resq_ready;
   logic [CREDIT_W-1:0] credit_q;
@@ -229,31 +210,26 @@ module rt_octree #(
 
   rt_rr_arb #(.N(N)) u_visit_arb (
     .clk_i, .rst_ni, .req_i(want_visit), .ack_i(visit_go),
-    .valid_o(visit_any), .gnt_o(visit_oh), .idx_o(visit_idx));
+    .valid_o(visit_any), .gnt_o(unused_visit_gnt), .idx_o(visit_idx));
   rt_rr_arb #(.N(N)) u_node_arb (
     .clk_i, .rst_ni, .req_i(want_node), .ack_i(node_go),
-    .valid_o(node_any), .gnt_o(node_oh), .idx_o(node_idx));
+    .valid_o(node_any), .gnt_o(unused_node_gnt), .idx_o(node_idx));
   rt_rr_arb #(.N(N)) u_idx_arb (
     .clk_i, .rst_ni, .req_i(want_idx), .ack_i(idx_go),
-    .valid_o(idx_any), .gnt_o(idx_oh), .idx_o(idx_idx));
+    .valid_o(idx_any), .gnt_o(unused_idx_gnt), .idx_o(idx_idx));
   rt_rr_arb #(.N(N)) u_check_arb (
     .clk_i, .rst_ni, .req_i(want_check), .ack_i(check_any),
-    .valid_o(check_any), .gnt_o(check_oh), .idx_o(check_idx));
+    .valid_o(check_any), .gnt_o(unused_check_gnt), .idx_o(check_idx));
   rt_rr_arb #(.N(N)) u_done_arb (
     .clk_i, .rst_ni, .req_i(want_done), .ack_i(done_go),
-    .valid_o(done_any), .gnt_o(done_oh), .idx_o(done_idx));
+    .valid_o(done_any), .gnt_o(unused_done_gnt), .idx_o(done_idx));
 
   // A visit needs room for its record; a group read room in the node request FIFO.
   assign visit_go  = visit_any && visitq_ready;
-  assign visit_gnt = visit_go ? visit_oh : '0;
   assign node_go   = node_any && nodeq_ready;
-  assign node_gnt  = node_go ? node_oh : '0;
   // An index read needs a credit: a place in the index buffer for its response.
   assign idx_go    = idx_any && idxq_ready && (credit_q != '0);
-  assign idx_gnt   = idx_go ? idx_oh : '0;
-  assign check_gnt = check_oh;
   assign done_go   = done_any && resq_ready;
-  assign done_gnt  = done_go ? done_oh : '0;
 
   assign perf_step_ready_o = |want_visit;
 
@@ -275,9 +251,9 @@ module rt_octree #(
   group_t                visit_group, group_in;
   // (The whole element first: Yosys 0.23 takes no field of an array element.)
   assign visit_group = group_q[visit_idx];
-  assign visit_rec   = at_root[visit_idx] ? cfg_root_i : visit_group.node[slot_sel[visit_idx]];
+  assign visit_rec   = visit_at_root ? cfg_root_i : visit_group.node[visit_sel];
   assign visit_out.ray_id  = ray_id_q[visit_idx];
-  assign visit_out.node_id = slot_node_id[visit_idx];
+  assign visit_out.node_id = visit_node_id;
 
   rt_fifo #(.Width(rt_pkg::OCTREE_VISIT_W), .Depth(4)) u_visit_q (
     .clk_i, .rst_ni,
@@ -292,8 +268,7 @@ module rt_octree #(
   // ---- Child-group reads --------------------------------------------------------------
   // Addresses as wires of their own: Yosys 0.23 drops a size cast inside a concatenation.
   logic [ADDR_W-1:0] node_addr, idx_addr, tri_addr;
-  assign node_addr = ADDR_W'(slot_node_addr[node_idx]);
-  assign idx_addr  = ADDR_W'(slot_idx_addr[idx_idx]);
+
 
   rt_fifo #(.Width(MEMREQ_W), .Depth(2)) u_node_q (
     .clk_i, .rst_ni,
@@ -306,11 +281,6 @@ module rt_octree #(
   );
 
   assign group_in = node_rsp_data_i;
-
-  always_comb begin
-    node_rsp = '0;
-    node_rsp[node_rsp_tag_i] = node_rsp_valid_i;
-  end
 
   // ---- Index reads, index buffer, triangle reads -------------------------------------
   rt_fifo #(.Width(MEMREQ_W), .Depth(2)) u_idx_q (
@@ -402,10 +372,6 @@ module rt_octree #(
       end
     end
   end
-  always_comb begin
-    res_slot_hit = '0;
-    res_slot_hit[res_slot] = isect_res_valid;
-  end
 
   // ---- Exit test: does the closest hit lie within the leaf? ------------------------
   // fx::hitWithin: !(min(t1) * dominant * det < t_num * common), min over the
@@ -420,51 +386,58 @@ module rt_octree #(
     chk_rhs     = '0;
     check_holds = 1'b0;
     if (check_any) begin
-      chk_lhs     = CHK_W'(slot_exit[check_idx]) * CHK_W'(dom_q[check_idx]) * CHK_W'(chk_best.det);
+      chk_lhs     = CHK_W'(check_exit) * CHK_W'(dom_q[check_idx]) * CHK_W'(chk_best.det);
       chk_rhs     = CHK_W'(chk_best.t_num) * CHK_W'(common_q[check_idx]);
       check_holds = !(chk_lhs < chk_rhs);
     end
   end
 
   // ---- Slots -------------------------------------------------------------------------
-  for (genvar s = 0; s < N; s++) begin : g_slot
-    rt_octree_slot u_slot (
-      .clk_i,
-      .rst_ni,
-      .alloc_i        (alloc[s]),
-      .init_i         (init[s]),
-      .init_enter_i   (su_enter),
-      .init_mirror_i  (su_mirror),
-      .init_active_i  (su_active),
-      .init_origin_i  (su_origin),
-      .init_t0_i      (su_t0),
-      .init_t1_i      (su_t1),
-      .visit_gnt_i    (visit_gnt[s]),
-      .visit_rec_i    (visit_rec),
-      .node_gnt_i     (node_gnt[s]),
-      .node_rsp_i     (node_rsp[s]),
-      .idx_gnt_i      (idx_gnt[s]),
-      .res_i          (res_slot_hit[s]),
-      .has_hit_i      (has_hit_q[s]),
-      .check_gnt_i    (check_gnt[s]),
-      .check_holds_i  (check_holds),
-      .done_gnt_i     (done_gnt[s]),
-      .free_o         (free[s]),
-      .want_visit_o   (want_visit[s]),
-      .want_node_o    (want_node[s]),
-      .want_idx_o     (want_idx[s]),
-      .want_check_o   (want_check[s]),
-      .want_done_o    (want_done[s]),
-      .fetching_o     (fetching[s]),
-      .waiting_node_o (waiting_node[s]),
-      .at_root_o      (at_root[s]),
-      .sel_o          (slot_sel[s]),
-      .node_id_o      (slot_node_id[s]),
-      .node_addr_o    (slot_node_addr[s]),
-      .idx_addr_o     (slot_idx_addr[s]),
-      .exit_o         (slot_exit[s])
-    );
-  end
+  rt_octree_slots #(.N(N), .SlotW(SlotW)) u_slots (
+    .clk_i,
+    .rst_ni,
+    .free_o           (free),
+    .alloc_i          (ray_fire),
+    .alloc_slot_i     (alloc_idx),
+    .init_i           (su_valid),
+    .init_slot_i      (su_slot),
+    .init_enter_i     (su_enter),
+    .init_mirror_i    (su_mirror),
+    .init_active_i    (su_active),
+    .init_origin_i    (su_origin),
+    .init_t0_i        (su_t0),
+    .init_t1_i        (su_t1),
+    .want_visit_o     (want_visit),
+    .visit_go_i       (visit_go),
+    .visit_slot_i     (visit_idx),
+    .visit_rec_i      (visit_rec),
+    .visit_at_root_o  (visit_at_root),
+    .visit_sel_o      (visit_sel),
+    .visit_node_id_o  (visit_node_id),
+    .want_node_o      (want_node),
+    .node_go_i        (node_go),
+    .node_slot_i      (node_idx),
+    .node_addr_o      (node_addr),
+    .waiting_node_o   (waiting_node),
+    .node_rsp_valid_i (node_rsp_valid_i),
+    .node_rsp_slot_i  (node_rsp_tag_i),
+    .want_idx_o       (want_idx),
+    .idx_go_i         (idx_go),
+    .idx_slot_i       (idx_idx),
+    .idx_addr_o       (idx_addr),
+    .fetching_o       (fetching),
+    .res_valid_i      (isect_res_valid),
+    .res_slot_i       (res_slot),
+    .hit_i            (has_hit_q),
+    .want_check_o     (want_check),
+    .check_go_i       (check_any),
+    .check_slot_i     (check_idx),
+    .check_exit_o     (check_exit),
+    .check_holds_i    (check_holds),
+    .want_done_o      (want_done),
+    .done_go_i        (done_go),
+    .done_slot_i      (done_idx)
+  );
 
   // ---- The records kept by slot index ---------------------------------------------------
   // No reset: each is written (at the slot's setup) before it is read.
@@ -522,8 +495,7 @@ module rt_octree #(
   );
 
 `ifdef RT_ASSERT_ON
-  // The state of the slots the responses name (an array element as a signal
-  // of its own: Verilator samples no unpacked array in an assertion).
+  // The state of the slots the responses name.
   logic node_rsp_waiting, tri_rsp_fetching, res_fetching;
   assign node_rsp_waiting = waiting_node[node_rsp_tag_i];
   assign tri_rsp_fetching = fetching[tri_rsp_tag_i];

@@ -4,5 +4,5 @@ lib/rt_fifo.sv
 lib/rt_rr_arb.sv
 isect/rt_isect.sv
 octree/rt_octree_setup.sv
-octree/rt_octree_slot.sv
+octree/rt_octree_slots.sv
 octree/rt_octree.sv

@@ -149,11 +149,13 @@ void rt_octree_model::reset() {
   nodeWant_.clear();
   idxWant_.clear();
   checkWant_.clear();
+  advWant_.clear();
   done_.clear();
   self_.clear();
   for (int k = 0; k < N; ++k) free_.set(k);
   s1_.valid = s2_.valid = false;
   visitArb_ = nodeArb_ = idxArb_ = checkArb_ = doneArb_ = RoundRobin{};
+  advArb_.fill(RoundRobin{});
   nodeQ_.clear();
   idxQ_.clear();
   triQ_.clear();
@@ -180,10 +182,10 @@ void rt_octree_model::setState(int k, State next) {
       break;
     case State::Check:
       checkWant_.reset(k);
-      self_.reset(k);
+      advWant_.reset(k);
       break;
-    case State::Descend:
-    case State::Next: self_.reset(k); break;
+    case State::Descend: self_.reset(k); break;
+    case State::Next: advWant_.reset(k); break;
     case State::Done: done_.reset(k); break;
     default: break;
   }
@@ -201,11 +203,11 @@ void rt_octree_model::setState(int k, State next) {
       if (s.hasHit) {
         checkWant_.set(k);
       } else {
-        self_.set(k);
+        advWant_.set(k);
       }
       break;
-    case State::Descend:
-    case State::Next: self_.set(k); break;
+    case State::Descend: self_.set(k); break;
+    case State::Next: advWant_.set(k); break;
     case State::Done: done_.set(k); break;
     default: break;
   }
@@ -287,7 +289,8 @@ void rt_octree_model::descend(int k) {
   setState(k, anyNegative(s.t1) ? State::Next : State::Enter);
 }
 
-// advance (NEXT, and CHECK when the leaf does not end the ray): the sibling or up.
+// advance (in an advance lane: NEXT, CHECK without a hit; in the exit test's
+// lane: CHECK when the leaf does not end the ray): the sibling or up.
 void rt_octree_model::advance(int k) {
   Slot& s = slots_[size_t(k)];
   if (s.depth == 0) {
@@ -345,6 +348,12 @@ void rt_octree_model::seq() {
   const bool doneGo = doneIdx >= 0 && !resQ_.full();
   const bool idxBufPop = !idxBuf_.empty() && !triQ_.full();
   const SlotMask self = self_;
+  std::array<int, ADV_LANES> advIdx{};  // each lane's slot, or -1
+  SlotMask advLeft = advWant_;
+  for (int l = 0; l < ADV_LANES; ++l) {
+    advIdx[size_t(l)] = advArb_[size_t(l)].pick(advLeft);
+    if (advIdx[size_t(l)] >= 0) advLeft.reset(advIdx[size_t(l)]);
+  }
   const bool setupLoad = s2_.valid;
   const int setupSlot = s2_.slot;
 
@@ -446,15 +455,19 @@ void rt_octree_model::seq() {
     if (fx::hitWithin(s.best, s.t1, s.setup)) {
       setState(checkIdx, State::Done);
     } else {
-      advance(checkIdx);
+      advance(checkIdx);  // the exit test's own lane
     }
     checkArb_.ack(checkIdx);
+  }
+  for (int l = 0; l < ADV_LANES; ++l) {
+    const int k = advIdx[size_t(l)];
+    if (k < 0) continue;
+    advance(k);
+    advArb_[size_t(l)].ack(k);
   }
   self.forEach([&](int k) {
     switch (slots_[size_t(k)].state) {
       case State::Descend: descend(k); break;
-      case State::Next:
-      case State::Check: advance(k); break;  // CHECK without a hit: no arbitration
       case State::Fetch: setState(k, State::Check); break;  // every result is in
       default: break;
     }

@@ -20,7 +20,7 @@ namespace lancer::sc {
 //
 //   seq()   SC_METHOD on clk_i.posedge (and rst_ni.negedge, the RTL's async
 //           reset): every decision of the cycle from the registers at its
-//           start and the inputs (allocation, the five round-robin arbiters,
+//           start and the inputs (allocation, the round-robin arbiters,
 //           FIFO room, credits, the node responses, the closest-hit update,
 //           the exit test, DESCEND and advance), then every register update,
 //           then the flop-driven outputs (FIFO heads, ray_ready_o and
@@ -41,8 +41,8 @@ namespace lancer::sc {
 // no parameters on the stack).
 //
 // Speed: per-state slot masks; the arbiters find the next requester with bit
-// scans, and only slots that act on their own in a cycle (DESCEND, NEXT, CHECK
-// without a hit, FETCH with every result in) are visited.
+// scans, and only slots that act on their own in a cycle (DESCEND, FETCH with
+// every result in) or are granted an advance lane are visited.
 class rt_octree_model : public sc_core::sc_module {
  public:
   sc_core::sc_in<bool> clk_i;
@@ -213,9 +213,12 @@ class rt_octree_model : public sc_core::sc_module {
 
   std::array<Slot, N> slots_{};
   // Slots by what they wait for or do this cycle.
-  SlotMask free_, enter_, nodeWant_, idxWant_, checkWant_, done_, self_;
+  // advWant_: NEXT and CHECK without a hit, waiting for an advance lane;
+  // self_: DESCEND and FETCH with every result in, acting on their own.
+  SlotMask free_, enter_, nodeWant_, idxWant_, checkWant_, advWant_, done_, self_;
   SetupStage s1_, s2_;
   RoundRobin visitArb_, nodeArb_, idxArb_, checkArb_, doneArb_;
+  std::array<RoundRobin, octree::ADV_LANES> advArb_{};  // lane l takes what lanes before it left
   Fifo<MemReq, octree::MEMREQ_FIFO_DEPTH> nodeQ_, idxQ_, triQ_;
   Fifo<MemReq, octree::IDX_BUF_DEPTH> idxBuf_;  // {triangle id, slot}
   Fifo<Visit, octree::VISIT_FIFO_DEPTH> visitQ_;

@@ -43,6 +43,8 @@ inline constexpr int MAX_DEPTH = fx::kOctreeMaxDepth;               // P: stack 
 inline constexpr int MEMREQ_FIFO_DEPTH = 2;
 inline constexpr int VISIT_FIFO_DEPTH = 4;
 inline constexpr int RES_FIFO_DEPTH = 2;
+// rt_octree_slots' AdvLanes: shared advance lanes besides the exit test's.
+inline constexpr int ADV_LANES = 2;
 
 using cfg_slots_t = vl_port_t<CFG_SLOTS_W>;
 using slot_t = vl_port_t<SLOT_W>;

@@ -1,0 +1,502 @@
+// rt_octree_slots: the ray slots of rt_octree — per-slot state machines, the
+// current node's plane parameters, the stacks and the DESCEND and advance
+// steps — updated by the unit's events, each addressed to one slot by index.
+//
+//   FREE -alloc-> SETUP -init-> ENTER (root test passes) | DONE
+//   ENTER -visit grant-> GROUP_REQ (interior) | FETCH (leaf, count > 0) | CHECK (empty leaf)
+//   GROUP_REQ -node grant-> WAIT_GROUP -node response-> DESCEND -> ENTER | NEXT
+//   FETCH: one index request per index grant; -> CHECK once every result is in
+//   CHECK without a hit: advance on an advance-lane grant; with a hit: on the
+//   check grant DONE if the exit test holds, else advance in the exit lane
+//   NEXT: advance on an advance-lane grant
+//   advance: DONE at depth 0; sibling -> ENTER | REFILL_REQ | NEXT; pop -> NEXT | DONE
+//   REFILL_REQ -node grant-> WAIT_REFILL -node response-> ENTER
+//   DONE -done grant-> FREE
+//
+// Every step after setup is additions, halvings, comparisons and table look-ups
+// (fx::firstChild, fx::nextChild). Halvings are exact, so the stack holds no
+// parameters: a child's [t0, t1] on an axis gives its parent's back
+// (t0_parent = 2 t0 - t1 on the upper half, t1_parent = 2 t1 - t0 on the lower),
+// and a sibling step on the exit axis x is t0 <- t1, t1 <- 2 t1 - t0.
+//
+// An axis the ray never crosses has t0 = -inf, t1 = +inf (no value), and its
+// mid-plane parameter is +inf below the node's mid-plane, -inf on or above it.
+// On such an axis the walk always takes the child that holds o' (table 1 puts
+// -inf before any entry parameter and +inf after), and no sibling step ever
+// moves along it (its t1 is +inf), so the node's lower corner on that axis is
+// o' with its low P - depth bits cleared, and "o' below the mid-plane" is bit
+// P-1-depth of o' being 0. (Rays need some non-zero direction component.)
+//
+// Which slots step in a cycle. DESCEND is entered only on a node response (one
+// per cycle) and lasts one cycle: one slot at most, the registered response
+// tag. FETCH ends the cycle after the result that completes the leaf (one per
+// cycle): the registered result slot. The advance runs in AdvLanes shared
+// lanes, granted round robin to the slots in NEXT or in CHECK without a hit,
+// and in one more lane for the slot whose exit test fails: AdvLanes + 1
+// advance datapaths, not one per slot; a slot waits only when more than
+// AdvLanes slots want to advance in the same cycle.
+//
+// Storage: one-hot state vectors (N bits each, reset); per-slot registers as
+// arrays written by index (no reset; written before read). The current node's
+// entry {group base, child} sits in registers; the stack below it is written
+// only by DESCEND. A slot's node id (group base + (child ^ a)) and its node
+// read address are formed when they are granted.
+//
+// Latency: every transition takes one clock edge. Throughput: per cycle one
+// allocation, one init, one visit, one node grant, one node response, one
+// DESCEND, one index grant, one result, one end of FETCH, one exit test, one
+// result record, AdvLanes + 1 advance steps.
+module rt_octree_slots #(
+  parameter int unsigned N        = 32,                       // ray slots
+  parameter int unsigned AdvLanes = 2,                        // advance lanes besides the exit test's
+  parameter int unsigned SlotW    = (N > 1) ? $clog2(N) : 1   // derived
+) (
+  input  logic                                   clk_i,
+  input  logic                                   rst_ni,
+
+  // Allocation and per-ray setup.
+  output logic [N-1:0]                           free_o,
+  input  logic                                   alloc_i,
+  input  logic [SlotW-1:0]                       alloc_slot_i,
+  input  logic                                   init_i,
+  input  logic [SlotW-1:0]                       init_slot_i,
+  input  logic                                   init_enter_i,   // the root test passes
+  input  logic [2:0]                             init_mirror_i,
+  input  logic [2:0]                             init_active_i,
+  input  logic [3*(rt_pkg::POS_W+1)-1:0]         init_origin_i,
+  input  logic [3*rt_pkg::OCTREE_T_W-1:0]        init_t0_i,
+  input  logic [3*rt_pkg::OCTREE_T_W-1:0]        init_t1_i,
+
+  // Visits: a granted slot enters its current node, whose record is visit_rec_i.
+  output logic [N-1:0]                           want_visit_o,
+  input  logic                                   visit_go_i,
+  input  logic [SlotW-1:0]                       visit_slot_i,
+  input  rt_pkg::octree_node_t                   visit_rec_i,
+  output logic                                   visit_at_root_o,  // of visit_slot_i: the record is the root's
+  output logic [2:0]                             visit_sel_o,      // its index in the slot's child group
+  output logic [31:0]                            visit_node_id_o,
+
+  // Child-group reads (the node's children, or a refill of the parent's).
+  output logic [N-1:0]                           want_node_o,
+  input  logic                                   node_go_i,
+  input  logic [SlotW-1:0]                       node_slot_i,
+  output logic [rt_pkg::MEM_ADDR_W-1:0]          node_addr_o,      // of node_slot_i
+  output logic [N-1:0]                           waiting_node_o,
+  input  logic                                   node_rsp_valid_i,
+  input  logic [SlotW-1:0]                       node_rsp_slot_i,
+
+  // Index reads of the current leaf, and its intersection results.
+  output logic [N-1:0]                           want_idx_o,
+  input  logic                                   idx_go_i,
+  input  logic [SlotW-1:0]                       idx_slot_i,
+  output logic [rt_pkg::MEM_ADDR_W-1:0]          idx_addr_o,       // first + issued of idx_slot_i
+  output logic [N-1:0]                           fetching_o,
+  input  logic                                   res_valid_i,
+  input  logic [SlotW-1:0]                       res_slot_i,
+
+  // Exit tests of slots with a hit.
+  input  logic [N-1:0]                           hit_i,            // a closest hit so far
+  output logic [N-1:0]                           want_check_o,
+  input  logic                                   check_go_i,
+  input  logic [SlotW-1:0]                       check_slot_i,
+  output logic [rt_pkg::OCTREE_T_W-1:0]          check_exit_o,     // min t1 over the active axes
+  input  logic                                   check_holds_i,
+
+  // Results.
+  output logic [N-1:0]                           want_done_o,
+  input  logic                                   done_go_i,
+  input  logic [SlotW-1:0]                       done_slot_i
+);
+
+  localparam int P       = rt_pkg::POS_W;
+  localparam int T_W     = rt_pkg::OCTREE_T_W;
+  localparam int ORG_W   = P + 1;
+  localparam int ADDR_W  = rt_pkg::MEM_ADDR_W;
+  localparam int DEPTH_W = $clog2(rt_pkg::OCTREE_MAX_DEPTH + 1);
+  localparam int STACK   = rt_pkg::OCTREE_MAX_DEPTH;             // levels 0 .. P-1
+  localparam int STK_W   = (STACK > 1) ? $clog2(STACK) : 1;
+  localparam int ENTRY_W = 35;                                   // {group base, child}
+
+  // Rank of a parameter in the order -inf < finite < +inf.
+  localparam logic [1:0] NEG_INF = 2'd0;
+  localparam logic [1:0] FINITE  = 2'd1;
+  localparam logic [1:0] POS_INF = 2'd2;
+
+  // a < b for parameters that may be infinite (fx::OctT::operator<).
+  function automatic logic t_lt(input logic [1:0] ra, input logic signed [T_W-1:0] a,
+                                input logic [1:0] rb, input logic signed [T_W-1:0] b);
+    t_lt = (ra < rb) || (ra == FINITE && rb == FINITE && a < b);
+  endfunction
+
+  // The exit axis (fx::nextChild): the smallest t1, exact ties to the later
+  // axis; an inactive axis has t1 = +inf.
+  function automatic logic [1:0] exit_axis(input logic [2:0] active, input logic signed [T_W-1:0] x,
+                                           input logic signed [T_W-1:0] y, input logic signed [T_W-1:0] z);
+    logic [1:0] rx, ry, rz;
+    rx = active[0] ? FINITE : POS_INF;
+    ry = active[1] ? FINITE : POS_INF;
+    rz = active[2] ? FINITE : POS_INF;
+    if (t_lt(rx, x, ry, y)) begin
+      exit_axis = t_lt(rx, x, rz, z) ? 2'd0 : 2'd2;
+    end else begin
+      exit_axis = t_lt(ry, y, rz, z) ? 2'd1 : 2'd2;
+    end
+  endfunction
+
+  // The smallest t1 over the active axes (the exit test's parameter).
+  function automatic logic [T_W-1:0] min_active(input logic [2:0] active, input logic signed [T_W-1:0] x,
+                                                input logic signed [T_W-1:0] y, input logic signed [T_W-1:0] z);
+    min_active = '1;
+    if (active[0]) min_active = x;
+    if (active[1] && (!active[0] || y < x)) min_active = y;
+    if (active[2] && (!(active[0] || active[1]) || z < $signed(min_active))) min_active = z;
+  endfunction
+
+  function automatic logic [N-1:0] onehot(input logic valid, input logic [SlotW-1:0] s);
+    onehot = valid ? (N'(1) << s) : '0;
+  endfunction
+
+  // ---- State vectors (bit s = slot s) -------------------------------------------
+  logic [N-1:0] free_q, setup_q, enter_q, group_req_q, wait_group_q, fetch_q, check_q;
+  logic [N-1:0] next_q, refill_req_q, wait_refill_q, done_q;
+  logic [N-1:0] iss_q;      // FETCH with index reads left to issue
+  logic [N-1:0] gv_q;       // the child group holding the current node is in the group buffer
+  logic         desc_q;     // a slot is in DESCEND: desc_slot_q
+  logic [SlotW-1:0] desc_slot_q;
+  logic         fin_q;      // a slot's last result came in the previous cycle: fin_slot_q
+  logic [SlotW-1:0] fin_slot_q;
+
+  // ---- Per-slot registers -------------------------------------------------------------
+  // Written by index (events, DESCEND).
+  logic [2:0]             mirror_q   [N];
+  logic [2:0]             active_q   [N];
+  logic [3*ORG_W-1:0]     org_q      [N];   // o' {z, y, x}
+  logic [31:0]            first_q    [N];   // the current node's record
+  logic [31:0]            count_q    [N];
+  logic [31:0]            issued_q   [N];
+  logic [31:0]            received_q [N];
+  // The ancestors' entries, a word per slot: a slot's advance reads its own
+  // word only (one memory of all slots' entries would give every slot's
+  // advance a read port over all of them).
+  logic [STACK*ENTRY_W-1:0] stack_q  [N];
+  // Written by the advance too.
+  logic [3*T_W-1:0]       t0_q       [N];   // the current node's parameters {z, y, x}
+  logic [3*T_W-1:0]       t1_q       [N];
+  logic [DEPTH_W-1:0]     depth_q    [N];
+  logic [31:0]            grp_q      [N];   // base of the child group holding the current node
+  logic [2:0]             child_q    [N];   // the current node's child index (mirrored space)
+
+  // ---- Events ----------------------------------------------------------------------------
+  logic [N-1:0] alloc_oh, init_oh, visit_oh, node_oh, rsp_oh, check_oh, done_oh, desc_oh, fin_oh;
+  assign alloc_oh = onehot(alloc_i, alloc_slot_i);
+  assign init_oh  = onehot(init_i, init_slot_i);
+  assign visit_oh = onehot(visit_go_i, visit_slot_i);
+  assign node_oh  = onehot(node_go_i, node_slot_i);
+  assign rsp_oh   = onehot(node_rsp_valid_i, node_rsp_slot_i);
+  assign check_oh = onehot(check_go_i, check_slot_i);
+  assign done_oh  = onehot(done_go_i, done_slot_i);
+  assign desc_oh  = onehot(desc_q, desc_slot_q);
+  assign fin_oh   = onehot(fin_q, fin_slot_q);
+
+  // The visited node's record decides where the slot goes.
+  logic visit_leaf, visit_empty;
+  assign visit_leaf  = visit_rec_i.leaf;
+  assign visit_empty = (visit_rec_i.count == '0);
+
+  // ---- The advance lanes -----------------------------------------------------------
+  // A slot advances (fx::nextChild) in NEXT, in CHECK without a hit, and when
+  // the exit test it is granted fails. The first two wait in want_adv for one
+  // of AdvLanes round-robin lanes (lane l takes the next requester that no
+  // lane before it took); the exit test has a lane of its own (lane AdvLanes).
+  // Each lane is one advance datapath reading its slot's registers:
+  //   depth 0: DONE;
+  //   the node is the lower half on the exit axis x (argmin t1, exact ties to
+  //   the later axis): the sibling, t0 <- t1, t1 <- 2 t1 - t0 on x, then NEXT
+  //   if it lies behind the origin, else ENTER (child group held) or REFILL_REQ;
+  //   else a pop: the parent's parameters from the child's (upper half:
+  //   t0 <- 2 t0 - t1; lower half: t1 <- 2 t1 - t0) and entry from the stack,
+  //   then NEXT, or DONE when the parent is the root.
+  localparam int LANES = AdvLanes + 1;
+  localparam int CHECK_LANE = AdvLanes;
+
+  logic [N-1:0]          want_adv;
+  // Requesters left for lane l (split: lane l's element depends on lane l-1's).
+  logic [N-1:0]          lane_req [AdvLanes + 1] /* verilator split_var */;
+  logic                  lane_go [LANES];
+  logic [SlotW-1:0]      lane_slot [LANES];
+  logic [3*T_W-1:0]      lane_t0 [LANES];             // the slot's registers after the step
+  logic [3*T_W-1:0]      lane_t1 [LANES];
+  logic [DEPTH_W-1:0]    lane_depth [LANES];
+  logic [31:0]           lane_grp [LANES];
+  logic [2:0]            lane_child [LANES];
+  logic                  lane_done [LANES], lane_next [LANES], lane_enter [LANES], lane_refill [LANES];
+  logic                  lane_pop [LANES];
+
+  assign want_adv    = next_q | (check_q & ~hit_i);
+  assign lane_req[0] = want_adv;
+  for (genvar l = 0; l < AdvLanes; l++) begin : g_adv_arb
+    logic [N-1:0] gnt;
+    rt_rr_arb #(.N(N)) u_arb (
+      .clk_i, .rst_ni, .req_i(lane_req[l]), .ack_i(lane_go[l]),
+      .valid_o(lane_go[l]), .gnt_o(gnt), .idx_o(lane_slot[l]));
+    assign lane_req[l+1] = lane_req[l] & ~gnt;
+  end
+  assign lane_go[CHECK_LANE]   = check_go_i && !check_holds_i;
+  assign lane_slot[CHECK_LANE] = check_slot_i;
+
+  for (genvar l = 0; l < LANES; l++) begin : g_adv
+    always_comb begin : p_step
+      logic signed [T_W-1:0] t0 [3];
+      logic signed [T_W-1:0] t1 [3];
+      logic signed [T_W-1:0] up;          // 2 t1 - t0 on the exit axis
+      logic [2:0]            active, child, bits;
+      logic [1:0]            xa;
+      logic [DEPTH_W-1:0]    depth;
+      logic [34:0]           parent;
+      logic                  behind;
+      behind = 1'b0;
+      active = active_q[lane_slot[l]];
+      child  = child_q[lane_slot[l]];
+      depth  = depth_q[lane_slot[l]];
+      for (int a = 0; a < 3; a++) begin
+        t0[a] = t0_q[lane_slot[l]][a*T_W +: T_W];
+        t1[a] = t1_q[lane_slot[l]][a*T_W +: T_W];
+      end
+      lane_t0[l]     = t0_q[lane_slot[l]];
+      lane_t1[l]     = t1_q[lane_slot[l]];
+      lane_depth[l]  = depth;
+      lane_grp[l]    = grp_q[lane_slot[l]];
+      lane_child[l]  = child;
+      lane_done[l]   = 1'b0;
+      lane_next[l]   = 1'b0;
+      lane_enter[l]  = 1'b0;
+      lane_refill[l] = 1'b0;
+      lane_pop[l]    = 1'b0;
+      xa     = exit_axis(active, t1[0], t1[1], t1[2]);
+      bits   = 3'b100 >> xa;
+      up     = (t1[xa] <<< 1) - t0[xa];
+      parent = stack_q[lane_slot[l]][32'(STK_W'(depth - DEPTH_W'(2))) * ENTRY_W +: ENTRY_W];
+      if (depth == '0) begin
+        lane_done[l] = 1'b1;
+      end else if ((child & bits) == '0) begin
+        behind = active[xa] && up < 0;
+        for (int a = 0; a < 3; a++) begin
+          if (32'(a) != 32'(xa) && active[a] && t1[a] < 0) behind = 1'b1;
+        end
+        lane_next[l]   = behind;
+        lane_enter[l]  = !behind && gv_q[lane_slot[l]];
+        lane_refill[l] = !behind && !gv_q[lane_slot[l]];
+        lane_t0[l][xa*T_W +: T_W] = t1[xa];
+        lane_t1[l][xa*T_W +: T_W] = up;
+        lane_child[l] = child | bits;
+      end else begin
+        lane_pop[l]  = 1'b1;
+        lane_done[l] = (depth == DEPTH_W'(1));
+        lane_next[l] = (depth != DEPTH_W'(1));
+        for (int a = 0; a < 3; a++) begin
+          if (active[a]) begin
+            if (child[2-a]) begin
+              lane_t0[l][a*T_W +: T_W] = (t0[a] <<< 1) - t1[a];
+            end else begin
+              lane_t1[l][a*T_W +: T_W] = (t1[a] <<< 1) - t0[a];
+            end
+          end
+        end
+        lane_grp[l]   = parent[34:3];
+        lane_child[l] = parent[2:0];
+        lane_depth[l] = depth - 1'b1;
+      end
+    end
+  end
+
+  // The slots each lane moves to a state, and the slots that advanced.
+  logic [N-1:0] adv_oh, to_enter, to_refill, to_next, to_done, popped;
+  always_comb begin
+    adv_oh    = '0;
+    to_enter  = '0;
+    to_refill = '0;
+    to_next   = '0;
+    to_done   = '0;
+    popped    = '0;
+    for (int l = 0; l < LANES; l++) begin
+      adv_oh    |= onehot(lane_go[l], lane_slot[l]);
+      to_enter  |= onehot(lane_go[l] && lane_enter[l], lane_slot[l]);
+      to_refill |= onehot(lane_go[l] && lane_refill[l], lane_slot[l]);
+      to_next   |= onehot(lane_go[l] && lane_next[l], lane_slot[l]);
+      to_done   |= onehot(lane_go[l] && lane_done[l], lane_slot[l]);
+      popped    |= onehot(lane_go[l] && lane_pop[l], lane_slot[l]);
+    end
+  end
+
+  // ---- The walk: the lanes' writes, DESCEND, the events ------------------------------
+  // Every decision is taken from the registers; the state has the asynchronous
+  // reset, the datapath registers are written before they are read.
+  logic [N-1:0] fin_next;
+  assign fin_next = onehot(res_valid_i && (received_q[res_slot_i] + 1'b1 == count_q[res_slot_i]), res_slot_i);
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_walk
+    logic signed [T_W-1:0] t0 [3];      // DESCEND: the parameters, mid-plane parameters, ranks, child
+    logic signed [T_W-1:0] t1 [3];
+    logic                  behind;
+    logic signed [T_W-1:0] tm [3];
+    logic [ORG_W-1:0]      org [3];
+    logic [1:0]            r0 [3];
+    logic [1:0]            rm [3];
+    logic [2:0]            active, c;
+    logic [DEPTH_W-1:0]    depth, mid_bit;
+    logic [1:0]            entry;
+    if (!rst_ni) begin
+      free_q        <= '1;
+      setup_q       <= '0;
+      enter_q       <= '0;
+      group_req_q   <= '0;
+      wait_group_q  <= '0;
+      fetch_q       <= '0;
+      check_q       <= '0;
+      next_q        <= '0;
+      refill_req_q  <= '0;
+      wait_refill_q <= '0;
+      done_q        <= '0;
+      iss_q         <= '0;
+      gv_q          <= '0;
+      desc_q        <= 1'b0;
+      desc_slot_q   <= '0;
+      fin_q         <= 1'b0;
+      fin_slot_q    <= '0;
+    end else begin
+      for (int l = 0; l < LANES; l++) begin
+        if (lane_go[l]) begin
+          t0_q[lane_slot[l]]    <= lane_t0[l];
+          t1_q[lane_slot[l]]    <= lane_t1[l];
+          depth_q[lane_slot[l]] <= lane_depth[l];
+          grp_q[lane_slot[l]]   <= lane_grp[l];
+          child_q[lane_slot[l]] <= lane_child[l];
+        end
+      end
+      // DESCEND (one slot): the mid-plane parameters (exact halvings), the first
+      // child (table 1) and its parameters; push the current entry (none at
+      // the root) and enter the child.
+      behind = 1'b0;
+      if (desc_q) begin
+        active  = active_q[desc_slot_q];
+        depth   = depth_q[desc_slot_q];
+        mid_bit = DEPTH_W'(P - 1) - depth;
+        for (int a = 0; a < 3; a++) begin
+          t0[a]  = t0_q[desc_slot_q][a*T_W +: T_W];
+          t1[a]  = t1_q[desc_slot_q][a*T_W +: T_W];
+          org[a] = org_q[desc_slot_q][a*ORG_W +: ORG_W];
+          // (t0 + t1) / 2 without the carry bit: t0 and t1 have the same parity.
+          tm[a] = (t0[a] >>> 1) + (t1[a] >>> 1) + $signed({{(T_W-1){1'b0}}, t0[a][0] & t1[a][0]});
+          r0[a] = active[a] ? FINITE : NEG_INF;
+          rm[a] = active[a] ? FINITE : (org[a][mid_bit] ? NEG_INF : POS_INF);
+        end
+        // The entry plane: the axis of the largest t0 (fx::firstChild's order).
+        if (t_lt(r0[1], t0[1], r0[0], t0[0])) begin
+          entry = t_lt(r0[2], t0[2], r0[0], t0[0]) ? 2'd0 : 2'd2;
+        end else begin
+          entry = t_lt(r0[2], t0[2], r0[1], t0[1]) ? 2'd1 : 2'd2;
+        end
+        c = '0;
+        for (int a = 0; a < 3; a++) begin
+          if (32'(a) != 32'(entry) && t_lt(rm[a], tm[a], r0[entry], t0[entry])) c[2-a] = 1'b1;
+        end
+        for (int a = 0; a < 3; a++) begin
+          if (active[a]) begin
+            if (c[2-a]) begin
+              t0_q[desc_slot_q][a*T_W +: T_W] <= tm[a];
+              if (t1[a] < 0) behind = 1'b1;
+            end else begin
+              t1_q[desc_slot_q][a*T_W +: T_W] <= tm[a];
+              if (tm[a] < 0) behind = 1'b1;
+            end
+          end
+        end
+        if (depth != '0) begin
+          stack_q[desc_slot_q][32'(STK_W'(depth - 1'b1)) * ENTRY_W +: ENTRY_W] <= {grp_q[desc_slot_q], child_q[desc_slot_q]};
+        end
+        grp_q[desc_slot_q]   <= first_q[desc_slot_q];
+        child_q[desc_slot_q] <= c;
+        depth_q[desc_slot_q] <= depth + 1'b1;
+      end
+      if (init_i) begin
+        for (int a = 0; a < 3; a++) begin
+          t0_q[init_slot_i][a*T_W +: T_W] <= init_t0_i[a*T_W +: T_W];
+          t1_q[init_slot_i][a*T_W +: T_W] <= init_t1_i[a*T_W +: T_W];
+        end
+        depth_q[init_slot_i]  <= '0;
+        grp_q[init_slot_i]    <= '0;
+        child_q[init_slot_i]  <= '0;
+        mirror_q[init_slot_i] <= init_mirror_i;
+        active_q[init_slot_i] <= init_active_i;
+        org_q[init_slot_i]    <= init_origin_i;
+      end
+      if (visit_go_i) begin
+        first_q[visit_slot_i]    <= visit_rec_i.first;
+        count_q[visit_slot_i]    <= 32'(visit_rec_i.count);
+        issued_q[visit_slot_i]   <= '0;
+        received_q[visit_slot_i] <= '0;
+      end
+      if (idx_go_i) issued_q[idx_slot_i] <= issued_q[idx_slot_i] + 1'b1;
+      if (res_valid_i) received_q[res_slot_i] <= received_q[res_slot_i] + 1'b1;
+
+      // ---- State vectors ----
+      free_q        <= (free_q & ~alloc_oh) | done_oh;
+      setup_q       <= (setup_q & ~init_oh) | alloc_oh;
+      enter_q       <= (enter_q & ~visit_oh) | (init_oh & {N{init_enter_i}})
+                       | (desc_oh & {N{!behind}}) | to_enter | (rsp_oh & wait_refill_q);
+      group_req_q   <= (group_req_q & ~node_oh) | (visit_oh & {N{!visit_leaf}});
+      refill_req_q  <= (refill_req_q & ~node_oh) | to_refill;
+      wait_group_q  <= (wait_group_q & ~rsp_oh) | (node_oh & group_req_q);
+      wait_refill_q <= (wait_refill_q & ~rsp_oh) | (node_oh & refill_req_q);
+      fetch_q       <= (fetch_q & ~fin_oh) | (visit_oh & {N{visit_leaf && !visit_empty}});
+      check_q       <= (check_q & ~adv_oh & ~check_oh) | fin_oh | (visit_oh & {N{visit_leaf && visit_empty}});
+      next_q        <= (next_q & ~adv_oh) | to_next | (desc_oh & {N{behind}});
+      done_q        <= (done_q & ~done_oh) | (init_oh & {N{!init_enter_i}}) | to_done
+                       | (check_oh & {N{check_holds_i}});
+      iss_q         <= (iss_q & ~onehot(idx_go_i && (issued_q[idx_slot_i] + 1'b1 == count_q[idx_slot_i]), idx_slot_i))
+                       | (visit_oh & {N{visit_leaf && !visit_empty}});
+      gv_q          <= (gv_q & ~popped & ~init_oh) | rsp_oh;
+      desc_q        <= node_rsp_valid_i && wait_group_q[node_rsp_slot_i];
+      desc_slot_q   <= node_rsp_slot_i;
+      fin_q         <= |fin_next;
+      fin_slot_q    <= res_slot_i;
+    end
+  end
+
+  // ---- Outputs ----------------------------------------------------------------------------
+  logic [2:0] visit_sel;
+  assign visit_sel       = child_q[visit_slot_i] ^ mirror_q[visit_slot_i];
+  assign visit_at_root_o = (depth_q[visit_slot_i] == '0);
+  assign visit_sel_o     = visit_sel;
+  assign visit_node_id_o = visit_at_root_o ? '0 : grp_q[visit_slot_i] + 32'(visit_sel);
+  assign node_addr_o     = ADDR_W'(group_req_q[node_slot_i] ? first_q[node_slot_i] : grp_q[node_slot_i]);
+  assign idx_addr_o      = ADDR_W'(first_q[idx_slot_i] + issued_q[idx_slot_i]);
+  assign check_exit_o    = min_active(active_q[check_slot_i], t1_q[check_slot_i][0*T_W +: T_W], t1_q[check_slot_i][1*T_W +: T_W],
+                                      t1_q[check_slot_i][2*T_W +: T_W]);
+
+  assign free_o         = free_q;
+  assign want_visit_o   = enter_q;
+  assign want_node_o    = group_req_q | refill_req_q;
+  assign want_idx_o     = iss_q;
+  assign want_check_o   = check_q & hit_i;
+  assign want_done_o    = done_q;
+  assign fetching_o     = fetch_q;
+  assign waiting_node_o = wait_group_q | wait_refill_q;
+
+`ifdef RT_ASSERT_ON
+  // Events meet slots in the states that expect them.
+  always_ff @(posedge clk_i) begin
+    if (rst_ni) begin
+      if (alloc_i) a_alloc_free : assert (free_q[alloc_slot_i]);
+      if (init_i) a_init_setup : assert (setup_q[init_slot_i]);
+      if (visit_go_i) a_visit_enter : assert (enter_q[visit_slot_i]);
+      if (idx_go_i) a_idx_fetch : assert (iss_q[idx_slot_i]);
+      if (res_valid_i) a_res_fetch : assert (fetch_q[res_slot_i] && received_q[res_slot_i] != issued_q[res_slot_i]);
+      if (check_go_i) a_check_wants : assert (check_q[check_slot_i] && hit_i[check_slot_i]);
+      // An interior node one lattice unit wide cannot be split: the image is malformed.
+      if (desc_q) a_stack_depth : assert (depth_q[desc_slot_q] < DEPTH_W'(STACK));
+    end
+  end
+`endif
+
+endmodule
