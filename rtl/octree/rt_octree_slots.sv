@@ -224,13 +224,6 @@ module rt_octree_slots #(
   logic [N-1:0]          lane_req [AdvLanes + 1] /* verilator split_var */;
   logic                  lane_go [LANES];
   logic [SlotW-1:0]      lane_slot [LANES];
-  logic [3*T_W-1:0]      lane_t0 [LANES];             // the slot's registers after the step
-  logic [3*T_W-1:0]      lane_t1 [LANES];
-  logic [DEPTH_W-1:0]    lane_depth [LANES];
-  logic [31:0]           lane_grp [LANES];
-  logic [2:0]            lane_child [LANES];
-  logic                  lane_done [LANES], lane_next [LANES], lane_enter [LANES], lane_refill [LANES];
-  logic                  lane_pop [LANES];
 
   assign want_adv    = next_q | (check_q & ~hit_i);
   assign lane_req[0] = want_adv;
@@ -244,90 +237,6 @@ module rt_octree_slots #(
   assign lane_go[CHECK_LANE]   = check_go_i && !check_holds_i;
   assign lane_slot[CHECK_LANE] = check_slot_i;
 
-  for (genvar l = 0; l < LANES; l++) begin : g_adv
-    always_comb begin : p_step
-      logic signed [T_W-1:0] t0 [3];
-      logic signed [T_W-1:0] t1 [3];
-      logic signed [T_W-1:0] up;          // 2 t1 - t0 on the exit axis
-      logic [2:0]            active, child, bits;
-      logic [1:0]            xa;
-      logic [DEPTH_W-1:0]    depth;
-      logic [34:0]           parent;
-      logic                  behind;
-      behind = 1'b0;
-      active = active_q[lane_slot[l]];
-      child  = child_q[lane_slot[l]];
-      depth  = depth_q[lane_slot[l]];
-      for (int a = 0; a < 3; a++) begin
-        t0[a] = t0_q[lane_slot[l]][a*T_W +: T_W];
-        t1[a] = t1_q[lane_slot[l]][a*T_W +: T_W];
-      end
-      lane_t0[l]     = t0_q[lane_slot[l]];
-      lane_t1[l]     = t1_q[lane_slot[l]];
-      lane_depth[l]  = depth;
-      lane_grp[l]    = grp_q[lane_slot[l]];
-      lane_child[l]  = child;
-      lane_done[l]   = 1'b0;
-      lane_next[l]   = 1'b0;
-      lane_enter[l]  = 1'b0;
-      lane_refill[l] = 1'b0;
-      lane_pop[l]    = 1'b0;
-      xa     = exit_axis(active, t1[0], t1[1], t1[2]);
-      bits   = 3'b100 >> xa;
-      up     = (t1[xa] <<< 1) - t0[xa];
-      parent = stack_q[lane_slot[l]][32'(STK_W'(depth - DEPTH_W'(2))) * ENTRY_W +: ENTRY_W];
-      if (depth == '0) begin
-        lane_done[l] = 1'b1;
-      end else if ((child & bits) == '0) begin
-        behind = active[xa] && up < 0;
-        for (int a = 0; a < 3; a++) begin
-          if (32'(a) != 32'(xa) && active[a] && t1[a] < 0) behind = 1'b1;
-        end
-        lane_next[l]   = behind;
-        lane_enter[l]  = !behind && gv_q[lane_slot[l]];
-        lane_refill[l] = !behind && !gv_q[lane_slot[l]];
-        lane_t0[l][xa*T_W +: T_W] = t1[xa];
-        lane_t1[l][xa*T_W +: T_W] = up;
-        lane_child[l] = child | bits;
-      end else begin
-        lane_pop[l]  = 1'b1;
-        lane_done[l] = (depth == DEPTH_W'(1));
-        lane_next[l] = (depth != DEPTH_W'(1));
-        for (int a = 0; a < 3; a++) begin
-          if (active[a]) begin
-            if (child[2-a]) begin
-              lane_t0[l][a*T_W +: T_W] = (t0[a] <<< 1) - t1[a];
-            end else begin
-              lane_t1[l][a*T_W +: T_W] = (t1[a] <<< 1) - t0[a];
-            end
-          end
-        end
-        lane_grp[l]   = parent[34:3];
-        lane_child[l] = parent[2:0];
-        lane_depth[l] = depth - 1'b1;
-      end
-    end
-  end
-
-  // The slots each lane moves to a state, and the slots that advanced.
-  logic [N-1:0] adv_oh, to_enter, to_refill, to_next, to_done, popped;
-  always_comb begin
-    adv_oh    = '0;
-    to_enter  = '0;
-    to_refill = '0;
-    to_next   = '0;
-    to_done   = '0;
-    popped    = '0;
-    for (int l = 0; l < LANES; l++) begin
-      adv_oh    |= onehot(lane_go[l], lane_slot[l]);
-      to_enter  |= onehot(lane_go[l] && lane_enter[l], lane_slot[l]);
-      to_refill |= onehot(lane_go[l] && lane_refill[l], lane_slot[l]);
-      to_next   |= onehot(lane_go[l] && lane_next[l], lane_slot[l]);
-      to_done   |= onehot(lane_go[l] && lane_done[l], lane_slot[l]);
-      popped    |= onehot(lane_go[l] && lane_pop[l], lane_slot[l]);
-    end
-  end
-
   // ---- The walk: the lanes' writes, DESCEND, the events ------------------------------
   // Every decision is taken from the registers; the state has the asynchronous
   // reset, the datapath registers are written before they are read.
@@ -335,9 +244,16 @@ module rt_octree_slots #(
   assign fin_next = onehot(res_valid_i && (received_q[res_slot_i] + 1'b1 == count_q[res_slot_i]), res_slot_i);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_walk
-    logic signed [T_W-1:0] t0 [3];      // DESCEND: the parameters, mid-plane parameters, ranks, child
+    logic signed [T_W-1:0] t0 [3];      // the slot's parameters
     logic signed [T_W-1:0] t1 [3];
+    logic [3*T_W-1:0]      t0_next, t1_next;
     logic                  behind;
+    logic [SlotW-1:0]      s;           // a lane's slot
+    logic signed [T_W-1:0] up;          // the advance: 2 t1 - t0 on the exit axis
+    logic [2:0]            child, bits;
+    logic [1:0]            xa;
+    logic [34:0]           parent;
+    logic [N-1:0]          adv_oh, to_enter, to_refill, to_next, to_done, popped;
     logic signed [T_W-1:0] tm [3];
     logic [ORG_W-1:0]      org [3];
     logic [1:0]            r0 [3];
@@ -364,15 +280,69 @@ module rt_octree_slots #(
       fin_q         <= 1'b0;
       fin_slot_q    <= '0;
     end else begin
+      // The advance lanes: each reads its slot's registers only; the lanes'
+      // slots differ (a slot waits in one arbiter's requests, or holds the
+      // exit-test grant), so their writes never meet.
+      adv_oh    = '0;
+      to_enter  = '0;
+      to_refill = '0;
+      to_next   = '0;
+      to_done   = '0;
+      popped    = '0;
       for (int l = 0; l < LANES; l++) begin
         if (lane_go[l]) begin
-          t0_q[lane_slot[l]]    <= lane_t0[l];
-          t1_q[lane_slot[l]]    <= lane_t1[l];
-          depth_q[lane_slot[l]] <= lane_depth[l];
-          grp_q[lane_slot[l]]   <= lane_grp[l];
-          child_q[lane_slot[l]] <= lane_child[l];
+          s         = lane_slot[l];
+          adv_oh[s] = 1'b1;
+          active    = active_q[s];
+          child     = child_q[s];
+          depth     = depth_q[s];
+          t0_next   = t0_q[s];
+          t1_next   = t1_q[s];
+          for (int a = 0; a < 3; a++) begin
+            t0[a] = t0_next[a*T_W +: T_W];
+            t1[a] = t1_next[a*T_W +: T_W];
+          end
+          xa   = exit_axis(active, t1[0], t1[1], t1[2]);
+          bits = 3'b100 >> xa;
+          if (depth == '0) begin
+            to_done[s] = 1'b1;
+          end else if ((child & bits) == '0) begin
+            up     = (t1[xa] <<< 1) - t0[xa];
+            behind = active[xa] && up < 0;
+            for (int a = 0; a < 3; a++) begin
+              if (32'(a) != 32'(xa) && active[a] && t1[a] < 0) behind = 1'b1;
+            end
+            to_next[s]   = behind;
+            to_enter[s]  = !behind && gv_q[s];
+            to_refill[s] = !behind && !gv_q[s];
+            t0_next[xa*T_W +: T_W] = t1[xa];
+            t1_next[xa*T_W +: T_W] = up;
+            t0_q[s]    <= t0_next;
+            t1_q[s]    <= t1_next;
+            child_q[s] <= child | bits;
+          end else begin
+            popped[s]  = 1'b1;
+            to_done[s] = (depth == DEPTH_W'(1));
+            to_next[s] = (depth != DEPTH_W'(1));
+            for (int a = 0; a < 3; a++) begin
+              if (active[a]) begin
+                if (child[2-a]) begin
+                  t0_next[a*T_W +: T_W] = (t0[a] <<< 1) - t1[a];
+                end else begin
+                  t1_next[a*T_W +: T_W] = (t1[a] <<< 1) - t0[a];
+                end
+              end
+            end
+            parent     = stack_q[s][32'(STK_W'(depth - DEPTH_W'(2))) * ENTRY_W +: ENTRY_W];
+            t0_q[s]    <= t0_next;
+            t1_q[s]    <= t1_next;
+            grp_q[s]   <= parent[34:3];
+            child_q[s] <= parent[2:0];
+            depth_q[s] <= depth - 1'b1;
+          end
         end
       end
+
       // DESCEND (one slot): the mid-plane parameters (exact halvings), the first
       // child (table 1) and its parameters; push the current entry (none at
       // the root) and enter the child.
@@ -400,17 +370,21 @@ module rt_octree_slots #(
         for (int a = 0; a < 3; a++) begin
           if (32'(a) != 32'(entry) && t_lt(rm[a], tm[a], r0[entry], t0[entry])) c[2-a] = 1'b1;
         end
+        t0_next = t0_q[desc_slot_q];
+        t1_next = t1_q[desc_slot_q];
         for (int a = 0; a < 3; a++) begin
           if (active[a]) begin
             if (c[2-a]) begin
-              t0_q[desc_slot_q][a*T_W +: T_W] <= tm[a];
+              t0_next[a*T_W +: T_W] = tm[a];
               if (t1[a] < 0) behind = 1'b1;
             end else begin
-              t1_q[desc_slot_q][a*T_W +: T_W] <= tm[a];
+              t1_next[a*T_W +: T_W] = tm[a];
               if (tm[a] < 0) behind = 1'b1;
             end
           end
         end
+        t0_q[desc_slot_q] <= t0_next;
+        t1_q[desc_slot_q] <= t1_next;
         if (depth != '0) begin
           stack_q[desc_slot_q][32'(STK_W'(depth - 1'b1)) * ENTRY_W +: ENTRY_W] <= {grp_q[desc_slot_q], child_q[desc_slot_q]};
         end
@@ -419,10 +393,8 @@ module rt_octree_slots #(
         depth_q[desc_slot_q] <= depth + 1'b1;
       end
       if (init_i) begin
-        for (int a = 0; a < 3; a++) begin
-          t0_q[init_slot_i][a*T_W +: T_W] <= init_t0_i[a*T_W +: T_W];
-          t1_q[init_slot_i][a*T_W +: T_W] <= init_t1_i[a*T_W +: T_W];
-        end
+        t0_q[init_slot_i]     <= init_t0_i;
+        t1_q[init_slot_i]     <= init_t1_i;
         depth_q[init_slot_i]  <= '0;
         grp_q[init_slot_i]    <= '0;
         child_q[init_slot_i]  <= '0;
