@@ -501,17 +501,9 @@ module rt_octree #(
   assign tri_rsp_fetching = fetching[tri_rsp_tag_i];
   assign res_fetching     = fetching[res_slot];
 
-  // Output streams: valid never drops and data holds until taken.
-  a_res_hold : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      res_valid_o && !res_ready_i |=> res_valid_o && $stable(res_data_o));
-  a_visit_hold : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      visit_valid_o && !visit_ready_i |=> visit_valid_o && $stable(visit_data_o));
-  a_node_req_hold : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      node_req_valid_o && !node_req_ready_i |=> node_req_valid_o && $stable({node_req_addr_o, node_req_tag_o}));
-  a_idx_req_hold : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      idx_req_valid_o && !idx_req_ready_i |=> idx_req_valid_o && $stable({idx_req_addr_o, idx_req_tag_o}));
-  a_tri_req_hold : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      tri_req_valid_o && !tri_req_ready_i |=> tri_req_valid_o && $stable({tri_req_addr_o, tri_req_tag_o}));
+  // Output streams (results, visits, the three request ports) come straight
+  // from rt_fifo instances, whose a_out_hold checks that valid never drops and
+  // data holds until taken; they are not checked twice here.
   // Input stream (the producer's duty).
   a_ray_hold : assert property (@(posedge clk_i) disable iff (!rst_ni)
       ray_valid_i && !ray_ready_o |=> ray_valid_i && $stable(ray_data_i));
