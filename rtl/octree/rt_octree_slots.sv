@@ -116,6 +116,7 @@ module rt_octree_slots #(
   localparam int STACK   = rt_pkg::OCTREE_MAX_DEPTH;             // levels 0 .. P-1
   localparam int STK_W   = (STACK > 1) ? $clog2(STACK) : 1;
   localparam int ENTRY_W = 35;                                   // {group base, child}
+  localparam int STK_AW  = $clog2(N * STACK);                    // stack memory address
 
   // Rank of a parameter in the order -inf < finite < +inf.
   localparam logic [1:0] NEG_INF = 2'd0;
@@ -152,6 +153,11 @@ module rt_octree_slots #(
     if (active[2] && (!(active[0] || active[1]) || z < $signed(min_active))) min_active = z;
   endfunction
 
+  // Where slot s keeps its stack entry of level d.
+  function automatic logic [STK_AW-1:0] stack_addr(input logic [SlotW-1:0] s, input logic [STK_W-1:0] d);
+    stack_addr = STK_AW'(s) * STK_AW'(STACK) + STK_AW'(d);
+  endfunction
+
   function automatic logic [N-1:0] onehot(input logic valid, input logic [SlotW-1:0] s);
     onehot = valid ? (N'(1) << s) : '0;
   endfunction
@@ -175,10 +181,10 @@ module rt_octree_slots #(
   logic [31:0]            count_q    [N];
   logic [31:0]            issued_q   [N];
   logic [31:0]            received_q [N];
-  // The ancestors' entries, a word per slot: a slot's advance reads its own
-  // word only (one memory of all slots' entries would give every slot's
-  // advance a read port over all of them).
-  logic [STACK*ENTRY_W-1:0] stack_q  [N];
+  // The ancestors' entries: one memory of N * STACK entries, slot s's level d
+  // at s * STACK + d; DESCEND writes it (one port), each advance lane reads it
+  // (AdvLanes + 1 ports).
+  logic [ENTRY_W-1:0]     stack_q    [N * STACK];
   // Written by the advance too.
   logic [3*T_W-1:0]       t0_q       [N];   // the current node's parameters {z, y, x}
   logic [3*T_W-1:0]       t1_q       [N];
@@ -333,7 +339,7 @@ module rt_octree_slots #(
                 end
               end
             end
-            parent     = stack_q[s][32'(STK_W'(depth - DEPTH_W'(2))) * ENTRY_W +: ENTRY_W];
+            parent     = stack_q[stack_addr(s, STK_W'(depth - DEPTH_W'(2)))];
             t0_q[s]    <= t0_next;
             t1_q[s]    <= t1_next;
             grp_q[s]   <= parent[34:3];
@@ -386,7 +392,7 @@ module rt_octree_slots #(
         t0_q[desc_slot_q] <= t0_next;
         t1_q[desc_slot_q] <= t1_next;
         if (depth != '0) begin
-          stack_q[desc_slot_q][32'(STK_W'(depth - 1'b1)) * ENTRY_W +: ENTRY_W] <= {grp_q[desc_slot_q], child_q[desc_slot_q]};
+          stack_q[stack_addr(desc_slot_q, STK_W'(depth - 1'b1))] <= {grp_q[desc_slot_q], child_q[desc_slot_q]};
         end
         grp_q[desc_slot_q]   <= first_q[desc_slot_q];
         child_q[desc_slot_q] <= c;
