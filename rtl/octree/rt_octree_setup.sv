@@ -56,28 +56,6 @@ module rt_octree_setup #(
   logic [3*ORG_W-1:0]   s1_org_q;
   logic [DIR_W-1:0]     s1_dom_q;
 
-  logic [2:0]           active_d, neg_d;
-  logic [3*MAG_W-1:0]   mag_d;
-  logic [3*ORG_W-1:0]   org_d;
-  logic [DIR_W-1:0]     dom_d;
-
-  always_comb begin
-    dom_d = '0;
-    for (int a = 0; a < 3; a++) begin
-      logic [DIR_W-1:0] d, mag;
-      logic [ORG_W-1:0] o;
-      d = ray_i.dir[a];
-      o = ORG_W'(ray_i.org[a]);
-      mag = d[DIR_W-1] ? DIR_W'(-d) : d;
-      active_d[a] = (d != '0);
-      neg_d[a]    = d[DIR_W-1];
-      mag_d[a*MAG_W +: MAG_W] = mag[MAG_W-1:0];
-      // min + max - o: mirrored about the root's centre, not about 0.
-      org_d[a*ORG_W +: ORG_W] = d[DIR_W-1] ? (ORG_W'(1) << P) - o : o;
-      if (mag > dom_d) dom_d = mag;
-    end
-  end
-
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       s1_valid_q <= 1'b0;
@@ -86,15 +64,28 @@ module rt_octree_setup #(
     end
   end
 
+  // The stage's arithmetic only in the cycles it loads (as in rt_isect: a
+  // simulator then evaluates it once per ray, not in every cycle).
   always_ff @(posedge clk_i) begin
     if (valid_i) begin
-      s1_slot_q   <= slot_i;
-      s1_ray_q    <= ray_i;
-      s1_active_q <= active_d;
-      s1_neg_q    <= neg_d;
-      s1_mag_q    <= mag_d;
-      s1_org_q    <= org_d;
-      s1_dom_q    <= dom_d;
+      logic [DIR_W-1:0] dom;
+      dom = '0;
+      for (int a = 0; a < 3; a++) begin
+        logic [DIR_W-1:0] d, mag;
+        logic [ORG_W-1:0] o;
+        d = ray_i.dir[a];
+        o = ORG_W'(ray_i.org[a]);
+        mag = d[DIR_W-1] ? DIR_W'(-d) : d;
+        s1_active_q[a] <= (d != '0);
+        s1_neg_q[a]    <= d[DIR_W-1];
+        s1_mag_q[a*MAG_W +: MAG_W] <= mag[MAG_W-1:0];
+        // min + max - o: mirrored about the root's centre, not about 0.
+        s1_org_q[a*ORG_W +: ORG_W] <= d[DIR_W-1] ? (ORG_W'(1) << P) - o : o;
+        if (mag > dom) dom = mag;
+      end
+      s1_slot_q <= slot_i;
+      s1_ray_q  <= ray_i;
+      s1_dom_q  <= dom;
     end
   end
 
@@ -108,20 +99,6 @@ module rt_octree_setup #(
   logic [COM_W-1:0]     s2_common_q;
   logic [DIR_W-1:0]     s2_dom_q;
 
-  logic [3*MAG_W-1:0]   m;           // |d| masked to 1 on inactive axes
-  logic [3*PAIR_W-1:0]  pair_d;
-  logic [COM_W-1:0]     common_d;
-
-  always_comb begin
-    for (int a = 0; a < 3; a++) begin
-      m[a*MAG_W +: MAG_W] = s1_active_q[a] ? s1_mag_q[a*MAG_W +: MAG_W] : MAG_W'(1);
-    end
-    pair_d[0*PAIR_W +: PAIR_W] = PAIR_W'(m[1*MAG_W +: MAG_W]) * PAIR_W'(m[2*MAG_W +: MAG_W]);
-    pair_d[1*PAIR_W +: PAIR_W] = PAIR_W'(m[0*MAG_W +: MAG_W]) * PAIR_W'(m[2*MAG_W +: MAG_W]);
-    pair_d[2*PAIR_W +: PAIR_W] = PAIR_W'(m[0*MAG_W +: MAG_W]) * PAIR_W'(m[1*MAG_W +: MAG_W]);
-    common_d = COM_W'(pair_d[0*PAIR_W +: PAIR_W]) * COM_W'(m[0*MAG_W +: MAG_W]);
-  end
-
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       s2_valid_q <= 1'b0;
@@ -132,13 +109,21 @@ module rt_octree_setup #(
 
   always_ff @(posedge clk_i) begin
     if (s1_valid_q) begin
+      logic [MAG_W-1:0]  m [3];       // |d| masked to 1 on inactive axes
+      logic [PAIR_W-1:0] pair_x;
+      for (int a = 0; a < 3; a++) begin
+        m[a] = s1_active_q[a] ? s1_mag_q[a*MAG_W +: MAG_W] : MAG_W'(1);
+      end
+      pair_x = PAIR_W'(m[1]) * PAIR_W'(m[2]);
+      s2_pair_q[0*PAIR_W +: PAIR_W] <= pair_x;
+      s2_pair_q[1*PAIR_W +: PAIR_W] <= PAIR_W'(m[0]) * PAIR_W'(m[2]);
+      s2_pair_q[2*PAIR_W +: PAIR_W] <= PAIR_W'(m[0]) * PAIR_W'(m[1]);
+      s2_common_q <= COM_W'(pair_x) * COM_W'(m[0]);
       s2_slot_q   <= s1_slot_q;
       s2_ray_q    <= s1_ray_q;
       s2_active_q <= s1_active_q;
       s2_neg_q    <= s1_neg_q;
       s2_org_q    <= s1_org_q;
-      s2_pair_q   <= pair_d;
-      s2_common_q <= common_d;
       s2_dom_q    <= s1_dom_q;
     end
   end
