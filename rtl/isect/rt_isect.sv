@@ -381,12 +381,30 @@ module rt_isect (
       !$isunknown(req_ready_o));
   a_req_valid_known : assert property (@(posedge clk_i) disable iff (!rst_ni)
       !$isunknown(req_valid_i));
-  // Output stream: a result that is not taken stays, unchanged.
-  a_res_hold : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      res_valid_o && !res_ready_i |=> res_valid_o && $stable(res_data_o));
-  // Input stream (the producer's duty): an offered request stays, unchanged.
-  a_req_hold : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      req_valid_i && !req_ready_o |=> req_valid_i && $stable(req_ray_i) && $stable(req_tri_i));
+  // Output stream: a result that is not taken stays, unchanged. Input stream
+  // (the producer's duty): an offered request stays, unchanged. Written as
+  // immediate assertions against copies taken in a stall only: a concurrent
+  // $stable makes a simulator copy the wide records in every evaluation.
+  logic               res_stall_q, req_stall_q;
+  rt_pkg::isect_res_t res_held_q;
+  rt_pkg::isect_ray_t ray_held_q;
+  rt_pkg::isect_tri_t tri_held_q;
+  always_ff @(posedge clk_i) begin
+    if (!rst_ni) begin
+      res_stall_q <= 1'b0;
+      req_stall_q <= 1'b0;
+    end else begin
+      if (res_stall_q) a_res_hold : assert (res_valid_o && res_data_o == res_held_q);
+      if (req_stall_q) a_req_hold : assert (req_valid_i && req_ray_i == ray_held_q && req_tri_i == tri_held_q);
+      res_stall_q <= res_valid_o && !res_ready_i;
+      req_stall_q <= req_valid_i && !req_ready_o;
+      if (res_valid_o && !res_ready_i) res_held_q <= res_data_o;
+      if (req_valid_i && !req_ready_o) begin
+        ray_held_q <= req_ray_i;
+        tri_held_q <= req_tri_i;
+      end
+    end
+  end
   // A full pipeline whose result is taken accepts a new request (II = 1).
   a_full_throughput : assert property (@(posedge clk_i) disable iff (!rst_ni)
       res_ready_i |-> req_ready_o);
