@@ -357,12 +357,13 @@ module rt_octree #(
   logic [CLO_W-1:0]   clo_new, clo_old;
 
   assign res_slot = isect_res.ray_id[SlotW-1:0];
-  assign res_best = best_q[res_slot];
   always_comb begin
     clo_new  = '0;
     clo_old  = '0;
     res_take = 1'b0;
+    res_best = '0;
     if (isect_res_valid && isect_res.hit) begin
+      res_best = best_q[res_slot];  // (the whole element: Yosys 0.23 takes no field of one)
       if (!has_hit_q[res_slot]) begin
         res_take = 1'b1;
       end else begin
@@ -380,12 +381,13 @@ module rt_octree #(
   rt_pkg::isect_res_t chk_best;
   logic [CHK_W-1:0]   chk_lhs, chk_rhs;
   logic               check_holds;
-  assign chk_best = best_q[check_idx];
   always_comb begin
     chk_lhs     = '0;
     chk_rhs     = '0;
     check_holds = 1'b0;
+    chk_best    = '0;
     if (check_any) begin
+      chk_best    = best_q[check_idx];
       chk_lhs     = CHK_W'(check_exit) * CHK_W'(dom_q[check_idx]) * CHK_W'(chk_best.det);
       chk_rhs     = CHK_W'(chk_best.t_num) * CHK_W'(common_q[check_idx]);
       check_holds = !(chk_lhs < chk_rhs);
@@ -469,19 +471,24 @@ module rt_octree #(
   end
 
   // ---- Results -------------------------------------------------------------------------
+  // The record is assembled only in a cycle with a done grant.
   rt_pkg::octree_res_t done_rec;
   rt_pkg::isect_res_t  done_best;
-  assign done_best = best_q[done_idx];
   always_comb begin
-    done_rec.ray_id  = ray_id_q[done_idx];
-    done_rec.nodes   = nodes_q[done_idx];
-    done_rec.tests   = tests_q[done_idx];
-    done_rec.hit     = has_hit_q[done_idx];
-    done_rec.prim_id = done_best.prim_id;
-    done_rec.t_num   = done_best.t_num;
-    done_rec.det     = done_best.det;
-    done_rec.u_num   = done_best.u_num;
-    done_rec.v_num   = done_best.v_num;
+    done_rec  = '0;
+    done_best = '0;
+    if (done_any) begin
+      done_best        = best_q[done_idx];
+      done_rec.ray_id  = ray_id_q[done_idx];
+      done_rec.nodes   = nodes_q[done_idx];
+      done_rec.tests   = tests_q[done_idx];
+      done_rec.hit     = has_hit_q[done_idx];
+      done_rec.prim_id = done_best.prim_id;
+      done_rec.t_num   = done_best.t_num;
+      done_rec.det     = done_best.det;
+      done_rec.u_num   = done_best.u_num;
+      done_rec.v_num   = done_best.v_num;
+    end
   end
 
   rt_fifo #(.Width(rt_pkg::OCTREE_RESULT_W), .Depth(2)) u_res_q (
