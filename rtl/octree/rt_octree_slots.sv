@@ -323,8 +323,6 @@ module rt_octree_slots #(
             to_refill[s] = !behind && !gv_q[s];
             t0_next[xa*T_W +: T_W] = t1[xa];
             t1_next[xa*T_W +: T_W] = up;
-            t0_q[s]    <= t0_next;
-            t1_q[s]    <= t1_next;
             child_q[s] <= child | bits;
           end else begin
             popped[s]  = 1'b1;
@@ -340,11 +338,15 @@ module rt_octree_slots #(
               end
             end
             parent     = stack_q[stack_addr(s, STK_W'(depth - DEPTH_W'(2)))];
-            t0_q[s]    <= t0_next;
-            t1_q[s]    <= t1_next;
             grp_q[s]   <= parent[34:3];
             child_q[s] <= parent[2:0];
             depth_q[s] <= depth - 1'b1;
+          end
+          // (One write of the parameters per lane: each write site costs a
+          // simulator a staging copy in every cycle.)
+          if (depth != '0) begin
+            t0_q[s] <= t0_next;
+            t1_q[s] <= t1_next;
           end
         end
       end
