@@ -269,7 +269,6 @@ module rt_octree #(
   // Addresses as wires of their own: Yosys 0.23 drops a size cast inside a concatenation.
   logic [ADDR_W-1:0] node_addr, idx_addr, tri_addr;
 
-
   rt_fifo #(.Width(MEMREQ_W), .Depth(2)) u_node_q (
     .clk_i, .rst_ni,
     .in_valid_i (node_go),
