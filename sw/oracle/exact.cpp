@@ -1,0 +1,361 @@
+#include "oracle/exact.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+
+namespace lancer {
+
+// ---- Exact t -------------------------------------------------------------------
+
+ExactT::ExactT(mpz_class num, mpz_class den, long shift) : num_(std::move(num)), den_(std::move(den)), shift_(shift) {
+  if (sgn(den_) < 0) {
+    num_ = -num_;
+    den_ = -den_;
+  }
+}
+
+double ExactT::toDouble() const {
+  mpq_class q(num_, den_);
+  q.canonicalize();
+  return std::ldexp(q.get_d(), static_cast<int>(shift_));
+}
+
+int compare(const ExactT& a, const ExactT& b) {
+  // a.num / a.den * 2^a.shift  vs  b.num / b.den * 2^b.shift, dens > 0.
+  const long base = std::min(a.shift_, b.shift_);
+  mpz_class lhs = a.num_ * b.den_;
+  mpz_class rhs = b.num_ * a.den_;
+  mpz_mul_2exp(lhs.get_mpz_t(), lhs.get_mpz_t(), static_cast<mp_bitcnt_t>(a.shift_ - base));
+  mpz_mul_2exp(rhs.get_mpz_t(), rhs.get_mpz_t(), static_cast<mp_bitcnt_t>(b.shift_ - base));
+  const int c = cmp(lhs, rhs);
+  return (c > 0) - (c < 0);
+}
+
+namespace {
+
+// ---- The double filter -----------------------------------------------------------
+//
+// Notation: a_i = v_i - o (rounded to double: relative error <= u per
+// component, u = 2^-53; the floats' own values are exact in double), d exact.
+//   s_i = det(a_j, a_k, d), (i, j, k) cyclic: the signed volume of the ray and
+//         the edge opposite v_i; the crossing's barycentric of v_i is s_i / den;
+//   den = s_0 + s_1 + s_2 = d . ((v1 - v0) x (v2 - v0));
+//   num = det(a_0, a_1, a_2) = (v0 - o) . n;  t = num / den.
+// Each is a sum of products of three inputs; with two or three rounded rows
+// and five rounded operations its error is below 8u times its permanent (the
+// same sum with absolute values; Shewchuk's orient3d bound is (7u + 56u^2)).
+// The filter uses 16u (num, s_i) and adds the sum's rounding for den, so every
+// sign it reports is the exact sign. No underflow: nonzero differences of
+// floats are at least 2^-149, their triple products at least 2^-447.
+
+constexpr double kU = 0x1p-53;
+constexpr double kProductBound = 16 * kU;
+
+struct Vec3d {
+  double x, y, z;
+};
+
+Vec3d toVec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+Vec3d absVec(const Vec3d& a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
+
+double det3(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  return a.x * (b.y * c.z - b.z * c.y) + a.y * (b.z * c.x - b.x * c.z) + a.z * (b.x * c.y - b.y * c.x);
+}
+// The permanent: det3 with every term's sign made positive (inputs already |.|).
+double perm3(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  return a.x * (b.y * c.z + b.z * c.y) + a.y * (b.z * c.x + b.x * c.z) + a.z * (b.x * c.y + b.y * c.x);
+}
+
+// A value and a bound on its error: its sign is certain when |value| > error.
+struct Bounded {
+  double value = 0.0;
+  double error = 0.0;
+  bool certain() const { return std::fabs(value) > error; }
+  int sign() const { return (value > 0) - (value < 0); }
+};
+
+struct FilterOutcome {
+  enum Kind { Miss, Hit, Unsure } kind = Unsure;
+  double t = 0.0, tLow = 0.0, tHigh = 0.0;  // for Hit: t and an interval holding the exact t
+};
+
+FilterOutcome filterPair(const Vec3d& o, const Vec3d& d, const Vec3d& ad, float tMax, const Triangle& tri) {
+  const Vec3d a[3] = {sub(toVec(tri.v0), o), sub(toVec(tri.v1), o), sub(toVec(tri.v2), o)};
+  const Vec3d aa[3] = {absVec(a[0]), absVec(a[1]), absVec(a[2])};
+  Bounded s[3];
+  bool positive = false, negative = false, unsure = false;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    s[i] = {det3(a[j], a[k], d), kProductBound * perm3(aa[j], aa[k], ad)};
+    if (!s[i].certain()) {
+      unsure = true;
+    } else if (s[i].value > 0) {
+      positive = true;
+    } else {
+      negative = true;
+    }
+  }
+  // Two edges certainly on opposite sides: the line misses the closed triangle.
+  if (positive && negative) return {FilterOutcome::Miss};
+  if (unsure) return {};
+  // All three strictly of one sign: the line crosses the interior; den has that sign.
+  const double den = s[0].value + s[1].value + s[2].value;
+  const double denError = s[0].error + s[1].error + s[2].error + 2 * kU * (std::fabs(s[0].value) + std::fabs(s[1].value) + std::fabs(s[2].value));
+  const Bounded num{det3(a[0], a[1], a[2]), kProductBound * perm3(aa[0], aa[1], aa[2])};
+  if (!num.certain()) return {};
+  if ((num.value > 0) != (den > 0)) return {FilterOutcome::Miss};  // t < 0
+  const double relNum = num.error / std::fabs(num.value);
+  const double relDen = denError / std::fabs(den);
+  if (relNum > 0.25 || relDen > 0.25) return {};
+  const double t = num.value / den;
+  const double rel = (relNum + relDen) / (1.0 - relDen) + 3 * kU;
+  FilterOutcome out{FilterOutcome::Hit, t, t * (1.0 - rel), t * (1.0 + rel)};
+  if (std::isfinite(tMax)) {
+    if (out.tLow > tMax) return {FilterOutcome::Miss};
+    if (out.tHigh > tMax) return {};  // t may lie either side of tMax
+  }
+  return out;
+}
+
+// ---- The exact evaluation ---------------------------------------------------------
+
+// A float as m * 2^e with m an integer (|m| < 2^24); e of zero is irrelevant.
+struct Binary {
+  long mantissa = 0;
+  int exponent = 0;
+};
+
+Binary decompose(float f) {
+  int e = 0;
+  const double m = std::frexp(static_cast<double>(f), &e);  // f = m * 2^e, 0.5 <= |m| < 1
+  return {static_cast<long>(std::ldexp(m, 24)), e - 24};
+}
+
+// The floats of one group scaled by 2^-base to integers.
+mpz_class scaled(float f, int base) {
+  const Binary b = decompose(f);
+  mpz_class z(b.mantissa);
+  if (b.mantissa != 0) mpz_mul_2exp(z.get_mpz_t(), z.get_mpz_t(), static_cast<mp_bitcnt_t>(b.exponent - base));
+  return z;
+}
+
+int minExponent(std::initializer_list<float> values) {
+  int base = std::numeric_limits<int>::max();
+  for (float f : values) {
+    if (f != 0.0f) base = std::min(base, decompose(f).exponent);
+  }
+  return base == std::numeric_limits<int>::max() ? 0 : base;
+}
+
+using Zvec = std::array<mpz_class, 3>;
+
+mpz_class det3(const Zvec& a, const Zvec& b, const Zvec& c) {
+  return a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+}
+
+ExactRelation exactRelation(const Ray& ray, const Triangle& tri) {
+  const glm::vec3 o = ray.origin, d = ray.dir;
+  const glm::vec3 v[3] = {tri.v0, tri.v1, tri.v2};
+  // Positions (origin and vertices) share one scale, the direction has its own:
+  // t = num / den scales by 2^(positionBase - directionBase).
+  const int positionBase = minExponent({o.x, o.y, o.z, v[0].x, v[0].y, v[0].z, v[1].x, v[1].y, v[1].z, v[2].x,
+                                        v[2].y, v[2].z});
+  const int directionBase = minExponent({d.x, d.y, d.z});
+  const Zvec zo = {scaled(o.x, positionBase), scaled(o.y, positionBase), scaled(o.z, positionBase)};
+  const Zvec zd = {scaled(d.x, directionBase), scaled(d.y, directionBase), scaled(d.z, directionBase)};
+  Zvec a[3];
+  for (int i = 0; i < 3; ++i) {
+    for (int c = 0; c < 3; ++c) a[i][c] = scaled(v[i][c], positionBase) - zo[c];
+  }
+  mpz_class s[3];
+  for (int i = 0; i < 3; ++i) s[i] = det3(a[(i + 1) % 3], a[(i + 2) % 3], zd);
+  const mpz_class den = s[0] + s[1] + s[2];
+
+  ExactRelation rel;
+  if (sgn(den) == 0) {
+    rel.parallel = true;
+    rel.minBarycentric = std::numeric_limits<double>::quiet_NaN();
+    return rel;
+  }
+  const int side = sgn(den);
+  bool inside = true, boundary = false;
+  rel.minBarycentric = std::numeric_limits<double>::infinity();
+  for (const mpz_class& si : s) {
+    const int sign = sgn(si) * side;
+    inside = inside && sign >= 0;
+    boundary = boundary || sign == 0;
+    mpq_class barycentric(si, den);
+    barycentric.canonicalize();  // (GMP's rationals need a positive denominator)
+    rel.minBarycentric = std::min(rel.minBarycentric, barycentric.get_d());
+  }
+  const mpz_class num = det3(a[0], a[1], a[2]);
+  rel.t.emplace(num, den, static_cast<long>(positionBase) - directionBase);
+  bool inRange = sgn(num) * side > 0;  // t > 0
+  if (inRange && std::isfinite(ray.tMax)) {
+    // t <= tMax exactly: tMax as a one-element ExactT.
+    const Binary m = decompose(ray.tMax);
+    inRange = compare(*rel.t, ExactT(mpz_class(m.mantissa), mpz_class(1), m.exponent)) <= 0;
+  }
+  rel.hit = inside && inRange;
+  rel.onBoundary = rel.hit && boundary;
+  return rel;
+}
+
+void checkRay(const Ray& ray) {
+  const auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  if (!finite(ray.origin) || !finite(ray.dir) || std::isnan(ray.tMax)) {
+    throw InputError(fmt::format("exact oracle: ray ({}, {}, {}) + t ({}, {}, {}) has a NaN or infinite component",
+                                 ray.origin.x, ray.origin.y, ray.origin.z, ray.dir.x, ray.dir.y, ray.dir.z));
+  }
+  if (ray.dir == glm::vec3(0.0f)) throw InputError("exact oracle: ray with a zero direction");
+}
+
+// A hit found while searching: its t known as an interval, and exactly once needed.
+struct Candidate {
+  uint32_t prim = 0;
+  double t = 0.0, tLow = 0.0, tHigh = 0.0;
+  bool onBoundary = false;
+  std::optional<ExactT> exact;
+};
+
+}  // namespace
+
+ExactRelation ExactOracle::relation(const Ray& ray, uint32_t prim) const {
+  checkRay(ray);
+  if (prim >= scene_.triangles.size()) {
+    throw InputError(fmt::format("exact oracle: triangle {} does not exist (the scene has {})", prim,
+                                 scene_.triangles.size()));
+  }
+  return exactRelation(ray, scene_.triangles[prim]);
+}
+
+std::optional<ExactHit> ExactOracle::intersect(const Ray& ray, ExactStats* stats) const {
+  checkRay(ray);
+  const Vec3d o = toVec(ray.origin), d = toVec(ray.dir), ad = absVec(d);
+  ExactStats local;
+  std::optional<Candidate> best;
+  const auto exactOf = [&](Candidate& c) -> const ExactT& {
+    if (!c.exact) c.exact = exactRelation(ray, scene_.triangles[c.prim]).t;
+    return *c.exact;
+  };
+  for (uint32_t prim = 0; prim < scene_.triangles.size(); ++prim) {
+    ++local.pairs;
+    const Triangle& tri = scene_.triangles[prim];
+    const FilterOutcome f = filterPair(o, d, ad, ray.tMax, tri);
+    if (f.kind == FilterOutcome::Miss) continue;
+    Candidate c{prim, f.t, f.tLow, f.tHigh, false, std::nullopt};
+    if (f.kind == FilterOutcome::Unsure) {
+      ++local.exactPairs;
+      ExactRelation rel = exactRelation(ray, tri);
+      if (!rel.hit) continue;
+      c.t = c.tLow = c.tHigh = rel.t->toDouble();
+      c.onBoundary = rel.onBoundary;
+      c.exact = std::move(rel.t);
+      // toDouble rounds toward zero: widen by an ulp so the interval holds t.
+      c.tHigh = std::nextafter(c.tHigh, std::numeric_limits<double>::infinity());
+    }
+    if (!best || c.tHigh < best->tLow) {
+      best = std::move(c);
+    } else if (c.tLow <= best->tHigh) {
+      // Overlapping intervals: compare exactly; a tie keeps the lower id (best).
+      ++local.exactCompares;
+      if (compare(exactOf(c), exactOf(*best)) < 0) best = std::move(c);
+    }
+  }
+  if (stats) {
+    stats->pairs += local.pairs;
+    stats->exactPairs += local.exactPairs;
+    stats->exactCompares += local.exactCompares;
+  }
+  if (!best) return std::nullopt;
+  return ExactHit{best->prim, exactOf(*best).toDouble(), best->onBoundary};
+}
+
+// ---- Judging a tracer's answer -----------------------------------------------------
+
+std::string_view toString(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::Correct: return "correct";
+    case Verdict::Tie: return "tie";
+    case Verdict::Rounding: return "rounding";
+    case Verdict::Wrong: return "wrong";
+  }
+  return "?";
+}
+
+namespace {
+
+constexpr double kRoundingBound = 0x1p-20;  // float32 rounding (2^-24) with room for a few operations
+
+struct Margins {
+  double bary = 0.0;  // a barycentric this close to 0 is within rounding of an edge
+  double t = 0.0;     // two t this close are within rounding of each other
+};
+
+// The rounding margins of one ray against one triangle: a position error of
+// kRoundingBound * M, M the largest coordinate magnitude of the origin and
+// the vertices, is a barycentric error of that over the smallest altitude,
+// and a t error of that over |d|.
+Margins marginsOf(const Ray& ray, const Triangle& tri) {
+  const glm::dvec3 v0(tri.v0), v1(tri.v1), v2(tri.v2), o(ray.origin);
+  double m = 0.0;
+  for (const glm::dvec3& p : {v0, v1, v2, o}) m = std::max({m, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+  const double area2 = glm::length(glm::cross(v1 - v0, v2 - v0));
+  const double longest = std::max({glm::length(v1 - v0), glm::length(v2 - v1), glm::length(v0 - v2)});
+  const double minAltitude = area2 > 0.0 ? area2 / longest : 0.0;
+  const double err = kRoundingBound * m;
+  Margins margins;
+  margins.bary = minAltitude > 0.0 ? err / minAltitude : std::numeric_limits<double>::infinity();
+  margins.t = err / glm::length(glm::dvec3(ray.dir));
+  return margins;
+}
+
+// The crossing of `rel` lies within rounding of the triangle's boundary.
+bool marginal(const ExactRelation& rel, const Margins& margins) {
+  return !rel.parallel && std::fabs(rel.minBarycentric) <= margins.bary;
+}
+
+}  // namespace
+
+Judgement judge(const ExactOracle& oracle, const Ray& ray, const std::optional<Hit>& answer,
+                const std::optional<ExactHit>& truth) {
+  const auto& tris = oracle.scene().triangles;
+  if (!answer && !truth) return {Verdict::Correct, "both miss"};
+  if (answer && truth && answer->prim == truth->prim) return {Verdict::Correct, "same triangle"};
+
+  if (!answer) {
+    const ExactRelation rel = oracle.relation(ray, truth->prim);
+    if (marginal(rel, marginsOf(ray, tris[truth->prim]))) return {Verdict::Rounding, "missed a hit within rounding of an edge"};
+    return {Verdict::Wrong, "missed a hit away from any edge"};
+  }
+  const ExactRelation given = oracle.relation(ray, answer->prim);
+  const Margins givenMargins = marginsOf(ray, tris[answer->prim]);
+  if (!truth) {
+    if (marginal(given, givenMargins)) return {Verdict::Rounding, "hit a triangle the ray passes within rounding of"};
+    return {Verdict::Wrong, "hit where the ray misses everything"};
+  }
+  // Another triangle than the truth's.
+  const ExactRelation truthRel = oracle.relation(ray, truth->prim);
+  if (given.hit && *given.t == *truthRel.t) return {Verdict::Tie, "another triangle at the same t"};
+  const bool givenPlausible = given.hit || marginal(given, givenMargins);
+  if (givenPlausible && given.t) {
+    const double givenT = given.t->toDouble(), margin = givenMargins.t + kRoundingBound * truth->t;
+    if (std::fabs(givenT - truth->t) <= margin) return {Verdict::Rounding, "another triangle within rounding of the same t"};
+    // A triangle the ray passes within rounding of, nearer than the truth: a
+    // float tracer that rounds it to a hit rightly reports it.
+    if (givenT < truth->t) return {Verdict::Rounding, "a nearer triangle the ray passes within rounding of"};
+  }
+  if (givenPlausible && marginal(truthRel, marginsOf(ray, tris[truth->prim]))) {
+    return {Verdict::Rounding, "missed a nearer hit within rounding of an edge"};
+  }
+  return {Verdict::Wrong, given.hit ? "a farther triangle than the closest" : "a triangle the ray misses"};
+}
+
+}  // namespace lancer
