@@ -328,7 +328,12 @@ Judgement judge(const ExactOracle& oracle, const Ray& ray, const std::optional<H
                 const std::optional<ExactHit>& truth) {
   const auto& tris = oracle.scene().triangles;
   if (!answer && !truth) return {Verdict::Correct, "both miss"};
-  if (answer && truth && answer->prim == truth->prim) return {Verdict::Correct, "same triangle"};
+  if (answer && truth && answer->prim == truth->prim) {
+    // The right triangle; its t must be right within rounding too.
+    const double margin = marginsOf(ray, tris[truth->prim]).t + kRoundingBound * truth->t;
+    if (std::fabs(double(answer->t) - truth->t) <= margin) return {Verdict::Correct, "same triangle"};
+    return {Verdict::Wrong, "the right triangle at a t beyond rounding"};
+  }
 
   if (!answer) {
     const ExactRelation rel = oracle.relation(ray, truth->prim);

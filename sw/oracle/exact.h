@@ -87,7 +87,7 @@ class ExactOracle {
 
 // The verdict on one tracer's answer for one ray, against the exact truth.
 enum class Verdict {
-  Correct,   // same hit triangle (or both miss)
+  Correct,   // same hit triangle at a t within rounding (or both miss)
   Tie,       // another triangle at exactly the same t
   Rounding,  // within float rounding of the truth: a near-tie in t, or a
              // crossing within rounding of a triangle's boundary (a grazing

@@ -187,6 +187,9 @@ TEST(ExactOracle, JudgeNamesEachClass) {
   EXPECT_EQ(judge(oracle, interior, std::nullopt, oracle.intersect(interior)).verdict, Verdict::Wrong);
   EXPECT_EQ(judge(oracle, interior, Hit{1, 1}, oracle.intersect(interior)).verdict, Verdict::Wrong);
   EXPECT_EQ(judge(oracle, outside, Hit{0, 1}, oracle.intersect(outside)).verdict, Verdict::Wrong);
+  EXPECT_EQ(judge(oracle, interior, Hit{0, 1.001f}, oracle.intersect(interior)).verdict, Verdict::Wrong);
+  EXPECT_EQ(judge(oracle, interior, Hit{0, std::nextafter(1.0f, 2.0f)}, oracle.intersect(interior)).verdict,
+            Verdict::Correct);
   // A miss of a ray one ulp inside the outer edge is rounding, not an error.
   const Ray grazing = rayOf({std::nextafter(1.0f, 0.0f), 0.5f, 1}, {0, 0, -1});
   EXPECT_EQ(judge(oracle, grazing, std::nullopt, oracle.intersect(grazing)).verdict, Verdict::Rounding);
