@@ -342,6 +342,12 @@ Judgement judge(const ExactOracle& oracle, const Ray& ray, const std::optional<H
   }
   const ExactRelation given = oracle.relation(ray, answer->prim);
   const Margins givenMargins = marginsOf(ray, tris[answer->prim]);
+  // An origin on (or within rounding of) the answered triangle: a float
+  // tracer's t of about 0 is rounding, the exact t = 0 is no hit.
+  if (!given.hit && given.t && std::fabs(given.t->toDouble()) <= givenMargins.t &&
+      given.minBarycentric >= -givenMargins.bary) {
+    return {Verdict::Rounding, "a hit within rounding of the ray's origin"};
+  }
   if (!truth) {
     if (marginal(given, givenMargins)) return {Verdict::Rounding, "hit a triangle the ray passes within rounding of"};
     return {Verdict::Wrong, "hit where the ray misses everything"};

@@ -11,6 +11,7 @@ namespace lancer {
 // Wald (JCGT 2013). Computed once per ray, shared by every triangle test.
 struct WatertightRay {
   glm::vec3 origin;
+  glm::vec3 dir;  // for the hit distance (the plane equation, in double)
   int kx = 0, ky = 1, kz = 2;  // kz: the dominant axis of the direction
   float sx = 0, sy = 0, sz = 1;  // shear taking the direction onto +z
   float tMax = kInfinity;
@@ -26,7 +27,8 @@ int dominantAxis(const glm::vec3& v);
 // Watertight: a ray through a shared edge or vertex of a closed mesh hits at
 // least one of the triangles that share it, because the edge functions of a
 // shared edge are computed from the same sheared vertices (bit-identical inputs)
-// and fall back to double precision when they round to zero.
+// and fall back to double precision when they round to zero. The hit distance
+// comes from the plane equation in double, accurate on slivers too.
 std::optional<Hit> intersectTriangle(const WatertightRay& ray, const Triangle& tri,
                                      uint32_t prim);
 
