@@ -147,6 +147,15 @@ void run(const Args& args) {
              inLattice, hitCount, job.mismatchedRays);
   fmt::print("  vs float reference  {} rays differ ({} hit/miss, {} triangle); t error max {:.3f}, mean {:.4f} lattice units\n",
              cmp.disagreements, cmp.hitMissDiffers, cmp.primDiffers, cmp.maxTError, cmp.meanTError);
+  if (cmp.arbiter.judged) {
+    const ArbiterCounts& a = cmp.arbiter;
+    fmt::print("  exact arbiter       reference {} correct, {} tie, {} rounding, {} wrong; "
+               "hardware {} correct, {} tie, {} within its lattice bound, {} beyond\n",
+               a.reference[0], a.reference[1], a.reference[2], a.reference[3], a.hardware[0], a.hardware[1],
+               a.hardware[2], a.hardware[3]);
+    if (a.firstHardwareBeyond) fmt::print("  first ray beyond the hardware's bound: {}\n", *a.firstHardwareBeyond);
+    if (a.firstReferenceWrong) fmt::print("  first ray the reference got wrong: {}\n", *a.firstReferenceWrong);
+  }
 
   if (!args.image.empty()) {
     if (!rays.camera) throw InputError("--image needs camera rays (no --rays file)");
@@ -184,6 +193,12 @@ void run(const Args& args) {
       {"reference_prim_differs", cmp.primDiffers},
       {"t_error_max_lattice_units", cmp.maxTError},
       {"t_error_mean_lattice_units", cmp.meanTError},
+      {"arbiter",
+       {{"judged", cmp.arbiter.judged},
+        {"reference", {{"correct", cmp.arbiter.reference[0]}, {"tie", cmp.arbiter.reference[1]},
+                       {"rounding", cmp.arbiter.reference[2]}, {"wrong", cmp.arbiter.reference[3]}}},
+        {"hardware", {{"correct", cmp.arbiter.hardware[0]}, {"tie", cmp.arbiter.hardware[1]},
+                      {"within_bound", cmp.arbiter.hardware[2]}, {"beyond_bound", cmp.arbiter.hardware[3]}}}}},
       {"output_stall_probability", args.job.stream.outputStallProbability},
       {"seed", args.job.stream.seed},
   };

@@ -24,6 +24,24 @@ std::string hexTriple(const std::array<int64_t, 3>& v, int width) {
                      hex(fx::u128(fx::i128(v[2])) & mask));
 }
 
+// Settles one disagreement between the reference and the hardware. A ray that
+// missed the lattice has no hardware answer: a miss, with no lattice to
+// excuse it, judged at float rounding.
+void arbitrate(const ExactOracle& oracle, const Ray& ray, uint32_t index, const std::optional<Hit>& reference,
+               const std::optional<Hit>& hardware, const std::optional<QuantizedRay>& quantized,
+               const Quantizer& quantizer, ArbiterCounts& counts) {
+  const std::optional<ExactHit> truth = oracle.intersect(ray);
+  ++counts.judged;
+  const Verdict ref = judge(oracle, ray, reference, truth).verdict;
+  ToleranceOf lattice;
+  if (quantized) lattice = [&](const Triangle& tri) { return latticeTolerance(*quantized, quantizer, ray, tri); };
+  const Verdict hw = judge(oracle, ray, hardware, truth, lattice).verdict;
+  ++counts.reference[size_t(ref)];
+  ++counts.hardware[size_t(hw)];
+  if (ref == Verdict::Wrong && !counts.firstReferenceWrong) counts.firstReferenceWrong = index;
+  if (hw == Verdict::Wrong && !counts.firstHardwareBeyond) counts.firstHardwareBeyond = index;
+}
+
 }  // namespace
 
 std::string hexFields(const fx::QRay& r) {
@@ -56,10 +74,23 @@ std::optional<Hit> sceneHit(const JobResult& job, size_t ray) {
   return Hit{r.primId, float(q.tEnter + q.tScale * fx::tOf(r, q.q)), float(fx::uOf(r)), float(fx::vOf(r))};
 }
 
+Tolerance latticeTolerance(const QuantizedRay& ray, const Quantizer& quantizer, const Ray& sceneRay,
+                           const Triangle& tri) {
+  const glm::dvec3 origin = quantizer.sceneOrigin(ray.q);
+  double farthest = 0.0;
+  for (const glm::vec3& v : {tri.v0, tri.v1, tri.v2}) farthest = std::max(farthest, glm::length(glm::dvec3(v) - origin));
+  const double r = farthest / quantizer.unit();  // lattice units
+  const double halfDiagonal = std::sqrt(3.0) / 2.0;
+  const double units = 2 * halfDiagonal + r * std::sqrt(2.0) / double((int64_t(1) << fx::kDirBits) - 2);
+  const double edge = units * quantizer.unit();
+  return {edge, edge / glm::length(glm::dvec3(sceneRay.dir)), 0.0};
+}
+
 ReferenceComparison compareWithReference(const Scene& scene, std::span<const Ray> rays,
                                          std::span<const std::optional<Hit>> reference,
                                          const JobResult& job, const Quantizer& quantizer) {
   ReferenceComparison cmp;
+  const ExactOracle oracle(scene);
   double sum = 0;
   for (size_t i = 0; i < rays.size(); ++i) {
     const std::optional<Hit> hw = sceneHit(job, i);
@@ -68,6 +99,7 @@ ReferenceComparison compareWithReference(const Scene& scene, std::span<const Ray
       ++cmp.disagreements;
       (hw.has_value() != ref.has_value() ? cmp.hitMissDiffers : cmp.primDiffers) += 1;
       if (!cmp.firstDisagreement) cmp.firstDisagreement = uint32_t(i);
+      arbitrate(oracle, rays[i], uint32_t(i), ref, hw, job.rays[i], quantizer, cmp.arbiter);
       continue;
     }
     if (!hw) continue;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <optional>
 #include <span>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "driver/job.h"
 #include "golden/records.h"
+#include "oracle/exact.h"
 
 namespace lancer {
 
@@ -23,6 +25,17 @@ std::string differingBits(const fx::Wire& a, const fx::Wire& b, int bits);
 // How the hardware's closest hits differ from the floating-point reference on
 // the original rays. t errors are distances along the ray in lattice units
 // (the position format's quantum), the reference t re-evaluated in long double.
+// Each disagreement is settled by the exact arbiter (sw/oracle/exact.h): the
+// reference judged within float32 rounding, the hardware within its lattice
+// bound (latticeTolerance), verdicts counted by kind.
+struct ArbiterCounts {
+  uint64_t judged = 0;                   // disagreements settled
+  std::array<uint64_t, 4> reference{};   // by Verdict: correct, tie, rounding, wrong
+  std::array<uint64_t, 4> hardware{};    // by Verdict: correct, tie, within its bound, beyond it
+  std::optional<uint32_t> firstHardwareBeyond;  // the first ray the hardware got wrong beyond its bound
+  std::optional<uint32_t> firstReferenceWrong;
+};
+
 struct ReferenceComparison {
   uint64_t disagreements = 0;  // rays where hit/miss or the triangle differs
   uint64_t hitMissDiffers = 0;
@@ -31,7 +44,16 @@ struct ReferenceComparison {
   double maxTError = 0;
   double meanTError = 0;
   std::optional<uint32_t> firstDisagreement;
+  ArbiterCounts arbiter;
 };
+
+// The hardware's tolerance for one ray against one triangle
+// (docs/number-formats.md, "What the rounding costs"): its ray lies within
+// sqrt(3)/2 + r sqrt(2) / (2^D - 2) lattice units of the true one at distance r
+// from its origin, and each vertex within sqrt(3)/2; r is taken as the
+// farthest vertex, so the bound is conservative.
+Tolerance latticeTolerance(const QuantizedRay& ray, const Quantizer& quantizer, const Ray& sceneRay,
+                           const Triangle& tri);
 
 ReferenceComparison compareWithReference(const Scene& scene, std::span<const Ray> rays,
                                          std::span<const std::optional<Hit>> reference,

@@ -160,6 +160,27 @@ mpz_class det3(const Zvec& a, const Zvec& b, const Zvec& c) {
   return a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
 }
 
+// The crossing's signed distance from the triangle's boundary and the cosine
+// of the ray with the plane, in double (the exact t rounded): what a tolerance
+// is measured against.
+void measureCrossing(const Ray& ray, const Triangle& tri, double t, ExactRelation& rel) {
+  const glm::dvec3 v[3] = {glm::dvec3(tri.v0), glm::dvec3(tri.v1), glm::dvec3(tri.v2)};
+  const glm::dvec3 d(ray.dir);
+  const glm::dvec3 p = glm::dvec3(ray.origin) + t * d;
+  const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
+  rel.cosine = std::fabs(glm::dot(d, n)) / (glm::length(d) * glm::length(n));
+  double inside = std::numeric_limits<double>::infinity(), outside = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i) {
+    const glm::dvec3 a = v[(i + 1) % 3], b = v[(i + 2) % 3];
+    const glm::dvec3 ab = b - a;
+    // Distance to the edge's line (inside) and to the edge segment (outside).
+    inside = std::min(inside, glm::length(glm::cross(ab, p - a)) / glm::length(ab));
+    const double along = std::clamp(glm::dot(p - a, ab) / glm::dot(ab, ab), 0.0, 1.0);
+    outside = std::min(outside, glm::length(p - (a + along * ab)));
+  }
+  rel.boundaryDistance = rel.minBarycentric >= 0.0 ? inside : -outside;
+}
+
 ExactRelation exactRelation(const Ray& ray, const Triangle& tri) {
   const glm::vec3 o = ray.origin, d = ray.dir;
   const glm::vec3 v[3] = {tri.v0, tri.v1, tri.v2};
@@ -197,6 +218,7 @@ ExactRelation exactRelation(const Ray& ray, const Triangle& tri) {
   }
   const mpz_class num = det3(a[0], a[1], a[2]);
   rel.t.emplace(num, den, static_cast<long>(positionBase) - directionBase);
+  measureCrossing(ray, tri, rel.t->toDouble(), rel);
   bool inRange = sgn(num) * side > 0;  // t > 0
   if (inRange && std::isfinite(ray.tMax)) {
     // t <= tMax exactly: tMax as a one-element ExactT.
@@ -292,79 +314,70 @@ std::string_view toString(Verdict verdict) {
 
 namespace {
 
-constexpr double kRoundingBound = 0x1p-20;  // float32 rounding (2^-24) with room for a few operations
-
-struct Margins {
-  double bary = 0.0;  // a barycentric this close to 0 is within rounding of an edge
-  double t = 0.0;     // two t this close are within rounding of each other
-};
-
-// The rounding margins of one ray against one triangle: a position error of
-// kRoundingBound * M, M the largest coordinate magnitude of the origin and
-// the vertices, is a barycentric error of that over the smallest altitude,
-// and a t error of that over |d|.
-Margins marginsOf(const Ray& ray, const Triangle& tri) {
-  const glm::dvec3 v0(tri.v0), v1(tri.v1), v2(tri.v2), o(ray.origin);
-  double m = 0.0;
-  for (const glm::dvec3& p : {v0, v1, v2, o}) m = std::max({m, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-  const double area2 = glm::length(glm::cross(v1 - v0, v2 - v0));
-  const double longest = std::max({glm::length(v1 - v0), glm::length(v2 - v1), glm::length(v0 - v2)});
-  const double minAltitude = area2 > 0.0 ? area2 / longest : 0.0;
-  const double err = kRoundingBound * m;
-  Margins margins;
-  margins.bary = minAltitude > 0.0 ? err / minAltitude : std::numeric_limits<double>::infinity();
-  margins.t = err / glm::length(glm::dvec3(ray.dir));
-  return margins;
+// The crossing of `rel` lies within the tolerance of the triangle's boundary:
+// an error of `edge` across the ray moves the crossing by edge / cos in the plane.
+bool marginal(const ExactRelation& rel, const Tolerance& tolerance) {
+  return !rel.parallel && std::fabs(rel.boundaryDistance) * rel.cosine <= tolerance.edge;
 }
 
-// The crossing of `rel` lies within rounding of the triangle's boundary.
-bool marginal(const ExactRelation& rel, const Margins& margins) {
-  return !rel.parallel && std::fabs(rel.minBarycentric) <= margins.bary;
+// Two t within the tolerance of each other, for a crossing at `cosine`.
+bool nearT(double a, double b, const Tolerance& tolerance, double cosine) {
+  return std::fabs(a - b) <= tolerance.t / std::max(cosine, 1e-300) + tolerance.tRelative * std::fabs(b);
 }
 
 }  // namespace
 
-Judgement judge(const ExactOracle& oracle, const Ray& ray, const std::optional<Hit>& answer,
-                const std::optional<ExactHit>& truth) {
-  const auto& tris = oracle.scene().triangles;
-  if (!answer && !truth) return {Verdict::Correct, "both miss"};
-  if (answer && truth && answer->prim == truth->prim) {
-    // The right triangle; its t must be right within rounding too.
-    const double margin = marginsOf(ray, tris[truth->prim]).t + kRoundingBound * truth->t;
-    if (std::fabs(double(answer->t) - truth->t) <= margin) return {Verdict::Correct, "same triangle"};
-    return {Verdict::Wrong, "the right triangle at a t beyond rounding"};
+Tolerance floatRounding(const Ray& ray, const Triangle& tri) {
+  double m = 0.0;
+  for (const glm::vec3& p : {tri.v0, tri.v1, tri.v2, ray.origin}) {
+    m = std::max({m, double(std::fabs(p.x)), double(std::fabs(p.y)), double(std::fabs(p.z))});
   }
+  const double edge = kFloatRoundingBound * m;
+  return {edge, edge / glm::length(glm::dvec3(ray.dir)), kFloatRoundingBound};
+}
 
+Judgement judge(const ExactOracle& oracle, const Ray& ray, const std::optional<Hit>& answer,
+                const std::optional<ExactHit>& truth, const ToleranceOf& tolerance) {
+  const auto& tris = oracle.scene().triangles;
+  const ToleranceOf& tol = tolerance ? tolerance : ToleranceOf([&](const Triangle& t) { return floatRounding(ray, t); });
+  if (!answer && !truth) return {Verdict::Correct, "both miss"};
+  std::optional<ExactRelation> truthRel;
+  if (truth) truthRel = oracle.relation(ray, truth->prim);
+  if (answer && truth && answer->prim == truth->prim) {
+    // The right triangle; its t must be right within the tolerance too.
+    if (nearT(answer->t, truth->t, tol(tris[truth->prim]), truthRel->cosine)) return {Verdict::Correct, "same triangle"};
+    return {Verdict::Wrong, "the right triangle at a t beyond the tolerance"};
+  }
   if (!answer) {
-    const ExactRelation rel = oracle.relation(ray, truth->prim);
-    if (marginal(rel, marginsOf(ray, tris[truth->prim]))) return {Verdict::Rounding, "missed a hit within rounding of an edge"};
+    if (marginal(*truthRel, tol(tris[truth->prim]))) return {Verdict::Rounding, "missed a hit within the tolerance of an edge"};
     return {Verdict::Wrong, "missed a hit away from any edge"};
   }
   const ExactRelation given = oracle.relation(ray, answer->prim);
-  const Margins givenMargins = marginsOf(ray, tris[answer->prim]);
-  // An origin on (or within rounding of) the answered triangle: a float
+  const Tolerance givenTol = tol(tris[answer->prim]);
+  // An origin on (or within the tolerance of) the answered triangle: a
   // tracer's t of about 0 is rounding, the exact t = 0 is no hit.
-  if (!given.hit && given.t && std::fabs(given.t->toDouble()) <= givenMargins.t &&
-      given.minBarycentric >= -givenMargins.bary) {
-    return {Verdict::Rounding, "a hit within rounding of the ray's origin"};
+  if (!given.hit && given.t && nearT(given.t->toDouble(), 0.0, givenTol, given.cosine) &&
+      given.boundaryDistance * given.cosine >= -givenTol.edge) {
+    return {Verdict::Rounding, "a hit within the tolerance of the ray's origin"};
   }
+  const bool givenPlausible = given.hit || marginal(given, givenTol);
   if (!truth) {
-    if (marginal(given, givenMargins)) return {Verdict::Rounding, "hit a triangle the ray passes within rounding of"};
+    if (givenPlausible) return {Verdict::Rounding, "hit a triangle the ray passes within the tolerance of"};
     return {Verdict::Wrong, "hit where the ray misses everything"};
   }
   // Another triangle than the truth's.
-  const ExactRelation truthRel = oracle.relation(ray, truth->prim);
-  if (given.hit && *given.t == *truthRel.t) return {Verdict::Tie, "another triangle at the same t"};
-  const bool givenPlausible = given.hit || marginal(given, givenMargins);
+  if (given.hit && *given.t == *truthRel->t) return {Verdict::Tie, "another triangle at the same t"};
   if (givenPlausible && given.t) {
-    const double givenT = given.t->toDouble(), margin = givenMargins.t + kRoundingBound * truth->t;
-    if (std::fabs(givenT - truth->t) <= margin) return {Verdict::Rounding, "another triangle within rounding of the same t"};
-    // A triangle the ray passes within rounding of, nearer than the truth: a
-    // float tracer that rounds it to a hit rightly reports it.
-    if (givenT < truth->t) return {Verdict::Rounding, "a nearer triangle the ray passes within rounding of"};
-  }
-  if (givenPlausible && marginal(truthRel, marginsOf(ray, tris[truth->prim]))) {
-    return {Verdict::Rounding, "missed a nearer hit within rounding of an edge"};
+    const double givenT = given.t->toDouble();
+    if (nearT(givenT, truth->t, givenTol, given.cosine)) {
+      return {Verdict::Rounding, "another triangle within the tolerance of the same t"};
+    }
+    // A triangle the ray passes within the tolerance of, nearer than the
+    // truth: a tracer that rounds it to a hit rightly reports it.
+    if (givenT < truth->t) return {Verdict::Rounding, "a nearer triangle the ray passes within the tolerance of"};
+    if (marginal(*truthRel, tol(tris[truth->prim]))) {
+      return {Verdict::Rounding, "missed a nearer hit within the tolerance of an edge"};
+    }
   }
   return {Verdict::Wrong, given.hit ? "a farther triangle than the closest" : "a triangle the ray misses"};
 }

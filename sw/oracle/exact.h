@@ -17,6 +17,7 @@
 // a common power of two. Most pairs are settled by the filter.
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string_view>
 
@@ -51,6 +52,9 @@ struct ExactRelation {
   bool parallel = false;           // no single crossing point
   std::optional<ExactT> t;         // the crossing's t (any sign), unless parallel
   double minBarycentric = 0.0;     // smallest barycentric of the crossing, rounded (< 0: outside)
+  double boundaryDistance = 0.0;   // the crossing's distance from the triangle's boundary in its
+                                   // plane, scene units (> 0 inside, < 0 outside), rounded
+  double cosine = 0.0;             // |cos| of the angle between the ray and the plane's normal
 };
 
 // The exact closest hit of a ray.
@@ -87,11 +91,12 @@ class ExactOracle {
 
 // The verdict on one tracer's answer for one ray, against the exact truth.
 enum class Verdict {
-  Correct,   // same hit triangle at a t within rounding (or both miss)
+  Correct,   // same hit triangle at a t within the tolerance (or both miss)
   Tie,       // another triangle at exactly the same t
-  Rounding,  // within float rounding of the truth: a near-tie in t, or a
-             // crossing within rounding of a triangle's boundary (a grazing
-             // ray, a ray aimed at an edge or a vertex of an open mesh)
+  Rounding,  // within the tracer's tolerance of the truth: a near-tie in t, or a
+             // crossing within the tolerance of a triangle's boundary (a grazing
+             // ray, a ray aimed at an edge or a vertex of an open mesh), or a
+             // hit at t ~ 0 from an origin on a triangle
   Wrong,     // anything else: a real error of the tracer
 };
 std::string_view toString(Verdict verdict);
@@ -101,13 +106,29 @@ struct Judgement {
   std::string_view reason;  // one phrase, e.g. "missed a hit away from any edge"
 };
 
-// Judges `answer` (a float or fixed-point tracer's closest hit of `ray`, or
-// nullopt for a miss) against `truth` = oracle.intersect(ray). The rounding
-// bounds are those of float32 inputs: a crossing point within 2^-20 of the
-// largest coordinate magnitude of the ray and triangle (M) from an edge,
-// measured as a barycentric against the triangle's smallest altitude, and t
-// within 2^-20 * M / |d| (docs/oracle.md).
+// How far a tracer's geometry may lie from the exact one, for one triangle,
+// and still be explained by the rounding of its inputs: the ray or the
+// triangle moved by up to `edge` scene units across the ray (so a crossing
+// within edge / cos of the boundary may go either way), and t off by up to
+// t / cos + tRelative * t.
+struct Tolerance {
+  double edge = 0.0;
+  double t = 0.0;
+  double tRelative = 0.0;
+};
+using ToleranceOf = std::function<Tolerance(const Triangle&)>;
+
+// A float32 tracer's: 2^-20 (a few float roundings) times the largest
+// coordinate magnitude M of the ray's origin and the triangle; t within that
+// over |d|, and 2^-20 relative.
+inline constexpr double kFloatRoundingBound = 0x1p-20;
+Tolerance floatRounding(const Ray& ray, const Triangle& tri);
+
+// Judges `answer` (a tracer's closest hit of `ray`, or nullopt for a miss)
+// against `truth` = oracle.intersect(ray), with the tracer's tolerance
+// (floatRounding when empty; the fixed-point hardware brings its lattice's,
+// sw/driver/report.h).
 Judgement judge(const ExactOracle& oracle, const Ray& ray, const std::optional<Hit>& answer,
-                const std::optional<ExactHit>& truth);
+                const std::optional<ExactHit>& truth, const ToleranceOf& tolerance = {});
 
 }  // namespace lancer
