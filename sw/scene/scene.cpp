@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "scene/nff.h"
 
 namespace lancer {
 
@@ -118,6 +119,10 @@ Scene loadScene(const std::string& nameOrPath) {
   if (nameOrPath.starts_with("builtin:")) {
     throw InputError(fmt::format("unknown built-in scene '{}' (available: {})", nameOrPath, kDefaultSceneName));
   }
+  // NFF by our own reader: assimp's drops Ks, T and the index of refraction.
+  std::string extension = std::filesystem::path(nameOrPath).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (extension == ".nff") return loadNff(nameOrPath);
   return loadWithAssimp(nameOrPath);
 }
 

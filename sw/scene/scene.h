@@ -33,12 +33,33 @@ struct View {
   glm::vec3 target{0.0f, 0.0f, -1.0f};
   glm::vec3 up{0.0f, 1.0f, 0.0f};
   float fovYDegrees = 40.0f;
+  // The scene's own image size, when it names one (NFF "resolution"); 0 = none.
+  int width = 0, height = 0;
 };
 
+// Per-vertex shading normals of one triangle (NFF "pp", tessellated spheres
+// and cones), in the order of its vertices.
+struct ShadingNormals {
+  glm::vec3 n0, n1, n2;
+};
+
+// A surface's colour and its Whitted shading terms (NFF's "f" line, MTL's
+// Kd/Ks/Ns/d/Ni). Defaults: a diffuse grey that neither reflects nor transmits.
 struct Material {
   std::string name;
-  glm::vec3 diffuse{0.8f};
-  glm::vec3 emission{0.0f};
+  glm::vec3 diffuse{0.8f};     // colour (NFF: the fill colour; the diffuse term is kd * diffuse)
+  glm::vec3 emission{0.0f};    // non-zero: an area light
+  float kd = 1.0f;             // diffuse weight
+  float ks = 0.0f;             // specular weight: > 0 spawns reflection rays
+  float shine = 0.0f;          // Phong exponent of the highlight
+  float transmittance = 0.0f;  // T: > 0 spawns refraction rays (two-sided)
+  float ior = 1.0f;            // index of refraction, > 0
+};
+
+// A light that casts shadows. NFF's lights are points with an optional colour.
+struct Light {
+  glm::vec3 position{0.0f};
+  glm::vec3 color{1.0f};
 };
 
 // A triangle scene. Triangle ids ("prim") are indices into `triangles`; their
@@ -51,6 +72,11 @@ struct Scene {
   std::vector<Material> materials;
   Aabb bounds;
   std::optional<View> view;  // used by the camera's auto-framing when present
+  std::vector<Light> lights;
+  glm::vec3 background{0.0f};
+  // Empty, or one per triangle (a triangle without its own normals holds its
+  // geometric normal three times).
+  std::vector<ShadingNormals> normals;
 
   size_t size() const { return triangles.size(); }
   void computeBounds();
