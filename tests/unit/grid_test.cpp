@@ -127,12 +127,7 @@ TEST(Grid, CloserTriangleInTheNextVoxelWins) {
   // starts in voxel x = 1 but which the ray hits at x = 5.5; triangle 1 is a small
   // wall at x = 2.5. Stopping at the first hit found (in voxel 1) would return
   // triangle 0; the right answer is triangle 1 at t = 2.
-  const Scene scene = fromTriangles({
-      {{1.0f, 0.0f, 0.0f}, {10.0f, 1.0f, 0.0f}, {5.5f, 0.5f, 5.0f}},
-      {{2.5f, 0.3f, 0.3f}, {2.5f, 0.7f, 0.4f}, {2.5f, 0.4f, 0.7f}},
-      {{0.0f, 9.0f, 9.0f}, {0.0f, 9.0f, 9.1f}, {0.0f, 9.1f, 9.0f}},
-      {{10.0f, 10.0f, 10.0f}, {10.0f, 9.9f, 10.0f}, {10.0f, 10.0f, 9.9f}},
-  });
+  const Scene scene = closerTriangleScene(10.0f);
   const UniformGrid grid(scene, gridOptions(10));
   ASSERT_EQ(grid.resolution(), glm::ivec3(10));
   // It stops in voxel 2 or 3 (3 if the wall's grown box spills over), not at

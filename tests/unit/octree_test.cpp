@@ -161,12 +161,7 @@ TEST(Octree, CloserTriangleInTheNextLeafWins) {
   // slanted sliver listed in the first leaf but hit at x = 4.5; triangle 1 is a
   // small wall at x = 2.5 in a later leaf. Stopping at the first hit found would
   // return triangle 0; the right answer is triangle 1 at t = 2.
-  const Scene scene = fromTriangles({
-      {{1.0f, 0.0f, 0.0f}, {8.0f, 1.0f, 0.0f}, {4.5f, 0.5f, 4.0f}},
-      {{2.5f, 0.3f, 0.3f}, {2.5f, 0.7f, 0.4f}, {2.5f, 0.4f, 0.7f}},
-      {{0.0f, 7.0f, 7.0f}, {0.0f, 7.0f, 7.1f}, {0.0f, 7.1f, 7.0f}},
-      {{8.0f, 8.0f, 8.0f}, {8.0f, 7.9f, 8.0f}, {8.0f, 8.0f, 7.9f}},
-  });
+  const Scene scene = closerTriangleScene(8.0f);
   const Octree tree(scene, octreeOptions(3, 1));
   // Root, [0,4]^3, leaf [0,2]^3, [2,4]x[0,2]^2, leaf [2,3]x[0,1]^2: then it stops.
   expectCloserTriangleInALaterCellWins(tree, scene, 5);

@@ -234,6 +234,19 @@ inline std::vector<Ray> latticeRays(const Scene& scene, uint32_t seed) {
   return rays;
 }
 
+// The scene of the "closer triangle in the next cell wins" tests: two specks pin
+// the box [0, side]^3; triangle 0 is a long slanted sliver whose box starts at
+// x = 1 but which a ray along +x at y = z = 0.5 hits at x = side / 2 + 0.5;
+// triangle 1 is a small wall at x = 2.5.
+inline Scene closerTriangleScene(float side) {
+  return fromTriangles({
+      {{1.0f, 0.0f, 0.0f}, {side, 1.0f, 0.0f}, {side / 2 + 0.5f, 0.5f, side / 2}},
+      {{2.5f, 0.3f, 0.3f}, {2.5f, 0.7f, 0.4f}, {2.5f, 0.4f, 0.7f}},
+      {{0.0f, side - 1.0f, side - 1.0f}, {0.0f, side - 1.0f, side - 0.9f}, {0.0f, side - 0.9f, side - 1.0f}},
+      {{side, side, side}, {side, side - 0.1f, side}, {side, side, side - 0.1f}},
+  });
+}
+
 // The end of the "closer triangle in the next cell wins" tests: along +x from
 // (0.5, 0.5, 0.5), `scene` (the structure's own: triangle 0 a slanted sliver
 // listed in the first cell but hit far along, triangle 1 a small wall at x = 2.5)
