@@ -9,12 +9,16 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <random>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "common/error.h"
 #include "ref/brute_force.h"
 #include "scene/scene.h"
 #include "test_paths.h"
@@ -232,6 +236,19 @@ inline std::vector<Ray> latticeRays(const Scene& scene, uint32_t seed) {
     }
   }
   return rays;
+}
+
+// Expects `build()` to throw InputError with every one of `parts` in its message.
+template <class Build>
+void expectInputErrorMentioning(Build build, std::initializer_list<std::string_view> parts) {
+  try {
+    build();
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    for (std::string_view part : parts) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  }
 }
 
 // The scene of the "closer triangle in the next cell wins" tests: two specks pin
