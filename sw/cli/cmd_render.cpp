@@ -1,10 +1,7 @@
 // lancer render: a shaded image from the reference tracer, so a person can look.
-#include <chrono>
-
 #include <fmt/format.h>
 
 #include "cli/options.h"
-#include "common/progress.h"
 #include "ref/shade.h"
 #include "ref/trace.h"
 
@@ -31,31 +28,16 @@ void addRenderCommand(CLI::App& app) {
     double buildSeconds = 0;
     const auto accel = buildAccel(args->accel.accel, scene, args->accel.options, &buildSeconds);
     const std::vector<Ray> rays = camera.generateRays();
-    TraversalStats stats;
-    const auto start = std::chrono::steady_clock::now();
-    Progress progress("render", rays.size());
-    const auto hits = traceRays(*accel, rays, &stats, [&](size_t n) { progress.advance(n); });
-    progress.finish();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    writePng(shadeHits(scene, rays, hits, camera.width(), camera.height()), args->out);
-    size_t hitCount = 0;
-    for (const auto& h : hits) hitCount += h.has_value();
+    const TracedRays traced = traceTimed("render", *accel, rays);
+    writePng(shadeHits(scene, rays, traced.hits, camera.width(), camera.height()), args->out);
     fmt::print("render: {} ({} triangles), {} {}x{}, {} of {} rays hit, {:.3f} s -> {}\n", scene.name,
-               scene.size(), accel->name(), camera.width(), camera.height(), hitCount, rays.size(), seconds,
-               args->out);
-    writeReport(args->report, {{"command", "render"},
-                               {"scene", scene.name},
-                               {"triangles", scene.size()},
-                               {"accel", accel->name()},
-                               {"width", camera.width()},
-                               {"height", camera.height()},
-                               {"rays", rays.size()},
-                               {"hits", hitCount},
-                               {"build_seconds", buildSeconds},
-                               {"trace_seconds", seconds},
-                               {"nodes_visited", stats.nodesVisited},
-                               {"triangle_tests", stats.triangleTests},
-                               {"image", args->out}});
+               scene.size(), accel->name(), camera.width(), camera.height(), traced.hitCount, rays.size(),
+               traced.seconds, args->out);
+    nlohmann::json report = tracerReport("render", scene, *accel, rays.size(), traced, buildSeconds);
+    report["width"] = camera.width();
+    report["height"] = camera.height();
+    report["image"] = args->out;
+    writeReport(args->report, report);
   });
 }
 

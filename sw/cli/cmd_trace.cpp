@@ -1,5 +1,4 @@
 // lancer trace: closest hits of camera rays or a rays file, as CSV.
-#include <chrono>
 #include <cstdio>
 #include <memory>
 
@@ -7,7 +6,6 @@
 
 #include "cli/options.h"
 #include "common/error.h"
-#include "common/progress.h"
 #include "ref/trace.h"
 
 namespace lancer::cli {
@@ -50,29 +48,15 @@ void addTraceCommand(CLI::App& app) {
     const Rays rays = loadRays(args->source, scene);
     double buildSeconds = 0;
     const auto accel = buildAccel(args->accel.accel, scene, args->accel.options, &buildSeconds);
-    TraversalStats stats;
-    const auto start = std::chrono::steady_clock::now();
-    Progress progress("trace", rays.rays.size());
-    const auto hits = traceRays(*accel, rays.rays, &stats, [&](size_t n) { progress.advance(n); });
-    progress.finish();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    writeHitsCsv(args->hits, hits);
-    size_t hitCount = 0;
-    for (const auto& h : hits) hitCount += h.has_value();
+    const TracedRays traced = traceTimed("trace", *accel, rays.rays);
+    writeHitsCsv(args->hits, traced.hits);
     fmt::print("trace: {} ({} triangles), {} rays from {}, {} hit, {} in {:.3f} s -> {}\n", scene.name,
-               scene.size(), rays.rays.size(), rays.origin, hitCount, accel->name(), seconds, args->hits);
-    writeReport(args->report, {{"command", "trace"},
-                               {"scene", scene.name},
-                               {"triangles", scene.size()},
-                               {"accel", accel->name()},
-                               {"rays_source", rays.origin},
-                               {"rays", rays.rays.size()},
-                               {"hits", hitCount},
-                               {"build_seconds", buildSeconds},
-                               {"trace_seconds", seconds},
-                               {"nodes_visited", stats.nodesVisited},
-                               {"triangle_tests", stats.triangleTests},
-                               {"hits_csv", args->hits}});
+               scene.size(), rays.rays.size(), rays.origin, traced.hitCount, accel->name(), traced.seconds,
+               args->hits);
+    nlohmann::json report = tracerReport("trace", scene, *accel, rays.rays.size(), traced, buildSeconds);
+    report["rays_source"] = rays.origin;
+    report["hits_csv"] = args->hits;
+    writeReport(args->report, report);
   });
 }
 

@@ -6,6 +6,8 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "common/progress.h"
+#include "ref/trace.h"
 
 namespace lancer::cli {
 
@@ -84,6 +86,31 @@ std::unique_ptr<Accel> buildAccel(const std::string& kind, const Scene& scene, c
   auto accel = makeAccel(parseAccelKind(kind), scene, options);
   if (seconds) *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return accel;
+}
+
+TracedRays traceTimed(const char* command, const Accel& accel, std::span<const Ray> rays) {
+  TracedRays out;
+  const auto start = std::chrono::steady_clock::now();
+  Progress progress(command, rays.size());
+  out.hits = traceRays(accel, rays, &out.stats, [&](size_t n) { progress.advance(n); });
+  progress.finish();
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (const auto& h : out.hits) out.hitCount += h.has_value();
+  return out;
+}
+
+nlohmann::json tracerReport(const char* command, const Scene& scene, const Accel& accel, size_t rays,
+                            const TracedRays& traced, double buildSeconds) {
+  return {{"command", command},
+          {"scene", scene.name},
+          {"triangles", scene.size()},
+          {"accel", accel.name()},
+          {"rays", rays},
+          {"hits", traced.hitCount},
+          {"build_seconds", buildSeconds},
+          {"trace_seconds", traced.seconds},
+          {"nodes_visited", traced.stats.nodesVisited},
+          {"triangle_tests", traced.stats.triangleTests}};
 }
 
 }  // namespace lancer::cli

@@ -3,6 +3,7 @@
 // Options shared by the subcommands, so every command spells them the same way.
 
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,21 @@ void writeReport(const std::string& path, const nlohmann::json& report);
 // Builds the structure, timing the build; prints nothing.
 std::unique_ptr<Accel> buildAccel(const std::string& kind, const Scene& scene, const AccelOptions& options,
                                   double* seconds = nullptr);
+
+// The reference tracer's answer for a command's rays: the closest hits, the
+// traversal counters, the wall-clock seconds of the trace, and how many hit.
+struct TracedRays {
+  std::vector<std::optional<Hit>> hits;
+  TraversalStats stats;
+  double seconds = 0;
+  size_t hitCount = 0;
+};
+// Traces `rays` through `accel`, showing progress as `command`.
+TracedRays traceTimed(const char* command, const Accel& accel, std::span<const Ray> rays);
+// The report fields every reference-tracer command (render, trace) writes;
+// the command adds its own.
+nlohmann::json tracerReport(const char* command, const Scene& scene, const Accel& accel, size_t rays,
+                            const TracedRays& traced, double buildSeconds);
 
 void addRenderCommand(CLI::App& app);
 void addTraceCommand(CLI::App& app);

@@ -16,58 +16,45 @@ namespace lancer {
 
 namespace {
 
-[[noreturn]] void unknownModel(const std::string& name, const std::vector<std::string>& names, const char* unit) {
-  throw InputError(fmt::format("unknown model '{}' for the {} (available: {})", name, unit, fmt::join(names, ", ")));
-}
+// The four models of one unit, by name: its golden model, its SystemC device
+// (the cycle model, or the Verilated RTL in SystemC where the build has it) and
+// its Verilated device.
+template <class Base, class Golden, class SystemC, class Verilator>
+struct UnitModels {
+  static std::vector<std::string> names() {
+    std::vector<std::string> names{"golden", "systemc", "rtl"};
+    if (SystemC::rtlAvailable()) names.push_back("rtl-systemc");
+    return names;
+  }
+
+  // Throws InputError for an unknown name; `unit` names the unit in the message.
+  static std::unique_ptr<Base> make(const std::string& name, const char* unit) {
+    if (name == "golden") return std::make_unique<Golden>();
+    if (name == "systemc") return std::make_unique<SystemC>(SystemC::Impl::Model);
+    if (name == "rtl") return std::make_unique<Verilator>();
+    if (name == "rtl-systemc" && SystemC::rtlAvailable()) return std::make_unique<SystemC>(SystemC::Impl::Rtl);
+    throw InputError(
+        fmt::format("unknown model '{}' for the {} (available: {})", name, unit, fmt::join(names(), ", ")));
+  }
+};
+
+using IsectModels = UnitModels<IsectDevice, GoldenIsectDevice, SystemCIsectDevice, VerilatorIsectDevice>;
+using GridModels = UnitModels<GridDevice, GoldenGridDevice, SystemCGridDevice, VerilatorGridDevice>;
+using OctreeModels = UnitModels<OctreeDevice, GoldenOctreeDevice, SystemCOctreeDevice, VerilatorOctreeDevice>;
 
 }  // namespace
 
-std::vector<std::string> isectDeviceNames() {
-  std::vector<std::string> names{"golden", "systemc", "rtl"};
-  if (SystemCIsectDevice::rtlAvailable()) names.push_back("rtl-systemc");
-  return names;
-}
-
+std::vector<std::string> isectDeviceNames() { return IsectModels::names(); }
 std::unique_ptr<IsectDevice> makeIsectDevice(const std::string& name) {
-  if (name == "golden") return std::make_unique<GoldenIsectDevice>();
-  if (name == "systemc") return std::make_unique<SystemCIsectDevice>(SystemCIsectDevice::Impl::Model);
-  if (name == "rtl") return std::make_unique<VerilatorIsectDevice>();
-  if (name == "rtl-systemc" && SystemCIsectDevice::rtlAvailable()) {
-    return std::make_unique<SystemCIsectDevice>(SystemCIsectDevice::Impl::Rtl);
-  }
-  unknownModel(name, isectDeviceNames(), "intersection pipeline");
+  return IsectModels::make(name, "intersection pipeline");
 }
 
-std::vector<std::string> gridDeviceNames() {
-  std::vector<std::string> names{"golden", "systemc", "rtl"};
-  if (SystemCGridDevice::rtlAvailable()) names.push_back("rtl-systemc");
-  return names;
-}
+std::vector<std::string> gridDeviceNames() { return GridModels::names(); }
+std::unique_ptr<GridDevice> makeGridDevice(const std::string& name) { return GridModels::make(name, "grid unit"); }
 
-std::unique_ptr<GridDevice> makeGridDevice(const std::string& name) {
-  if (name == "golden") return std::make_unique<GoldenGridDevice>();
-  if (name == "systemc") return std::make_unique<SystemCGridDevice>(SystemCGridDevice::Impl::Model);
-  if (name == "rtl") return std::make_unique<VerilatorGridDevice>();
-  if (name == "rtl-systemc" && SystemCGridDevice::rtlAvailable()) {
-    return std::make_unique<SystemCGridDevice>(SystemCGridDevice::Impl::Rtl);
-  }
-  unknownModel(name, gridDeviceNames(), "grid unit");
-}
-
-std::vector<std::string> octreeDeviceNames() {
-  std::vector<std::string> names{"golden", "systemc", "rtl"};
-  if (SystemCOctreeDevice::rtlAvailable()) names.push_back("rtl-systemc");
-  return names;
-}
-
+std::vector<std::string> octreeDeviceNames() { return OctreeModels::names(); }
 std::unique_ptr<OctreeDevice> makeOctreeDevice(const std::string& name) {
-  if (name == "golden") return std::make_unique<GoldenOctreeDevice>();
-  if (name == "systemc") return std::make_unique<SystemCOctreeDevice>(SystemCOctreeDevice::Impl::Model);
-  if (name == "rtl") return std::make_unique<VerilatorOctreeDevice>();
-  if (name == "rtl-systemc" && SystemCOctreeDevice::rtlAvailable()) {
-    return std::make_unique<SystemCOctreeDevice>(SystemCOctreeDevice::Impl::Rtl);
-  }
-  unknownModel(name, octreeDeviceNames(), "octree unit");
+  return OctreeModels::make(name, "octree unit");
 }
 
 }  // namespace lancer

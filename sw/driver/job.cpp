@@ -28,19 +28,14 @@ JobResult runBvhPath(const Scene& scene, std::span<const Ray> rays, const Quanti
                      *model, golden, config, onProgress);
 }
 
-JobResult runGridPath(const Scene& scene, std::span<const Ray> rays, const Quantizer& quantizer,
-                      const JobConfig& config, const ProgressFn& onProgress) {
-  auto model = makeGridDevice(config.model);
-  GoldenGridDevice golden;
-  const fx::GridImage image = buildGridImageFor(scene, quantizer, config.accel);
-  return runTraversalJob(image, rays, quantizer, *model, golden, config, onProgress);
-}
-
-JobResult runOctreePath(const Scene& scene, std::span<const Ray> rays, const Quantizer& quantizer,
-                        const JobConfig& config, const ProgressFn& onProgress) {
-  auto model = makeOctreeDevice(config.model);
-  GoldenOctreeDevice golden;
-  const fx::OctreeImage image = buildOctreeImageFor(scene, quantizer, config.accel);
+// A traversal unit's path: its model against its golden model, over the image
+// the driver builds for the scene.
+template <class Image, auto makeDevice, auto buildImageFor>
+JobResult runTraversalPath(const Scene& scene, std::span<const Ray> rays, const Quantizer& quantizer,
+                           const JobConfig& config, const ProgressFn& onProgress) {
+  auto model = makeDevice(config.model);
+  GoldenTraversalDevice<Image> golden;
+  const Image image = buildImageFor(scene, quantizer, config.accel);
   return runTraversalJob(image, rays, quantizer, *model, golden, config, onProgress);
 }
 
@@ -58,8 +53,14 @@ std::vector<std::string> modelsFor(const std::string& accel) {
 JobResult runJob(const std::string& accel, const Scene& scene, std::span<const Ray> rays,
                  const Quantizer& quantizer, const JobConfig& config, const ProgressFn& onProgress) {
   if (accel == "bvh") return runBvhPath(scene, rays, quantizer, config, onProgress);
-  if (accel == "grid") return runGridPath(scene, rays, quantizer, config, onProgress);
-  if (accel == "octree") return runOctreePath(scene, rays, quantizer, config, onProgress);
+  if (accel == "grid") {
+    return runTraversalPath<fx::GridImage, makeGridDevice, buildGridImageFor>(scene, rays, quantizer, config,
+                                                                           onProgress);
+  }
+  if (accel == "octree") {
+    return runTraversalPath<fx::OctreeImage, makeOctreeDevice, buildOctreeImageFor>(scene, rays, quantizer, config,
+                                                                                 onProgress);
+  }
   throw InputError(fmt::format("no hardware path for --accel {} (available: {})", accel, fmt::join(hardwareAccels(), ", ")));
 }
 

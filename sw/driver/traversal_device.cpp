@@ -29,6 +29,7 @@ TraversalRunStats runGolden(std::span<const fx::QRay> rays, std::vector<fx::Trav
 
 }  // namespace
 
+template <>
 TraversalRunStats GoldenGridDevice::run(const fx::GridImage& image, std::span<const fx::QRay> rays,
                                         std::vector<fx::TraversalTrace>& traces, const TraversalRunOptions&) {
   return runGolden(
@@ -36,6 +37,7 @@ TraversalRunStats GoldenGridDevice::run(const fx::GridImage& image, std::span<co
       [](const fx::TraversalTrace& t) { return t.visits.size(); });
 }
 
+template <>
 TraversalRunStats GoldenOctreeDevice::run(const fx::OctreeImage& image, std::span<const fx::QRay> rays,
                                           std::vector<fx::TraversalTrace>& traces, const TraversalRunOptions&) {
   // The unit holds one child group: the one of the node it descended into

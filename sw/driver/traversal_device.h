@@ -58,20 +58,24 @@ using OctreeDevice = TraversalDevice<fx::OctreeImage>;
 // The golden models: the traversals of sw/golden/, no timing. Memory reads are
 // what the hardware would issue: one per cell (grid) or per interior node
 // entered (octree: its child group), one index and one triangle read per test.
-class GoldenGridDevice final : public GridDevice {
+template <class Image>
+class GoldenTraversalDevice final : public TraversalDevice<Image> {
  public:
   std::string_view name() const override { return "golden"; }
   int maxRaysInFlight() const override { return 1 << 16; }
-  TraversalRunStats run(const fx::GridImage& image, std::span<const fx::QRay> rays,
-                        std::vector<fx::TraversalTrace>& traces, const TraversalRunOptions& options = {}) override;
+  TraversalRunStats run(const Image& image, std::span<const fx::QRay> rays, std::vector<fx::TraversalTrace>& traces,
+                        const TraversalRunOptions& options = {}) override;
 };
 
-class GoldenOctreeDevice final : public OctreeDevice {
- public:
-  std::string_view name() const override { return "golden"; }
-  int maxRaysInFlight() const override { return 1 << 16; }
-  TraversalRunStats run(const fx::OctreeImage& image, std::span<const fx::QRay> rays,
-                        std::vector<fx::TraversalTrace>& traces, const TraversalRunOptions& options = {}) override;
-};
+using GoldenGridDevice = GoldenTraversalDevice<fx::GridImage>;
+using GoldenOctreeDevice = GoldenTraversalDevice<fx::OctreeImage>;
+
+// Each unit's walk and its count of structure reads (traversal_device.cpp).
+template <>
+TraversalRunStats GoldenGridDevice::run(const fx::GridImage& image, std::span<const fx::QRay> rays,
+                                        std::vector<fx::TraversalTrace>& traces, const TraversalRunOptions& options);
+template <>
+TraversalRunStats GoldenOctreeDevice::run(const fx::OctreeImage& image, std::span<const fx::QRay> rays,
+                                          std::vector<fx::TraversalTrace>& traces, const TraversalRunOptions& options);
 
 }  // namespace lancer

@@ -72,18 +72,23 @@ inline constexpr FieldSpec kGridVisitFields[] = {
     {"ray_id", kRayIdBits, 1, false, "ray id"},
     {"cell_id", 3 * kCellIndexBits, 1, false, "(z * Ry + y) * Rx + x"},
 };
-// ---- grid_res_t: a ray's answer from the grid unit --------------------------------
-inline constexpr FieldSpec kGridResFields[] = {
-    {"ray_id", kRayIdBits, 1, false, "ray id"},
-    {"cells", 32, 1, false, "cells visited"},
-    {"tests", 32, 1, false, "ray-triangle tests issued"},
-    {"hit", 1, 1, false, "1 if the ray hit a triangle"},
-    {"prim_id", kPrimIdBits, 1, false, "closest triangle (zero on a miss)"},
-    {"t_num", kTNumBits, 1, false, "as isect_res_t"},
-    {"det", kDetAbsBits, 1, false, "as isect_res_t"},
-    {"u_num", kBaryBits, 1, false, "as isect_res_t"},
-    {"v_num", kBaryBits, 1, false, "as isect_res_t"},
-};
+// ---- grid_res_t, octree_res_t: a ray's answer from a traversal unit: the
+// structure elements it visited (`visited`: cells, nodes), the tests it issued,
+// and its closest hit, field for field as isect_res_t ---------------------------------
+constexpr std::array<FieldSpec, 9> traversalResFields(const char* visited, const char* visitedDoc) {
+  return {{
+      {"ray_id", kRayIdBits, 1, false, "ray id"},
+      {visited, 32, 1, false, visitedDoc},
+      {"tests", 32, 1, false, "ray-triangle tests issued"},
+      {"hit", 1, 1, false, "1 if the ray hit a triangle"},
+      {"prim_id", kPrimIdBits, 1, false, "closest triangle (zero on a miss)"},
+      {"t_num", kTNumBits, 1, false, "as isect_res_t"},
+      {"det", kDetAbsBits, 1, false, "as isect_res_t"},
+      {"u_num", kBaryBits, 1, false, "as isect_res_t"},
+      {"v_num", kBaryBits, 1, false, "as isect_res_t"},
+  }};
+}
+inline constexpr std::array<FieldSpec, 9> kGridResFields = traversalResFields("cells", "cells visited");
 
 // ---- octree_node_t: one entry of the octree unit's node table ---------------------
 inline constexpr FieldSpec kOctreeNodeFields[] = {
@@ -96,18 +101,7 @@ inline constexpr FieldSpec kOctreeVisitFields[] = {
     {"ray_id", kRayIdBits, 1, false, "ray id"},
     {"node_id", 32, 1, false, "node index in the node table"},
 };
-// ---- octree_res_t: a ray's answer from the octree unit ------------------------------
-inline constexpr FieldSpec kOctreeResFields[] = {
-    {"ray_id", kRayIdBits, 1, false, "ray id"},
-    {"nodes", 32, 1, false, "nodes entered"},
-    {"tests", 32, 1, false, "ray-triangle tests issued"},
-    {"hit", 1, 1, false, "1 if the ray hit a triangle"},
-    {"prim_id", kPrimIdBits, 1, false, "closest triangle (zero on a miss)"},
-    {"t_num", kTNumBits, 1, false, "as isect_res_t"},
-    {"det", kDetAbsBits, 1, false, "as isect_res_t"},
-    {"u_num", kBaryBits, 1, false, "as isect_res_t"},
-    {"v_num", kBaryBits, 1, false, "as isect_res_t"},
-};
+inline constexpr std::array<FieldSpec, 9> kOctreeResFields = traversalResFields("nodes", "nodes entered");
 
 inline constexpr RecordSpec kIsectRay{"isect_ray_t", "a quantized ray", kIsectRayFields};
 inline constexpr RecordSpec kIsectTri{"isect_tri_t", "a quantized triangle", kIsectTriFields};

@@ -28,6 +28,16 @@ float binningEpsilon(const Aabb& b) {
   return std::max(eps, 1e-30f);
 }
 
+BinningBox binningBox(const Scene& scene, std::string_view structure) {
+  if (scene.triangles.size() > std::numeric_limits<uint32_t>::max()) {
+    throw InputError(fmt::format("{}: more than 2^32 - 1 triangles", structure));
+  }
+  Aabb sceneBounds;
+  for (const Triangle& t : scene.triangles) sceneBounds.extend(t.bounds());
+  const float eps = binningEpsilon(sceneBounds);
+  return BinningBox{Aabb{sceneBounds.lo - eps, sceneBounds.hi + eps}, eps};
+}
+
 namespace {
 
 // Voxel counts for an explicit AccelOptions::gridResolution: `longest` voxels on
@@ -78,17 +88,10 @@ UniformGrid::UniformGrid(const Scene& scene, const AccelOptions& options) : scen
     res_ = glm::ivec3(1);
     return;  // no voxels are stored; every ray misses
   }
-  if (scene.triangles.size() > std::numeric_limits<uint32_t>::max()) {
-    throw InputError("grid: more than 2^32 - 1 triangles");
-  }
 
-  // Step 1: the gridded box, grown so that no triangle touches its faces. The
-  // bounds are recomputed rather than read from scene.bounds, which a hand-made
-  // Scene may have left stale.
-  Aabb sceneBounds;
-  for (const Triangle& t : scene.triangles) sceneBounds.extend(t.bounds());
-  const float eps = binningEpsilon(sceneBounds);
-  bounds_ = Aabb{sceneBounds.lo - eps, sceneBounds.hi + eps};
+  // Step 1: the gridded box, grown so that no triangle touches its faces.
+  const auto [box, eps] = binningBox(scene, "grid");
+  bounds_ = box;
   const glm::vec3 extent = bounds_.diagonal();
   res_ = options.gridResolution > 0 ? explicitResolution(extent, options.gridResolution)
                                     : heuristicResolution(extent, scene.triangles.size());

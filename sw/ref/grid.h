@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -19,6 +20,17 @@ namespace lancer {
 // cell boundary is listed on both sides, so no hit is lost and early termination
 // is never premature. See docs/reference-tracer.md for the error budget.
 float binningEpsilon(const Aabb& sceneBounds);
+
+// The box a structure (grid, octree) is built over: the bounds of the scene's
+// triangles, recomputed rather than read from scene.bounds (which a hand-made
+// Scene may have left stale), grown by `eps` = binningEpsilon() of them, so that
+// no triangle touches its faces. Throws InputError ("<structure>: more than
+// 2^32 - 1 triangles") when the triangles outnumber the uint32_t ids.
+struct BinningBox {
+  Aabb bounds;
+  float eps;
+};
+BinningBox binningBox(const Scene& scene, std::string_view structure);
 
 // A tiny direct-mapped cache of the triangles one ray has already tested (shared
 // by the grid and the octree, where a triangle is listed in several cells).

@@ -84,17 +84,12 @@ Octree::Octree(const Scene& scene, const AccelOptions& options) : scene_(scene) 
   if (options.octreeMaxDepth > 0) maxDepth_ = options.octreeMaxDepth;
   if (options.octreeLeafSize > 0) leafSize_ = options.octreeLeafSize;
   if (scene.triangles.empty()) return;  // no nodes; every ray misses
-  if (scene.triangles.size() > std::numeric_limits<uint32_t>::max()) {
-    throw InputError("octree: more than 2^32 - 1 triangles");
-  }
 
   // The root box and every triangle's box are grown by the same epsilon as the
   // grid's, for the same reason: a triangle within rounding of a split plane is
-  // listed on both sides of it. (Bounds recomputed: a hand-made Scene's may be stale.)
-  Aabb sceneBounds;
-  for (const Triangle& t : scene.triangles) sceneBounds.extend(t.bounds());
-  const float eps = binningEpsilon(sceneBounds);
-  bounds_ = Aabb{sceneBounds.lo - eps, sceneBounds.hi + eps};
+  // listed on both sides of it.
+  const auto [box, eps] = binningBox(scene, "octree");
+  bounds_ = box;
   std::vector<Aabb> grown(scene.triangles.size());
   std::vector<uint32_t> all(scene.triangles.size());
   for (size_t i = 0; i < scene.triangles.size(); ++i) {

@@ -6,16 +6,12 @@
 #include <fmt/format.h>
 
 #include "driver/quantize.h"
-#include "golden/isect.h"
-#include "scene/camera.h"
 
 #ifndef LANCER_DATA_DIR
 #error "LANCER_DATA_DIR must come from tests/CMakeLists.txt"
 #endif
 
 namespace lancer::test {
-
-namespace {
 
 using fx::GridRes;
 using fx::kDirMax;
@@ -24,67 +20,15 @@ using fx::kPosMax;
 using fx::QRay;
 using fx::QTriangle;
 
-// The quantizer's direction rule: the dominant component is exactly +-kDirMax.
-QRay normalized(QRay r) {
-  const int k = fx::dominantAxis(r.dir);
-  r.dir[k] = r.dir[k] < 0 ? -kDirMax : kDirMax;
-  return r;
-}
-
-}  // namespace
-
 const Scene& bunnyScene() {
   static const Scene scene = loadScene(std::string(LANCER_DATA_DIR) + "/scenes/bunny.obj");
   return scene;
 }
 
-GridScene bunnyCamera(int width, int height) {
-  const Scene& scene = bunnyScene();
-  const Quantizer quantizer(scene.bounds);
-  GridScene q;
-  for (uint32_t i = 0; i < scene.size(); ++i) q.triangles.push_back(quantizer.quantize(scene.triangles[i], i));
-  CameraOptions camera;
-  camera.width = width;
-  camera.height = height;
-  const std::vector<Ray> rays = frameScene(scene, camera).generateRays();
-  for (uint32_t i = 0; i < rays.size(); ++i) {
-    if (auto r = quantizer.quantize(rays[i], i)) q.rays.push_back(r->q);
-  }
-  return q;
-}
+GridScene bunnyCamera(int width, int height) { return GridScene{quantizedCamera(bunnyScene(), width, height)}; }
 
 fx::GridImage defaultGridImage(const GridScene& scene) {
   return fx::buildGridImage(scene.triangles, fx::chooseGridResolution(scene.triangles));
-}
-
-QRay randomGridRay(std::mt19937_64& rng, uint32_t id) {
-  std::uniform_int_distribution<int64_t> pos(0, kPosMax), dir(-kDirMax, kDirMax);
-  return normalized(QRay{id, {pos(rng), pos(rng), pos(rng)}, {dir(rng), dir(rng), dir(rng)}});
-}
-
-std::vector<QTriangle> randomGridTriangles(std::mt19937_64& rng, int count, int64_t spread) {
-  std::uniform_int_distribution<int64_t> pos(0, kPosMax), off(-spread, spread);
-  std::vector<QTriangle> tris;
-  for (int i = 0; i < count; ++i) {
-    QTriangle t;
-    t.id = uint32_t(i);
-    const std::array<int64_t, 3> c{pos(rng), pos(rng), pos(rng)};
-    for (auto& v : t.v)
-      for (int a = 0; a < 3; ++a) v[a] = std::clamp<int64_t>(c[a] + off(rng), 0, kPosMax);
-    tris.push_back(t);
-  }
-  return tris;
-}
-
-TraversalRunOptions roughGridOptions(uint64_t seed, int raysInFlight) {
-  TraversalRunOptions o;
-  o.memLatency = 7;
-  o.memLatencyJitter = 13;
-  o.raysInFlight = raysInFlight;
-  o.stream.outputStallProbability = 0.3;
-  o.stream.inputIdleProbability = 0.2;
-  o.stream.seed = seed;
-  return o;
 }
 
 std::vector<GridCase> gridHardCases() {
@@ -146,7 +90,7 @@ std::vector<GridCase> gridHardCases() {
           break;
       }
       if (r.dir == std::array<int64_t, 3>{0, 0, 0}) r.dir[0] = kDirMax;
-      c.rays.push_back(normalized(r));
+      c.rays.push_back(normalizedDirection(r));
     }
     cases.push_back(std::move(c));
   }
@@ -200,25 +144,6 @@ std::vector<GridCase> gridHardCases() {
     }
   }
   return cases;
-}
-
-std::string describeGridRay(const fx::QRay& r) {
-  return fmt::format("ray {} org ({:#x}, {:#x}, {:#x}) dir ({}, {}, {})", r.id, r.org[0], r.org[1], r.org[2],
-                     r.dir[0], r.dir[1], r.dir[2]);
-}
-
-std::string describeGridTrace(const fx::TraversalTrace& t) {
-  std::string s = fmt::format("{} cells [", t.visits.size());
-  for (size_t i = 0; i < std::min<size_t>(t.visits.size(), 12); ++i) s += fmt::format("{} ", t.visits[i]);
-  if (t.visits.size() > 12) s += "...";
-  s += fmt::format("] tests {} ", t.tests);
-  if (t.hit) {
-    s += fmt::format("hit prim {} t_num {:#x} det {:#x}", t.hit->primId, uint64_t(t.hit->tNum),
-                     uint64_t(t.hit->det));
-  } else {
-    s += "miss";
-  }
-  return s;
 }
 
 }  // namespace lancer::test

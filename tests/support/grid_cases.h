@@ -29,14 +29,11 @@
 #include "driver/traversal_device.h"
 #include "golden/grid.h"
 #include "scene/scene.h"
+#include "support/traversal_cases.h"
 
 namespace lancer::test {
 
-struct GridCase {
-  std::string name;
-  fx::GridImage image;
-  std::vector<fx::QRay> rays;
-};
+using GridCase = TraversalCase<fx::GridImage>;
 
 // All the cases above, in that order (names unique).
 std::vector<GridCase> gridHardCases();
@@ -47,10 +44,7 @@ const Scene& bunnyScene();
 // Quantized bunny triangles (id = index) and its camera rays (frameScene,
 // width x height) through the same Quantizer, as the driver makes them; rays
 // that miss the lattice cube are dropped, ids stay the pixel index.
-struct GridScene {
-  std::vector<fx::QTriangle> triangles;
-  std::vector<fx::QRay> rays;
-};
+struct GridScene : QuantizedScene {};
 GridScene bunnyCamera(int width, int height);
 
 // The grid the driver builds for a scene: fx::chooseGridResolution.
@@ -58,12 +52,16 @@ fx::GridImage defaultGridImage(const GridScene& scene);
 
 // A random lattice ray (direction normalized as the quantizer does) and random
 // triangles with vertices within `spread` lattice units of a random centre.
-fx::QRay randomGridRay(std::mt19937_64& rng, uint32_t id);
-std::vector<fx::QTriangle> randomGridTriangles(std::mt19937_64& rng, int count, int64_t spread);
+inline fx::QRay randomGridRay(std::mt19937_64& rng, uint32_t id) { return randomLatticeRay(rng, id); }
+inline std::vector<fx::QTriangle> randomGridTriangles(std::mt19937_64& rng, int count, int64_t spread) {
+  return randomLatticeTriangles(rng, count, 0, fx::kPosMax, spread);
+}
 
 // Adverse conditions for a cycle model: memory latency 7 with 0..13 jitter,
 // 30 % output stalls, 20 % input bubbles.
-TraversalRunOptions roughGridOptions(uint64_t seed, int raysInFlight = 0);
+inline TraversalRunOptions roughGridOptions(uint64_t seed, int raysInFlight = 0) {
+  return roughTraversalOptions(seed, raysInFlight);
+}
 
 // rt_grid's CellQueue as the models are built (LANCER_GRID_CELL_QUEUE): a ray
 // reads at most CellQueue - 1 cells past the one where it stops, so a model's
@@ -74,7 +72,9 @@ TraversalRunOptions roughGridOptions(uint64_t seed, int raysInFlight = 0);
 inline constexpr uint64_t kGridCellQueue = LANCER_GRID_CELL_QUEUE;
 
 // One-line descriptions for mismatch reports.
-std::string describeGridRay(const fx::QRay& ray);
-std::string describeGridTrace(const fx::TraversalTrace& trace);
+inline std::string describeGridRay(const fx::QRay& ray) { return describeLatticeRay(ray); }
+inline std::string describeGridTrace(const fx::TraversalTrace& trace) {
+  return describeTraversalTrace(trace, "cells", 12);
+}
 
 }  // namespace lancer::test

@@ -31,13 +31,6 @@ constexpr int64_t kMid = kSide / 2;                // the root's mid-planes
 int64_t clampPos(int64_t v) { return std::clamp<int64_t>(v, 0, kPosMax); }
 int depthAtMost(int depth) { return std::min(depth, kOctreeMaxDepth); }
 
-// The quantizer's direction rule: the dominant component is exactly +-kDirMax.
-QRay normalized(QRay r) {
-  const int k = fx::dominantAxis(r.dir);
-  r.dir[k] = r.dir[k] < 0 ? -kDirMax : kDirMax;
-  return r;
-}
-
 Vec randomDir(std::mt19937_64& rng) {
   std::uniform_int_distribution<int64_t> dir(-kDirMax, kDirMax);
   return {dir(rng), dir(rng), dir(rng)};
@@ -48,7 +41,7 @@ Vec randomPos(std::mt19937_64& rng) {
   return {pos(rng), pos(rng), pos(rng)};
 }
 
-QRay randomRay(std::mt19937_64& rng) { return normalized(QRay{0, randomPos(rng), randomDir(rng)}); }
+QRay randomRay(std::mt19937_64& rng) { return randomLatticeRay(rng, 0); }
 
 // From `org` towards `target`, scaled so the dominant component is +-kDirMax
 // (rounded elsewhere: the ray passes near the target, not exactly through it).
@@ -58,15 +51,10 @@ QRay aimed(const Vec& org, const Vec& target) {
   for (int a = 0; a < 3; ++a) big = std::max(big, std::abs(target[a] - org[a]));
   if (big == 0) return QRay{0, org, {kDirMax, 0, 0}};
   for (int a = 0; a < 3; ++a) d[a] = std::llround(double(target[a] - org[a]) * double(kDirMax) / double(big));
-  return normalized(QRay{0, org, d});
+  return normalizedDirection(QRay{0, org, d});
 }
 
-std::vector<QTriangle> quantizeScene(const Scene& scene) {
-  const Quantizer q(scene.bounds);
-  std::vector<QTriangle> out;
-  for (uint32_t i = 0; i < scene.size(); ++i) out.push_back(q.quantize(scene.triangles[i], i));
-  return out;
-}
+std::vector<QTriangle> quantizeScene(const Scene& scene) { return Quantizer(scene.bounds).quantize(scene); }
 
 const std::vector<QTriangle>& cornell() {
   static const std::vector<QTriangle> tris = quantizeScene(makeCornellBox());
@@ -77,21 +65,6 @@ Vec centroid(const QTriangle& t) {
   Vec c{};
   for (int a = 0; a < 3; ++a) c[a] = (t.v[0][a] + t.v[1][a] + t.v[2][a]) / 3;
   return c;
-}
-
-// Random triangles with vertices within `spread` units of a centre in [lo, hi].
-std::vector<QTriangle> randomTriangles(std::mt19937_64& rng, int count, int64_t lo, int64_t hi, int64_t spread) {
-  std::uniform_int_distribution<int64_t> centre(lo, hi), off(-spread, spread);
-  std::vector<QTriangle> tris;
-  for (int i = 0; i < count; ++i) {
-    QTriangle t;
-    t.id = uint32_t(i);
-    const Vec c{centre(rng), centre(rng), centre(rng)};
-    for (auto& v : t.v)
-      for (int a = 0; a < 3; ++a) v[a] = clampPos(c[a] + off(rng));
-    tris.push_back(t);
-  }
-  return tris;
 }
 
 // Rays from random origins aimed at (near) the centroids of random triangles.
@@ -112,7 +85,7 @@ void addOctants(std::vector<QRay>& rays, const Vec& org, const Vec& dir) {
     for (int a = 0; a < 3; ++a) {
       if (octant & (4 >> a)) d[a] = -d[a];
     }
-    rays.push_back(normalized(QRay{0, org, d}));
+    rays.push_back(normalizedDirection(QRay{0, org, d}));
   }
 }
 
@@ -170,7 +143,7 @@ OctreeCase midPlanes() {
     r.dir[axis] = 0;
     if (i % 5 == 0) r.dir[(axis + 1) % 3] = 0;  // along a line in the plane
     if (r.dir == Vec{0, 0, 0}) r.dir[(axis + 2) % 3] = kDirMax;
-    rays.push_back(normalized(r));
+    rays.push_back(normalizedDirection(r));
   }
   return makeCase("mid_planes", fx::buildOctreeImage(quantizeScene(subdivide(makeCornellBox(), 1)), depthAtMost(7), 2),
                   std::move(rays));
@@ -198,7 +171,7 @@ OctreeCase centreAndCorners() {
       dir[(i / 3) % 3] = kDirMax;
     }
     for (auto& d : dir) d = sign(rng) ? -d : d;
-    rays.push_back(normalized(QRay{0, corner, dir}));
+    rays.push_back(normalizedDirection(QRay{0, corner, dir}));
   }
   return makeCase("centre_and_corners",
                   fx::buildOctreeImage(quantizeScene(subdivide(makeCornellBox(), 2)), depthAtMost(8), 4),
@@ -231,7 +204,7 @@ OctreeCase nodeFaces() {
     if (i % 6 == 2) r.dir[axis] = 0;  // lying in the face
     if (i % 6 == 3) r.dir[axis] = (r.dir[axis] < 0 ? -1 : 1) * kDirMax;  // leaving along its normal
     if (r.dir == Vec{0, 0, 0}) r.dir[0] = kDirMax;
-    rays.push_back(normalized(r));
+    rays.push_back(normalizedDirection(r));
   }
   return makeCase("node_faces", fx::buildOctreeImage(quantizeScene(subdivide(makeCornellBox(), 2)), depthAtMost(8), 2),
                   std::move(rays));
@@ -247,7 +220,7 @@ OctreeCase rootFaces() {
     for (int a = 0; a < 1 + i % 3; ++a) r.org[(i + a) % 3] = bit(rng) ? kPosMax : 0;
     if (i % 7 == 0) r.dir[i % 3] = 0;
     if (r.dir == Vec{0, 0, 0}) r.dir[1] = kDirMax;
-    rays.push_back(normalized(r));
+    rays.push_back(normalizedDirection(r));
   }
   // At 0 on an axis, going down, the mirrored origin is 2^P: the ray leaves
   // through that face at t = 0. With another axis at 0 going up (it enters
@@ -258,11 +231,11 @@ OctreeCase rootFaces() {
       QRay r{0, randomPos(rng), {kDirMax / 2, kDirMax / 3, kDirMax / 5}};
       r.org[a] = 0;
       r.dir[a] = -kDirMax;
-      rays.push_back(normalized(r));  // leaves at t = 0 on a, inside on the others
+      rays.push_back(normalizedDirection(r));  // leaves at t = 0 on a, inside on the others
       r.org[b] = 0;
-      rays.push_back(normalized(r));  // misses the root
+      rays.push_back(normalizedDirection(r));  // misses the root
       r.dir[b] = -r.dir[b];
-      rays.push_back(normalized(r));  // leaves on two faces at t = 0
+      rays.push_back(normalizedDirection(r));  // leaves on two faces at t = 0
     }
   }
   rays.push_back(QRay{0, {0, 0, 0}, {-kDirMax, -kDirMax, -kDirMax}});
@@ -336,7 +309,7 @@ OctreeCase offCentre(bool high) {
       r = randomRay(rng);
       r.org = org;
       for (auto& d : r.dir) d = -std::abs(d);
-      r = normalized(r);
+      r = normalizedDirection(r);
     }
     rays.push_back(r);
   }
@@ -377,7 +350,7 @@ OctreeCase emptyLeaves() {
   // Six pairs of small triangles, each pair close together: the build splits
   // around each pair for several levels, leaving empty siblings behind.
   std::vector<QTriangle> tris;
-  const std::vector<QTriangle> centres = randomTriangles(rng, 6, kSide / 16, kSide - kSide / 16, 0);
+  const std::vector<QTriangle> centres = randomLatticeTriangles(rng, 6, kSide / 16, kSide - kSide / 16, 0);
   std::uniform_int_distribution<int64_t> off(-kSide / 512, kSide / 512);
   for (const QTriangle& c : centres) {
     for (int k = 0; k < 2; ++k) {
@@ -404,7 +377,7 @@ OctreeCase emptyLeaves() {
 OctreeCase crowdedLeaf() {
   std::mt19937_64 rng(114);
   // Large triangles over one region: splitting never pays, so leaves keep hundreds.
-  const std::vector<QTriangle> tris = randomTriangles(rng, 300, kSide / 4 + kSide / 16, kMid - kSide / 16, kSide / 16);
+  const std::vector<QTriangle> tris = randomLatticeTriangles(rng, 300, kSide / 4 + kSide / 16, kMid - kSide / 16, kSide / 16);
   OctreeImage image = fx::buildOctreeImage(tris, depthAtMost(4), 8);
   uint32_t most = 0;
   for (const fx::OctreeNode& n : image.nodes) most = std::max(most, n.leaf ? n.count : 0u);
@@ -421,7 +394,7 @@ OctreeCase crowdedLeaf() {
 
 OctreeCase rootLeaf() {
   std::mt19937_64 rng(115);
-  const std::vector<QTriangle> tris = randomTriangles(rng, 5, kSide / 8, kSide - kSide / 8, kSide / 8);
+  const std::vector<QTriangle> tris = randomLatticeTriangles(rng, 5, kSide / 8, kSide - kSide / 8, kSide / 8);
   std::vector<QRay> rays;
   addRandomRays(rays, rng, 40);
   addAimedRays(rays, tris, rng, 20);
@@ -504,49 +477,6 @@ std::vector<OctreeCase> octreeHardCases() {
   cases.push_back(tinyComponents());
   cases.push_back(cornellRandom());
   return cases;
-}
-
-QuantizedScene quantizedCamera(const Scene& scene, int width, int height) {
-  const Quantizer quantizer(scene.bounds);
-  QuantizedScene q;
-  q.triangles = quantizer.quantize(scene);
-  CameraOptions camera;
-  camera.width = width;
-  camera.height = height;
-  const std::vector<Ray> rays = frameScene(scene, camera).generateRays();
-  for (uint32_t i = 0; i < rays.size(); ++i) {
-    if (auto r = quantizer.quantize(rays[i], i)) q.rays.push_back(r->q);
-  }
-  return q;
-}
-
-TraversalRunOptions roughOctreeOptions(uint64_t seed, int raysInFlight) {
-  TraversalRunOptions o;
-  o.memLatency = 7;
-  o.memLatencyJitter = 13;
-  o.raysInFlight = raysInFlight;
-  o.stream.outputStallProbability = 0.3;
-  o.stream.inputIdleProbability = 0.2;
-  o.stream.seed = seed;
-  return o;
-}
-
-std::string describeRay(const QRay& r) {
-  return fmt::format("ray {} org ({:#x}, {:#x}, {:#x}) dir ({}, {}, {})", r.id, r.org[0], r.org[1], r.org[2], r.dir[0],
-                     r.dir[1], r.dir[2]);
-}
-
-std::string describeTrace(const fx::TraversalTrace& t) {
-  std::string s = fmt::format("{} nodes [", t.visits.size());
-  for (size_t i = 0; i < std::min<size_t>(t.visits.size(), 16); ++i) s += fmt::format("{} ", t.visits[i]);
-  if (t.visits.size() > 16) s += "...";
-  s += fmt::format("] tests {} ", t.tests);
-  if (t.hit) {
-    s += fmt::format("hit prim {} t_num {:#x} det {:#x}", t.hit->primId, uint64_t(t.hit->tNum), uint64_t(t.hit->det));
-  } else {
-    s += "miss";
-  }
-  return s;
 }
 
 }  // namespace lancer::test

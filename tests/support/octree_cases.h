@@ -38,33 +38,26 @@
 #include "driver/traversal_device.h"
 #include "golden/octree.h"
 #include "scene/scene.h"
+#include "support/traversal_cases.h"
 
 namespace lancer::test {
 
-struct OctreeCase {
-  std::string name;
-  fx::OctreeImage image;
-  std::vector<fx::QRay> rays;
-};
+using OctreeCase = TraversalCase<fx::OctreeImage>;
 
 // All the cases above, in that order (names unique).
 std::vector<OctreeCase> octreeHardCases();
 
-// Quantized triangles of a scene (lancer::Quantizer over its bounds, id = index)
-// and its camera rays (frameScene, width x height) through the same quantizer;
-// rays that miss the lattice cube are dropped, ids stay the pixel index.
-struct QuantizedScene {
-  std::vector<fx::QTriangle> triangles;
-  std::vector<fx::QRay> rays;
-};
-QuantizedScene quantizedCamera(const Scene& scene, int width, int height);
+// (Scenes through the quantizer, QuantizedScene and quantizedCamera, come from
+// support/traversal_cases.h.)
 
 // Adverse conditions for a cycle model: memory latency 7 with 0..13 jitter,
 // 30 % output stalls, 20 % input bubbles.
-TraversalRunOptions roughOctreeOptions(uint64_t seed, int raysInFlight = 0);
+inline TraversalRunOptions roughOctreeOptions(uint64_t seed, int raysInFlight = 0) {
+  return roughTraversalOptions(seed, raysInFlight);
+}
 
 // One-line descriptions for mismatch reports.
-std::string describeRay(const fx::QRay& ray);
-std::string describeTrace(const fx::TraversalTrace& trace);
+inline std::string describeRay(const fx::QRay& ray) { return describeLatticeRay(ray); }
+inline std::string describeTrace(const fx::TraversalTrace& trace) { return describeTraversalTrace(trace, "nodes", 16); }
 
 }  // namespace lancer::test

@@ -20,6 +20,7 @@
 #include "ref/triangle.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
+#include "random_points.h"
 #include "test_paths.h"
 
 namespace lancer {
@@ -95,6 +96,12 @@ class Agreement {
   int rays_ = 0, hits_ = 0, mismatches_ = 0;
 };
 
+AccelOptions leafOptions(int leafSize) {
+  AccelOptions options;
+  options.bvhLeafSize = leafSize;
+  return options;
+}
+
 CameraOptions resolution(int width, int height) {
   CameraOptions options;
   options.width = width;
@@ -111,10 +118,7 @@ glm::vec3 randomUnit(std::mt19937& rng) {
   }
 }
 
-glm::vec3 randomIn(const Aabb& b, std::mt19937& rng) {
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  return b.lo + glm::vec3(u(rng), u(rng), u(rng)) * b.diagonal();
-}
+using test::randomIn;  // random_points.h
 
 glm::vec3 randomOutside(const Aabb& b, std::mt19937& rng) {
   std::uniform_real_distribution<float> u(1.2f, 3.0f);
@@ -127,14 +131,10 @@ glm::vec3 randomOutside(const Aabb& b, std::mt19937& rng) {
 TEST(Bvh, RejectsInvalidLeafSize) {
   const Scene& box = cachedScene(kDefaultSceneName);
   for (int size : {0, -1, 65, 1000}) {
-    AccelOptions options;
-    options.bvhLeafSize = size;
-    EXPECT_THROW(Bvh(box, options), InputError) << size;
+    EXPECT_THROW(Bvh(box, leafOptions(size)), InputError) << size;
   }
   for (int size : {1, 64}) {
-    AccelOptions options;
-    options.bvhLeafSize = size;
-    EXPECT_NO_THROW(Bvh(box, options)) << size;
+    EXPECT_NO_THROW(Bvh(box, leafOptions(size))) << size;
   }
   EXPECT_EQ(Bvh(box, {}).name(), "bvh");
 }
@@ -143,9 +143,7 @@ TEST(Bvh, NodesFormAValidDepthFirstTree) {
   for (const std::string& name : sceneNames()) {
     const Scene& scene = cachedScene(name);
     for (int leafSize : {1, 4, 64}) {
-      AccelOptions options;
-      options.bvhLeafSize = leafSize;
-      const Bvh bvh(scene, options);
+      const Bvh bvh(scene, leafOptions(leafSize));
       const auto& nodes = bvh.nodes();
       ASSERT_EQ(nodes.size(), bvh.nodeCount());
       EXPECT_EQ(bvh.nodeCount(), 2 * bvh.leafCount() - 1) << name;
@@ -225,9 +223,7 @@ TEST(Bvh, MatchesBruteForceOnRandomRays) {
     std::vector<std::optional<Hit>> expected;
     for (const Ray& r : rays) expected.push_back(brute.intersect(r));
     for (int leafSize : {1, 4, 64}) {
-      AccelOptions options;
-      options.bvhLeafSize = leafSize;
-      const Bvh bvh(scene, options);
+      const Bvh bvh(scene, leafOptions(leafSize));
       Agreement agree(scene, bvh, fmt::format("{} leaf {}", name, leafSize));
       for (size_t i = 0; i < rays.size(); ++i) agree.check(rays[i], &expected[i]);
       EXPECT_EQ(agree.mismatches(), 0) << name << " leaf " << leafSize;
@@ -240,9 +236,7 @@ TEST(Bvh, MatchesBruteForceOnAxisParallelRaysWithSignedZeros) {
   for (const std::string& name : sceneNames()) {
     const Scene& scene = cachedScene(name);
     for (int leafSize : {1, 4}) {
-      AccelOptions options;
-      options.bvhLeafSize = leafSize;
-      const Bvh bvh(scene, options);
+      const Bvh bvh(scene, leafOptions(leafSize));
       Agreement agree(scene, bvh, fmt::format("{} leaf {}", name, leafSize));
       std::mt19937 rng(99);
       std::uniform_int_distribution<size_t> pickNode(0, bvh.nodeCount() - 1);
@@ -287,9 +281,7 @@ TEST(Bvh, MatchesBruteForceOnRaysAimedAtVerticesAndEdgeMidpoints) {
   for (const std::string& name : sceneNames()) {
     const Scene& scene = cachedScene(name);
     for (int leafSize : {1, 4}) {
-      AccelOptions options;
-      options.bvhLeafSize = leafSize;
-      const Bvh bvh(scene, options);
+      const Bvh bvh(scene, leafOptions(leafSize));
       Agreement agree(scene, bvh, fmt::format("{} leaf {}", name, leafSize));
       std::mt19937 rng(7);
       const size_t step = std::max<size_t>(1, scene.size() / 150);
@@ -349,9 +341,7 @@ TEST(Bvh, ExactTiesGoToTheLowestTriangleId) {
   scene.materialOf.assign(scene.size(), 0);
   scene.computeBounds();
   for (int leafSize : {1, 3, 64}) {
-    AccelOptions options;
-    options.bvhLeafSize = leafSize;
-    const Bvh bvh(scene, options);
+    const Bvh bvh(scene, leafOptions(leafSize));
     Agreement agree(scene, bvh, fmt::format("ties leaf {}", leafSize));
     std::mt19937 rng(3);
     for (int i = 0; i < 300; ++i) {
@@ -378,9 +368,7 @@ TEST(Bvh, GeometricChainStaysWithinTheDepthBound) {
   }
   scene.materialOf.assign(scene.size(), 0);
   scene.computeBounds();
-  AccelOptions options;
-  options.bvhLeafSize = 1;
-  const Bvh bvh(scene, options);
+  const Bvh bvh(scene, leafOptions(1));
   EXPECT_LE(bvh.depth(), Bvh::kMaxDepth);
   EXPECT_GT(bvh.depth(), 15);  // far deeper than a balanced tree (7 levels): a chain
   Agreement agree(scene, bvh, "chain");
@@ -467,9 +455,7 @@ TEST(Bvh, ClosedMeshesDoNotLeakAtSharedEdgesOrVertices) {
       }
     }
     for (int leafSize : {1, 4}) {
-      AccelOptions options;
-      options.bvhLeafSize = leafSize;
-      const Bvh bvh(scene, options);
+      const Bvh bvh(scene, leafOptions(leafSize));
       Agreement agree(scene, bvh, fmt::format("{} leaf {}", scene.name, leafSize));
       int leaks = 0;
       for (const auto& [px, py, pz] : targets) {

@@ -18,6 +18,7 @@
 #include "ref/triangle.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
+#include "random_points.h"
 #include "test_paths.h"
 
 namespace lancer {
@@ -177,10 +178,7 @@ glm::vec3 randomUnit(std::mt19937& rng) {
   }
 }
 
-glm::vec3 randomIn(const Aabb& b, std::mt19937& rng) {
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  return b.lo + glm::vec3(u(rng), u(rng), u(rng)) * b.diagonal();
-}
+using test::randomIn;  // random_points.h
 
 glm::vec3 randomOutside(const Aabb& b, std::mt19937& rng) {
   std::uniform_real_distribution<float> u(1.2f, 3.0f);

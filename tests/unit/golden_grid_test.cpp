@@ -7,26 +7,12 @@
 #include "golden/grid.h"
 #include "golden/isect.h"
 #include "scene/scene.h"
+#include "golden_test_support.h"
 #include "test_paths.h"
 
 namespace lancer::fx {
 namespace {
-
-std::vector<QTriangle> quantizeScene(const Scene& scene) {
-  const Quantizer q(scene.bounds);
-  std::vector<QTriangle> out;
-  for (uint32_t i = 0; i < scene.size(); ++i) out.push_back(q.quantize(scene.triangles[i], i));
-  return out;
-}
-
-std::optional<IsectResult> bruteForce(const std::vector<QTriangle>& tris, const QRay& ray) {
-  std::optional<IsectResult> best;
-  for (const QTriangle& t : tris) {
-    const IsectResult r = intersect(ray, t);
-    if (r.hit && (!best || closerResult(r, *best))) best = r;
-  }
-  return best;
-}
+using namespace lancer::test;  // quantizeScene, bruteForce, randomRay (golden_test_support.h)
 
 // Consecutive cells differ by one step on exactly one axis: the DDA never jumps
 // diagonally past a cell the ray touches.
@@ -41,15 +27,6 @@ void expectFaceConnected(const GridImage& image, const std::vector<uint32_t>& ce
     for (int k = 0; k < 3; ++k) moved += std::abs(a[k] - b[k]);
     ASSERT_EQ(moved, 1) << "cells " << cells[i - 1] << " -> " << cells[i];
   }
-}
-
-QRay randomRay(std::mt19937_64& rng, uint32_t id) {
-  std::uniform_int_distribution<int64_t> pos(0, kPosMax), dir(-kDirMax, kDirMax);
-  QRay r{id, {pos(rng), pos(rng), pos(rng)}, {dir(rng), dir(rng), dir(rng)}};
-  // Normalize like the driver: the dominant component is exactly +-kDirMax.
-  const int k = dominantAxis(r.dir);
-  r.dir[k] = r.dir[k] < 0 ? -kDirMax : kDirMax;
-  return r;
 }
 
 class GoldenGridScenes : public ::testing::TestWithParam<int> {};

@@ -8,44 +8,13 @@
 #include "golden/memory_image.h"
 #include "golden/octree.h"
 #include "scene/scene.h"
+#include "golden_test_support.h"
+#include "structure_test_support.h"
 #include "test_paths.h"
 
 namespace lancer::fx {
 namespace {
-
-std::vector<QTriangle> quantizeScene(const Scene& scene) {
-  const Quantizer q(scene.bounds);
-  std::vector<QTriangle> out;
-  for (uint32_t i = 0; i < scene.size(); ++i) out.push_back(q.quantize(scene.triangles[i], i));
-  return out;
-}
-
-Scene translated(Scene scene, glm::vec3 by) {
-  for (Triangle& t : scene.triangles) {
-    t.v0 += by;
-    t.v1 += by;
-    t.v2 += by;
-  }
-  scene.computeBounds();
-  return scene;
-}
-
-std::optional<IsectResult> bruteForce(const std::vector<QTriangle>& tris, const QRay& ray) {
-  std::optional<IsectResult> best;
-  for (const QTriangle& t : tris) {
-    const IsectResult r = intersect(ray, t);
-    if (r.hit && (!best || closerResult(r, *best))) best = r;
-  }
-  return best;
-}
-
-QRay randomRay(std::mt19937_64& rng, uint32_t id) {
-  std::uniform_int_distribution<int64_t> pos(0, kPosMax), dir(-kDirMax, kDirMax);
-  QRay r{id, {pos(rng), pos(rng), pos(rng)}, {dir(rng), dir(rng), dir(rng)}};
-  const int k = dominantAxis(r.dir);
-  r.dir[k] = r.dir[k] < 0 ? -kDirMax : kDirMax;
-  return r;
-}
+using namespace lancer::test;  // quantizeScene, bruteForce, randomRay (golden_test_support.h)
 
 struct Config {
   int depth, leaf;

@@ -15,12 +15,12 @@
 #include "ref/octree.h"
 #include "scene/scene.h"
 #include "structure_test_support.h"
+#include "structure_tests.h"
 #include "test_paths.h"
 
 namespace lancer {
 namespace {
 using namespace test;  // helpers from structure_test_support.h
-
 
 // ---- Octree-specific helpers.
 
@@ -47,105 +47,35 @@ std::vector<float> planes(const Octree& tree, int axis, int levels) {
   return out;
 }
 
-// ---- Tests.
+// ---- The tests every structure passes (structure_tests.h), over the octree.
 
-TEST(Octree, MatchesBruteForceOnCornellBox) {
-  const Octree tree(cornell(), {});
-  EXPECT_EQ(tree.name(), "octree");
-  EXPECT_GT(tree.depth(), 1);
-  const size_t hits = expectSameHits(tree, cornell(), RayMaker(101).random(cornell(), 20000));
-  EXPECT_GT(hits, 8000u);
-}
-
-TEST(Octree, MatchesBruteForceOnBunny) {
-  const Octree tree(bunny(), {});
-  const size_t hits = expectSameHits(tree, bunny(), RayMaker(102).random(bunny(), 5000));
-  EXPECT_GT(hits, 2000u);
-}
-
-TEST(Octree, MatchesBruteForceOnWuson) {
-  const Octree tree(wuson(), {});
-  const size_t hits = expectSameHits(tree, wuson(), RayMaker(103).random(wuson(), 5000));
-  EXPECT_GT(hits, 2000u);
-}
-
-TEST(Octree, AxisParallelRaysInMidPlanes) {
-  // Origins where the split planes of the first three levels (and the box's
-  // faces) cross: rays lying in one or two mid-planes, with +0 and -0 zero
-  // components, from outside the box and from inside it.
-  for (const Scene* scene : {&cornell(), &bunny()}) {
-    const Octree tree(*scene, octreeOptions(6, 2));
-    std::vector<Ray> rays;
-    for (int axis = 0; axis < 3; ++axis) {
-      const int p = (axis + 1) % 3, q = (axis + 2) % 3;
-      const std::vector<float> inside = planes(tree, axis, 1);
-      for (float x : planes(tree, p, 3)) {
-        for (float y : planes(tree, q, 3)) {
-          glm::vec3 o;
-          o[p] = x;
-          o[q] = y;
-          o[axis] = tree.bounds().lo[axis] - 0.25f * tree.bounds().diagonal()[axis];
-          addAxisParallel(rays, o, axis);
-          o[axis] = inside[1];  // on the root's mid-plane
-          addAxisParallel(rays, o, axis);
-        }
-      }
-    }
-    RayMaker maker(104);
-    for (int i = 0; i < 250; ++i) {
-      glm::vec3 o = maker.inBox(scene->bounds);
-      const int axis = i % 3;
-      o[(axis + 1) % 3] =
-          i % 2 ? scene->bounds.lo[(axis + 1) % 3] : scene->bounds.hi[(axis + 1) % 3];
-      addAxisParallel(rays, o, axis);
-    }
-    EXPECT_GT(expectSameHits(tree, *scene, rays), rays.size() / 8) << scene->name;
+struct OctreeTraits {
+  using Accel = Octree;
+  static constexpr std::string_view kName = "octree";
+  static constexpr StructureSeeds kSeeds{.cornell = 101, .bunny = 102, .wuson = 103, .axisParallel = 104,
+                                         .vertices = 105, .octants = 106, .tMax = 110, .faces = 116,
+                                         .missing = 117, .intersectP = 118, .flat = 119, .statistics = 120};
+  static constexpr size_t kAxisParallelHitDivisor = 8;
+  static AccelOptions axisParallelOptions(const Scene&) { return octreeOptions(6, 2); }
+  static AccelOptions cornerOptions() { return octreeOptions(4, 1); }
+  static AccelOptions facesOptions() { return {}; }
+  static AccelOptions flatOptions() { return octreeOptions(6, 2); }
+  // The split planes of the first three levels and the box's faces.
+  static std::vector<float> crossPlanes(const Octree& tree, int a) { return planes(tree, a, 3); }
+  static float midPlane(const Octree& tree, int a) { return planes(tree, a, 1)[1]; }  // the root's
+  // The corners of the depth-2 nodes in x and y, of the depth-1 nodes in z.
+  static std::array<std::vector<float>, 3> cornerPlanes(const Octree& tree) {
+    return {planes(tree, 0, 2), planes(tree, 1, 2), planes(tree, 2, 1)};
   }
-}
+  static glm::vec3 cornerStep(const Octree& tree) { return tree.bounds().diagonal() / 4.0f; }  // a depth-2 node
+  static void expectBuilt(const Octree& tree) { EXPECT_GT(tree.depth(), 1); }
+  static void expectFlat(const Octree&) {}
+  static void expectEmpty(const Octree& tree) { EXPECT_EQ(tree.nodeCount(), 0u); }
+};
 
-TEST(Octree, RaysThroughNodeEdgesAndCorners) {
-  const Octree tree(cornell(), octreeOptions(4, 1));
-  const glm::vec3 node = tree.bounds().diagonal() / 4.0f;  // a depth-2 node
-  std::vector<Ray> rays;
-  for (float x : planes(tree, 0, 2)) {
-    for (float y : planes(tree, 1, 2)) {
-      for (float z : planes(tree, 2, 1)) {
-        const glm::vec3 o(x, y, z);
-        for (int s = 0; s < 8; ++s) {
-          const glm::vec3 sign(s & 4 ? -1 : 1, s & 2 ? -1 : 1, s & 1 ? -1 : 1);
-          rays.push_back(Ray{o, sign * node});
-          rays.push_back(Ray{o, sign * glm::vec3(node.x, node.y, 0.0f)});
-          rays.push_back(Ray{o, sign * glm::vec3(0.0f, node.y, node.z)});
-          rays.push_back(Ray{o, sign * glm::vec3(node.x, -0.0f, node.z)});
-        }
-      }
-    }
-  }
-  EXPECT_GT(expectSameHits(tree, cornell(), rays), rays.size() / 4);
-}
+INSTANTIATE_TYPED_TEST_SUITE_P(Octree, Structure, OctreeTraits, StructureName);
 
-TEST(Octree, RaysAtVerticesAndEdgeMidpoints) {
-  for (const Scene* scene : {&cornell(), &bunny()}) {
-    const Octree tree(*scene, {});
-    const auto rays = verticesAndMidpoints(*scene, 600, 105);
-    EXPECT_GT(expectSameHits(tree, *scene, rays), rays.size() * 9 / 10) << scene->name;
-  }
-}
-
-TEST(Octree, AllEightOctants) {
-  const Octree tree(bunny(), {});
-  RayMaker maker(106);
-  for (int octant = 0; octant < 8; ++octant) {
-    std::vector<Ray> rays;
-    for (const Ray& r : maker.random(bunny(), 600)) {
-      Ray m = r;
-      for (int a = 0; a < 3; ++a)
-        m.dir[a] = ((octant >> a) & 1 ? -1.0f : 1.0f) * std::abs(r.dir[a]);
-      rays.push_back(m);
-    }
-    EXPECT_GT(expectSameHits(tree, bunny(), rays), 30u) << "octant " << octant;
-  }
-}
+// ---- The octree's own tests.
 
 TEST(Octree, SceneFarFromTheOriginMirrorsAboutItsOwnCentre) {
   // Mirroring with o' = -o instead of lo + hi - o is only right for a box centred
@@ -175,33 +105,6 @@ TEST(Octree, NonCubicBounds) {
   const glm::vec3 size = tree.bounds().diagonal();
   EXPECT_GT(size.x, 10.0f * size.z);
   EXPECT_GT(expectSameHits(tree, stretched, RayMaker(109).random(stretched, 4000)), 1500u);
-}
-
-TEST(Octree, TMaxLimitsHits) {
-  const Octree tree(bunny(), {});
-  const BruteForce brute(bunny());
-  std::vector<Ray> rays;
-  size_t shortened = 0;
-  for (Ray r : RayMaker(110).random(bunny(), 1500)) {
-    r.tMax = kInfinity;
-    const auto hit = brute.intersect(r);
-    if (!hit) continue;
-    // At the hit, one ulp short of it, and half way. The triangle test decides
-    // t <= tMax before its final division, so one ulp short may still keep the
-    // hit (BruteForce agrees, which expectSameHits checks); half way may not.
-    for (float tMax : {hit->t, std::nextafter(hit->t, 0.0f), 0.5f * hit->t}) {
-      r.tMax = tMax;
-      rays.push_back(r);
-    }
-    const auto half = tree.intersect(r);
-    if (half) {
-      EXPECT_LE(half->t, r.tMax) << describe(r);
-      EXPECT_NE(half->prim, hit->prim) << describe(r);
-    }
-    shortened += !half;
-  }
-  EXPECT_GT(shortened, 250u);
-  expectSameHits(tree, bunny(), rays);
 }
 
 TEST(Octree, DepthOneAndMaxDepth) {
@@ -252,91 +155,16 @@ TEST(Octree, DeepSparseTree) {
   EXPECT_GT(expectSameHits(tree, scene, rays), 1500u);
 }
 
-TEST(Octree, OriginsOnBoundsFaces) {
-  for (const Scene* scene : {&cornell(), &bunny()}) {
-    const Octree tree(*scene, {});
-    RayMaker maker(116);
-    std::vector<Ray> rays;
-    for (const Aabb& box : {scene->bounds, tree.bounds()}) {
-      for (int i = 0; i < 1200; ++i) {
-        Ray r;
-        r.origin = maker.inBox(box);
-        r.origin[i % 3] = (i / 3) % 2 ? box.hi[i % 3] : box.lo[i % 3];
-        r.dir = i % 4 ? maker.direction()
-                      : maker.pointOn(scene->triangles[maker.index(scene->size())]) - r.origin;
-        rays.push_back(r);
-      }
-    }
-    EXPECT_GT(expectSameHits(tree, *scene, rays), rays.size() / 5) << scene->name;
-  }
-}
-
-TEST(Octree, RaysMissingTheScene) {
-  const Octree tree(bunny(), {});
-  const Aabb b = bunny().bounds;
-  const glm::vec3 size = b.diagonal();
-  RayMaker maker(117);
-  std::vector<Ray> rays;
-  for (int i = 0; i < 2000; ++i) {
-    Ray r;
-    const int a = i % 3;
-    r.origin = maker.inBox(grow(b, 0.5f));
-    // Beside the box on axis a, moving parallel to that face or away from it.
-    r.origin[a] = b.hi[a] + maker.uniform(0.01f, 1.0f) * size[a];
-    r.dir = maker.direction();
-    r.dir[a] = i % 2 ? std::abs(r.dir[a]) : (i % 4 ? 0.0f : -0.0f);
-    rays.push_back(r);
-  }
-  for (int i = 0; i < 500; ++i) {
-    Ray r;
-    r.origin = b.lo - size * maker.uniform(0.01f, 1.0f);
-    r.dir = -glm::abs(maker.direction());
-    rays.push_back(r);
-  }
-  EXPECT_EQ(expectSameHits(tree, bunny(), rays), 0u);
-  TraversalStats stats;
-  for (const Ray& r : rays) EXPECT_FALSE(tree.intersect(r, &stats).has_value());
-  EXPECT_EQ(stats.triangleTests, 0u);  // rejected at the root box
-}
-
-TEST(Octree, IntersectPAgreesWithIntersect) {
-  const Octree tree(wuson(), {});
-  size_t hits = 0;
-  for (const Ray& r : RayMaker(118).random(wuson(), 4000)) {
-    const bool any = tree.intersectP(r);
-    EXPECT_EQ(any, tree.intersect(r).has_value()) << describe(r);
-    hits += any;
-  }
-  EXPECT_GT(hits, 1500u);
-}
-
 TEST(Octree, CloserTriangleInTheNextLeafWins) {
   // Bounds pinned to [0,8]^3 by two specks; leaves of one triangle, depth <= 3
   // (unit leaves). The ray runs along +x from x = 0.5. Triangle 0 is a long
   // slanted sliver listed in the first leaf but hit at x = 4.5; triangle 1 is a
   // small wall at x = 2.5 in a later leaf. Stopping at the first hit found would
   // return triangle 0; the right answer is triangle 1 at t = 2.
-  const Scene scene = fromTriangles({
-      {{1.0f, 0.0f, 0.0f}, {8.0f, 1.0f, 0.0f}, {4.5f, 0.5f, 4.0f}},
-      {{2.5f, 0.3f, 0.3f}, {2.5f, 0.7f, 0.4f}, {2.5f, 0.4f, 0.7f}},
-      {{0.0f, 7.0f, 7.0f}, {0.0f, 7.0f, 7.1f}, {0.0f, 7.1f, 7.0f}},
-      {{8.0f, 8.0f, 8.0f}, {8.0f, 7.9f, 8.0f}, {8.0f, 8.0f, 7.9f}},
-  });
+  const Scene scene = closerTriangleScene(8.0f);
   const Octree tree(scene, octreeOptions(3, 1));
-  const Ray ray{{0.5f, 0.5f, 0.5f}, {1.0f, 0.0f, 0.0f}};
-  TraversalStats stats;
-  const auto hit = tree.intersect(ray, &stats);
-  ASSERT_TRUE(hit.has_value());
-  EXPECT_EQ(hit->prim, 1u);
-  EXPECT_EQ(hit->t, 2.0f);
   // Root, [0,4]^3, leaf [0,2]^3, [2,4]x[0,2]^2, leaf [2,3]x[0,1]^2: then it stops.
-  EXPECT_LE(stats.nodesVisited, 5u);
-  Ray open = ray;
-  open.origin.z = 2.0f;  // above the wall, still through the sliver
-  const auto far = tree.intersect(open);
-  ASSERT_TRUE(far.has_value());
-  EXPECT_EQ(far->prim, 0u);
-  expectSameHits(tree, scene, {ray, open});
+  expectCloserTriangleInALaterCellWins(tree, scene, 5);
 }
 
 TEST(Octree, TrianglesOnSplitPlanes) {
@@ -349,11 +177,8 @@ TEST(Octree, TrianglesOnSplitPlanes) {
   }
   const Scene scene = latticeScene(split);
   const Octree tree(scene, octreeOptions(4, 1));
-  ASSERT_EQ(tree.bounds().lo, lattice.bounds().lo);
-  ASSERT_EQ(tree.bounds().hi, lattice.bounds().hi);
   EXPECT_GE(tree.depth(), 3);
-  const auto rays = latticeRays(scene, 121);
-  EXPECT_GT(expectSameHits(tree, scene, rays), rays.size() * 3 / 4);
+  expectLatticeSceneMatches(tree, lattice, scene, 121);
 }
 
 TEST(Octree, VisitsOnlyTheChildrenOnTheRay) {
@@ -396,64 +221,6 @@ TEST(Octree, VisitsOnlyTheChildrenOnTheRay) {
   EXPECT_EQ(stats.nodesVisited, 2u);
 }
 
-TEST(Octree, FlatAndEmptyScenes) {
-  std::vector<Triangle> tris;
-  for (int i = 0; i < 10; ++i) {
-    for (int j = 0; j < 10; ++j) {
-      const float x = float(i), y = float(j);
-      tris.push_back({{x, y, 0}, {x + 1, y, 0}, {x + 1, y + 1, 0}});
-      tris.push_back({{x, y, 0}, {x + 1, y + 1, 0}, {x, y + 1, 0}});
-    }
-  }
-  const Scene flat = fromTriangles(tris);
-  const Octree tree(flat, octreeOptions(6, 2));
-  RayMaker maker(119);
-  std::vector<Ray> rays;
-  for (int i = 0; i < 3000; ++i) {
-    Ray r;
-    r.origin = maker.inBox(Aabb{{-5, -5, -5}, {15, 15, 5}});
-    r.dir = i % 2 ? maker.pointOn(tris[maker.index(tris.size())]) - r.origin : maker.direction();
-    rays.push_back(r);
-  }
-  for (int i = 0; i <= 10; ++i) {
-    addAxisParallel(rays, {float(i), -1.0f, 0.0f}, 1);  // in the plane, along a seam
-    addAxisParallel(rays, {float(i), 0.5f, 1.0f}, 2);   // onto an edge
-  }
-  EXPECT_GT(expectSameHits(tree, flat, rays), 1000u);
-
-  const Scene empty{};
-  const Octree none(empty, {});
-  EXPECT_EQ(none.nodeCount(), 0u);
-  EXPECT_FALSE(none.intersect(Ray{}).has_value());
-  EXPECT_FALSE(none.intersectP(Ray{}));
-}
-
-TEST(Octree, DegenerateRaysHitNothing) {
-  const Octree accel(cornell(), {});
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  const glm::vec3 centre = cornell().bounds.center();
-  for (const Ray& r :
-       {Ray{centre, glm::vec3(0.0f)}, Ray{centre, glm::vec3(-0.0f)}, Ray{centre, {nan, 1, 0}},
-        Ray{{nan, 0, 0}, {0, 1, 0}}, Ray{centre, {kInfinity, 1, 0}}, Ray{centre, {0, 1, 0}, nan}}) {
-    EXPECT_FALSE(accel.intersect(r).has_value()) << describe(r);
-    EXPECT_FALSE(accel.intersectP(r)) << describe(r);
-  }
-  // A valid ray from the same point does hit (the walls are closed above and below).
-  EXPECT_TRUE(accel.intersect(Ray{centre, {0, 1, 0}}).has_value());
-}
-
-TEST(Octree, CountsStatistics) {
-  const Octree tree(bunny(), {});
-  TraversalStats stats;
-  size_t hits = 0;
-  const auto rays = RayMaker(120).random(bunny(), 200);
-  for (const Ray& r : rays) hits += tree.intersect(r, &stats).has_value();
-  EXPECT_GT(hits, 50u);
-  EXPECT_GT(stats.nodesVisited, rays.size());
-  EXPECT_GT(stats.triangleTests, hits);
-  EXPECT_LT(stats.triangleTests, rays.size() * bunny().size() / 20);
-}
-
 TEST(Octree, DefaultsAndInvalidOptions) {
   const Octree tree(cornell(), {});
   EXPECT_EQ(tree.maxDepth(), Octree::kDefaultMaxDepth);
@@ -463,13 +230,7 @@ TEST(Octree, DefaultsAndInvalidOptions) {
     EXPECT_THROW(Octree(cornell(), octreeOptions(depth)), InputError) << depth;
   }
   EXPECT_THROW(Octree(cornell(), octreeOptions(0, -1)), InputError);
-  try {
-    Octree(cornell(), octreeOptions(17));
-    FAIL() << "expected an error";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("17"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("1..16"), std::string::npos) << e.what();
-  }
+  expectInputErrorMentioning([] { Octree(cornell(), octreeOptions(17)); }, {"17", "1..16"});
   EXPECT_NO_THROW(Octree(cornell(), octreeOptions(kMaxOctreeDepth, 1)));
 }
 

@@ -9,12 +9,16 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <random>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "common/error.h"
 #include "ref/brute_force.h"
 #include "scene/scene.h"
 #include "test_paths.h"
@@ -234,5 +238,63 @@ inline std::vector<Ray> latticeRays(const Scene& scene, uint32_t seed) {
   return rays;
 }
 
+// Expects `build()` to throw InputError with every one of `parts` in its message.
+template <class Build>
+void expectInputErrorMentioning(Build build, std::initializer_list<std::string_view> parts) {
+  try {
+    build();
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    for (std::string_view part : parts) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  }
+}
+
+// The scene of the "closer triangle in the next cell wins" tests: two specks pin
+// the box [0, side]^3; triangle 0 is a long slanted sliver whose box starts at
+// x = 1 but which a ray along +x at y = z = 0.5 hits at x = side / 2 + 0.5;
+// triangle 1 is a small wall at x = 2.5.
+inline Scene closerTriangleScene(float side) {
+  return fromTriangles({
+      {{1.0f, 0.0f, 0.0f}, {side, 1.0f, 0.0f}, {side / 2 + 0.5f, 0.5f, side / 2}},
+      {{2.5f, 0.3f, 0.3f}, {2.5f, 0.7f, 0.4f}, {2.5f, 0.4f, 0.7f}},
+      {{0.0f, side - 1.0f, side - 1.0f}, {0.0f, side - 1.0f, side - 0.9f}, {0.0f, side - 0.9f, side - 1.0f}},
+      {{side, side, side}, {side, side - 0.1f, side}, {side, side, side - 0.1f}},
+  });
+}
+
+// The end of the "closer triangle in the next cell wins" tests: along +x from
+// (0.5, 0.5, 0.5), `scene` (the structure's own: triangle 0 a slanted sliver
+// listed in the first cell but hit far along, triangle 1 a small wall at x = 2.5)
+// must give triangle 1 at t = 2 after at most `maxVisits` nodes, and triangle 0
+// to the same ray raised to z = 2, above the wall.
+template <class StructureT>
+void expectCloserTriangleInALaterCellWins(const StructureT& accel, const Scene& scene, uint64_t maxVisits) {
+  const Ray ray{{0.5f, 0.5f, 0.5f}, {1.0f, 0.0f, 0.0f}};
+  TraversalStats stats;
+  const auto hit = accel.intersect(ray, &stats);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->prim, 1u);
+  EXPECT_EQ(hit->t, 2.0f);
+  EXPECT_LE(stats.nodesVisited, maxVisits);
+  Ray open = ray;
+  open.origin.z = 2.0f;  // above the wall, still through the sliver
+  const auto far = accel.intersect(open);
+  ASSERT_TRUE(far.has_value());
+  EXPECT_EQ(far->prim, 0u);
+  expectSameHits(accel, scene, {ray, open});
+}
+
+// The end of the "triangles on cell boundaries" tests: `accel`, built over
+// latticeScene() of planes taken from `lattice` (the same structure over the
+// pins() alone), has the same box, and agrees with brute force on latticeRays().
+template <class StructureT>
+void expectLatticeSceneMatches(const StructureT& accel, const StructureT& lattice, const Scene& scene, uint32_t seed) {
+  ASSERT_EQ(accel.bounds().lo, lattice.bounds().lo);
+  ASSERT_EQ(accel.bounds().hi, lattice.bounds().hi);
+  const auto rays = latticeRays(scene, seed);
+  EXPECT_GT(expectSameHits(accel, scene, rays), rays.size() * 3 / 4);
+}
 
 }  // namespace lancer::test
