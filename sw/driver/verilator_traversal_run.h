@@ -23,6 +23,7 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -124,6 +125,10 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
   auto [nodeReqValid, nodeReqAddr, nodeReqTag, nodeReqReady, nodeRspValid, nodeRspData, nodeRspTag] =
       Unit::nodePort(top);
   (void)nodeReqReady;  // always ready, set by idleInputs
+  static_assert(portWords<std::remove_reference_t<decltype(nodeRspData)>>() == kGroupWords,
+                "the node response port does not carry kGroup elements of 64 bits: rebuild rt_pkg");
+  static_assert(portWords<std::remove_reference_t<decltype(top.res_data_o)>>() >= kResWords,
+                "res_data_o does not match the unit's result record: rebuild rt_pkg");
   auto configure = [&] {
     top.cfg_slots_i = options.raysInFlight == 0 ? maxSlots : options.raysInFlight;
     Unit::configure(top, image);
