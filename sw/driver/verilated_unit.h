@@ -1,11 +1,13 @@
 #pragma once
 
-// What every Verilated traversal-unit device (rt_octree; rt_grid could use it
-// too) does the same way around its own ports: owning the Verilated model,
-// clocking it one cycle at a time with one evaluation per cycle, the FST
-// waveform, turning a failed SVA assertion into an exception, checking the
-// run options, and the seeded stimulus (input bubbles, output stalls, the
-// three memory read ports) that every model of a unit draws in the same order.
+// What every Verilated device (VerilatorIsectDevice, and the traversal
+// devices of verilator_traversal_device.h: rt_grid, rt_octree) does the same
+// way around its own ports: owning the Verilated model in a VerilatedContext
+// of its own, clocking it one cycle at a time with two evaluations per cycle,
+// the FST waveform, turning a failed SVA assertion into an exception; for the
+// traversal units also checking the run options, and the seeded stimulus
+// (input bubbles, output stalls, the three memory read ports) that every
+// model of a unit draws in the same order.
 
 #include <cstdint>
 #include <memory>
@@ -43,8 +45,9 @@ class VerilatedUnit {
   // Verilator reports errors (a failed assertion's $stop) to, and destroys
   // scopes through, the calling thread's current context: the last one
   // created or selected, whichever model it belongs to. So the unit selects
-  // its own context before it runs the model (reset) and before destroying it,
-  // then hands the thread back to the context that was current.
+  // its own context before it runs the model (reset; a device that runs
+  // without a reset calls select()) and before destroying it, then hands the
+  // thread back to the context that was current.
   ~VerilatedUnit() {
     VerilatedContext* const previous = Verilated::threadContextp();
     VerilatedContext* const mine = context_.get();

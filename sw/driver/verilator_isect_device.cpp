@@ -11,9 +11,8 @@
 
 #include "Vrt_isect.h"
 #include "driver/verilated_port.h"
+#include "driver/verilated_unit.h"
 #include "golden/stimulus.h"
-#include "verilated.h"
-#include "verilated_fst_c.h"
 
 namespace lancer {
 
@@ -33,52 +32,20 @@ static_assert(portWords<TriPort>() >= kTriWords && portWords<TriPort>() < kTriWo
 static_assert(portWords<ResPort>() >= kResWords && portWords<ResPort>() < kResWords + 2,
               "res_data_o does not match fx::kIsectResBits: rebuild rt_pkg");
 
+void idleInputs(Vrt_isect& top) {
+  top.req_valid_i = 0;
+  top.res_ready_i = 0;
+}
 
 }  // namespace
 
-VerilatorIsectDevice::VerilatorIsectDevice()
-    : context_(std::make_unique<VerilatedContext>()) {
-  context_->traceEverOn(true);    // waves may be asked for by any later run()
-  context_->fatalOnError(false);  // a failed assertion becomes an exception, see tick()
-  top_ = std::make_unique<Vrt_isect>(context_.get(), "rt_isect");
-  reset();
+VerilatorIsectDevice::VerilatorIsectDevice() : unit_(std::make_unique<VerilatedUnit<Vrt_isect>>("rt_isect")) {
+  unit_->reset(idleInputs);
 }
 
-VerilatorIsectDevice::~VerilatorIsectDevice() {
-  if (wave_) wave_->close();
-  if (top_) top_->final();
-}
+VerilatorIsectDevice::~VerilatorIsectDevice() = default;
 
-void VerilatorIsectDevice::reset() {
-  top_->clk_i = 0;
-  top_->rst_ni = 0;
-  top_->req_valid_i = 0;
-  top_->res_ready_i = 0;
-  top_->eval();
-  for (int i = 0; i < 2; ++i) tick();
-  top_->rst_ni = 1;
-  top_->eval();
-  tick();
-  checkAssertions();
-}
-
-void VerilatorIsectDevice::tick() {
-  if (wave_) wave_->dump(2 * cycle_);
-  context_->time(2 * cycle_ + 1);
-  top_->clk_i = 1;
-  top_->eval();
-  if (wave_) wave_->dump(2 * cycle_ + 1);
-  ++cycle_;
-  context_->time(2 * cycle_);
-  top_->clk_i = 0;
-}
-
-void VerilatorIsectDevice::checkAssertions() const {
-  if (context_->gotError()) {
-    throw std::runtime_error(fmt::format(
-        "rtl: an assertion of rt_isect failed near cycle {} (see the %Error line above)", cycle_));
-  }
-}
+uint64_t VerilatorIsectDevice::totalCycles() const { return unit_->cycle(); }
 
 StreamStats VerilatorIsectDevice::run(std::span<const IsectRequest> requests,
                                       std::vector<fx::IsectResult>& results,
@@ -100,15 +67,10 @@ StreamStats VerilatorIsectDevice::run(std::span<const IsectRequest> requests,
   const fx::QRay* portRay = nullptr;
   const fx::QTriangle* portTri = nullptr;
 
-  if (!options.wavePath.empty()) {
-    wave_ = std::make_unique<VerilatedFstC>();
-    top_->trace(wave_.get(), 99);
-    wave_->open(options.wavePath.c_str());
-    if (!wave_->isOpen()) {
-      wave_.reset();
-      throw std::runtime_error("rtl: cannot write waveform " + options.wavePath);
-    }
-  }
+  VerilatedUnit<Vrt_isect>& unit = *unit_;
+  Vrt_isect& top = unit.top();
+  unit.select();  // a run does not reset the model: select its context here
+  unit.openWave(options.wavePath);
 
   std::mt19937_64 rng(options.seed);
   fx::Coin idle(options.inputIdleProbability, rng);
@@ -121,68 +83,67 @@ StreamStats VerilatorIsectDevice::run(std::span<const IsectRequest> requests,
   size_t offered = 0;  // index of the request on offer, or of the next one
   bool offering = false;
   size_t taken = 0;
-  uint64_t firstCycle = 0, lastProgress = cycle_;
+  uint64_t firstCycle = 0, lastProgress = unit.cycle();
   bool started = false;
 
-  while (taken < n) {
-    // Producer: offers the next request, unless idling; keeps an offer until taken.
-    if (!offering && offered < n && !idle()) {
-      const IsectRequest& req = requests[offered];
-      if (!portRay || !(req.ray == *portRay)) {
-        fx::packWire(req.ray, rayWire);
-        writePort(top_->req_ray_i, rayWire.data(), kRayWords);
-        portRay = &req.ray;
+  try {
+    while (taken < n) {
+      // Producer: offers the next request, unless idling; keeps an offer until taken.
+      if (!offering && offered < n && !idle()) {
+        const IsectRequest& req = requests[offered];
+        if (!portRay || !(req.ray == *portRay)) {
+          fx::packWire(req.ray, rayWire);
+          writePort(top.req_ray_i, rayWire.data(), kRayWords);
+          portRay = &req.ray;
+        }
+        if (!portTri || !(req.tri == *portTri)) {
+          fx::packWire(req.tri, triWire);
+          writePort(top.req_tri_i, triWire.data(), kTriWords);
+          portTri = &req.tri;
+        }
+        offering = true;
+        if (!started) {
+          started = true;
+          firstCycle = unit.cycle();
+        }
       }
-      if (!portTri || !(req.tri == *portTri)) {
-        fx::packWire(req.tri, triWire);
-        writePort(top_->req_tri_i, triWire.data(), kTriWords);
-        portTri = &req.tri;
-      }
-      offering = true;
-      if (!started) {
-        started = true;
-        firstCycle = cycle_;
-      }
-    }
-    top_->req_valid_i = offering;
-    // Consumer: ready unless stalling.
-    const bool ready = !stall();
-    top_->res_ready_i = ready;
-    top_->eval();  // settle req_ready_o, which depends on res_ready_i
+      top.req_valid_i = offering;
+      // Consumer: ready unless stalling.
+      const bool ready = !stall();
+      top.res_ready_i = ready;
+      unit.settle();  // req_ready_o depends on res_ready_i
 
-    const bool reqFire = offering && top_->req_ready_o;
-    const bool resFire = top_->res_valid_o && ready;
-    if (resFire) {
-      if (taken >= stats.requests) throw std::runtime_error("rtl: a result without a request");
-      readPort(top_->res_data_o, resWire.data(), kResWords);
-      fx::unpackResult(resWire, results.emplace_back());
-      ++taken;
+      const bool reqFire = offering && top.req_ready_o;
+      const bool resFire = top.res_valid_o && ready;
+      if (resFire) {
+        if (taken >= stats.requests) throw std::runtime_error("rtl: a result without a request");
+        readPort(top.res_data_o, resWire.data(), kResWords);
+        fx::unpackResult(resWire, results.emplace_back());
+        ++taken;
+      }
+      if (offering && !reqFire) ++stats.inputStalls;
+      const uint64_t edge = unit.cycle();
+      unit.tick();
+      if (reqFire) {
+        offering = false;
+        ++offered;
+        ++stats.requests;
+      }
+      if (reqFire || resFire) lastProgress = unit.cycle();
+      if (taken == n) stats.cycles = edge - firstCycle + 1;
+      if (unit.cycle() - lastProgress > kWatchdog) {
+        throw std::runtime_error(fmt::format(
+            "rtl: no progress for {} cycles ({} of {} requests accepted, {} results taken)",
+            kWatchdog, stats.requests, n, taken));
+      }
     }
-    if (offering && !reqFire) ++stats.inputStalls;
-    const uint64_t edge = cycle_;
-    tick();
-    checkAssertions();
-    if (reqFire) {
-      offering = false;
-      ++offered;
-      ++stats.requests;
-    }
-    if (reqFire || resFire) lastProgress = cycle_;
-    if (taken == n) stats.cycles = edge - firstCycle + 1;
-    if (cycle_ - lastProgress > kWatchdog) {
-      throw std::runtime_error(fmt::format(
-          "rtl: no progress for {} cycles ({} of {} requests accepted, {} results taken)",
-          kWatchdog, stats.requests, n, taken));
-    }
+  } catch (...) {
+    unit.closeWave();
+    throw;
   }
-  top_->req_valid_i = 0;
-  top_->res_ready_i = 0;
-  top_->eval();
-  if (wave_) {
-    wave_->dump(2 * cycle_);
-    wave_->close();
-    wave_.reset();
-  }
+  idleInputs(top);
+  unit.settle();
+  unit.closeWave();
 
   stats.results = taken;
   return stats;

@@ -6,10 +6,11 @@
 #include "driver/isect_device.h"
 
 class Vrt_isect;
-class VerilatedContext;
-class VerilatedFstC;
 
 namespace lancer {
+
+template <class Top>
+class VerilatedUnit;
 
 // The Verilated RTL of rt_isect (rtl/isect/rt_isect.sv) behind the device
 // interface. run() drives the model one clock at a time through its valid/ready
@@ -23,6 +24,9 @@ namespace lancer {
 // An FST waveform is written when StreamOptions::wavePath is set (off by
 // default). A failed SVA assertion in the RTL makes run() throw, and so does a
 // stream without a transfer for 10^6 cycles (a lost item, or a probability of 1).
+// The model runs in a VerilatedContext of its own (VerilatedUnit), which run()
+// makes the thread's current one, so that its assertion failures are reported
+// here even when other Verilated models were made after it.
 class VerilatorIsectDevice final : public IsectDevice {
  public:
   VerilatorIsectDevice();  // builds the model and resets it
@@ -35,17 +39,10 @@ class VerilatorIsectDevice final : public IsectDevice {
                   const StreamOptions& options = {}) override;
 
   // Clock edges since construction (reset included); the waveform's time base.
-  uint64_t totalCycles() const { return cycle_; }
+  uint64_t totalCycles() const;
 
  private:
-  void reset();
-  void tick();  // one rising edge, with the waveform samples around it
-  void checkAssertions() const;
-
-  std::unique_ptr<VerilatedContext> context_;
-  std::unique_ptr<Vrt_isect> top_;
-  std::unique_ptr<VerilatedFstC> wave_;
-  uint64_t cycle_ = 0;
+  std::unique_ptr<VerilatedUnit<Vrt_isect>> unit_;
 };
 
 }  // namespace lancer

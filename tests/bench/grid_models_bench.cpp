@@ -14,10 +14,7 @@
 //     reported, as rays/s (host) and simulated cycles/s.
 //
 // Output: tables on stdout and, with --json FILE, the same figures as JSON.
-#include <time.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -29,33 +26,16 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "bench_support.h"
 #include "driver/devices.h"
 #include "driver/quantize.h"
 #include "golden/grid.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 
-namespace {
-
 using namespace lancer;
-
-double threadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-struct Sample {
-  double wall = 0, cpu = 0;
-};
-
-}  // namespace
+using bench::median;
+using bench::Sample;
 
 int main(int argc, char** argv) {
   CLI::App app{"Host speed of every model of the grid unit, side by side"};
@@ -137,17 +117,10 @@ int main(int argc, char** argv) {
   // ---- Timed passes.
   std::map<std::string, std::vector<Sample>> samples;
   std::map<std::string, uint64_t> cycles;
-  for (int round = 0; round < repetitions; ++round) {
-    for (size_t i = 0; i < models.size(); ++i) {
-      const std::string& m = models[(i + size_t(round)) % models.size()];
-      const auto start = std::chrono::steady_clock::now();
-      const double cpu0 = threadCpuSeconds();
-      cycles[m] = devices[m]->run(image, rays, got, options).cycles;
-      const double cpu = threadCpuSeconds() - cpu0;
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      samples[m].push_back({wall, cpu});
-    }
-  }
+  bench::rotatedRounds(repetitions, models.size(), [&](size_t i) {
+    const std::string& m = models[i];
+    samples[m].push_back(bench::timeSample([&] { cycles[m] = devices[m]->run(image, rays, got, options).cycles; }));
+  });
   fmt::print("\nhost speed, median of {} rounds (wall clock; thread CPU time in brackets)\n", repetitions);
   fmt::print("{:<20} {:>9} {:>22} {:>24}\n", "model", "time s", "rays/s", "simulated cycles/s");
   for (const std::string& m : models) {

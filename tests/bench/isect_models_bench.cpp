@@ -47,6 +47,7 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
+#include "bench_support.h"
 #include "driver/candidates.h"
 #include "driver/devices.h"
 #include "driver/quantize.h"
@@ -78,17 +79,7 @@ struct Config {
   std::string json;
 };
 
-double threadCpuSeconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
-}
+using bench::median;
 
 // The pairs `lancer run --accel bvh` streams for the scene's camera rays.
 std::vector<IsectRequest> cameraPairs(const Scene& scene, const Config& config, size_t* raysInLattice) {
@@ -299,23 +290,18 @@ int run(const Config& config) {
   fmt::print("  check: every model bit-identical to golden ({} hits)\n", hits);
 
   // Timed rounds, the order rotated each round.
-  for (int rep = 0; rep < config.repetitions; ++rep) {
-    for (size_t k = 0; k < devices.size(); ++k) {
-      const size_t m = (k + size_t(rep)) % devices.size();
-      Timing& t = timing[m];
-      const auto start = std::chrono::steady_clock::now();
-      const double cpuStart = threadCpuSeconds();
+  bench::rotatedRounds(config.repetitions, devices.size(), [&](size_t m) {
+    Timing& t = timing[m];
+    const bench::Sample s = bench::timeSample([&] {
       for (int i = 0; i < t.inner; ++i) {
         results.clear();
         devices[m]->run(pairs, results);
       }
-      const double cpu = threadCpuSeconds() - cpuStart;
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const double tests = double(pairs.size()) * t.inner;
-      t.wallRate.push_back(tests / wall);
-      t.cpuRate.push_back(tests / cpu);
-    }
-  }
+    });
+    const double tests = double(pairs.size()) * t.inner;
+    t.wallRate.push_back(tests / s.wall);
+    t.cpuRate.push_back(tests / s.cpu);
+  });
 
   const std::optional<IcarusResult> icarus = config.icarusPairs ? timeIcarus(pairs, config) : std::nullopt;
   const double loadAfter = loadAverage();

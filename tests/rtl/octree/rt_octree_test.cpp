@@ -5,9 +5,6 @@
 // counts them (one child group per interior node entered, one per refill).
 #include <gtest/gtest.h>
 
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <random>
 
 #include <fmt/format.h>
@@ -19,47 +16,25 @@
 #include "golden/isect.h"
 #include "scene/scene.h"
 #include "support/octree_cases.h"
+#include "octree/too_deep_image.h"
+#include "trav_test_support.h"
 
-namespace lancer {
+namespace lancer::rtltest {
 namespace {
 
-using fx::kDirMax;
-using fx::kPosMax;
 using fx::OctreeImage;
-using fx::QRay;
-using test::describeRay;
-using test::describeTrace;
 using test::OctreeCase;
-using test::roughOctreeOptions;
 
-VerilatorOctreeDevice& rtl() {
-  static VerilatorOctreeDevice device;
-  return device;
-}
+VerilatorOctreeDevice& rtl() { return sharedDevice<VerilatorOctreeDevice>(); }
 
-// Runs both devices, expects equal traces per ray and equal counts; returns the RTL's stats.
+// The RTL (`device`) beside the golden octree (compareWithGolden), and the
+// node reads, which are the same; returns the RTL's stats.
 TraversalRunStats expectSameTraces(const OctreeImage& image, const std::vector<QRay>& rays,
-                                   const TraversalRunOptions& options) {
-  GoldenOctreeDevice golden;
-  std::vector<fx::TraversalTrace> want, got;
-  const TraversalRunStats g = golden.run(image, rays, want, options);
-  const TraversalRunStats r = rtl().run(image, rays, got, options);
-  EXPECT_EQ(got.size(), want.size());
-  int reported = 0;
-  for (size_t k = 0; k < std::min(got.size(), want.size()); ++k) {
-    if (got[k] == want[k]) continue;
-    ADD_FAILURE() << "octree depth " << image.depth << " (" << image.nodes.size() << " nodes), " << describeRay(rays[k])
-                  << "\n  rtl:    " << describeTrace(got[k]) << "\n  golden: " << describeTrace(want[k]);
-    if (++reported == 5) break;
-  }
-  EXPECT_EQ(r.steps, g.steps);
+                                   const TraversalRunOptions& options, VerilatorOctreeDevice& device = rtl()) {
+  const std::string where = fmt::format("octree depth {} ({} nodes)", image.depth, image.nodes.size());
+  const auto [g, r] = compareWithGolden<GoldenOctreeDevice>(device, image, rays, options,
+                                                            {where, test::describeRay, test::describeTrace});
   EXPECT_EQ(r.nodeReads, g.nodeReads);
-  EXPECT_EQ(r.indexReads, g.indexReads);
-  EXPECT_EQ(r.triangleReads, g.triangleReads);
-  EXPECT_EQ(r.isectTests, g.isectTests);
-  EXPECT_EQ(r.isectBusyCycles, r.isectTests);
-  EXPECT_EQ(r.rays, rays.size());
-  EXPECT_TRUE(r.cycleAccurate);
   EXPECT_GT(r.cycles, 0u);
   if (g.steps > 0) {
     EXPECT_GT(r.stepReadyCycles, 0u);
@@ -93,10 +68,10 @@ class RtOctreeHardCases : public ::testing::TestWithParam<std::string> {};
 TEST_P(RtOctreeHardCases, MatchGolden) {
   const OctreeCase& c = hardCase(GetParam());
   const uint64_t seed = std::hash<std::string>{}(c.name) % 1000;
-  expectSameTraces(c.image, c.rays, roughOctreeOptions(seed));
+  expectSameTraces(c.image, c.rays, test::roughOctreeOptions(seed));
   // One slot walks the rays one after the other: a third of them keeps it quick.
   const std::vector<QRay> some(c.rays.begin(), c.rays.begin() + std::max<size_t>(1, c.rays.size() / 3));
-  expectSameTraces(c.image, some, roughOctreeOptions(seed + 1, 1));
+  expectSameTraces(c.image, some, test::roughOctreeOptions(seed + 1, 1));
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, RtOctreeHardCases, ::testing::ValuesIn(hardCaseNames()),
@@ -113,7 +88,7 @@ OctreeImage defaultImage(const std::vector<fx::QTriangle>& triangles) {
 
 TEST(RtOctree, BunnyCameraRays) {
   const test::QuantizedScene q = test::quantizedCamera(bunny(), 40, 40);
-  expectSameTraces(defaultImage(q.triangles), q.rays, roughOctreeOptions(1));
+  expectSameTraces(defaultImage(q.triangles), q.rays, test::roughOctreeOptions(1));
 }
 
 TEST(RtOctree, BunnyRandomRaysAtSeveralDepthsAndLeafSizes) {
@@ -131,15 +106,15 @@ TEST(RtOctree, BunnyRandomRaysAtSeveralDepthsAndLeafSizes) {
     SCOPED_TRACE(fmt::format("depth {} leaf {}", depth, leaf));
     // A shallow tree tests hundreds of triangles per leaf: fewer rays there.
     const std::vector<QRay> some(rays.begin(), rays.begin() + (depth == 1 ? 40 : 300));
-    expectSameTraces(fx::buildOctreeImage(q.triangles, depth, leaf), some, roughOctreeOptions(3 + depth));
+    expectSameTraces(fx::buildOctreeImage(q.triangles, depth, leaf), some, test::roughOctreeOptions(3 + depth));
   }
 }
 
 TEST(RtOctree, OneRayInFlightAllSlotsAndNoStalls) {
   const test::QuantizedScene q = test::quantizedCamera(bunny(), 12, 12);
   const OctreeImage image = defaultImage(q.triangles);
-  expectSameTraces(image, q.rays, roughOctreeOptions(15, 1));
-  expectSameTraces(image, q.rays, roughOctreeOptions(16, rtl().maxRaysInFlight()));
+  expectSameTraces(image, q.rays, test::roughOctreeOptions(15, 1));
+  expectSameTraces(image, q.rays, test::roughOctreeOptions(16, rtl().maxRaysInFlight()));
   TraversalRunOptions fast;  // no jitter, no stalls, latency 1
   fast.memLatency = 1;
   const TraversalRunStats s = expectSameTraces(image, q.rays, fast);
@@ -178,27 +153,9 @@ TEST(RtOctree, TimingOfOneRayThroughEmptyLeaves) {
 TEST(RtOctree, RejectsBadConfigurations) {
   const OctreeImage image = fx::buildOctreeImage({}, 1, 8);
   const std::vector<QRay> one{QRay{0, {0, 0, 0}, {kDirMax, 0, 0}}};
+  expectRejectsRaysInFlight<OctreeImage>(rtl(), image, one, "LANCER_OCTREE_RAYS_IN_FLIGHT");
   std::vector<fx::TraversalTrace> traces;
-  TraversalRunOptions o;
-  o.raysInFlight = rtl().maxRaysInFlight() + 1;
-  try {
-    rtl().run(image, one, traces, o);
-    FAIL() << "no InputError";
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(std::to_string(o.raysInFlight)), std::string::npos) << what;
-    EXPECT_NE(what.find(std::to_string(rtl().maxRaysInFlight())), std::string::npos) << what;
-    EXPECT_NE(what.find("LANCER_OCTREE_RAYS_IN_FLIGHT"), std::string::npos) << what;
-  }
-  o.raysInFlight = -1;
-  EXPECT_THROW(rtl().run(image, one, traces, o), InputError);
-  o.raysInFlight = 0;
-  o.memLatency = 0;
-  EXPECT_THROW(rtl().run(image, one, traces, o), InputError);
-  o.memLatency = 3;
-  o.memLatencyJitter = -1;
-  EXPECT_THROW(rtl().run(image, one, traces, o), InputError);
-  o.memLatencyJitter = 0;
+  const TraversalRunOptions o;
   EXPECT_THROW(rtl().run(image, std::vector<QRay>{QRay{0, {1, 2, 3}, {0, 0, 0}}}, traces, o), InputError);
   EXPECT_THROW(rtl().run(OctreeImage{}, one, traces, o), InputError);
   // A corrupt image: an interior node whose children lie outside the node table.
@@ -217,48 +174,50 @@ TEST(RtOctree, RejectsBadConfigurations) {
   EXPECT_EQ(makeOctreeDevice("rtl")->maxRaysInFlight(), LANCER_OCTREE_RAYS_IN_FLIGHT);
 }
 
-// The SVA checks are compiled in and turn into exceptions: a malformed image
-// whose interior nodes go one level deeper than the formats allow (a node one
-// lattice unit wide split again) trips a_stack_depth in DESCEND.
-TEST(RtOctree, AssertionsAreLive) {
-  OctreeImage image;
-  image.maxDepth = fx::kOctreeMaxDepth;
-  image.leafSize = 1;
-  image.depth = fx::kOctreeMaxDepth + 1;
-  image.nodes.push_back(fx::OctreeNode{false, 1, 0});
-  for (int level = 0; level <= fx::kOctreeMaxDepth; ++level) {
-    const uint32_t base = uint32_t(image.nodes.size());
-    for (int i = 0; i < 8; ++i) image.nodes.push_back(fx::OctreeNode{true, 0, 0});
-    image.nodes[base] = fx::OctreeNode{false, base + 8, 0};  // child 0 splits again
-  }
-  for (int i = 0; i < 8; ++i) image.nodes.push_back(fx::OctreeNode{true, 0, 0});
-  // From the corner at 0 along the diagonal: child 0 at every level.
-  const std::vector<QRay> rays{QRay{0, {0, 0, 0}, {kDirMax, kDirMax, kDirMax}}};
+// Runs `device` on the too-deep image: it must throw, naming rt_octree's assertion.
+void expectAssertionFails(VerilatorOctreeDevice& device) {
   std::vector<fx::TraversalTrace> traces;
   try {
-    rtl().run(image, rays, traces, TraversalRunOptions{});
-    FAIL() << "no assertion fired";
+    device.run(tooDeepOctreeImage(), kTooDeepDiagonalRay, traces, TraversalRunOptions{});
+    ADD_FAILURE() << "no assertion fired";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("assertion of rt_octree failed"), std::string::npos) << e.what();
   }
+}
+
+// The SVA checks are compiled in and turn into exceptions.
+TEST(RtOctree, AssertionsAreLive) {
+  expectAssertionFails(rtl());
   // The next run resets the unit and works.
   const OctreeCase& c = hardCase("octants");
-  expectSameTraces(c.image, c.rays, roughOctreeOptions(19));
+  expectSameTraces(c.image, c.rays, test::roughOctreeOptions(19));
+}
+
+// Verilator reports a failed assertion to the thread's current
+// VerilatedContext, the last one made or selected: each device selects its
+// own in every run. The older of two devices alive trips the assertion and
+// reports it itself (without the selection it would go to the newer one's
+// context, and the older device's run would end without an error); the newer
+// one is not disturbed, and the older one works again afterwards.
+TEST(RtOctree, EachDeviceReportsItsOwnAssertions) {
+  VerilatorOctreeDevice older;
+  VerilatorOctreeDevice newer;
+  const OctreeCase& c = hardCase("octants");
+  expectSameTraces(c.image, c.rays, test::roughOctreeOptions(20), newer);
+  expectAssertionFails(older);
+  expectSameTraces(c.image, c.rays, test::roughOctreeOptions(21), newer);
+  expectSameTraces(c.image, c.rays, test::roughOctreeOptions(22), older);
+  expectAssertionFails(newer);
+  expectSameTraces(c.image, c.rays, test::roughOctreeOptions(23), older);
 }
 
 TEST(RtOctree, WritesAnFstWaveformWhenAsked) {
   const OctreeCase& c = hardCase("octants");
   const std::vector<QRay> rays(c.rays.begin(), c.rays.begin() + 8);
-  TraversalRunOptions o = roughOctreeOptions(18);
-  o.stream.wavePath = ::testing::TempDir() + "rt_octree_wave.fst";
-  std::remove(o.stream.wavePath.c_str());
+  TraversalRunOptions o = test::roughOctreeOptions(18);
+  o.stream.wavePath = wavePath("rt_octree_wave");
   expectSameTraces(c.image, rays, o);
-  std::FILE* f = std::fopen(o.stream.wavePath.c_str(), "rb");
-  ASSERT_NE(f, nullptr) << o.stream.wavePath;
-  std::fseek(f, 0, SEEK_END);
-  EXPECT_GT(std::ftell(f), 1000);
-  std::fclose(f);
-  std::remove(o.stream.wavePath.c_str());
+  expectWaveform(o.stream.wavePath);
   // The next run writes no waveform and still matches.
   o.stream.wavePath.clear();
   expectSameTraces(c.image, rays, o);
@@ -268,35 +227,14 @@ TEST(RtOctree, WritesAnFstWaveformWhenAsked) {
 //   build/tests/rtl/rtl_octree_tests --gtest_also_run_disabled_tests --gtest_filter='*Sweep*'
 // LANCER_OCTREE_SWEEP_SIZE sets the image side (default 256).
 TEST(RtOctree, DISABLED_Sweep) {
-  const char* sizeEnv = std::getenv("LANCER_OCTREE_SWEEP_SIZE");
-  const int side = sizeEnv ? std::atoi(sizeEnv) : 256;
+  const int side = sweepSide("LANCER_OCTREE_SWEEP_SIZE");
   const test::QuantizedScene q = test::quantizedCamera(bunny(), side, side);
   const OctreeImage image = defaultImage(q.triangles);
   fmt::print("bunny {} tris, octree depth {} (max {}), leaf {}, {} nodes, {} camera rays ({}x{})\n",
              q.triangles.size(), image.depth, image.maxDepth, image.leafSize, image.nodes.size(), q.rays.size(), side,
              side);
-  fmt::print("{:>6} {:>7} {:>10} {:>9} {:>10} {:>11} {:>10} {:>13} {:>11}\n", "slots", "latency", "cycles",
-             "tests/cyc", "steps/cyc", "steps/ready", "isect busy", "Mrays/s@500M", "host ray/s");
-  auto one = [&](int slots, int latency) {
-    TraversalRunOptions o;
-    o.memLatency = latency;
-    o.raysInFlight = slots;
-    std::vector<fx::TraversalTrace> traces;
-    const auto start = std::chrono::steady_clock::now();
-    const TraversalRunStats st = rtl().run(image, q.rays, traces, o);
-    const double host = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double c = double(st.cycles);
-    fmt::print("{:>6} {:>7} {:>10} {:>9.3f} {:>10.3f} {:>11.3f} {:>9.1f}% {:>13.2f} {:>11.0f}\n", slots, latency,
-               st.cycles, double(st.isectTests) / c, double(st.steps) / c,
-               double(st.steps) / double(std::max<uint64_t>(1, st.stepReadyCycles)),
-               100.0 * double(st.isectBusyCycles) / c, double(st.rays) / c * 500.0, double(st.rays) / host);
-  };
-  const int max = rtl().maxRaysInFlight();
-  for (int slots : {1, 4, 8, 16, 32}) {
-    if (slots <= max) one(slots, 20);
-  }
-  for (int latency : {1, 10, 50, 100}) one(max, latency);
+  printSweep<OctreeImage>(rtl(), image, q.rays);
 }
 
 }  // namespace
-}  // namespace lancer
+}  // namespace lancer::rtltest

@@ -1,0 +1,97 @@
+#pragma once
+
+#include <memory>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "driver/traversal_device.h"
+
+namespace lancer {
+
+template <class Top>
+class VerilatedUnit;
+
+// What a Verilated traversal unit (`Top`, e.g. Vrt_grid) brings to
+// VerilatorTraversalDevice: specialized once per unit in its device's .cpp
+// (verilator_grid_device.cpp, verilator_octree_device.cpp), next to the
+// explicit instantiation, so that every member is inlined into the run loop.
+// verilator_traversal_run.h lists the members a specialization defines.
+template <class Top>
+struct VerilatedTraversalUnit;
+
+// How a unit's messages name it, its build option and its node table.
+struct VerilatedTraversalNames {
+  const char* top;          // the model ("rt_grid")
+  const char* unit;         // the unit ("grid")
+  const char* slotsOption;  // the CMake variable of its ray slots
+  const char* elements;     // what a visit enters, plural ("cells", "nodes")
+  const char* nodeRead;     // one read of the node port ("cell", "child group")
+  const char* nodeTable;    // the table it reads ("cell table", "node table")
+};
+
+// The Verilated RTL of a traversal unit (rt_grid, rt_octree: a traversal with
+// its memory ports and its rt_isect) behind TraversalDevice<Image>, name
+// "rtl". run() resets the model (VerilatedUnit: its own VerilatedContext,
+// selected by every run), configures the slots to use and the unit's own
+// configuration (the grid's resolution, the octree's root record), offers the
+// rays in order (idling with StreamOptions::inputIdleProbability when it has
+// none on offer), deasserts res_ready_i and visit_ready_i independently with
+// outputStallProbability, and serves the image on the three memory ports
+// (fx::MemoryReadPort each, seeds seed*3+1 node/cell, +2 index, +3 triangle;
+// a node request returns the unit's group: one cell, or the child group of
+// eight nodes). Rays cross the port with ray_id = their index in `rays`; the
+// traces get the rays' own ids back. Counts TraversalRunStats exactly: cycles
+// from the first ray offered to the last result or visit taken, steps = visit
+// records, reads per port from the request handshakes, isect tests and busy
+// cycles from perf_isect_fire_o, step-ready cycles from perf_step_ready_o.
+// Throws InputError for raysInFlight outside 0..maxRaysInFlight(), a memory
+// latency below 1, a negative jitter, or an image or ray the unit cannot take;
+// runtime_error on a failed assertion, an out-of-range address, an
+// inconsistent stream, or 10^6 cycles without progress.
+// StreamOptions::wavePath writes an FST waveform.
+//
+// Per cycle the loop does only inlined work on the ports (no virtual call, no
+// allocation): the unit's differences are compile-time members of its traits.
+template <class Top, class Image>
+class VerilatorTraversalDevice : public TraversalDevice<Image> {
+ public:
+  VerilatorTraversalDevice();  // builds the model and resets it
+  ~VerilatorTraversalDevice() override;
+  VerilatorTraversalDevice(const VerilatorTraversalDevice&) = delete;
+  VerilatorTraversalDevice& operator=(const VerilatorTraversalDevice&) = delete;
+
+  std::string_view name() const override { return "rtl"; }
+  int maxRaysInFlight() const override;  // the unit's compile definition (rtl/CMakeLists.txt)
+  TraversalRunStats run(const Image& image, std::span<const fx::QRay> rays, std::vector<fx::TraversalTrace>& traces,
+                        const TraversalRunOptions& options = {}) override;
+
+ private:
+  std::unique_ptr<VerilatedUnit<Top>> unit_;
+};
+
+}  // namespace lancer
+
+// The units, instantiated in verilator_grid_device.cpp and
+// verilator_octree_device.cpp (their headers include this one).
+class Vrt_grid;
+class Vrt_octree;
+
+namespace lancer {
+
+extern template class VerilatorTraversalDevice<Vrt_grid, fx::GridImage>;
+extern template class VerilatorTraversalDevice<Vrt_octree, fx::OctreeImage>;
+
+// rt_grid (rtl/grid/rt_grid.sv, with its rt_isect) behind GridDevice. A node
+// response is one grid cell; the run's configuration is the resolution
+// (cfg_res_i), checked against 1..fx::kGridResMax per axis (InputError). Node
+// reads may run up to CellQueue - 1 cells past a ray's last cell (prefetch).
+class VerilatorGridDevice final : public VerilatorTraversalDevice<Vrt_grid, fx::GridImage> {};
+
+// rt_octree (rtl/octree/rt_octree.sv, with its rt_isect) behind OctreeDevice.
+// A node request at `first` returns the child group first .. first+7; the
+// run's configuration is the root's record (cfg_root_i = image.nodes[0]).
+// Also throws InputError for a ray with a zero direction or an image without nodes.
+class VerilatorOctreeDevice final : public VerilatorTraversalDevice<Vrt_octree, fx::OctreeImage> {};
+
+}  // namespace lancer
