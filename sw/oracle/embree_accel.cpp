@@ -1,9 +1,12 @@
 #include "oracle/embree_accel.h"
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 
 #include <fmt/format.h>
+
+#include "common/error.h"
 
 namespace lancer {
 
@@ -64,7 +67,20 @@ EmbreeAccel::~EmbreeAccel() {
   if (device_) rtcReleaseDevice(device_);
 }
 
+namespace {
+
+// Embree asserts (and aborts) on a ray with a NaN or infinite component.
+void checkEmbreeRay(const Ray& ray) {
+  if (!allFinite(ray.origin) || !allFinite(ray.dir) || std::isnan(ray.tMax)) {
+    throw InputError(fmt::format("embree: ray ({}, {}, {}) + t ({}, {}, {}) has a NaN or infinite component",
+                                 ray.origin.x, ray.origin.y, ray.origin.z, ray.dir.x, ray.dir.y, ray.dir.z));
+  }
+}
+
+}  // namespace
+
 std::optional<Hit> EmbreeAccel::intersect(const Ray& ray, TraversalStats*) const {
+  checkEmbreeRay(ray);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh = toEmbree(ray);
@@ -74,6 +90,7 @@ std::optional<Hit> EmbreeAccel::intersect(const Ray& ray, TraversalStats*) const
 }
 
 bool EmbreeAccel::intersectP(const Ray& ray) const {
+  checkEmbreeRay(ray);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r = toEmbree(ray).ray;

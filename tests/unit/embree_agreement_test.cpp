@@ -13,7 +13,9 @@
 
 #include <fmt/format.h>
 
+#include "common/error.h"
 #include "oracle/embree_accel.h"
+#include "oracle/exact.h"
 #include "ref/bvh.h"
 #include "ref/triangle.h"
 #include "scene/camera.h"
@@ -51,16 +53,16 @@ std::string describe(const std::optional<Hit>& h) {
 // its sheared edge functions to measure the ray's distance from the triangle's
 // boundary (inside: to the nearest edge; outside: at least the most violated
 // edge), relative to the triangle's distance from the origin.
-struct Verdict {
+struct LongDoubleVerdict {
   std::optional<Hit> hit;
   long double margin = 0;  // relative; small means a tiny nudge of the ray flips the verdict
   long double planeT = std::numeric_limits<long double>::quiet_NaN();  // where the ray meets the plane
 };
 
-Verdict longDoubleVerdict(const Ray& ray, const Triangle& tri, uint32_t prim) {
+LongDoubleVerdict longDoubleVerdict(const Ray& ray, const Triangle& tri, uint32_t prim) {
   using Real = long double;
   using V3 = glm::vec<3, Real>;
-  Verdict verdict;
+  LongDoubleVerdict verdict;
   verdict.hit = intersectTriangleExtended(ray, tri, prim);
   const int kz = dominantAxis(ray.dir);
   int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
@@ -144,7 +146,7 @@ Truth longDoubleTruth(const Scene& scene, const Ray& ray) {
     const float b = glm::dot(t.v1 - ray.origin, ray.dir) / scale;
     const float c = glm::dot(t.v2 - ray.origin, ray.dir) / scale;
     if (std::max({a, b, c}) <= 0.0f || std::min({a, b, c}) > limit) continue;
-    const Verdict v = longDoubleVerdict(ray, t, i);
+    const LongDoubleVerdict v = longDoubleVerdict(ray, t, i);
     truth.margin = std::min(truth.margin, v.margin);
     // A triangle missed by less than the nudge could be hit by a float tracer:
     // unless it would be hit where the answer already is, the answer is in doubt.
@@ -235,7 +237,9 @@ std::vector<Sample> makeSamples(const Scene& scene, const Accel& reference, cons
     // Vertex and edge points of a triangle, seen from its own side (either
     // side), within ~30 degrees of its normal: the ray crosses the surface
     // there rather than grazing a silhouette.
-    const glm::vec3 n = glm::normalize(glm::cross(t.v1 - t.v0, t.v2 - t.v0)) * (coin(rng) ? 1.0f : -1.0f);
+    const glm::vec3 cross = glm::cross(t.v1 - t.v0, t.v2 - t.v0);
+    if (glm::length(cross) == 0.0f) continue;  // a degenerate triangle has no side to look from
+    const glm::vec3 n = glm::normalize(cross) * (coin(rng) ? 1.0f : -1.0f);
     auto facing = [&](const glm::vec3& p) {
       return p + distance(rng) * radius * glm::normalize(n + 0.5f * randomUnit(rng));
     };
@@ -272,7 +276,13 @@ struct Tally {
   int doubtful = 0, doubtfulRefRight = 0, doubtfulEmbreeRight = 0;
   int longDoubleDoubt = 0;  // the truth itself is in doubt (a ray exactly through a vertex or edge)
   int refWrongLongDoubleSure = 0;  // reference wrong although the long double is not in doubt
+  // The exact arbiter's verdicts on every disagreement (sw/oracle/exact.h).
+  std::array<int, 4> exactRef{}, exactEmbree{};  // by lancer::Verdict
   Tally& operator+=(const Tally& o) {
+    for (size_t v = 0; v < 4; ++v) {
+      exactRef[v] += o.exactRef[v];
+      exactEmbree[v] += o.exactEmbree[v];
+    }
     rays += o.rays;
     agreeing += o.agreeing;
     hitMiss += o.hitMiss;
@@ -290,15 +300,18 @@ struct Tally {
 };
 
 void printRow(const char* name, const Tally& t) {
-  fmt::print("{:>11} {:6} {:8.3f}% {:8} {:6} | {:5} {:5} {:5} | {:5} {:5} {:5} | {:5} {:5}\n", name, t.rays,
-             100.0 * t.agreeing / t.rays, t.hitMiss, t.differentT, t.clear, t.clearRefRight, t.clearEmbreeRight,
-             t.doubtful, t.doubtfulRefRight, t.doubtfulEmbreeRight, t.longDoubleDoubt, t.refWrongLongDoubleSure);
+  fmt::print("{:>11} {:6} {:8.3f}% {:8} {:6} | {:5} {:5} {:5} | {:5} {:5} {:5} | {:5} {:5} | {:3} {:3} {:3} {:3} | {:3} {:3} {:3} {:3}\n",
+             name, t.rays, 100.0 * t.agreeing / t.rays, t.hitMiss, t.differentT, t.clear, t.clearRefRight,
+             t.clearEmbreeRight, t.doubtful, t.doubtfulRefRight, t.doubtfulEmbreeRight, t.longDoubleDoubt,
+             t.refWrongLongDoubleSure, t.exactRef[0], t.exactRef[1], t.exactRef[2], t.exactRef[3], t.exactEmbree[0],
+             t.exactEmbree[1], t.exactEmbree[2], t.exactEmbree[3]);
 }
 
 void agreementOn(const std::string& path, const std::string& label) {
   const Scene scene = loadScene(path);
   const Bvh bvh(scene, {});
   const EmbreeAccel embree(scene);
+  const ExactOracle exact(scene);
   const std::vector<Sample> samples = makeSamples(scene, bvh, embree, 3000);
   std::array<Tally, kCategories> tally;
   int printed = 0;
@@ -312,6 +325,16 @@ void agreementOn(const std::string& path, const std::string& label) {
       continue;
     }
     (ref.has_value() != oracle.has_value() ? t.hitMiss : t.differentT) += 1;
+    // The exact truth settles it: the reference is never wrong beyond float
+    // rounding, on any category (the diagnostics included).
+    const std::optional<ExactHit> exactTruth = exact.intersect(s.ray);
+    const Judgement refJudged = judge(exact, s.ray, ref, exactTruth);
+    ++t.exactRef[size_t(refJudged.verdict)];
+    ++t.exactEmbree[size_t(judge(exact, s.ray, oracle, exactTruth).verdict)];
+    if (refJudged.verdict == lancer::Verdict::Wrong) {
+      ADD_FAILURE() << label << " " << kCategoryNames[s.category] << ": exact arbiter: the reference is wrong ("
+                    << refJudged.reason << ") on " << hex(s.ray) << ": " << describe(ref);
+    }
     // Arbitrate: every triangle in long double, with the margin of each decision.
     const Truth truth = longDoubleTruth(scene, s.ray);
     const bool refOk = agree(ref, truth.hit), oracleOk = agree(oracle, truth.hit);
@@ -323,7 +346,7 @@ void agreementOn(const std::string& path, const std::string& label) {
     t.refWrongLongDoubleSure += !refOk && truth.margin >= kLongDoubleDoubt;
     auto sideVerdict = [&](const std::optional<Hit>& h) {
       if (!h) return std::string("-");
-      const Verdict v = longDoubleVerdict(s.ray, scene.triangles[h->prim], h->prim);
+      const LongDoubleVerdict v = longDoubleVerdict(s.ray, scene.triangles[h->prim], h->prim);
       return fmt::format("{} (margin {:.2e})", describe(v.hit), double(v.margin));
     };
     const std::string line = fmt::format(
@@ -341,8 +364,9 @@ void agreementOn(const std::string& path, const std::string& label) {
     if ((!refOk || clear) && ++printed <= 6) fmt::print("{}\n", line);
   }
 
-  fmt::print("{:>11} {:>6} {:>9} {:>8} {:>6} | {:>17} | {:>17} | {:>5} {:>5}\n", label, "rays", "agree", "hit/miss",
-             "t-diff", "clear: n ref emb", "doubt: n ref emb", "ldDbt", "refLD");
+  fmt::print("{:>11} {:>6} {:>9} {:>8} {:>6} | {:>17} | {:>17} | {:>5} {:>5} | {:>15} | {:>15}\n", label, "rays", "agree",
+             "hit/miss", "t-diff", "clear: n ref emb", "doubt: n ref emb", "ldDbt", "refLD", "ref: ok tie rnd wr",
+             "emb: ok tie rnd wr");
   // Floors: the raw agreement over all asserted categories, and per category
   // the share where the reference agrees with Embree or Embree is shown wrong
   // by a clear long-double truth (the reference right). Embree misses a few
@@ -368,6 +392,18 @@ void agreementOn(const std::string& path, const std::string& label) {
 TEST(EmbreeAgreement, Bunny) { agreementOn(test::kBunny, "bunny"); }
 
 TEST(EmbreeAgreement, Wuson) { agreementOn(test::kWuson, "wuson"); }
+
+// Embree aborts on a NaN ray; the wrapper turns it into a clear error first.
+TEST(EmbreeAgreement, RejectsNaNRays) {
+  const Scene scene = makeCornellBox();
+  const EmbreeAccel embree(scene);
+  const Ray nan{{0, 0, 0}, {std::nanf(""), 0, 1}, kInfinity};
+  EXPECT_THROW(embree.intersect(nan), InputError);
+  EXPECT_THROW(embree.intersectP(nan), InputError);
+}
+
+// An open CAD mesh with slivers (issue #15's scene).
+TEST(EmbreeAgreement, OpenCadMesh) { agreementOn(test::kAssimpModels + "/OBJ/regr01.obj", "regr01"); }
 
 }  // namespace
 }  // namespace lancer
