@@ -1,116 +1,23 @@
 #include "grid/rt_grid_top.h"
 
-#include <stdexcept>
-
-#include "grid/rt_grid_bench.h"
+#include "common/rt_trav_top_impl.h"
 #include "grid/rt_grid_model.h"
 
-#if LANCER_SC_HAVE_GRID_RTL || LANCER_SC_HAVE_RTL
-#include "verilated.h"
-#endif
 #if LANCER_SC_HAVE_GRID_RTL
 #include "Vrt_grid_sc.h"
-#if LANCER_SC_RTL_FST
-#include "verilated_fst_sc.h"
-#endif
 #endif
 
 namespace lancer::sc {
 
-struct rt_grid_top::wave {
-#if LANCER_SC_HAVE_GRID_RTL && LANCER_SC_RTL_FST
-  std::unique_ptr<VerilatedFstSc> fst;
-  // See rt_isect_top.cpp: VerilatedFstSc derives from sc_trace_file privately.
-  sc_core::sc_trace_file* kernelHandle() const { return (sc_core::sc_trace_file*)fst.get(); }
+template <>
+struct rt_trav_rtl<rt_grid_unit> {
+#if LANCER_SC_HAVE_GRID_RTL
+  using type = Vrt_grid_sc;
+#else
+  using type = void;  // no LANCER_RTL_GRID_SOURCES
 #endif
 };
 
-namespace {
-
-template <class Bench>
-void keep(std::unique_ptr<Bench> bench, std::unique_ptr<sc_core::sc_module>& owner, rt_grid_tb*& tb,
-          rt_grid_mem*& mem) {
-  tb = &bench->u_tb;
-  mem = &bench->u_mem;
-  owner = std::move(bench);
-}
-
-}  // namespace
-
-void rt_grid_top::use_verilated_context() {
-#if LANCER_SC_HAVE_GRID_RTL || LANCER_SC_HAVE_RTL
-  static VerilatedContext* const context = new VerilatedContext;  // lives as long as the models
-  Verilated::threadContextp(context);
-#endif
-}
-
-rt_grid_top::rt_grid_top(sc_core::sc_module_name name) : sc_core::sc_module(name) {
-  use_verilated_context();
-  keep(std::make_unique<rt_grid_bench<rt_grid_model>>("u_model", rt_isect_impl::model), model_.bench, model_.tb,
-       model_.mem);
-  if (has_rtl_isect()) {
-    keep(std::make_unique<rt_grid_bench<rt_grid_model>>("u_mixed", rt_isect_impl::rtl), mixed_.bench, mixed_.tb,
-         mixed_.mem);
-  }
-#if LANCER_SC_HAVE_GRID_RTL
-#if LANCER_SC_RTL_FST
-  Verilated::traceEverOn(true);  // before the Verilated model is built
-#endif
-  keep(std::make_unique<rt_grid_bench<Vrt_grid_sc>>("u_rtl"), rtl_.bench, rtl_.tb, rtl_.mem);
-#endif
-}
-
-rt_grid_top::~rt_grid_top() = default;
-
-bool rt_grid_top::has_rtl() { return LANCER_SC_HAVE_GRID_RTL != 0; }
-bool rt_grid_top::has_rtl_isect() { return LANCER_SC_HAVE_RTL != 0; }
-
-bool rt_grid_top::has_waves() {
-#if LANCER_SC_HAVE_GRID_RTL && LANCER_SC_RTL_FST
-  return true;
-#else
-  return false;
-#endif
-}
-
-rt_grid_top::bench_refs& rt_grid_top::refs(rt_grid_impl impl) {
-  bench_refs& r = impl == rt_grid_impl::model ? model_ : (impl == rt_grid_impl::rtl ? rtl_ : mixed_);
-  if (r.tb == nullptr) {
-    throw std::runtime_error("this implementation of rt_grid is not part of the build (no Verilated RTL)");
-  }
-  return r;
-}
-
-rt_grid_tb& rt_grid_top::tb(rt_grid_impl impl) { return *refs(impl).tb; }
-rt_grid_mem& rt_grid_top::mem(rt_grid_impl impl) { return *refs(impl).mem; }
-
-void rt_grid_top::open_wave([[maybe_unused]] const std::string& path) {
-#if LANCER_SC_HAVE_GRID_RTL && LANCER_SC_RTL_FST
-  close_wave();
-  // Verilator's trace() needs elaboration complete: the first run of the process
-  // may ask for a wave. Zero time with every clock at rest changes nothing.
-  if (!sc_core::sc_start_of_simulation_invoked()) sc_core::sc_start(sc_core::SC_ZERO_TIME);
-  auto w = std::make_unique<wave>();
-  w->fst = std::make_unique<VerilatedFstSc>();  // registers itself with the kernel
-  static_cast<rt_grid_bench<Vrt_grid_sc>*>(rtl_.bench.get())->u_dut.trace(w->fst.get(), 99);
-  w->fst->open(path.c_str());
-  if (!w->fst->isOpen()) {
-    sc_core::sc_get_curr_simcontext()->remove_trace_file(w->kernelHandle());
-    throw std::runtime_error("cannot open waveform file " + path);
-  }
-  wave_ = std::move(w);
-#else
-  throw std::runtime_error("the Verilated rt_grid of this build has no FST tracing");
-#endif
-}
-
-void rt_grid_top::close_wave() {
-#if LANCER_SC_HAVE_GRID_RTL && LANCER_SC_RTL_FST
-  if (!wave_) return;
-  wave_->fst->close();
-  sc_core::sc_get_curr_simcontext()->remove_trace_file(wave_->kernelHandle());
-  wave_.reset();
-#endif
-}
+template class rt_trav_top<rt_grid_unit>;
 
 }  // namespace lancer::sc

@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include "golden/formats.h"
+#include "common/rt_trav_unit.h"
 #include "golden/records.h"
 #include "isect/rt_isect_types.h"
 
@@ -19,12 +20,6 @@
 #endif
 
 namespace lancer::sc::octree {
-
-constexpr int clog2(uint64_t n) {
-  int bits = 0;
-  while ((uint64_t(1) << bits) < n) ++bits;
-  return bits;
-}
 
 // rt_octree's parameters as the Verilated model is built (-GRaysInFlight=...),
 // and the derived widths under the RTL's names.

@@ -1,0 +1,130 @@
+#pragma once
+
+// The members of rt_trav_top<Unit>, for the unit's top .cpp to instantiate
+// after it has named its Verilated class: (grid/rt_grid_top.cpp)
+//   template <> struct rt_trav_rtl<rt_grid_unit> { using type = Vrt_grid_sc; };  // or void
+//   template class rt_trav_top<rt_grid_unit>;
+// Compiled inside lancer_systemc, with its LANCER_SC_* definitions.
+
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
+
+#include "common/rt_trav_bench.h"
+#include "common/rt_trav_top.h"
+#include "isect/rt_isect_top.h"
+
+#if LANCER_SC_RTL_FST
+#include "verilated.h"
+#include "verilated_fst_sc.h"
+#endif
+
+namespace lancer::sc {
+
+template <class Unit>
+struct rt_trav_top<Unit>::wave {
+#if LANCER_SC_RTL_FST
+  std::unique_ptr<VerilatedFstSc> fst;
+  // See rt_isect_top.cpp: VerilatedFstSc derives from sc_trace_file privately.
+  sc_core::sc_trace_file* kernelHandle() const { return (sc_core::sc_trace_file*)fst.get(); }
+#endif
+};
+
+template <class Unit>
+template <class Dut, class... DutArgs>
+void rt_trav_top<Unit>::keep(bench_refs& r, const char* name, DutArgs&&... args) {
+  auto bench = std::make_unique<rt_trav_bench<Unit, Dut>>(name, std::forward<DutArgs>(args)...);
+  r.tb = &bench->u_tb;
+  r.mem = &bench->u_mem;
+  r.bench = std::move(bench);
+}
+
+template <class Unit>
+rt_trav_top<Unit>::rt_trav_top(sc_core::sc_module_name name) : sc_core::sc_module(name) {
+  using rtl_t = typename rt_trav_rtl<Unit>::type;
+  use_verilated_context();
+  keep<typename Unit::model_t>(model_, "u_model");
+  if constexpr (Unit::kModelTakesIsect) {
+    if (has_rtl_isect()) keep<typename Unit::model_t>(mixed_, "u_mixed", rt_isect_impl::rtl);
+  }
+  if constexpr (!std::is_void_v<rtl_t>) {
+#if LANCER_SC_RTL_FST
+    Verilated::traceEverOn(true);  // before the Verilated model is built
+#endif
+    keep<rtl_t>(rtl_, "u_rtl");
+  }
+}
+
+template <class Unit>
+rt_trav_top<Unit>::~rt_trav_top() = default;
+
+template <class Unit>
+bool rt_trav_top<Unit>::has_rtl() {
+  return !std::is_void_v<typename rt_trav_rtl<Unit>::type>;
+}
+
+template <class Unit>
+bool rt_trav_top<Unit>::has_rtl_isect() {
+  return Unit::kModelTakesIsect && LANCER_SC_HAVE_RTL != 0;
+}
+
+template <class Unit>
+bool rt_trav_top<Unit>::has_waves() {
+  return has_rtl() && LANCER_SC_RTL_FST != 0;
+}
+
+template <class Unit>
+typename rt_trav_top<Unit>::bench_refs& rt_trav_top<Unit>::refs(rt_trav_impl impl) {
+  bench_refs& r = impl == rt_trav_impl::model ? model_ : (impl == rt_trav_impl::rtl ? rtl_ : mixed_);
+  if (r.tb == nullptr) {
+    throw std::runtime_error(std::string("this implementation of ") + Unit::kName +
+                             " is not part of the build (no Verilated RTL)");
+  }
+  return r;
+}
+
+template <class Unit>
+typename rt_trav_top<Unit>::tb_t& rt_trav_top<Unit>::tb(rt_trav_impl impl) {
+  return *refs(impl).tb;
+}
+
+template <class Unit>
+typename rt_trav_top<Unit>::mem_t& rt_trav_top<Unit>::mem(rt_trav_impl impl) {
+  return *refs(impl).mem;
+}
+
+template <class Unit>
+void rt_trav_top<Unit>::open_wave([[maybe_unused]] const std::string& path) {
+  using rtl_t = typename rt_trav_rtl<Unit>::type;
+#if LANCER_SC_RTL_FST
+  if constexpr (!std::is_void_v<rtl_t>) {
+    close_wave();
+    // Verilator's trace() needs elaboration complete: the first run of the process
+    // may ask for a wave. Zero time with every clock at rest changes nothing.
+    if (!sc_core::sc_start_of_simulation_invoked()) sc_core::sc_start(sc_core::SC_ZERO_TIME);
+    auto w = std::make_unique<wave>();
+    w->fst = std::make_unique<VerilatedFstSc>();  // registers itself with the kernel
+    static_cast<rt_trav_bench<Unit, rtl_t>*>(rtl_.bench.get())->u_dut.trace(w->fst.get(), 99);
+    w->fst->open(path.c_str());
+    if (!w->fst->isOpen()) {
+      sc_core::sc_get_curr_simcontext()->remove_trace_file(w->kernelHandle());
+      throw std::runtime_error("cannot open waveform file " + path);
+    }
+    wave_ = std::move(w);
+    return;
+  }
+#endif
+  throw std::runtime_error(std::string("the Verilated ") + Unit::kName + " of this build has no FST tracing");
+}
+
+template <class Unit>
+void rt_trav_top<Unit>::close_wave() {
+#if LANCER_SC_RTL_FST
+  if (!wave_) return;
+  wave_->fst->close();
+  sc_core::sc_get_curr_simcontext()->remove_trace_file(wave_->kernelHandle());
+  wave_.reset();
+#endif
+}
+
+}  // namespace lancer::sc

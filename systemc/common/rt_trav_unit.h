@@ -1,0 +1,53 @@
+#pragma once
+
+// What the shared SystemC modules of a traversal unit (rt_trav_mem, rt_trav_tb,
+// rt_trav_bench, rt_trav_top; systemc/common/) need to know of a unit: its
+// traits class (grid/rt_grid_unit.h, octree/rt_octree_unit.h). Every traversal
+// unit has the same ports (rtl/lib/'s traversal shell) except for
+//   - the node/cell memory port: its name prefix (kNodePort: "cell", "node")
+//     and the record its responses carry (node_data_t: a grid cell, a child
+//     group of 8 octree nodes), packed from the unit's image by a node_packer;
+//   - one configuration port besides cfg_slots_i (kCfgPort, cfg_t, config()):
+//     rt_grid's cfg_res_i, rt_octree's cfg_root_i;
+//   - the result and visit records (res_t, visit_t, kResFields, kVisitFields);
+//   - the cycle model (model_t) and its options (kModelTakesIsect: the model
+//     can hold the Verilated rt_isect); the Verilated class is named by the
+//     unit's top .cpp (rt_trav_rtl<Unit>), built only when the build has it.
+// A unit's traits also bind the DUT's unit-specific ports (bindUnitPorts),
+// since the DUT's C++ members carry the RTL's names.
+//
+// A unit traits class provides:
+//   kName, kNodePort, kCfgPort, kNodeRegion    names (RTL module, port prefixes, messages)
+//   RAYS_IN_FLIGHT                             ray slots as the RTL is built
+//   image_t                                    fx::GridImage, fx::OctreeImage
+//   cfg_slots_t, cfg_t, slot_t, mem_addr_t, idx_data_t, node_data_t, res_t, visit_t
+//   NODE_DATA_W, RESULT_W, VISIT_W             widths of node_data_t, res_t, visit_t
+//   kResFields, kVisitFields                   the records' field lists
+//   cfg_t config(const image_t&)               the configuration port's value of a run
+//   node_packer                                start(image), wire(addr): a node response's wire
+//                                              image, after checking the address (throws)
+//   model_t, kModelTakesIsect
+//   bindUnitPorts(dut, bench)                  cfg and node/cell ports of the DUT
+
+#include <cstdint>
+#include <string>
+
+namespace lancer::sc {
+
+constexpr int clog2(uint64_t n) {
+  int bits = 0;
+  while ((uint64_t(1) << bits) < n) ++bits;
+  return bits;
+}
+
+// "<prefix>_<suffix>": the SystemC name of one port of a unit's node/cell
+// memory port (rt_grid: cell_req_valid_o, rt_octree: node_req_valid_o), so
+// that the shared modules' objects carry the RTL's names.
+inline std::string portName(const char* prefix, const char* suffix) { return std::string(prefix) + "_" + suffix; }
+
+// The Verilated SystemC class of a unit (Vrt_grid_sc, ...), or void when the
+// build lacks it: specialized by the unit's top .cpp, which includes it.
+template <class Unit>
+struct rt_trav_rtl;
+
+}  // namespace lancer::sc

@@ -1,0 +1,94 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "golden/octree.h"
+#include "golden/records.h"
+#include "octree/rt_octree_types.h"
+
+namespace lancer::sc {
+
+class rt_octree_model;
+
+// rt_octree_unit: what the shared traversal-unit modules (common/rt_trav_unit.h)
+// need to know of rt_octree: its node port (a child group of 8 nodes per
+// response), its root port cfg_root_i, its records and its cycle model.
+struct rt_octree_unit {
+  static constexpr const char* kName = "rt_octree";
+  static constexpr const char* kNodePort = "node";  // node_req_valid_o, ...
+  static constexpr const char* kCfgPort = "cfg_root_i";
+  static constexpr const char* kNodeRegion = "node table (child group)";
+  // For the driver's messages: the unit, the build option of its slots and of
+  // its RTL sources, what the result record's element count counts.
+  static constexpr const char* kUnitWord = "octree";
+  static constexpr const char* kSlotsOption = "LANCER_OCTREE_RAYS_IN_FLIGHT";
+  static constexpr const char* kRtlSources = "LANCER_RTL_OCTREE_SOURCES";
+  static constexpr const char* kStepNoun = "nodes";
+  static constexpr int RAYS_IN_FLIGHT = octree::RAYS_IN_FLIGHT;
+
+  using image_t = fx::OctreeImage;
+  using cfg_slots_t = octree::cfg_slots_t;
+  using cfg_t = octree::node_t;
+  using slot_t = octree::slot_t;
+  using mem_addr_t = octree::mem_addr_t;
+  using idx_data_t = octree::idx_data_t;
+  using node_data_t = octree::group_t;
+  using res_t = octree::res_t;
+  using visit_t = octree::visit_t;
+  static constexpr int NODE_DATA_W = octree::GROUP_W;
+  static constexpr int RESULT_W = octree::RESULT_W;
+  static constexpr int VISIT_W = octree::VISIT_W;
+  static constexpr const auto& kResFields = fx::kOctreeResFields;
+  static constexpr const auto& kVisitFields = fx::kOctreeVisitFields;
+
+  using model_t = rt_octree_model;
+  static constexpr bool kModelTakesIsect = false;
+
+  // cfg_root_i: the image's node 0 as an octree_node_t.
+  static cfg_t config(const image_t& image) {
+    std::array<uint32_t, size_t(fx::wireWords(octree::NODE_W))> root{};
+    const fx::OctreeNode& r = image.nodes.at(0);
+    const fx::u128 values[] = {r.leaf ? 1u : 0u, r.count, r.first};
+    fx::packFields(fx::kOctreeNodeFields, values, root);
+    return toPort<octree::NODE_W>(root);
+  }
+
+  // The node port's responses: the child group at addr (fx::packChildGroup:
+  // nodes addr .. addr+7 as octree_node_t [7:0]), packed on first use in a run
+  // (a group is read many times).
+  class node_packer {
+   public:
+    void start(const image_t& image) {
+      image_ = &image;
+      packed_.assign(image.nodes.size(), 0);
+      wire_.resize(image.nodes.size() * fx::kOctreeGroupWords);
+    }
+    size_t entries() const { return image_->nodes.size(); }
+    bool holds(uint32_t addr) const { return uint64_t(addr) + fx::kOctreeChildren <= entries(); }
+    std::span<const uint32_t> wire(uint32_t addr) {
+      const std::span<uint32_t> w(wire_.data() + size_t(addr) * fx::kOctreeGroupWords, fx::kOctreeGroupWords);
+      if (!packed_[addr]) {
+        fx::packChildGroup(*image_, addr, w);
+        packed_[addr] = 1;
+      }
+      return w;
+    }
+
+   private:
+    const image_t* image_ = nullptr;
+    std::vector<uint32_t> wire_;
+    std::vector<uint8_t> packed_;
+  };
+
+  // The DUT's cfg_root_i and node port on the bench's signals.
+  template <class Dut, class Bench>
+  static void bindUnitPorts(Dut& dut, Bench& b) {
+    dut.cfg_root_i(b.cfg_i);
+    b.bindNodePort(dut);
+  }
+};
+
+}  // namespace lancer::sc
