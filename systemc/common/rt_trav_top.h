@@ -5,6 +5,7 @@
 
 #include <systemc>
 
+#include "common/rt_fst_wave.h"
 #include "common/rt_trav_mem.h"
 #include "common/rt_trav_tb.h"
 
@@ -60,12 +61,11 @@ class rt_trav_top : public sc_core::sc_module {
     tb_t* tb = nullptr;
     mem_t* mem = nullptr;
   };
-  struct wave;
   bench_refs& refs(rt_trav_impl impl);
   template <class Dut, class... DutArgs>
   void keep(bench_refs& r, const char* name, DutArgs&&... args);
   bench_refs model_, mixed_, rtl_;
-  std::unique_ptr<wave> wave_;
+  rt_fst_wave wave_;
 };
 
 }  // namespace lancer::sc

@@ -14,21 +14,14 @@
 #include "common/rt_trav_top.h"
 #include "isect/rt_isect_top.h"
 
-#if LANCER_SC_RTL_FST
+#if LANCER_SC_HAVE_GRID_RTL || LANCER_SC_HAVE_OCTREE_RTL
 #include "verilated.h"
+#if LANCER_SC_RTL_FST
 #include "verilated_fst_sc.h"
+#endif
 #endif
 
 namespace lancer::sc {
-
-template <class Unit>
-struct rt_trav_top<Unit>::wave {
-#if LANCER_SC_RTL_FST
-  std::unique_ptr<VerilatedFstSc> fst;
-  // See rt_isect_top.cpp: VerilatedFstSc derives from sc_trace_file privately.
-  sc_core::sc_trace_file* kernelHandle() const { return (sc_core::sc_trace_file*)fst.get(); }
-#endif
-};
 
 template <class Unit>
 template <class Dut, class... DutArgs>
@@ -48,9 +41,7 @@ rt_trav_top<Unit>::rt_trav_top(sc_core::sc_module_name name) : sc_core::sc_modul
     if (has_rtl_isect()) keep<typename Unit::model_t>(mixed_, "u_mixed", rt_isect_impl::rtl);
   }
   if constexpr (!std::is_void_v<rtl_t>) {
-#if LANCER_SC_RTL_FST
-    Verilated::traceEverOn(true);  // before the Verilated model is built
-#endif
+    if (rt_fst_wave::available()) Verilated::traceEverOn(true);  // before the Verilated model is built
     keep<rtl_t>(rtl_, "u_rtl");
   }
 }
@@ -70,7 +61,7 @@ bool rt_trav_top<Unit>::has_rtl_isect() {
 
 template <class Unit>
 bool rt_trav_top<Unit>::has_waves() {
-  return has_rtl() && LANCER_SC_RTL_FST != 0;
+  return has_rtl() && rt_fst_wave::available();
 }
 
 template <class Unit>
@@ -96,35 +87,20 @@ typename rt_trav_top<Unit>::mem_t& rt_trav_top<Unit>::mem(rt_trav_impl impl) {
 template <class Unit>
 void rt_trav_top<Unit>::open_wave([[maybe_unused]] const std::string& path) {
   using rtl_t = typename rt_trav_rtl<Unit>::type;
-#if LANCER_SC_RTL_FST
-  if constexpr (!std::is_void_v<rtl_t>) {
-    close_wave();
+  if constexpr (std::is_void_v<rtl_t> || !LANCER_SC_RTL_FST) {
+    throw std::runtime_error(std::string("the Verilated ") + Unit::kName + " of this build has no FST tracing");
+  } else {
     // Verilator's trace() needs elaboration complete: the first run of the process
     // may ask for a wave. Zero time with every clock at rest changes nothing.
     if (!sc_core::sc_start_of_simulation_invoked()) sc_core::sc_start(sc_core::SC_ZERO_TIME);
-    auto w = std::make_unique<wave>();
-    w->fst = std::make_unique<VerilatedFstSc>();  // registers itself with the kernel
-    static_cast<rt_trav_bench<Unit, rtl_t>*>(rtl_.bench.get())->u_dut.trace(w->fst.get(), 99);
-    w->fst->open(path.c_str());
-    if (!w->fst->isOpen()) {
-      sc_core::sc_get_curr_simcontext()->remove_trace_file(w->kernelHandle());
-      throw std::runtime_error("cannot open waveform file " + path);
-    }
-    wave_ = std::move(w);
-    return;
+    auto& dut = static_cast<rt_trav_bench<Unit, rtl_t>*>(rtl_.bench.get())->u_dut;
+    wave_.open(path, [&dut](VerilatedFstSc* fst) { dut.trace(fst, 99); });
   }
-#endif
-  throw std::runtime_error(std::string("the Verilated ") + Unit::kName + " of this build has no FST tracing");
 }
 
 template <class Unit>
 void rt_trav_top<Unit>::close_wave() {
-#if LANCER_SC_RTL_FST
-  if (!wave_) return;
-  wave_->fst->close();
-  sc_core::sc_get_curr_simcontext()->remove_trace_file(wave_->kernelHandle());
-  wave_.reset();
-#endif
+  wave_.close();
 }
 
 }  // namespace lancer::sc

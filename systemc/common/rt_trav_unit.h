@@ -18,11 +18,11 @@
 //
 // A unit traits class provides:
 //   kName, kNodePort, kCfgPort, kNodeRegion    names (RTL module, port prefixes, messages)
-//   RAYS_IN_FLIGHT                             ray slots as the RTL is built
+//   rt_trav_unit_types<...> as a base          ray slots as the RTL is built, the port
+//                                              types (cfg_slots_t, cfg_t, slot_t, mem_addr_t,
+//                                              idx_data_t, node_data_t, res_t, visit_t), the
+//                                              widths and field lists of the records
 //   image_t                                    fx::GridImage, fx::OctreeImage
-//   cfg_slots_t, cfg_t, slot_t, mem_addr_t, idx_data_t, node_data_t, res_t, visit_t
-//   NODE_DATA_W, RESULT_W, VISIT_W             widths of node_data_t, res_t, visit_t
-//   kResFields, kVisitFields                   the records' field lists
 //   cfg_t config(const image_t&)               the configuration port's value of a run
 //   node_packer                                start(image), wire(addr): a node response's wire
 //                                              image, after checking the address (throws)
@@ -32,6 +32,9 @@
 #include <cstdint>
 #include <string>
 
+#include "golden/records.h"
+#include "isect/rt_isect_types.h"
+
 namespace lancer::sc {
 
 constexpr int clog2(uint64_t n) {
@@ -39,6 +42,30 @@ constexpr int clog2(uint64_t n) {
   while ((uint64_t(1) << bits) < n) ++bits;
   return bits;
 }
+
+// The port types of a unit from its parameters, under the names the traits
+// provide (a unit's traits derive from it): RaysInFlight ray slots, a
+// configuration port of CfgW bits, node/cell responses of NodeDataW bits, the
+// result and visit records' field lists.
+template <int RaysInFlight, int CfgW, int NodeDataW, const auto& ResFields, const auto& VisitFields>
+struct rt_trav_unit_types {
+  static_assert(RaysInFlight >= 1 && RaysInFlight <= 256, "RaysInFlight is 1..256");
+  static constexpr int RAYS_IN_FLIGHT = RaysInFlight;
+  static constexpr int NODE_DATA_W = NodeDataW;
+  static constexpr int RESULT_W = fx::recordBits(ResFields);
+  static constexpr int VISIT_W = fx::recordBits(VisitFields);
+  static constexpr const auto& kResFields = ResFields;
+  static constexpr const auto& kVisitFields = VisitFields;
+
+  using cfg_slots_t = vl_port_t<clog2(RaysInFlight + 1)>;
+  using cfg_t = vl_port_t<CfgW>;
+  using slot_t = vl_port_t<(RaysInFlight > 1 ? clog2(RaysInFlight) : 1)>;
+  using mem_addr_t = vl_port_t<fx::kMemAddrBits>;
+  using idx_data_t = vl_port_t<32>;
+  using node_data_t = vl_port_t<NodeDataW>;
+  using res_t = vl_port_t<RESULT_W>;
+  using visit_t = vl_port_t<VISIT_W>;
+};
 
 // "<prefix>_<suffix>": the SystemC name of one port of a unit's node/cell
 // memory port (rt_grid: cell_req_valid_o, rt_octree: node_req_valid_o), so

@@ -15,7 +15,8 @@ class rt_grid_model;
 // rt_grid_unit: what the shared traversal-unit modules (common/rt_trav_unit.h)
 // need to know of rt_grid: its cell port, its resolution port cfg_res_i, its
 // records and its cycle model, which can hold the Verilated rt_isect.
-struct rt_grid_unit {
+struct rt_grid_unit : rt_trav_unit_types<RAYS_IN_FLIGHT, 3 * GRID_RESOLUTION_W, GRID_CELL_W, fx::kGridResFields,
+                                          fx::kGridVisitFields> {
   static constexpr const char* kName = "rt_grid";
   static constexpr const char* kNodePort = "cell";  // cell_req_valid_o, ...
   static constexpr const char* kCfgPort = "cfg_res_i";
@@ -26,22 +27,7 @@ struct rt_grid_unit {
   static constexpr const char* kSlotsOption = "LANCER_GRID_RAYS_IN_FLIGHT";
   static constexpr const char* kRtlSources = "LANCER_RTL_GRID_SOURCES";
   static constexpr const char* kStepNoun = "cells";
-  static constexpr int RAYS_IN_FLIGHT = sc::RAYS_IN_FLIGHT;
-
   using image_t = fx::GridImage;
-  using cfg_slots_t = sc::cfg_slots_t;
-  using cfg_t = cfg_res_t;
-  using slot_t = sc::slot_t;
-  using mem_addr_t = sc::mem_addr_t;
-  using idx_data_t = sc::idx_data_t;
-  using node_data_t = grid_cell_t;
-  using res_t = grid_res_t;
-  using visit_t = grid_visit_t;
-  static constexpr int NODE_DATA_W = GRID_CELL_W;
-  static constexpr int RESULT_W = GRID_RESULT_W;
-  static constexpr int VISIT_W = GRID_VISIT_W;
-  static constexpr const auto& kResFields = fx::kGridResFields;
-  static constexpr const auto& kVisitFields = fx::kGridVisitFields;
 
   using model_t = rt_grid_model;
   static constexpr bool kModelTakesIsect = true;

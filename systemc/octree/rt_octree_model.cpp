@@ -90,43 +90,7 @@ rt_octree_model::SlotMask rt_octree_model::SlotMask::operator|(const SlotMask& o
 // ---- The module -----------------------------------------------------------------
 
 rt_octree_model::rt_octree_model(sc_core::sc_module_name name)
-    : sc_core::sc_module(name),
-      clk_i("clk_i"),
-      rst_ni("rst_ni"),
-      cfg_slots_i("cfg_slots_i"),
-      cfg_root_i("cfg_root_i"),
-      ray_valid_i("ray_valid_i"),
-      ray_ready_o("ray_ready_o"),
-      ray_data_i("ray_data_i"),
-      res_valid_o("res_valid_o"),
-      res_ready_i("res_ready_i"),
-      res_data_o("res_data_o"),
-      visit_valid_o("visit_valid_o"),
-      visit_ready_i("visit_ready_i"),
-      visit_data_o("visit_data_o"),
-      node_req_valid_o("node_req_valid_o"),
-      node_req_ready_i("node_req_ready_i"),
-      node_req_addr_o("node_req_addr_o"),
-      node_req_tag_o("node_req_tag_o"),
-      node_rsp_valid_i("node_rsp_valid_i"),
-      node_rsp_data_i("node_rsp_data_i"),
-      node_rsp_tag_i("node_rsp_tag_i"),
-      idx_req_valid_o("idx_req_valid_o"),
-      idx_req_ready_i("idx_req_ready_i"),
-      idx_req_addr_o("idx_req_addr_o"),
-      idx_req_tag_o("idx_req_tag_o"),
-      idx_rsp_valid_i("idx_rsp_valid_i"),
-      idx_rsp_data_i("idx_rsp_data_i"),
-      idx_rsp_tag_i("idx_rsp_tag_i"),
-      tri_req_valid_o("tri_req_valid_o"),
-      tri_req_ready_i("tri_req_ready_i"),
-      tri_req_addr_o("tri_req_addr_o"),
-      tri_req_tag_o("tri_req_tag_o"),
-      tri_rsp_valid_i("tri_rsp_valid_i"),
-      tri_rsp_data_i("tri_rsp_data_i"),
-      tri_rsp_tag_i("tri_rsp_tag_i"),
-      perf_isect_fire_o("perf_isect_fire_o"),
-      perf_step_ready_o("perf_step_ready_o") {
+    : rt_trav_shell<rt_octree_unit>(name) {
   reset();
 
   SC_METHOD(seq);

@@ -7,8 +7,10 @@
 
 #include <systemc>
 
+#include "common/rt_trav_shell.h"
 #include "golden/octree.h"
 #include "octree/rt_octree_types.h"
+#include "octree/rt_octree_unit.h"
 
 namespace lancer::sc {
 
@@ -43,52 +45,18 @@ namespace lancer::sc {
 // Speed: per-state slot masks; the arbiters find the next requester with bit
 // scans, and only slots that act on their own in a cycle (DESCEND, FETCH with
 // every result in) or are granted an advance lane are visited.
-class rt_octree_model : public sc_core::sc_module {
+class rt_octree_model : public rt_trav_shell<rt_octree_unit> {
  public:
-  sc_core::sc_in<bool> clk_i;
-  sc_core::sc_in<bool> rst_ni;
+  // The ports of rt_trav_shell, and the unit's own:
+  sc_core::sc_in<octree::node_t> cfg_root_i{"cfg_root_i"};
 
-  sc_core::sc_in<octree::cfg_slots_t> cfg_slots_i;
-  sc_core::sc_in<octree::node_t> cfg_root_i;
-
-  sc_core::sc_in<bool> ray_valid_i;
-  sc_core::sc_out<bool> ray_ready_o;
-  sc_core::sc_in<isect_ray_t> ray_data_i;
-
-  sc_core::sc_out<bool> res_valid_o;
-  sc_core::sc_in<bool> res_ready_i;
-  sc_core::sc_out<octree::res_t> res_data_o;
-
-  sc_core::sc_out<bool> visit_valid_o;
-  sc_core::sc_in<bool> visit_ready_i;
-  sc_core::sc_out<octree::visit_t> visit_data_o;
-
-  sc_core::sc_out<bool> node_req_valid_o;
-  sc_core::sc_in<bool> node_req_ready_i;
-  sc_core::sc_out<octree::mem_addr_t> node_req_addr_o;
-  sc_core::sc_out<octree::slot_t> node_req_tag_o;
-  sc_core::sc_in<bool> node_rsp_valid_i;
-  sc_core::sc_in<octree::group_t> node_rsp_data_i;
-  sc_core::sc_in<octree::slot_t> node_rsp_tag_i;
-
-  sc_core::sc_out<bool> idx_req_valid_o;
-  sc_core::sc_in<bool> idx_req_ready_i;
-  sc_core::sc_out<octree::mem_addr_t> idx_req_addr_o;
-  sc_core::sc_out<octree::slot_t> idx_req_tag_o;
-  sc_core::sc_in<bool> idx_rsp_valid_i;
-  sc_core::sc_in<octree::idx_data_t> idx_rsp_data_i;
-  sc_core::sc_in<octree::slot_t> idx_rsp_tag_i;
-
-  sc_core::sc_out<bool> tri_req_valid_o;
-  sc_core::sc_in<bool> tri_req_ready_i;
-  sc_core::sc_out<octree::mem_addr_t> tri_req_addr_o;
-  sc_core::sc_out<octree::slot_t> tri_req_tag_o;
-  sc_core::sc_in<bool> tri_rsp_valid_i;
-  sc_core::sc_in<isect_tri_t> tri_rsp_data_i;
-  sc_core::sc_in<octree::slot_t> tri_rsp_tag_i;
-
-  sc_core::sc_out<bool> perf_isect_fire_o;
-  sc_core::sc_out<bool> perf_step_ready_o;
+  sc_core::sc_out<bool> node_req_valid_o{"node_req_valid_o"};
+  sc_core::sc_in<bool> node_req_ready_i{"node_req_ready_i"};
+  sc_core::sc_out<octree::mem_addr_t> node_req_addr_o{"node_req_addr_o"};
+  sc_core::sc_out<octree::slot_t> node_req_tag_o{"node_req_tag_o"};
+  sc_core::sc_in<bool> node_rsp_valid_i{"node_rsp_valid_i"};
+  sc_core::sc_in<octree::group_t> node_rsp_data_i{"node_rsp_data_i"};
+  sc_core::sc_in<octree::slot_t> node_rsp_tag_i{"node_rsp_tag_i"};
 
   SC_HAS_PROCESS(rt_octree_model);
   explicit rt_octree_model(sc_core::sc_module_name name);

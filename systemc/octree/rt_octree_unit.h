@@ -16,33 +16,17 @@ class rt_octree_model;
 // rt_octree_unit: what the shared traversal-unit modules (common/rt_trav_unit.h)
 // need to know of rt_octree: its node port (a child group of 8 nodes per
 // response), its root port cfg_root_i, its records and its cycle model.
-struct rt_octree_unit {
+struct rt_octree_unit : rt_trav_unit_types<octree::RAYS_IN_FLIGHT, octree::NODE_W, octree::GROUP_W,
+                                            fx::kOctreeResFields, fx::kOctreeVisitFields> {
   static constexpr const char* kName = "rt_octree";
   static constexpr const char* kNodePort = "node";  // node_req_valid_o, ...
   static constexpr const char* kCfgPort = "cfg_root_i";
   static constexpr const char* kNodeRegion = "node table (child group)";
-  // For the driver's messages: the unit, the build option of its slots and of
-  // its RTL sources, what the result record's element count counts.
-  static constexpr const char* kUnitWord = "octree";
+  static constexpr const char* kUnitWord = "octree";  // for the driver's messages, as rt_grid_unit's
   static constexpr const char* kSlotsOption = "LANCER_OCTREE_RAYS_IN_FLIGHT";
   static constexpr const char* kRtlSources = "LANCER_RTL_OCTREE_SOURCES";
   static constexpr const char* kStepNoun = "nodes";
-  static constexpr int RAYS_IN_FLIGHT = octree::RAYS_IN_FLIGHT;
-
   using image_t = fx::OctreeImage;
-  using cfg_slots_t = octree::cfg_slots_t;
-  using cfg_t = octree::node_t;
-  using slot_t = octree::slot_t;
-  using mem_addr_t = octree::mem_addr_t;
-  using idx_data_t = octree::idx_data_t;
-  using node_data_t = octree::group_t;
-  using res_t = octree::res_t;
-  using visit_t = octree::visit_t;
-  static constexpr int NODE_DATA_W = octree::GROUP_W;
-  static constexpr int RESULT_W = octree::RESULT_W;
-  static constexpr int VISIT_W = octree::VISIT_W;
-  static constexpr const auto& kResFields = fx::kOctreeResFields;
-  static constexpr const auto& kVisitFields = fx::kOctreeVisitFields;
 
   using model_t = rt_octree_model;
   static constexpr bool kModelTakesIsect = false;
