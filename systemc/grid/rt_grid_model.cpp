@@ -85,7 +85,7 @@ fx::GridRes rt_grid_model::resolution() const {
 
 void rt_grid_model::reset() {
   for (Slot& s : slots_) s = Slot{};
-  s1_.valid = s2_.valid = false;
+  setup_.clear();
   cellRsp_.valid = triRsp_.valid = false;
   cellArb_ = visitArb_ = idxArb_ = checkArb_ = doneArb_ = RoundRobin{};
   cellQ_.clear();
@@ -226,8 +226,8 @@ void rt_grid_model::seq() {
   }
 
   // Records pushed this cycle, from the registers at the start of the cycle.
-  Visit visitRec;
-  MemReq cellReq, idxReq;
+  rt_visit_entry visitRec;
+  rt_mem_req cellReq, idxReq;
   if (cellGo) {
     const Slot& s = slots_[size_t(cellIdx)];
     cellReq = {addrOf(s.frontier.cellId()), uint32_t(cellIdx)};
@@ -268,16 +268,16 @@ void rt_grid_model::seq() {
       visitGo && (slots_[size_t(visitIdx)].outstanding < slots_[size_t(visitIdx)].queued || cellSlot == visitIdx);
 
   if (rayFire) slots_[size_t(alloc)].state = State::Setup;
-  if (s2_.valid) {
-    Slot& s = slots_[size_t(s2_.slot)];
+  if (setup_.s2.valid) {
+    Slot& s = slots_[size_t(setup_.s2.slot)];
     fx::QRay ray;
     std::array<uint32_t, fx::kIsectRayWords> wire{};
-    fromPort<ISECT_RAY_W>(s2_.ray, wire);
+    fromPort<ISECT_RAY_W>(setup_.s2.ray, wire);
     fx::unpackRay(wire, ray);
     s.rayId = ray.id;
     s.frontier = fx::GridDda::setup(resolution(), ray);
     s.frontierValid = true;
-    ray.id = uint32_t(s2_.slot);
+    ray.id = uint32_t(setup_.s2.slot);
     fx::packWire(ray, wire);
     s.isectRay = toPort<ISECT_RAY_W>(wire);
     s.head = s.queued = 0;
@@ -360,16 +360,8 @@ void rt_grid_model::seq() {
   if (checkIdx >= 0) checkArb_.ack(checkIdx, N);
   if (doneGo) doneArb_.ack(doneIdx, N);
 
-  if (s1_.valid) {
-    s2_.slot = s1_.slot;
-    s2_.ray = s1_.ray;
-  }
-  s2_.valid = s1_.valid;
-  if (rayFire) {
-    s1_.slot = alloc;
-    s1_.ray = ray_data_i.read();
-  }
-  s1_.valid = rayFire;
+  setup_.shift();
+  if (rayFire) setup_.load(alloc, ray_data_i.read());
 
   cellRsp_.valid = cell_rsp_valid_i.read();
   if (cellRsp_.valid) {
@@ -404,7 +396,7 @@ void rt_grid_model::writeOutputs() {
   }
   visit_valid_o.write(!visitQ_.empty());
   if (!visitQ_.empty()) {
-    const fx::u128 values[] = {visitQ_.front().rayId, visitQ_.front().cellId};
+    const fx::u128 values[] = {visitQ_.front().rayId, visitQ_.front().id};
     std::array<uint32_t, size_t(fx::wireWords(GRID_VISIT_W))> wire{};
     fx::packFields(fx::kGridVisitFields, values, wire);
     visit_data_o.write(toPort<GRID_VISIT_W>(wire));

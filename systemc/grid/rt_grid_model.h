@@ -7,6 +7,7 @@
 
 #include <systemc>
 
+#include "common/rt_trav_model_parts.h"
 #include "common/rt_trav_shell.h"
 #include "golden/grid.h"
 #include "grid/rt_grid_types.h"
@@ -90,27 +91,6 @@ class rt_grid_model : public rt_trav_shell<rt_grid_unit> {
     fx::IsectResult best;       // zero until the first hit
   };
 
-  // rt_fifo: Depth entries; in_ready = !full, out_valid = !empty, from the
-  // occupancy at the start of the cycle.
-  template <class T>
-  struct Fifo {
-    explicit Fifo(size_t depth) : items(depth) {}
-    std::vector<T> items;
-    size_t head = 0, size = 0;
-    bool full() const { return size == items.size(); }
-    bool empty() const { return size == 0; }
-    const T& front() const { return items[head]; }
-    void pop() { head = (head + 1) % items.size(); --size; }
-    void push(const T& v) { items[(head + size++) % items.size()] = v; }
-    void clear() { head = size = 0; }
-  };
-  struct MemReq {
-    uint32_t addr = 0, slot = 0;
-  };
-  struct Visit {
-    uint32_t rayId = 0, cellId = 0;
-  };
-
   // rt_rr_arb: the lowest requester at or after the pointer, cyclically.
   struct RoundRobin {
     int ptr = 0;
@@ -137,13 +117,6 @@ class rt_grid_model : public rt_trav_shell<rt_grid_unit> {
     isect_tri_t data{};
   };
 
-  // rt_grid_setup's valid/slot/ray registers (the arithmetic is GridDda::setup at the slot load).
-  struct SetupStage {
-    bool valid = false;
-    int slot = 0;
-    isect_ray_t ray{};
-  };
-
   void seq();
   void comb();
   // A cell's data is in: its tests begin, or it is done at once (no triangles).
@@ -168,14 +141,14 @@ class rt_grid_model : public rt_trav_shell<rt_grid_unit> {
   std::unique_ptr<sc_core::sc_module> u_isect;
 
   std::vector<Slot> slots_;
-  SetupStage s1_, s2_;
+  rt_setup_pipe setup_;  // rt_grid_setup's registers (the arithmetic is GridDda::setup at the slot load)
   CellRsp cellRsp_;
   TriRsp triRsp_;
   RoundRobin cellArb_, visitArb_, idxArb_, checkArb_, doneArb_;
-  Fifo<MemReq> cellQ_{MEMREQ_FIFO_DEPTH}, idxQ_{MEMREQ_FIFO_DEPTH}, triQ_{MEMREQ_FIFO_DEPTH};
-  Fifo<MemReq> idxBuf_{IDX_BUF_DEPTH};  // {triangle id, slot}
-  Fifo<Visit> visitQ_{VISIT_FIFO_DEPTH};
-  Fifo<grid_res_t> resQ_{RES_FIFO_DEPTH};
+  rt_fifo_model<rt_mem_req, MEMREQ_FIFO_DEPTH> cellQ_, idxQ_, triQ_;
+  rt_fifo_model<rt_mem_req, IDX_BUF_DEPTH> idxBuf_;  // {triangle id, slot}
+  rt_fifo_model<rt_visit_entry, VISIT_FIFO_DEPTH> visitQ_;
+  rt_fifo_model<grid_res_t, RES_FIFO_DEPTH> resQ_;
   int credits_ = IDX_BUF_DEPTH;
   sc_core::sc_event state_changed_;
 };

@@ -117,7 +117,7 @@ void rt_octree_model::reset() {
   done_.clear();
   self_.clear();
   for (int k = 0; k < N; ++k) free_.set(k);
-  s1_.valid = s2_.valid = false;
+  setup_.clear();
   visitArb_ = nodeArb_ = idxArb_ = checkArb_ = doneArb_ = RoundRobin{};
   advArb_.fill(RoundRobin{});
   nodeQ_.clear();
@@ -318,8 +318,8 @@ void rt_octree_model::seq() {
     advIdx[size_t(l)] = advArb_[size_t(l)].pick(advLeft);
     if (advIdx[size_t(l)] >= 0) advLeft.reset(advIdx[size_t(l)]);
   }
-  const bool setupLoad = s2_.valid;
-  const int setupSlot = s2_.slot;
+  const bool setupLoad = setup_.s2.valid;
+  const int setupSlot = setup_.s2.slot;
 
   // Memory responses (the RTL's assertions on the response tags and the index buffer).
   const bool nodeRsp = node_rsp_valid_i.read();
@@ -370,7 +370,7 @@ void rt_octree_model::seq() {
   if (visitGo) {
     const Slot& s = slots_[size_t(visitIdx)];
     visitHead_ |= visitQ_.empty();
-    visitQ_.push(Visit{s.rayId, s.nodeId});
+    visitQ_.push(rt_visit_entry{s.rayId, s.nodeId});
     enter(visitIdx);
     visitArb_.ack(visitIdx);
   }
@@ -378,7 +378,7 @@ void rt_octree_model::seq() {
     const Slot& s = slots_[size_t(nodeIdx)];
     const bool group = s.state == State::GroupReq;
     nodeHead_ |= nodeQ_.empty();
-    nodeQ_.push(MemReq{addrOf(group ? s.rec.first : s.stack[size_t(s.depth - 1)].first), uint32_t(nodeIdx)});
+    nodeQ_.push(rt_mem_req{addrOf(group ? s.rec.first : s.stack[size_t(s.depth - 1)].first), uint32_t(nodeIdx)});
     setState(nodeIdx, group ? State::WaitGroup : State::WaitRefill);
     nodeArb_.ack(nodeIdx);
   }
@@ -410,7 +410,7 @@ void rt_octree_model::seq() {
   if (idxGo) {
     Slot& s = slots_[size_t(idxIdx)];
     idxHead_ |= idxQ_.empty();
-    idxQ_.push(MemReq{addrOf(s.rec.first + s.issued), uint32_t(idxIdx)});
+    idxQ_.push(rt_mem_req{addrOf(s.rec.first + s.issued), uint32_t(idxIdx)});
     if (++s.issued == s.rec.count) idxWant_.reset(idxIdx);
     idxArb_.ack(idxIdx);
   }
@@ -448,7 +448,7 @@ void rt_octree_model::seq() {
     setState(doneIdx, State::Free);
     doneArb_.ack(doneIdx);
   }
-  if (setupLoad) load(setupSlot, s2_.ray);
+  if (setupLoad) load(setupSlot, setup_.s2.ray);
   if (rayFire) setState(alloc, State::Setup);
 
   // ---- Index buffer, triangle requests, credits, setup pipeline.
@@ -457,20 +457,12 @@ void rt_octree_model::seq() {
     triQ_.push(idxBuf_.front());
     idxBuf_.pop();
   }
-  if (idxRsp) idxBuf_.push(MemReq{addrOf(uint32_t(idx_rsp_data_i.read())), uint32_t(idx_rsp_tag_i.read()) & SLOT_MASK});
+  if (idxRsp) idxBuf_.push(rt_mem_req{addrOf(uint32_t(idx_rsp_data_i.read())), uint32_t(idx_rsp_tag_i.read()) & SLOT_MASK});
   if (idxGo && !idxBufPop) --credits_;
   if (idxBufPop && !idxGo) ++credits_;
 
-  if (s1_.valid) {
-    s2_.slot = s1_.slot;
-    s2_.ray = s1_.ray;
-  }
-  s2_.valid = s1_.valid;
-  if (rayFire) {
-    s1_.slot = alloc;
-    s1_.ray = ray_data_i.read();
-  }
-  s1_.valid = rayFire;
+  setup_.shift();
+  if (rayFire) setup_.load(alloc, ray_data_i.read());
 
   nodeHead_ |= nodePop;
   idxHead_ |= idxPop;
@@ -509,7 +501,7 @@ void rt_octree_model::writeOutputs(bool all) {
   if (!visitQ_.empty() && (visitHead_ || all)) {
     std::array<uint32_t, size_t(fx::wireWords(VISIT_W))> wire{};
     putField<fx::kOctreeVisitFields, 0>(wire.data(), visitQ_.front().rayId);
-    putField<fx::kOctreeVisitFields, 1>(wire.data(), visitQ_.front().nodeId);
+    putField<fx::kOctreeVisitFields, 1>(wire.data(), visitQ_.front().id);
     visit_data_o.write(toPort<VISIT_W>(wire));
   }
   writeFlag(res_valid_o, RES_VALID, !resQ_.empty(), all);

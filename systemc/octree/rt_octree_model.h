@@ -7,6 +7,7 @@
 
 #include <systemc>
 
+#include "common/rt_trav_model_parts.h"
 #include "common/rt_trav_shell.h"
 #include "golden/octree.h"
 #include "octree/rt_octree_types.h"
@@ -117,46 +118,11 @@ class rt_octree_model : public rt_trav_shell<rt_octree_unit> {
     fx::IsectResult best;  // zero until the first hit
   };
 
-  // rt_fifo: Depth entries; in_ready = !full, out_valid = !empty, from the
-  // occupancy at the start of the cycle.
-  template <class T, size_t Depth>
-  struct Fifo {
-    std::array<T, Depth> items{};
-    size_t head = 0, size = 0;
-    bool full() const { return size == Depth; }
-    bool empty() const { return size == 0; }
-    const T& front() const { return items[head]; }
-    void pop() {
-      head = head + 1 == Depth ? 0 : head + 1;
-      --size;
-    }
-    void push(const T& v) {
-      size_t tail = head + size;
-      if (tail >= Depth) tail -= Depth;
-      items[tail] = v;
-      ++size;
-    }
-    void clear() { head = size = 0; }
-  };
-  struct MemReq {
-    uint32_t addr = 0, slot = 0;
-  };
-  struct Visit {
-    uint32_t rayId = 0, nodeId = 0;
-  };
-
   // rt_rr_arb's pointer: grants the lowest requester at or after it; moves past a used grant.
   struct RoundRobin {
     int ptr = 0;
     int pick(const SlotMask& want) const { return want.pickFrom(ptr); }
     void ack(int granted) { ptr = granted + 1 == N ? 0 : granted + 1; }
-  };
-
-  // The setup pipeline's valid/slot/ray registers (the arithmetic happens at the slot load).
-  struct SetupStage {
-    bool valid = false;
-    int slot = 0;
-    isect_ray_t ray{};
   };
 
   // u_isect: ISECT_LATENCY stages of {valid, result}.
@@ -184,13 +150,13 @@ class rt_octree_model : public rt_trav_shell<rt_octree_unit> {
   // advWant_: NEXT and CHECK without a hit, waiting for an advance lane;
   // self_: DESCEND and FETCH with every result in, acting on their own.
   SlotMask free_, enter_, nodeWant_, idxWant_, checkWant_, advWant_, done_, self_;
-  SetupStage s1_, s2_;
+  rt_setup_pipe setup_;  // the setup pipeline's registers (the arithmetic happens at the slot load)
   RoundRobin visitArb_, nodeArb_, idxArb_, checkArb_, doneArb_;
   std::array<RoundRobin, octree::ADV_LANES> advArb_{};  // lane l takes what lanes before it left
-  Fifo<MemReq, octree::MEMREQ_FIFO_DEPTH> nodeQ_, idxQ_, triQ_;
-  Fifo<MemReq, octree::IDX_BUF_DEPTH> idxBuf_;  // {triangle id, slot}
-  Fifo<Visit, octree::VISIT_FIFO_DEPTH> visitQ_;
-  Fifo<octree::res_t, octree::RES_FIFO_DEPTH> resQ_;
+  rt_fifo_model<rt_mem_req, octree::MEMREQ_FIFO_DEPTH> nodeQ_, idxQ_, triQ_;
+  rt_fifo_model<rt_mem_req, octree::IDX_BUF_DEPTH> idxBuf_;  // {triangle id, slot}
+  rt_fifo_model<rt_visit_entry, octree::VISIT_FIFO_DEPTH> visitQ_;
+  rt_fifo_model<octree::res_t, octree::RES_FIFO_DEPTH> resQ_;
   int credits_ = octree::IDX_BUF_DEPTH;
   std::array<IsectStage, ISECT_LATENCY> isect_{};
   size_t isectPos_ = 0;
