@@ -2,6 +2,7 @@
 
 #include <systemc>
 
+#include "common/rt_trav_unit.h"
 #include "isect/rt_isect_types.h"
 
 namespace lancer::sc {
@@ -16,12 +17,19 @@ namespace lancer::sc {
 template <class Unit>
 class rt_trav_shell : public sc_core::sc_module {
  public:
+  // The unit's port types, for the derived model's own ports and registers.
+  using cfg_slots_t = typename Unit::cfg_slots_t;
+  using cfg_t = typename Unit::cfg_t;
   using slot_t = typename Unit::slot_t;
   using mem_addr_t = typename Unit::mem_addr_t;
+  using idx_data_t = typename Unit::idx_data_t;
+  using node_data_t = typename Unit::node_data_t;
+  using res_t = typename Unit::res_t;
+  using visit_t = typename Unit::visit_t;
 
   sc_core::sc_in<bool> clk_i{"clk_i"};
   sc_core::sc_in<bool> rst_ni{"rst_ni"};
-  sc_core::sc_in<typename Unit::cfg_slots_t> cfg_slots_i{"cfg_slots_i"};
+  sc_core::sc_in<cfg_slots_t> cfg_slots_i{"cfg_slots_i"};
 
   sc_core::sc_in<bool> ray_valid_i{"ray_valid_i"};
   sc_core::sc_out<bool> ray_ready_o{"ray_ready_o"};
@@ -29,18 +37,18 @@ class rt_trav_shell : public sc_core::sc_module {
 
   sc_core::sc_out<bool> res_valid_o{"res_valid_o"};
   sc_core::sc_in<bool> res_ready_i{"res_ready_i"};
-  sc_core::sc_out<typename Unit::res_t> res_data_o{"res_data_o"};
+  sc_core::sc_out<res_t> res_data_o{"res_data_o"};
 
   sc_core::sc_out<bool> visit_valid_o{"visit_valid_o"};
   sc_core::sc_in<bool> visit_ready_i{"visit_ready_i"};
-  sc_core::sc_out<typename Unit::visit_t> visit_data_o{"visit_data_o"};
+  sc_core::sc_out<visit_t> visit_data_o{"visit_data_o"};
 
   sc_core::sc_out<bool> idx_req_valid_o{"idx_req_valid_o"};
   sc_core::sc_in<bool> idx_req_ready_i{"idx_req_ready_i"};
   sc_core::sc_out<mem_addr_t> idx_req_addr_o{"idx_req_addr_o"};
   sc_core::sc_out<slot_t> idx_req_tag_o{"idx_req_tag_o"};
   sc_core::sc_in<bool> idx_rsp_valid_i{"idx_rsp_valid_i"};
-  sc_core::sc_in<typename Unit::idx_data_t> idx_rsp_data_i{"idx_rsp_data_i"};
+  sc_core::sc_in<idx_data_t> idx_rsp_data_i{"idx_rsp_data_i"};
   sc_core::sc_in<slot_t> idx_rsp_tag_i{"idx_rsp_tag_i"};
 
   sc_core::sc_out<bool> tri_req_valid_o{"tri_req_valid_o"};

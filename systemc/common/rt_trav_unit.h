@@ -43,6 +43,14 @@ constexpr int clog2(uint64_t n) {
   return bits;
 }
 
+// The traversal shell's parameters, every unit's (rtl/lib/; docs/octree-unit.md:
+// as rt_grid's): the index buffer and its credits, the FIFO depths, the address width.
+inline constexpr int IDX_BUF_DEPTH = 64;
+inline constexpr int MEMREQ_FIFO_DEPTH = 2;
+inline constexpr int VISIT_FIFO_DEPTH = 4;
+inline constexpr int RES_FIFO_DEPTH = 2;
+inline constexpr int MEM_ADDR_W = fx::kMemAddrBits;
+
 // The port types of a unit from its parameters, under the names the traits
 // provide (a unit's traits derive from it): RaysInFlight ray slots, a
 // configuration port of CfgW bits, node/cell responses of NodeDataW bits, the
@@ -51,6 +59,7 @@ template <int RaysInFlight, int CfgW, int NodeDataW, const auto& ResFields, cons
 struct rt_trav_unit_types {
   static_assert(RaysInFlight >= 1 && RaysInFlight <= 256, "RaysInFlight is 1..256");
   static constexpr int RAYS_IN_FLIGHT = RaysInFlight;
+  static constexpr int SLOT_W = RaysInFlight > 1 ? clog2(RaysInFlight) : 1;
   static constexpr int NODE_DATA_W = NodeDataW;
   static constexpr int RESULT_W = fx::recordBits(ResFields);
   static constexpr int VISIT_W = fx::recordBits(VisitFields);
@@ -59,8 +68,8 @@ struct rt_trav_unit_types {
 
   using cfg_slots_t = vl_port_t<clog2(RaysInFlight + 1)>;
   using cfg_t = vl_port_t<CfgW>;
-  using slot_t = vl_port_t<(RaysInFlight > 1 ? clog2(RaysInFlight) : 1)>;
-  using mem_addr_t = vl_port_t<fx::kMemAddrBits>;
+  using slot_t = vl_port_t<SLOT_W>;
+  using mem_addr_t = vl_port_t<MEM_ADDR_W>;
   using idx_data_t = vl_port_t<32>;
   using node_data_t = vl_port_t<NodeDataW>;
   using res_t = vl_port_t<RESULT_W>;

@@ -17,7 +17,7 @@ namespace lancer::sc {
 namespace {
 
 constexpr int N = RAYS_IN_FLIGHT;
-constexpr uint32_t SLOT_MASK = (uint32_t(1) << SLOT_W) - 1;
+constexpr uint32_t SLOT_MASK = (uint32_t(1) << rt_grid_unit::SLOT_W) - 1;
 
 // ADDR_W'(value): the RTL truncates cell ids, index positions and triangle ids to the address width.
 constexpr uint32_t addrOf(uint32_t value) {
@@ -240,14 +240,14 @@ void rt_grid_model::seq() {
     const Slot& s = slots_[size_t(idxIdx)];
     idxReq = {addrOf(s.first + s.issued), uint32_t(idxIdx)};
   }
-  grid_res_t doneRec{};
+  res_t doneRec{};
   if (doneGo) {
     const Slot& s = slots_[size_t(doneIdx)];
     const fx::u128 values[] = {s.rayId, s.cells, s.tests, s.hasHit ? 1u : 0u, s.best.primId,
                                s.best.tNum, s.best.det, s.best.uNum, s.best.vNum};
-    std::array<uint32_t, size_t(fx::wireWords(GRID_RESULT_W))> wire{};
+    std::array<uint32_t, size_t(fx::wireWords(rt_grid_unit::RESULT_W))> wire{};
     fx::packFields(fx::kGridResFields, values, wire);
-    doneRec = toPort<GRID_RESULT_W>(wire);
+    doneRec = toPort<rt_grid_unit::RESULT_W>(wire);
   }
 
   // ---- Register updates of the slots, event by event (each names another slot,
@@ -397,9 +397,9 @@ void rt_grid_model::writeOutputs() {
   visit_valid_o.write(!visitQ_.empty());
   if (!visitQ_.empty()) {
     const fx::u128 values[] = {visitQ_.front().rayId, visitQ_.front().id};
-    std::array<uint32_t, size_t(fx::wireWords(GRID_VISIT_W))> wire{};
+    std::array<uint32_t, size_t(fx::wireWords(rt_grid_unit::VISIT_W))> wire{};
     fx::packFields(fx::kGridVisitFields, values, wire);
-    visit_data_o.write(toPort<GRID_VISIT_W>(wire));
+    visit_data_o.write(toPort<rt_grid_unit::VISIT_W>(wire));
   }
   res_valid_o.write(!resQ_.empty());
   if (!resQ_.empty()) res_data_o.write(resQ_.front());

@@ -49,14 +49,14 @@ namespace lancer::sc {
 class rt_grid_model : public rt_trav_shell<rt_grid_unit> {
  public:
   // The ports of rt_trav_shell, and the unit's own:
-  sc_core::sc_in<cfg_res_t> cfg_res_i{"cfg_res_i"};
+  sc_core::sc_in<cfg_t> cfg_res_i{"cfg_res_i"};
 
   sc_core::sc_out<bool> cell_req_valid_o{"cell_req_valid_o"};
   sc_core::sc_in<bool> cell_req_ready_i{"cell_req_ready_i"};
   sc_core::sc_out<mem_addr_t> cell_req_addr_o{"cell_req_addr_o"};
   sc_core::sc_out<slot_t> cell_req_tag_o{"cell_req_tag_o"};
   sc_core::sc_in<bool> cell_rsp_valid_i{"cell_rsp_valid_i"};
-  sc_core::sc_in<grid_cell_t> cell_rsp_data_i{"cell_rsp_data_i"};
+  sc_core::sc_in<node_data_t> cell_rsp_data_i{"cell_rsp_data_i"};
   sc_core::sc_in<slot_t> cell_rsp_tag_i{"cell_rsp_tag_i"};
 
   SC_HAS_PROCESS(rt_grid_model);
@@ -109,7 +109,7 @@ class rt_grid_model : public rt_trav_shell<rt_grid_unit> {
   struct CellRsp {
     bool valid = false;
     uint32_t tag = 0;
-    grid_cell_t data{};
+    node_data_t data{};
   };
   struct TriRsp {
     bool valid = false;
@@ -148,7 +148,7 @@ class rt_grid_model : public rt_trav_shell<rt_grid_unit> {
   rt_fifo_model<rt_mem_req, MEMREQ_FIFO_DEPTH> cellQ_, idxQ_, triQ_;
   rt_fifo_model<rt_mem_req, IDX_BUF_DEPTH> idxBuf_;  // {triangle id, slot}
   rt_fifo_model<rt_visit_entry, VISIT_FIFO_DEPTH> visitQ_;
-  rt_fifo_model<grid_res_t, RES_FIFO_DEPTH> resQ_;
+  rt_fifo_model<res_t, RES_FIFO_DEPTH> resQ_;
   int credits_ = IDX_BUF_DEPTH;
   sc_core::sc_event state_changed_;
 };

@@ -15,7 +15,7 @@ using namespace octree;
 
 namespace {
 
-constexpr uint32_t SLOT_MASK = (uint32_t(1) << SLOT_W) - 1;
+constexpr uint32_t SLOT_MASK = (uint32_t(1) << rt_octree_unit::SLOT_W) - 1;
 constexpr size_t kNodeWords = size_t(fx::wireWords(NODE_W));
 constexpr size_t kGroupWords = size_t(fx::wireWords(GROUP_W));
 constexpr size_t kNodeValues = fx::valueCount(fx::kOctreeNodeFields);
@@ -441,10 +441,10 @@ void rt_octree_model::seq() {
     const fx::u128 values[kResValues] = {s.rayId,         s.nodes,       s.tests,
                                          s.hasHit ? 1u : 0u, s.best.primId, s.best.tNum,
                                          s.best.det,      s.best.uNum,   s.best.vNum};
-    std::array<uint32_t, size_t(fx::wireWords(RESULT_W))> wire{};
+    std::array<uint32_t, size_t(fx::wireWords(rt_octree_unit::RESULT_W))> wire{};
     fx::packFields(fx::kOctreeResFields, values, wire);
     resHead_ |= resQ_.empty();
-    resQ_.push(toPort<RESULT_W>(wire));
+    resQ_.push(toPort<rt_octree_unit::RESULT_W>(wire));
     setState(doneIdx, State::Free);
     doneArb_.ack(doneIdx);
   }
@@ -499,10 +499,10 @@ void rt_octree_model::writeOutputs(bool all) {
   }
   writeFlag(visit_valid_o, VISIT_VALID, !visitQ_.empty(), all);
   if (!visitQ_.empty() && (visitHead_ || all)) {
-    std::array<uint32_t, size_t(fx::wireWords(VISIT_W))> wire{};
+    std::array<uint32_t, size_t(fx::wireWords(rt_octree_unit::VISIT_W))> wire{};
     putField<fx::kOctreeVisitFields, 0>(wire.data(), visitQ_.front().rayId);
     putField<fx::kOctreeVisitFields, 1>(wire.data(), visitQ_.front().id);
-    visit_data_o.write(toPort<VISIT_W>(wire));
+    visit_data_o.write(toPort<rt_octree_unit::VISIT_W>(wire));
   }
   writeFlag(res_valid_o, RES_VALID, !resQ_.empty(), all);
   if (!resQ_.empty() && (resHead_ || all)) res_data_o.write(resQ_.front());

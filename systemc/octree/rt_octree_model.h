@@ -49,15 +49,15 @@ namespace lancer::sc {
 class rt_octree_model : public rt_trav_shell<rt_octree_unit> {
  public:
   // The ports of rt_trav_shell, and the unit's own:
-  sc_core::sc_in<octree::node_t> cfg_root_i{"cfg_root_i"};
+  sc_core::sc_in<cfg_t> cfg_root_i{"cfg_root_i"};
 
   sc_core::sc_out<bool> node_req_valid_o{"node_req_valid_o"};
   sc_core::sc_in<bool> node_req_ready_i{"node_req_ready_i"};
-  sc_core::sc_out<octree::mem_addr_t> node_req_addr_o{"node_req_addr_o"};
-  sc_core::sc_out<octree::slot_t> node_req_tag_o{"node_req_tag_o"};
+  sc_core::sc_out<mem_addr_t> node_req_addr_o{"node_req_addr_o"};
+  sc_core::sc_out<slot_t> node_req_tag_o{"node_req_tag_o"};
   sc_core::sc_in<bool> node_rsp_valid_i{"node_rsp_valid_i"};
-  sc_core::sc_in<octree::group_t> node_rsp_data_i{"node_rsp_data_i"};
-  sc_core::sc_in<octree::slot_t> node_rsp_tag_i{"node_rsp_tag_i"};
+  sc_core::sc_in<node_data_t> node_rsp_data_i{"node_rsp_data_i"};
+  sc_core::sc_in<slot_t> node_rsp_tag_i{"node_rsp_tag_i"};
 
   SC_HAS_PROCESS(rt_octree_model);
   explicit rt_octree_model(sc_core::sc_module_name name);
@@ -153,11 +153,11 @@ class rt_octree_model : public rt_trav_shell<rt_octree_unit> {
   rt_setup_pipe setup_;  // the setup pipeline's registers (the arithmetic happens at the slot load)
   RoundRobin visitArb_, nodeArb_, idxArb_, checkArb_, doneArb_;
   std::array<RoundRobin, octree::ADV_LANES> advArb_{};  // lane l takes what lanes before it left
-  rt_fifo_model<rt_mem_req, octree::MEMREQ_FIFO_DEPTH> nodeQ_, idxQ_, triQ_;
-  rt_fifo_model<rt_mem_req, octree::IDX_BUF_DEPTH> idxBuf_;  // {triangle id, slot}
-  rt_fifo_model<rt_visit_entry, octree::VISIT_FIFO_DEPTH> visitQ_;
-  rt_fifo_model<octree::res_t, octree::RES_FIFO_DEPTH> resQ_;
-  int credits_ = octree::IDX_BUF_DEPTH;
+  rt_fifo_model<rt_mem_req, MEMREQ_FIFO_DEPTH> nodeQ_, idxQ_, triQ_;
+  rt_fifo_model<rt_mem_req, IDX_BUF_DEPTH> idxBuf_;  // {triangle id, slot}
+  rt_fifo_model<rt_visit_entry, VISIT_FIFO_DEPTH> visitQ_;
+  rt_fifo_model<res_t, RES_FIFO_DEPTH> resQ_;
+  int credits_ = IDX_BUF_DEPTH;
   std::array<IsectStage, ISECT_LATENCY> isect_{};
   size_t isectPos_ = 0;
   // Which FIFO heads changed since the outputs were last written.
