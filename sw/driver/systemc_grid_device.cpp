@@ -1,7 +1,7 @@
 #include "driver/systemc_grid_device.h"
 
 #include "driver/systemc_traversal_device_impl.h"
-#include "grid/rt_grid_top.h"
+#include "grid/rt_grid_unit.h"
 
 namespace lancer {
 

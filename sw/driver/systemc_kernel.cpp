@@ -4,9 +4,9 @@
 
 #include <systemc>
 
-#include "grid/rt_grid_top.h"
+#include "grid/rt_grid_unit.h"
 #include "isect/rt_isect_top.h"
-#include "octree/rt_octree_top.h"
+#include "octree/rt_octree_unit.h"
 
 namespace lancer::systemc_kernel {
 

@@ -1,7 +1,7 @@
 #include "driver/systemc_octree_device.h"
 
 #include "driver/systemc_traversal_device_impl.h"
-#include "octree/rt_octree_top.h"
+#include "octree/rt_octree_unit.h"
 
 namespace lancer {
 

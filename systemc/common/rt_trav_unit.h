@@ -11,8 +11,8 @@
 //     rt_grid's cfg_res_i, rt_octree's cfg_root_i;
 //   - the result and visit records (res_t, visit_t, kResFields, kVisitFields);
 //   - the cycle model (model_t) and its options (kModelTakesIsect: the model
-//     can hold the Verilated rt_isect); the Verilated class is named by the
-//     unit's top .cpp (rt_trav_rtl<Unit>), built only when the build has it.
+//     can hold the Verilated rt_isect); the Verilated class is named in
+//     systemc/rt_trav_units.cpp (rt_trav_rtl<Unit>), when the build has it.
 // A unit's traits also bind the DUT's unit-specific ports (bindUnitPorts),
 // since the DUT's C++ members carry the RTL's names.
 //
@@ -82,8 +82,11 @@ struct rt_trav_unit_types {
 inline std::string portName(const char* prefix, const char* suffix) { return std::string(prefix) + "_" + suffix; }
 
 // The Verilated SystemC class of a unit (Vrt_grid_sc, ...), or void when the
-// build lacks it: specialized by the unit's top .cpp, which includes it.
+// build lacks it: specialized by systemc/rt_trav_units.cpp, the one file that
+// includes the Verilated classes.
 template <class Unit>
-struct rt_trav_rtl;
+struct rt_trav_rtl {
+  using type = void;
+};
 
 }  // namespace lancer::sc

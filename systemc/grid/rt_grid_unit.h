@@ -5,6 +5,7 @@
 #include <span>
 
 #include "golden/grid.h"
+#include "common/rt_trav_top.h"
 #include "golden/records.h"
 #include "grid/rt_grid_types.h"
 
@@ -70,5 +71,8 @@ struct rt_grid_unit : rt_trav_unit_types<RAYS_IN_FLIGHT, 3 * GRID_RESOLUTION_W, 
     dut.cell_rsp_tag_i(b.node_rsp_tag_i);
   }
 };
+
+// rt_grid's SystemC system, testbench and memory (common/rt_trav_top.h).
+using rt_grid_top = rt_trav_top<rt_grid_unit>;
 
 }  // namespace lancer::sc

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "golden/octree.h"
+#include "common/rt_trav_top.h"
 #include "golden/records.h"
 #include "octree/rt_octree_types.h"
 
@@ -74,5 +75,8 @@ struct rt_octree_unit : rt_trav_unit_types<octree::RAYS_IN_FLIGHT, octree::NODE_
     b.bindNodePort(dut);
   }
 };
+
+// rt_octree's SystemC system, testbench and memory (common/rt_trav_top.h).
+using rt_octree_top = rt_trav_top<rt_octree_unit>;
 
 }  // namespace lancer::sc
