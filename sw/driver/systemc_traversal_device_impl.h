@@ -23,11 +23,11 @@ namespace lancer {
 template <class Image, class Unit>
 SystemCTraversalDevice<Image, Unit>::SystemCTraversalDevice(Impl impl) : impl_(impl) {
   if (impl_ == Impl::Rtl && !rtlAvailable()) {
-    throw std::runtime_error(fmt::format("rtl-systemc is not part of this build (no {})", Unit::kRtlSources));
+    throw std::runtime_error(fmt::format("rtl-systemc is not part of this build (no {})", Unit::kNames.rtlSources));
   }
   if (impl_ == Impl::ModelRtlIsect && !rtlIsectAvailable()) {
     throw std::runtime_error(fmt::format("the {} cycle model with the Verilated rt_isect is not part of this build",
-                                         Unit::kName));
+                                         Unit::kNames.module));
   }
 }
 
@@ -69,8 +69,8 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
   if (options.raysInFlight < 0 || options.raysInFlight > maxSlots) {
     throw InputError(fmt::format("rays in flight {} is out of range: the SystemC {} unit ({}) has {} ray slots "
                                  "(use 1..{}, or 0 for all; rebuild with -D{} for more)",
-                                 options.raysInFlight, Unit::kUnitWord, name(), maxSlots, maxSlots,
-                                 Unit::kSlotsOption));
+                                 options.raysInFlight, Unit::kNames.unit, name(), maxSlots, maxSlots,
+                                 Unit::kNames.slotsOption));
   }
   if (options.memLatency < 1 || options.memLatencyJitter < 0) {
     throw InputError(fmt::format("memory latency {} (jitter {}) is out of range: latency >= 1, jitter >= 0",
@@ -141,7 +141,7 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
   for (size_t k = 0; k < n; ++k) {
     if (tally.resultSteps[k] != traces[k].visits.size()) {
       throw std::runtime_error(fmt::format("{}: ray {} reports {} {} but {} visit records came out", name(), k,
-                                           tally.resultSteps[k], Unit::kStepNoun, traces[k].visits.size()));
+                                           tally.resultSteps[k], Unit::kNames.steps, traces[k].visits.size()));
     }
   }
   stats.cycles = tally.cycles;

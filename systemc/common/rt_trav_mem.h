@@ -28,7 +28,7 @@ namespace lancer::sc {
 // for the node, index and triangle ports, as the C++ Verilated devices, so
 // that for the same TraversalRunOptions all of them answer in the same cycles.
 // Ports carry the names of the unit's ports they connect to (node_*: the
-// unit's kNodePort prefix, cell_* for rt_grid). An address outside the image
+// unit's kNames.nodePort prefix, cell_* for rt_grid). An address outside the image
 // is an SC_REPORT_ERROR (the device throws).
 template <class Unit>
 class rt_trav_mem : public sc_core::sc_module {
@@ -41,13 +41,13 @@ class rt_trav_mem : public sc_core::sc_module {
 
   sc_core::sc_in<bool> clk_i{"clk_i"};
 
-  sc_core::sc_in<bool> node_req_valid_o{portName(Unit::kNodePort, "req_valid_o").c_str()};
-  sc_core::sc_out<bool> node_req_ready_i{portName(Unit::kNodePort, "req_ready_i").c_str()};
-  sc_core::sc_in<mem_addr_t> node_req_addr_o{portName(Unit::kNodePort, "req_addr_o").c_str()};
-  sc_core::sc_in<slot_t> node_req_tag_o{portName(Unit::kNodePort, "req_tag_o").c_str()};
-  sc_core::sc_out<bool> node_rsp_valid_i{portName(Unit::kNodePort, "rsp_valid_i").c_str()};
-  sc_core::sc_out<node_data_t> node_rsp_data_i{portName(Unit::kNodePort, "rsp_data_i").c_str()};
-  sc_core::sc_out<slot_t> node_rsp_tag_i{portName(Unit::kNodePort, "rsp_tag_i").c_str()};
+  sc_core::sc_in<bool> node_req_valid_o{portName(Unit::kNames.nodePort, "req_valid_o").c_str()};
+  sc_core::sc_out<bool> node_req_ready_i{portName(Unit::kNames.nodePort, "req_ready_i").c_str()};
+  sc_core::sc_in<mem_addr_t> node_req_addr_o{portName(Unit::kNames.nodePort, "req_addr_o").c_str()};
+  sc_core::sc_in<slot_t> node_req_tag_o{portName(Unit::kNames.nodePort, "req_tag_o").c_str()};
+  sc_core::sc_out<bool> node_rsp_valid_i{portName(Unit::kNames.nodePort, "rsp_valid_i").c_str()};
+  sc_core::sc_out<node_data_t> node_rsp_data_i{portName(Unit::kNames.nodePort, "rsp_data_i").c_str()};
+  sc_core::sc_out<slot_t> node_rsp_tag_i{portName(Unit::kNames.nodePort, "rsp_tag_i").c_str()};
 
   sc_core::sc_in<bool> idx_req_valid_o{"idx_req_valid_o"};
   sc_core::sc_out<bool> idx_req_ready_i{"idx_req_ready_i"};
@@ -111,7 +111,7 @@ class rt_trav_mem : public sc_core::sc_module {
     const bool node = node_.respond(c + 1, addr, tag);
     node_rsp_valid_i.write(node);
     if (node) {
-      if (!nodes_.holds(addr)) outside(Unit::kNodeRegion, addr, nodes_.entries());
+      if (!nodes_.holds(addr)) outside(Unit::kNames.nodeRegion, addr, nodes_.entries());
       assignPort<Unit::NODE_DATA_W>(nodePort_, nodes_.wire(addr));
       node_rsp_data_i.write(nodePort_);
       node_rsp_tag_i.write(slot_t(tag));

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "common/rt_trav_unit.h"
 #include "isect/rt_isect_types.h"
 
 namespace lancer::sc {
@@ -70,6 +71,30 @@ struct rt_setup_pipe {
     s1.valid = true;
     s1.slot = slot;
     s1.ray = ray;
+  }
+};
+
+// The shell's queues, every unit's (rtl/lib/'s traversal shell): the setup
+// pipeline, the node/cell, index and triangle request FIFOs, the index buffer
+// with its credits, the visit and result FIFOs (Res: the unit's result record).
+template <class Res>
+struct rt_trav_fifos {
+  rt_setup_pipe setup;
+  rt_fifo_model<rt_mem_req, MEMREQ_FIFO_DEPTH> nodeQ, idxQ, triQ;
+  rt_fifo_model<rt_mem_req, IDX_BUF_DEPTH> idxBuf;  // {triangle id, slot}
+  rt_fifo_model<rt_visit_entry, VISIT_FIFO_DEPTH> visitQ;
+  rt_fifo_model<Res, RES_FIFO_DEPTH> resQ;
+  int credits = IDX_BUF_DEPTH;  // index buffer entries not yet claimed by a request
+
+  void clear() {
+    setup.clear();
+    nodeQ.clear();
+    idxQ.clear();
+    triQ.clear();
+    idxBuf.clear();
+    visitQ.clear();
+    resQ.clear();
+    credits = IDX_BUF_DEPTH;
   }
 };
 

@@ -15,10 +15,10 @@ namespace lancer::sc {
 // rt_trav_tb: the testbench of one implementation of a traversal unit (Unit: a
 // traits class, common/rt_trav_unit.h); owns the clock (u_clk) and reset,
 // configures the unit (cfg_slots_i and the unit's configuration port,
-// Unit::kCfgPort), plays the ray producer and the result and visit consumers,
+// Unit::kNames.cfgPort), plays the ray producer and the result and visit consumers,
 // and counts, through rt_trav_stream (the C++ Verilated devices' run loop,
 // cycle by cycle: see there). Ports carry the names of the DUT ports they
-// connect to (node_*: the unit's node/cell port, cfg_i: its kCfgPort).
+// connect to (node_*: the unit's node/cell port, cfg_i: its kNames.cfgPort).
 //
 //   u_clk     a gated 10 ns clock that runs only during a run.
 //   stream()  SC_METHOD on clk_i.posedge: reset for RESET_CYCLES cycles, then
@@ -35,7 +35,7 @@ class rt_trav_tb : public sc_core::sc_module {
   sc_core::sc_out<bool> clk_i{"clk_i"};
   sc_core::sc_out<bool> rst_ni{"rst_ni"};
   sc_core::sc_out<typename Unit::cfg_slots_t> cfg_slots_i{"cfg_slots_i"};
-  sc_core::sc_out<typename Unit::cfg_t> cfg_i{Unit::kCfgPort};
+  sc_core::sc_out<typename Unit::cfg_t> cfg_i{Unit::kNames.cfgPort};
 
   sc_core::sc_out<bool> ray_valid_i{"ray_valid_i"};
   sc_core::sc_in<bool> ray_ready_o{"ray_ready_o"};
@@ -50,10 +50,10 @@ class rt_trav_tb : public sc_core::sc_module {
   sc_core::sc_in<typename Unit::visit_t> visit_data_o{"visit_data_o"};
 
   // Observed only (the memory model drives the responses).
-  sc_core::sc_in<bool> node_req_valid_o{portName(Unit::kNodePort, "req_valid_o").c_str()};
-  sc_core::sc_in<mem_addr_t> node_req_addr_o{portName(Unit::kNodePort, "req_addr_o").c_str()};
-  sc_core::sc_in<slot_t> node_req_tag_o{portName(Unit::kNodePort, "req_tag_o").c_str()};
-  sc_core::sc_in<bool> node_rsp_valid_i{portName(Unit::kNodePort, "rsp_valid_i").c_str()};
+  sc_core::sc_in<bool> node_req_valid_o{portName(Unit::kNames.nodePort, "req_valid_o").c_str()};
+  sc_core::sc_in<mem_addr_t> node_req_addr_o{portName(Unit::kNames.nodePort, "req_addr_o").c_str()};
+  sc_core::sc_in<slot_t> node_req_tag_o{portName(Unit::kNames.nodePort, "req_tag_o").c_str()};
+  sc_core::sc_in<bool> node_rsp_valid_i{portName(Unit::kNames.nodePort, "rsp_valid_i").c_str()};
   sc_core::sc_in<bool> idx_req_valid_o{"idx_req_valid_o"};
   sc_core::sc_in<mem_addr_t> idx_req_addr_o{"idx_req_addr_o"};
   sc_core::sc_in<slot_t> idx_req_tag_o{"idx_req_tag_o"};

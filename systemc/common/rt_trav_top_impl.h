@@ -68,7 +68,7 @@ template <class Unit>
 typename rt_trav_top<Unit>::bench_refs& rt_trav_top<Unit>::refs(rt_trav_impl impl) {
   bench_refs& r = impl == rt_trav_impl::model ? model_ : (impl == rt_trav_impl::rtl ? rtl_ : mixed_);
   if (r.tb == nullptr) {
-    throw std::runtime_error(std::string("this implementation of ") + Unit::kName +
+    throw std::runtime_error(std::string("this implementation of ") + Unit::kNames.module +
                              " is not part of the build (no Verilated RTL)");
   }
   return r;
@@ -88,7 +88,7 @@ template <class Unit>
 void rt_trav_top<Unit>::open_wave([[maybe_unused]] const std::string& path) {
   using rtl_t = typename rt_trav_rtl<Unit>::type;
   if constexpr (std::is_void_v<rtl_t> || !LANCER_SC_RTL_FST) {
-    throw std::runtime_error(std::string("the Verilated ") + Unit::kName + " of this build has no FST tracing");
+    throw std::runtime_error(std::string("the Verilated ") + Unit::kNames.module + " of this build has no FST tracing");
   } else {
     // Verilator's trace() needs elaboration complete: the first run of the process
     // may ask for a wave. Zero time with every clock at rest changes nothing.

@@ -4,10 +4,10 @@
 // rt_trav_bench, rt_trav_top; systemc/common/) need to know of a unit: its
 // traits class (grid/rt_grid_unit.h, octree/rt_octree_unit.h). Every traversal
 // unit has the same ports (rtl/lib/'s traversal shell) except for
-//   - the node/cell memory port: its name prefix (kNodePort: "cell", "node")
+//   - the node/cell memory port: its name prefix (kNames.nodePort: "cell", "node")
 //     and the record its responses carry (node_data_t: a grid cell, a child
 //     group of 8 octree nodes), packed from the unit's image by a node_packer;
-//   - one configuration port besides cfg_slots_i (kCfgPort, cfg_t, config()):
+//   - one configuration port besides cfg_slots_i (kNames.cfgPort, cfg_t, config()):
 //     rt_grid's cfg_res_i, rt_octree's cfg_root_i;
 //   - the result and visit records (res_t, visit_t, kResFields, kVisitFields);
 //   - the cycle model (model_t) and its options (kModelTakesIsect: the model
@@ -17,7 +17,7 @@
 // since the DUT's C++ members carry the RTL's names.
 //
 // A unit traits class provides:
-//   kName, kNodePort, kCfgPort, kNodeRegion    names (RTL module, port prefixes, messages)
+//   kNames                                     rt_trav_names (RTL module, port prefixes, messages)
 //   rt_trav_unit_types<...> as a base          ray slots as the RTL is built, the port
 //                                              types (cfg_slots_t, cfg_t, slot_t, mem_addr_t,
 //                                              idx_data_t, node_data_t, res_t, visit_t), the
@@ -42,6 +42,21 @@ constexpr int clog2(uint64_t n) {
   while ((uint64_t(1) << bits) < n) ++bits;
   return bits;
 }
+
+// A unit's names: its RTL module, the prefix of its node/cell port, its
+// configuration port, the node table as memory errors name it, and for the
+// driver's messages the unit, the build options of its slots and of its RTL
+// sources, what its result record's element count counts.
+struct rt_trav_names {
+  const char* module;      // "rt_grid"
+  const char* nodePort;    // "cell": cell_req_valid_o, ...
+  const char* cfgPort;     // "cfg_res_i"
+  const char* nodeRegion;  // "cell table"
+  const char* unit;        // "grid"
+  const char* slotsOption; // "LANCER_GRID_RAYS_IN_FLIGHT"
+  const char* rtlSources;  // "LANCER_RTL_GRID_SOURCES"
+  const char* steps;       // "cells"
+};
 
 // The traversal shell's parameters, every unit's (rtl/lib/; docs/octree-unit.md:
 // as rt_grid's): the index buffer and its credits, the FIFO depths, the address width.

@@ -85,16 +85,9 @@ fx::GridRes rt_grid_model::resolution() const {
 
 void rt_grid_model::reset() {
   for (Slot& s : slots_) s = Slot{};
-  setup_.clear();
+  q_.clear();
   cellRsp_.valid = triRsp_.valid = false;
   cellArb_ = visitArb_ = idxArb_ = checkArb_ = doneArb_ = RoundRobin{};
-  cellQ_.clear();
-  idxQ_.clear();
-  triQ_.clear();
-  idxBuf_.clear();
-  visitQ_.clear();
-  resQ_.clear();
-  credits_ = IDX_BUF_DEPTH;
 }
 
 void rt_grid_model::startCell(Slot& s, const fx::GridCell& data) {
@@ -152,24 +145,24 @@ void rt_grid_model::seq() {
     const Slot& s = slots_[size_t(k)];
     return inFlight(s) && s.frontierValid && s.queued < CELL_QUEUE;
   });
-  const bool cellGo = cellIdx >= 0 && !cellQ_.full();
+  const bool cellGo = cellIdx >= 0 && !q_.nodeQ.full();
   const int visitIdx = visitArb_.pick(N, [&](int k) {
     const Slot& s = slots_[size_t(k)];
     return s.state == State::Visit && s.queued > 0;
   });
-  const bool visitGo = visitIdx >= 0 && !visitQ_.full();
+  const bool visitGo = visitIdx >= 0 && !q_.visitQ.full();
   const int idxIdx = idxArb_.pick(N, [&](int k) {
     const Slot& s = slots_[size_t(k)];
     return s.state == State::Fetch && s.issued != s.count;
   });
-  const bool idxGo = idxIdx >= 0 && !idxQ_.full() && credits_ != 0;
+  const bool idxGo = idxIdx >= 0 && !q_.idxQ.full() && q_.credits != 0;
   const int checkIdx = checkArb_.pick(N, [&](int k) { return slots_[size_t(k)].state == State::Check; });
   const int doneIdx = doneArb_.pick(N, [&](int k) {
     const Slot& s = slots_[size_t(k)];
     return s.state == State::Done && s.outstanding == 0;
   });
-  const bool doneGo = doneIdx >= 0 && !resQ_.full();
-  const bool idxBufPop = !idxBuf_.empty() && !triQ_.full();
+  const bool doneGo = doneIdx >= 0 && !q_.resQ.full();
+  const bool idxBufPop = !q_.idxBuf.empty() && !q_.triQ.full();
 
   // Memory responses: cell and triangle responses from the boundary registers
   // (the RTL's assertions a_cell_rsp_slot, a_cell_rsp_head, a_tri_rsp_slot,
@@ -200,7 +193,7 @@ void rt_grid_model::seq() {
     }
   }
   const bool idxRsp = idx_rsp_valid_i.read();
-  if (idxRsp && idxBuf_.full()) fail("index response with the index buffer full (credit error)");
+  if (idxRsp && q_.idxBuf.full()) fail("index response with the index buffer full (credit error)");
 
   // rt_isect's result of this cycle: one closest-hit update.
   const bool resValid = isect_res_valid.read();
@@ -268,16 +261,16 @@ void rt_grid_model::seq() {
       visitGo && (slots_[size_t(visitIdx)].outstanding < slots_[size_t(visitIdx)].queued || cellSlot == visitIdx);
 
   if (rayFire) slots_[size_t(alloc)].state = State::Setup;
-  if (setup_.s2.valid) {
-    Slot& s = slots_[size_t(setup_.s2.slot)];
+  if (q_.setup.s2.valid) {
+    Slot& s = slots_[size_t(q_.setup.s2.slot)];
     fx::QRay ray;
     std::array<uint32_t, fx::kIsectRayWords> wire{};
-    fromPort<ISECT_RAY_W>(setup_.s2.ray, wire);
+    fromPort<ISECT_RAY_W>(q_.setup.s2.ray, wire);
     fx::unpackRay(wire, ray);
     s.rayId = ray.id;
     s.frontier = fx::GridDda::setup(resolution(), ray);
     s.frontierValid = true;
-    ray.id = uint32_t(setup_.s2.slot);
+    ray.id = uint32_t(q_.setup.s2.slot);
     fx::packWire(ray, wire);
     s.isectRay = toPort<ISECT_RAY_W>(wire);
     s.head = s.queued = 0;
@@ -337,22 +330,22 @@ void rt_grid_model::seq() {
   if (doneGo) slots_[size_t(doneIdx)].state = State::Free;
 
   // ---- FIFOs, credits, arbiter pointers, setup pipeline.
-  if (!cellQ_.empty() && cell_req_ready_i.read()) cellQ_.pop();
-  if (cellGo) cellQ_.push(cellReq);
-  if (!visitQ_.empty() && visit_ready_i.read()) visitQ_.pop();
-  if (visitGo) visitQ_.push(visitRec);
-  if (!idxQ_.empty() && idx_req_ready_i.read()) idxQ_.pop();
-  if (idxGo) idxQ_.push(idxReq);
-  if (!triQ_.empty() && tri_req_ready_i.read()) triQ_.pop();
+  if (!q_.nodeQ.empty() && cell_req_ready_i.read()) q_.nodeQ.pop();
+  if (cellGo) q_.nodeQ.push(cellReq);
+  if (!q_.visitQ.empty() && visit_ready_i.read()) q_.visitQ.pop();
+  if (visitGo) q_.visitQ.push(visitRec);
+  if (!q_.idxQ.empty() && idx_req_ready_i.read()) q_.idxQ.pop();
+  if (idxGo) q_.idxQ.push(idxReq);
+  if (!q_.triQ.empty() && tri_req_ready_i.read()) q_.triQ.pop();
   if (idxBufPop) {
-    triQ_.push(idxBuf_.front());
-    idxBuf_.pop();
+    q_.triQ.push(q_.idxBuf.front());
+    q_.idxBuf.pop();
   }
-  if (idxRsp) idxBuf_.push({addrOf(uint32_t(idx_rsp_data_i.read())), uint32_t(idx_rsp_tag_i.read()) & SLOT_MASK});
-  if (!resQ_.empty() && res_ready_i.read()) resQ_.pop();
-  if (doneGo) resQ_.push(doneRec);
-  if (idxGo && !idxBufPop) --credits_;
-  if (idxBufPop && !idxGo) ++credits_;
+  if (idxRsp) q_.idxBuf.push({addrOf(uint32_t(idx_rsp_data_i.read())), uint32_t(idx_rsp_tag_i.read()) & SLOT_MASK});
+  if (!q_.resQ.empty() && res_ready_i.read()) q_.resQ.pop();
+  if (doneGo) q_.resQ.push(doneRec);
+  if (idxGo && !idxBufPop) --q_.credits;
+  if (idxBufPop && !idxGo) ++q_.credits;
 
   if (cellGo) cellArb_.ack(cellIdx, N);
   if (visitGo) visitArb_.ack(visitIdx, N);
@@ -360,8 +353,8 @@ void rt_grid_model::seq() {
   if (checkIdx >= 0) checkArb_.ack(checkIdx, N);
   if (doneGo) doneArb_.ack(doneIdx, N);
 
-  setup_.shift();
-  if (rayFire) setup_.load(alloc, ray_data_i.read());
+  q_.setup.shift();
+  if (rayFire) q_.setup.load(alloc, ray_data_i.read());
 
   cellRsp_.valid = cell_rsp_valid_i.read();
   if (cellRsp_.valid) {
@@ -379,30 +372,30 @@ void rt_grid_model::seq() {
 }
 
 void rt_grid_model::writeOutputs() {
-  cell_req_valid_o.write(!cellQ_.empty());
-  if (!cellQ_.empty()) {
-    cell_req_addr_o.write(mem_addr_t(cellQ_.front().addr));
-    cell_req_tag_o.write(slot_t(cellQ_.front().slot));
+  cell_req_valid_o.write(!q_.nodeQ.empty());
+  if (!q_.nodeQ.empty()) {
+    cell_req_addr_o.write(mem_addr_t(q_.nodeQ.front().addr));
+    cell_req_tag_o.write(slot_t(q_.nodeQ.front().slot));
   }
-  idx_req_valid_o.write(!idxQ_.empty());
-  if (!idxQ_.empty()) {
-    idx_req_addr_o.write(mem_addr_t(idxQ_.front().addr));
-    idx_req_tag_o.write(slot_t(idxQ_.front().slot));
+  idx_req_valid_o.write(!q_.idxQ.empty());
+  if (!q_.idxQ.empty()) {
+    idx_req_addr_o.write(mem_addr_t(q_.idxQ.front().addr));
+    idx_req_tag_o.write(slot_t(q_.idxQ.front().slot));
   }
-  tri_req_valid_o.write(!triQ_.empty());
-  if (!triQ_.empty()) {
-    tri_req_addr_o.write(mem_addr_t(triQ_.front().addr));
-    tri_req_tag_o.write(slot_t(triQ_.front().slot));
+  tri_req_valid_o.write(!q_.triQ.empty());
+  if (!q_.triQ.empty()) {
+    tri_req_addr_o.write(mem_addr_t(q_.triQ.front().addr));
+    tri_req_tag_o.write(slot_t(q_.triQ.front().slot));
   }
-  visit_valid_o.write(!visitQ_.empty());
-  if (!visitQ_.empty()) {
-    const fx::u128 values[] = {visitQ_.front().rayId, visitQ_.front().id};
+  visit_valid_o.write(!q_.visitQ.empty());
+  if (!q_.visitQ.empty()) {
+    const fx::u128 values[] = {q_.visitQ.front().rayId, q_.visitQ.front().id};
     std::array<uint32_t, size_t(fx::wireWords(rt_grid_unit::VISIT_W))> wire{};
     fx::packFields(fx::kGridVisitFields, values, wire);
     visit_data_o.write(toPort<rt_grid_unit::VISIT_W>(wire));
   }
-  res_valid_o.write(!resQ_.empty());
-  if (!resQ_.empty()) res_data_o.write(resQ_.front());
+  res_valid_o.write(!q_.resQ.empty());
+  if (!q_.resQ.empty()) res_data_o.write(q_.resQ.front());
   bool stepReady = false;
   for (const Slot& s : slots_) stepReady = stepReady || (s.state == State::Visit && s.queued > 0);
   perf_step_ready_o.write(stepReady);

@@ -141,15 +141,10 @@ class rt_grid_model : public rt_trav_shell<rt_grid_unit> {
   std::unique_ptr<sc_core::sc_module> u_isect;
 
   std::vector<Slot> slots_;
-  rt_setup_pipe setup_;  // rt_grid_setup's registers (the arithmetic is GridDda::setup at the slot load)
+  rt_trav_fifos<res_t> q_;  // the shell's queues
   CellRsp cellRsp_;
   TriRsp triRsp_;
   RoundRobin cellArb_, visitArb_, idxArb_, checkArb_, doneArb_;
-  rt_fifo_model<rt_mem_req, MEMREQ_FIFO_DEPTH> cellQ_, idxQ_, triQ_;
-  rt_fifo_model<rt_mem_req, IDX_BUF_DEPTH> idxBuf_;  // {triangle id, slot}
-  rt_fifo_model<rt_visit_entry, VISIT_FIFO_DEPTH> visitQ_;
-  rt_fifo_model<res_t, RES_FIFO_DEPTH> resQ_;
-  int credits_ = IDX_BUF_DEPTH;
   sc_core::sc_event state_changed_;
 };
 

@@ -18,16 +18,10 @@ class rt_grid_model;
 // records and its cycle model, which can hold the Verilated rt_isect.
 struct rt_grid_unit : rt_trav_unit_types<RAYS_IN_FLIGHT, 3 * GRID_RESOLUTION_W, GRID_CELL_W, fx::kGridResFields,
                                           fx::kGridVisitFields> {
-  static constexpr const char* kName = "rt_grid";
-  static constexpr const char* kNodePort = "cell";  // cell_req_valid_o, ...
-  static constexpr const char* kCfgPort = "cfg_res_i";
-  static constexpr const char* kNodeRegion = "cell table";
-  // For the driver's messages: the unit, the build option of its slots and of
-  // its RTL sources, what the result record's element count counts.
-  static constexpr const char* kUnitWord = "grid";
-  static constexpr const char* kSlotsOption = "LANCER_GRID_RAYS_IN_FLIGHT";
-  static constexpr const char* kRtlSources = "LANCER_RTL_GRID_SOURCES";
-  static constexpr const char* kStepNoun = "cells";
+  static constexpr rt_trav_names kNames{.module = "rt_grid", .nodePort = "cell", .cfgPort = "cfg_res_i",
+                                        .nodeRegion = "cell table", .unit = "grid",
+                                        .slotsOption = "LANCER_GRID_RAYS_IN_FLIGHT",
+                                        .rtlSources = "LANCER_RTL_GRID_SOURCES", .steps = "cells"};
   using image_t = fx::GridImage;
 
   using model_t = rt_grid_model;

@@ -150,14 +150,9 @@ class rt_octree_model : public rt_trav_shell<rt_octree_unit> {
   // advWant_: NEXT and CHECK without a hit, waiting for an advance lane;
   // self_: DESCEND and FETCH with every result in, acting on their own.
   SlotMask free_, enter_, nodeWant_, idxWant_, checkWant_, advWant_, done_, self_;
-  rt_setup_pipe setup_;  // the setup pipeline's registers (the arithmetic happens at the slot load)
+  rt_trav_fifos<res_t> q_;  // the shell's queues
   RoundRobin visitArb_, nodeArb_, idxArb_, checkArb_, doneArb_;
   std::array<RoundRobin, octree::ADV_LANES> advArb_{};  // lane l takes what lanes before it left
-  rt_fifo_model<rt_mem_req, MEMREQ_FIFO_DEPTH> nodeQ_, idxQ_, triQ_;
-  rt_fifo_model<rt_mem_req, IDX_BUF_DEPTH> idxBuf_;  // {triangle id, slot}
-  rt_fifo_model<rt_visit_entry, VISIT_FIFO_DEPTH> visitQ_;
-  rt_fifo_model<res_t, RES_FIFO_DEPTH> resQ_;
-  int credits_ = IDX_BUF_DEPTH;
   std::array<IsectStage, ISECT_LATENCY> isect_{};
   size_t isectPos_ = 0;
   // Which FIFO heads changed since the outputs were last written.

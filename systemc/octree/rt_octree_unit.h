@@ -19,14 +19,10 @@ class rt_octree_model;
 // response), its root port cfg_root_i, its records and its cycle model.
 struct rt_octree_unit : rt_trav_unit_types<octree::RAYS_IN_FLIGHT, octree::NODE_W, octree::GROUP_W,
                                             fx::kOctreeResFields, fx::kOctreeVisitFields> {
-  static constexpr const char* kName = "rt_octree";
-  static constexpr const char* kNodePort = "node";  // node_req_valid_o, ...
-  static constexpr const char* kCfgPort = "cfg_root_i";
-  static constexpr const char* kNodeRegion = "node table (child group)";
-  static constexpr const char* kUnitWord = "octree";  // for the driver's messages, as rt_grid_unit's
-  static constexpr const char* kSlotsOption = "LANCER_OCTREE_RAYS_IN_FLIGHT";
-  static constexpr const char* kRtlSources = "LANCER_RTL_OCTREE_SOURCES";
-  static constexpr const char* kStepNoun = "nodes";
+  static constexpr rt_trav_names kNames{.module = "rt_octree", .nodePort = "node", .cfgPort = "cfg_root_i",
+                                        .nodeRegion = "node table (child group)", .unit = "octree",
+                                        .slotsOption = "LANCER_OCTREE_RAYS_IN_FLIGHT",
+                                        .rtlSources = "LANCER_RTL_OCTREE_SOURCES", .steps = "nodes"};
   using image_t = fx::OctreeImage;
 
   using model_t = rt_octree_model;
