@@ -27,12 +27,6 @@ using test::expectSameStats;
 using test::optionsText;
 using test::roughGridOptions;
 
-bool available(Impl impl) {
-  if (impl == Impl::Rtl) return SystemCGridDevice::rtlAvailable();
-  if (impl == Impl::ModelRtlIsect) return SystemCGridDevice::rtlIsectAvailable();
-  return true;
-}
-
 const test::Describe<fx::GridImage> kDescribe{
     [](const fx::GridImage& image) {
       return fmt::format("grid {}x{}x{}", image.res[0], image.res[1], image.res[2]);
@@ -52,23 +46,10 @@ TraversalRunStats expectSameTraces(GridDevice& device, const fx::GridImage& imag
 
 // ---- Each implementation against the golden model ---------------------------
 
-class ScGrid : public ::testing::TestWithParam<Impl> {
- protected:
-  void SetUp() override {
-    if (!available(GetParam())) GTEST_SKIP() << "this build has no Verilated RTL for this variant";
-  }
-};
+class ScGrid : public test::ScTraversalTest<SystemCGridDevice> {};
 
-std::string implName(const ::testing::TestParamInfo<Impl>& info) {
-  switch (info.param) {
-    case Impl::Model: return "Model";
-    case Impl::Rtl: return "Rtl";
-    case Impl::ModelRtlIsect: return "ModelRtlIsect";
-  }
-  return "?";
-}
-
-INSTANTIATE_TEST_SUITE_P(Impl, ScGrid, ::testing::Values(Impl::Model, Impl::Rtl, Impl::ModelRtlIsect), implName);
+INSTANTIATE_TEST_SUITE_P(Impl, ScGrid, ::testing::Values(Impl::Model, Impl::Rtl, Impl::ModelRtlIsect),
+                         test::implName<Impl>);
 
 TEST_P(ScGrid, MatchesGoldenOnBunnyCameraRays) {
   const test::GridScene q = test::bunnyCamera(32, 32);

@@ -52,8 +52,6 @@ TraversalRunOptions roughOptions(uint64_t seed, int raysInFlight = 0) {
 std::string describe(const QRay& r) { return test::describeRay(r); }
 std::string describe(const fx::TraversalTrace& t) { return test::describeTrace(t); }
 
-bool available(Impl impl) { return impl == Impl::Model || SystemCOctreeDevice::rtlAvailable(); }
-
 const test::Describe<fx::OctreeImage> kDescribe{
     [](const fx::OctreeImage& image) { return fmt::format("octree depth {}", image.depth); },
     [](const QRay& r) { return describe(r); }, [](const fx::TraversalTrace& t) { return describe(t); }};
@@ -74,18 +72,9 @@ TraversalRunStats expectSameTraces(OctreeDevice& device, const fx::OctreeImage& 
 
 // ---- Each implementation against the golden model -------------------------------------
 
-class ScOctree : public ::testing::TestWithParam<Impl> {
- protected:
-  void SetUp() override {
-    if (!available(GetParam())) GTEST_SKIP() << "this build has no Verilated rt_octree";
-  }
-};
+class ScOctree : public test::ScTraversalTest<SystemCOctreeDevice> {};
 
-std::string implName(const ::testing::TestParamInfo<Impl>& info) {
-  return info.param == Impl::Model ? "Model" : "Rtl";
-}
-
-INSTANTIATE_TEST_SUITE_P(Impl, ScOctree, ::testing::Values(Impl::Model, Impl::Rtl), implName);
+INSTANTIATE_TEST_SUITE_P(Impl, ScOctree, ::testing::Values(Impl::Model, Impl::Rtl), test::implName<Impl>);
 
 TEST_P(ScOctree, MatchesGoldenOnBunnyCameraRays) {
   const QuantizedScene q = bunnyCamera(32, 32);

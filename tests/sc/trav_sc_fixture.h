@@ -37,6 +37,34 @@ inline void PrintTo(const TraversalCycle& c, std::ostream* os) {
 
 namespace test {
 
+// The implementations of a SystemC traversal device (Device::Impl) as test
+// parameters: tests of one the build lacks are skipped.
+template <class Device>
+bool implAvailable(typename Device::Impl impl) {
+  using Impl = typename Device::Impl;
+  if (impl == Impl::Rtl) return Device::rtlAvailable();
+  if (impl == Impl::ModelRtlIsect) return Device::rtlIsectAvailable();
+  return true;
+}
+
+template <class Device>
+class ScTraversalTest : public ::testing::TestWithParam<typename Device::Impl> {
+ protected:
+  void SetUp() override {
+    if (!implAvailable<Device>(this->GetParam())) GTEST_SKIP() << "this build has no Verilated RTL for this variant";
+  }
+};
+
+template <class Impl>
+std::string implName(const ::testing::TestParamInfo<Impl>& info) {
+  switch (info.param) {
+    case Impl::Model: return "Model";
+    case Impl::Rtl: return "Rtl";
+    case Impl::ModelRtlIsect: return "ModelRtlIsect";
+  }
+  return "?";
+}
+
 inline std::string optionsText(const TraversalRunOptions& o) {
   return fmt::format("latency {} jitter {} slots {} stall {} idle {} seed {}", o.memLatency, o.memLatencyJitter,
                      o.raysInFlight, o.stream.outputStallProbability, o.stream.inputIdleProbability, o.stream.seed);
