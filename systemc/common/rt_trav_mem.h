@@ -33,37 +33,31 @@ namespace lancer::sc {
 template <class Unit>
 class rt_trav_mem : public sc_core::sc_module {
  public:
-  using image_t = typename Unit::image_t;
-  using slot_t = typename Unit::slot_t;
-  using mem_addr_t = typename Unit::mem_addr_t;
-  using node_data_t = typename Unit::node_data_t;
-  using idx_data_t = typename Unit::idx_data_t;
-
   sc_core::sc_in<bool> clk_i{"clk_i"};
 
   sc_core::sc_in<bool> node_req_valid_o{portName(Unit::kNames.nodePort, "req_valid_o").c_str()};
   sc_core::sc_out<bool> node_req_ready_i{portName(Unit::kNames.nodePort, "req_ready_i").c_str()};
-  sc_core::sc_in<mem_addr_t> node_req_addr_o{portName(Unit::kNames.nodePort, "req_addr_o").c_str()};
-  sc_core::sc_in<slot_t> node_req_tag_o{portName(Unit::kNames.nodePort, "req_tag_o").c_str()};
+  sc_core::sc_in<typename Unit::mem_addr_t> node_req_addr_o{portName(Unit::kNames.nodePort, "req_addr_o").c_str()};
+  sc_core::sc_in<typename Unit::slot_t> node_req_tag_o{portName(Unit::kNames.nodePort, "req_tag_o").c_str()};
   sc_core::sc_out<bool> node_rsp_valid_i{portName(Unit::kNames.nodePort, "rsp_valid_i").c_str()};
-  sc_core::sc_out<node_data_t> node_rsp_data_i{portName(Unit::kNames.nodePort, "rsp_data_i").c_str()};
-  sc_core::sc_out<slot_t> node_rsp_tag_i{portName(Unit::kNames.nodePort, "rsp_tag_i").c_str()};
+  sc_core::sc_out<typename Unit::node_data_t> node_rsp_data_i{portName(Unit::kNames.nodePort, "rsp_data_i").c_str()};
+  sc_core::sc_out<typename Unit::slot_t> node_rsp_tag_i{portName(Unit::kNames.nodePort, "rsp_tag_i").c_str()};
 
   sc_core::sc_in<bool> idx_req_valid_o{"idx_req_valid_o"};
   sc_core::sc_out<bool> idx_req_ready_i{"idx_req_ready_i"};
-  sc_core::sc_in<mem_addr_t> idx_req_addr_o{"idx_req_addr_o"};
-  sc_core::sc_in<slot_t> idx_req_tag_o{"idx_req_tag_o"};
+  sc_core::sc_in<typename Unit::mem_addr_t> idx_req_addr_o{"idx_req_addr_o"};
+  sc_core::sc_in<typename Unit::slot_t> idx_req_tag_o{"idx_req_tag_o"};
   sc_core::sc_out<bool> idx_rsp_valid_i{"idx_rsp_valid_i"};
-  sc_core::sc_out<idx_data_t> idx_rsp_data_i{"idx_rsp_data_i"};
-  sc_core::sc_out<slot_t> idx_rsp_tag_i{"idx_rsp_tag_i"};
+  sc_core::sc_out<typename Unit::idx_data_t> idx_rsp_data_i{"idx_rsp_data_i"};
+  sc_core::sc_out<typename Unit::slot_t> idx_rsp_tag_i{"idx_rsp_tag_i"};
 
   sc_core::sc_in<bool> tri_req_valid_o{"tri_req_valid_o"};
   sc_core::sc_out<bool> tri_req_ready_i{"tri_req_ready_i"};
-  sc_core::sc_in<mem_addr_t> tri_req_addr_o{"tri_req_addr_o"};
-  sc_core::sc_in<slot_t> tri_req_tag_o{"tri_req_tag_o"};
+  sc_core::sc_in<typename Unit::mem_addr_t> tri_req_addr_o{"tri_req_addr_o"};
+  sc_core::sc_in<typename Unit::slot_t> tri_req_tag_o{"tri_req_tag_o"};
   sc_core::sc_out<bool> tri_rsp_valid_i{"tri_rsp_valid_i"};
   sc_core::sc_out<isect_tri_t> tri_rsp_data_i{"tri_rsp_data_i"};
-  sc_core::sc_out<slot_t> tri_rsp_tag_i{"tri_rsp_tag_i"};
+  sc_core::sc_out<typename Unit::slot_t> tri_rsp_tag_i{"tri_rsp_tag_i"};
 
   SC_HAS_PROCESS(rt_trav_mem);
   explicit rt_trav_mem(sc_core::sc_module_name name) : sc_core::sc_module(name) {
@@ -74,7 +68,7 @@ class rt_trav_mem : public sc_core::sc_module {
 
   // Arms the memory for one run (call while the simulation is paused): empties
   // the ports and reseeds them. The image must outlive the run.
-  void start(const image_t& image, int latency, int jitter, uint64_t seed) {
+  void start(const typename Unit::image_t& image, int latency, int jitter, uint64_t seed) {
     image_ = &image;
     nodes_.start(image);
     triPacked_.assign(image.triangles.size(), 0);
@@ -114,14 +108,14 @@ class rt_trav_mem : public sc_core::sc_module {
       if (!nodes_.holds(addr)) outside(Unit::kNames.nodeRegion, addr, nodes_.entries());
       assignPort<Unit::NODE_DATA_W>(nodePort_, nodes_.wire(addr));
       node_rsp_data_i.write(nodePort_);
-      node_rsp_tag_i.write(slot_t(tag));
+      node_rsp_tag_i.write(typename Unit::slot_t(tag));
     }
     const bool idx = idx_.respond(c + 1, addr, tag);
     idx_rsp_valid_i.write(idx);
     if (idx) {
       if (addr >= image_->indices.size()) outside("index list", addr, image_->indices.size());
-      idx_rsp_data_i.write(idx_data_t(image_->indices[addr]));
-      idx_rsp_tag_i.write(slot_t(tag));
+      idx_rsp_data_i.write(typename Unit::idx_data_t(image_->indices[addr]));
+      idx_rsp_tag_i.write(typename Unit::slot_t(tag));
     }
     const bool tri = tri_.respond(c + 1, addr, tag);
     tri_rsp_valid_i.write(tri);
@@ -134,7 +128,7 @@ class rt_trav_mem : public sc_core::sc_module {
       }
       assignPort<ISECT_TRI_W>(triPort_, wire);
       tri_rsp_data_i.write(triPort_);
-      tri_rsp_tag_i.write(slot_t(tag));
+      tri_rsp_tag_i.write(typename Unit::slot_t(tag));
     }
   }
 
@@ -144,7 +138,7 @@ class rt_trav_mem : public sc_core::sc_module {
     throw std::out_of_range(what);  // not reached when errors throw (sw/driver/systemc_kernel.cpp)
   }
 
-  const image_t* image_ = nullptr;
+  const typename Unit::image_t* image_ = nullptr;
   fx::MemoryReadPort node_, idx_, tri_;  // timing: sw/golden/stimulus.h
   uint64_t cycle_ = 0;
   bool readyWritten_ = false;  // req_ready is constant 1
@@ -153,7 +147,7 @@ class rt_trav_mem : public sc_core::sc_module {
   std::vector<uint32_t> triWire_;
   std::vector<uint8_t> triPacked_;
   // The response ports' values, reused (an sc_bv allocates when constructed).
-  node_data_t nodePort_{};
+  typename Unit::node_data_t nodePort_{};
   isect_tri_t triPort_{};
 };
 
