@@ -180,15 +180,12 @@ TEST(ScGridDevice, GridAndIsectDevicesShareOneKernel) {
 }
 
 TEST(ScGridDevice, WaveformOfTheRtlOnRequest) {
-  if (!SystemCGridDevice::rtlAvailable() || !SystemCGridDevice::wavesAvailable()) {
-    GTEST_SKIP() << "no Verilated rt_grid with FST tracing in this build";
-  }
   const test::GridScene q = test::bunnyCamera(3, 3);
   const fx::GridImage image = fx::buildGridImage(q.triangles, {8, 8, 8});
-  TraversalRunOptions o = roughGridOptions(50);
-  o.stream.wavePath = ::testing::TempDir() + "rt_grid_sc_wave.fst";
-  SystemCGridDevice rtl(Impl::Rtl);
-  test::expectWaveWritten(o.stream.wavePath, [&] { expectSameTraces(rtl, image, q.rays, o, "with waves"); });
+  test::expectRtlWave<SystemCGridDevice>("rt_grid_sc_wave.fst", roughGridOptions(50),
+                          [&](SystemCGridDevice& rtl, const TraversalRunOptions& o) {
+                            expectSameTraces(rtl, image, q.rays, o, "with waves");
+                          });
 }
 
 }  // namespace

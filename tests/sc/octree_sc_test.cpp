@@ -279,15 +279,12 @@ TEST(ScOctreeDevice, SharesTheKernelWithTheGridUnit) {
 }
 
 TEST(ScOctreeDevice, WaveformOfTheRtlOnRequest) {
-  if (!SystemCOctreeDevice::rtlAvailable() || !SystemCOctreeDevice::wavesAvailable()) {
-    GTEST_SKIP() << "no Verilated rt_octree with FST tracing in this build";
-  }
   const QuantizedScene q = bunnyCamera(3, 3);
   const fx::OctreeImage image = bunnyImage(q);
-  TraversalRunOptions o = roughOptions(60);
-  o.stream.wavePath = ::testing::TempDir() + "rt_octree_sc_wave.fst";
-  SystemCOctreeDevice rtl(Impl::Rtl);
-  test::expectWaveWritten(o.stream.wavePath, [&] { expectSameTraces(rtl, image, q.rays, o, "with waves"); });
+  test::expectRtlWave<SystemCOctreeDevice>("rt_octree_sc_wave.fst", roughOptions(60),
+                          [&](SystemCOctreeDevice& rtl, const TraversalRunOptions& o) {
+                            expectSameTraces(rtl, image, q.rays, o, "with waves");
+                          });
 }
 
 }  // namespace
