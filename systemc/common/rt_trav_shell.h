@@ -64,6 +64,14 @@ class rt_trav_shell : public sc_core::sc_module {
 
  protected:
   explicit rt_trav_shell(sc_core::sc_module_name name) : sc_core::sc_module(name) {}
+
+  // A request FIFO's head (rt_mem_req) onto a read port's address and tag;
+  // the valid is the model's to write.
+  template <class Fifo>
+  static void writeRequest(const Fifo& q, sc_core::sc_out<mem_addr_t>& addr, sc_core::sc_out<slot_t>& tag) {
+    addr.write(mem_addr_t(q.front().addr));
+    tag.write(slot_t(q.front().slot));
+  }
 };
 
 }  // namespace lancer::sc

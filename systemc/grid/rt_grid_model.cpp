@@ -373,20 +373,11 @@ void rt_grid_model::seq() {
 
 void rt_grid_model::writeOutputs() {
   cell_req_valid_o.write(!q_.nodeQ.empty());
-  if (!q_.nodeQ.empty()) {
-    cell_req_addr_o.write(mem_addr_t(q_.nodeQ.front().addr));
-    cell_req_tag_o.write(slot_t(q_.nodeQ.front().slot));
-  }
+  if (!q_.nodeQ.empty()) writeRequest(q_.nodeQ, cell_req_addr_o, cell_req_tag_o);
   idx_req_valid_o.write(!q_.idxQ.empty());
-  if (!q_.idxQ.empty()) {
-    idx_req_addr_o.write(mem_addr_t(q_.idxQ.front().addr));
-    idx_req_tag_o.write(slot_t(q_.idxQ.front().slot));
-  }
+  if (!q_.idxQ.empty()) writeRequest(q_.idxQ, idx_req_addr_o, idx_req_tag_o);
   tri_req_valid_o.write(!q_.triQ.empty());
-  if (!q_.triQ.empty()) {
-    tri_req_addr_o.write(mem_addr_t(q_.triQ.front().addr));
-    tri_req_tag_o.write(slot_t(q_.triQ.front().slot));
-  }
+  if (!q_.triQ.empty()) writeRequest(q_.triQ, tri_req_addr_o, tri_req_tag_o);
   visit_valid_o.write(!q_.visitQ.empty());
   if (!q_.visitQ.empty()) {
     const fx::u128 values[] = {q_.visitQ.front().rayId, q_.visitQ.front().id};

@@ -476,20 +476,11 @@ void rt_octree_model::writeFlag(sc_core::sc_out<bool>& port, Flag f, bool value,
 
 void rt_octree_model::writeOutputs(bool all) {
   writeFlag(node_req_valid_o, NODE_VALID, !q_.nodeQ.empty(), all);
-  if (!q_.nodeQ.empty() && (nodeHead_ || all)) {
-    node_req_addr_o.write(mem_addr_t(q_.nodeQ.front().addr));
-    node_req_tag_o.write(slot_t(q_.nodeQ.front().slot));
-  }
+  if (!q_.nodeQ.empty() && (nodeHead_ || all)) writeRequest(q_.nodeQ, node_req_addr_o, node_req_tag_o);
   writeFlag(idx_req_valid_o, IDX_VALID, !q_.idxQ.empty(), all);
-  if (!q_.idxQ.empty() && (idxHead_ || all)) {
-    idx_req_addr_o.write(mem_addr_t(q_.idxQ.front().addr));
-    idx_req_tag_o.write(slot_t(q_.idxQ.front().slot));
-  }
+  if (!q_.idxQ.empty() && (idxHead_ || all)) writeRequest(q_.idxQ, idx_req_addr_o, idx_req_tag_o);
   writeFlag(tri_req_valid_o, TRI_VALID, !q_.triQ.empty(), all);
-  if (!q_.triQ.empty() && (triHead_ || all)) {
-    tri_req_addr_o.write(mem_addr_t(q_.triQ.front().addr));
-    tri_req_tag_o.write(slot_t(q_.triQ.front().slot));
-  }
+  if (!q_.triQ.empty() && (triHead_ || all)) writeRequest(q_.triQ, tri_req_addr_o, tri_req_tag_o);
   writeFlag(visit_valid_o, VISIT_VALID, !q_.visitQ.empty(), all);
   if (!q_.visitQ.empty() && (visitHead_ || all)) {
     std::array<uint32_t, size_t(fx::wireWords(rt_octree_unit::VISIT_W))> wire{};

@@ -96,22 +96,7 @@ TEST_P(ScGrid, EmptyRunAndInvalidOptions) {
 
 // ---- Cycle accuracy -------------------------------------------------------------
 
-std::vector<TraversalRunOptions> timingSettings() {
-  std::vector<TraversalRunOptions> all;
-  TraversalRunOptions o;
-  all.push_back(o);  // latency 20, nothing random
-  o.memLatency = 1;
-  all.push_back(o);
-  all.push_back(roughGridOptions(31));
-  o = roughGridOptions(32, 3);
-  all.push_back(o);
-  o = roughGridOptions(33);
-  o.memLatency = 40;
-  o.memLatencyJitter = 40;
-  o.stream.outputStallProbability = 0.6;
-  all.push_back(o);
-  return all;
-}
+std::vector<TraversalRunOptions> timingSettings() { return test::timingSettings(roughGridOptions, 31, 32, 33); }
 
 TEST(ScGridCycleAccuracy, ModelMatchesVerilatedRtlCycleForCycle) {
   if (!SystemCGridDevice::rtlAvailable()) GTEST_SKIP() << "no Verilated rt_grid in this build";

@@ -192,24 +192,7 @@ TEST_P(ScOctree, OneRayTimingFollowsTheStateMachine) {
 
 // ---- Cycle accuracy ---------------------------------------------------------------------
 
-// Plain (latency 20, latency 1), rough with all slots and with 3, and slow
-// with heavy stalls (the FIFOs fill, the arbiters skip full queues). One slot
-// is left to the golden tests above: it makes runs long and arbitration trivial.
-std::vector<TraversalRunOptions> timingSettings() {
-  std::vector<TraversalRunOptions> all;
-  TraversalRunOptions o;
-  all.push_back(o);
-  o.memLatency = 1;
-  all.push_back(o);
-  all.push_back(roughOptions(31));
-  all.push_back(roughOptions(33, 3));
-  o = roughOptions(34);
-  o.memLatency = 40;
-  o.memLatencyJitter = 40;
-  o.stream.outputStallProbability = 0.6;
-  all.push_back(o);
-  return all;
-}
+std::vector<TraversalRunOptions> timingSettings() { return test::timingSettings(roughOptions, 31, 33, 34); }
 
 std::vector<OctreeCase> cycleCases() {
   const QuantizedScene q = bunnyCamera(16, 16);

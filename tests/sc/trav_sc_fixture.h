@@ -65,6 +65,28 @@ std::string implName(const ::testing::TestParamInfo<Impl>& info) {
   return "?";
 }
 
+// The timing settings of the port-trace comparisons: plain (latency 20,
+// latency 1), `rough` with all slots (seed a) and with 3 (seed b), and slow
+// with heavy stalls (seed c: latency 40 + jitter 40, stalls 0.6; the FIFOs
+// fill, the arbiters skip full queues). One slot is left to the golden tests:
+// it makes runs long and arbitration trivial.
+inline std::vector<TraversalRunOptions> timingSettings(TraversalRunOptions (*rough)(uint64_t, int), uint64_t a,
+                                                       uint64_t b, uint64_t c) {
+  std::vector<TraversalRunOptions> all;
+  TraversalRunOptions o;
+  all.push_back(o);
+  o.memLatency = 1;
+  all.push_back(o);
+  all.push_back(rough(a, 0));
+  all.push_back(rough(b, 3));
+  o = rough(c, 0);
+  o.memLatency = 40;
+  o.memLatencyJitter = 40;
+  o.stream.outputStallProbability = 0.6;
+  all.push_back(o);
+  return all;
+}
+
 inline std::string optionsText(const TraversalRunOptions& o) {
   return fmt::format("latency {} jitter {} slots {} stall {} idle {} seed {}", o.memLatency, o.memLatencyJitter,
                      o.raysInFlight, o.stream.outputStallProbability, o.stream.inputIdleProbability, o.stream.seed);
