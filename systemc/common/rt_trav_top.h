@@ -13,7 +13,7 @@ namespace lancer::sc {
 
 enum class rt_trav_impl {
   model,            // the unit's hand-written cycle model (Unit::model_t), rt_isect's cycle model or timing inside
-  model_rtl_isect,  // the cycle model with the Verilated Vrt_isect_sc inside (mixed; Unit::kModelTakesIsect)
+  model_rtl_isect,  // the cycle model with the Verilated Vrt_isect_sc inside (mixed, when the model takes it)
   rtl,              // the unit's RTL (with its rt_isect) Verilated with --sc (rt_trav_rtl<Unit>)
 };
 

@@ -23,6 +23,12 @@
 
 namespace lancer::sc {
 
+// Whether the unit's cycle model can hold the Verilated rt_isect (a constructor
+// taking an rt_isect_impl, as rt_grid_model's): the mixed implementation.
+template <class Unit>
+inline constexpr bool kModelTakesIsect =
+    std::is_constructible_v<typename Unit::model_t, const char*, rt_isect_impl>;
+
 template <class Unit>
 template <class Dut, class... DutArgs>
 void rt_trav_top<Unit>::keep(bench_refs& r, const char* name, DutArgs&&... args) {
@@ -37,7 +43,7 @@ rt_trav_top<Unit>::rt_trav_top(sc_core::sc_module_name name) : sc_core::sc_modul
   using rtl_t = typename rt_trav_rtl<Unit>::type;
   use_verilated_context();
   keep<typename Unit::model_t>(model_, "u_model");
-  if constexpr (Unit::kModelTakesIsect) {
+  if constexpr (kModelTakesIsect<Unit>) {
     if (has_rtl_isect()) keep<typename Unit::model_t>(mixed_, "u_mixed", rt_isect_impl::rtl);
   }
   if constexpr (!std::is_void_v<rtl_t>) {
@@ -56,7 +62,7 @@ bool rt_trav_top<Unit>::has_rtl() {
 
 template <class Unit>
 bool rt_trav_top<Unit>::has_rtl_isect() {
-  return Unit::kModelTakesIsect && LANCER_SC_HAVE_RTL != 0;
+  return kModelTakesIsect<Unit> && LANCER_SC_HAVE_RTL != 0;
 }
 
 template <class Unit>

@@ -10,7 +10,7 @@
 //   - one configuration port besides cfg_slots_i (kNames.cfgPort, cfg_t, config()):
 //     rt_grid's cfg_res_i, rt_octree's cfg_root_i;
 //   - the result and visit records (res_t, visit_t, kResFields, kVisitFields);
-//   - the cycle model (model_t) and its options (kModelTakesIsect: the model
+//   - the cycle model (model_t; one whose constructor takes an rt_isect_impl
 //     can hold the Verilated rt_isect); the Verilated class is named in
 //     systemc/rt_trav_units.cpp (rt_trav_rtl<Unit>), when the build has it.
 // A unit's traits also bind the DUT's unit-specific ports (bindUnitPorts),
@@ -26,7 +26,7 @@
 //   cfg_t config(const image_t&)               the configuration port's value of a run
 //   node_packer                                start(image), wire(addr): a node response's wire
 //                                              image, after checking the address (throws)
-//   model_t, kModelTakesIsect
+//   model_t                                    the cycle model
 //   bindUnitPorts(dut, bench)                  cfg and node/cell ports of the DUT
 
 #include <cstdint>

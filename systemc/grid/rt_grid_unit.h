@@ -25,7 +25,6 @@ struct rt_grid_unit : rt_trav_unit_types<RAYS_IN_FLIGHT, 3 * GRID_RESOLUTION_W, 
   using image_t = fx::GridImage;
 
   using model_t = rt_grid_model;
-  static constexpr bool kModelTakesIsect = true;
 
   // cfg_res_i: {Rz, Ry, Rx}, Rx least significant.
   static cfg_t config(const image_t& image) {

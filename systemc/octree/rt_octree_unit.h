@@ -26,7 +26,6 @@ struct rt_octree_unit : rt_trav_unit_types<octree::RAYS_IN_FLIGHT, octree::NODE_
   using image_t = fx::OctreeImage;
 
   using model_t = rt_octree_model;
-  static constexpr bool kModelTakesIsect = false;
 
   // cfg_root_i: the image's node 0 as an octree_node_t.
   static cfg_t config(const image_t& image) {
