@@ -38,8 +38,8 @@ struct Systems {
 Systems& systems() {
   static Systems* const all = [] {
     routeReports();
-    // The grid top first (it was the one to give the Verilated SystemC models
-    // their context; every top does now): the order of elaboration stays.
+    // Every traversal top makes the Verilated SystemC models' context current
+    // before it builds them; the grid's comes first, as it always has.
     auto* grid = new sc::rt_grid_top("lancer_grid");
     auto* isect = new sc::rt_isect_top("lancer_isect");
     return new Systems{isect, grid, new sc::rt_octree_top("lancer_octree")};

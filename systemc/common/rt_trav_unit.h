@@ -24,8 +24,9 @@
 //                                              widths and field lists of the records
 //   image_t                                    fx::GridImage, fx::OctreeImage
 //   cfg_t config(const image_t&)               the configuration port's value of a run
-//   node_packer                                start(image), wire(addr): a node response's wire
-//                                              image, after checking the address (throws)
+//   node_packer                                start(image); holds(addr) and entries() for the
+//                                              memory's address check; wire(addr): the response's
+//                                              wire image
 //   model_t                                    the cycle model
 //   bindUnitPorts(dut, bench)                  cfg and node/cell ports of the DUT
 
