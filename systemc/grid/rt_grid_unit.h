@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <span>
 
-#include "golden/grid.h"
 #include "common/rt_trav_top.h"
+#include "golden/grid.h"
 #include "golden/records.h"
 #include "grid/rt_grid_types.h"
 
@@ -23,7 +23,6 @@ struct rt_grid_unit : rt_trav_unit_types<RAYS_IN_FLIGHT, 3 * GRID_RESOLUTION_W, 
                                         .slotsOption = "LANCER_GRID_RAYS_IN_FLIGHT",
                                         .rtlSources = "LANCER_RTL_GRID_SOURCES", .steps = "cells"};
   using image_t = fx::GridImage;
-
   using model_t = rt_grid_model;
 
   // cfg_res_i: {Rz, Ry, Rx}, Rx least significant.

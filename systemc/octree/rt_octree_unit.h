@@ -5,8 +5,8 @@
 #include <span>
 #include <vector>
 
-#include "golden/octree.h"
 #include "common/rt_trav_top.h"
+#include "golden/octree.h"
 #include "golden/records.h"
 #include "octree/rt_octree_types.h"
 
@@ -24,7 +24,6 @@ struct rt_octree_unit : rt_trav_unit_types<octree::RAYS_IN_FLIGHT, octree::NODE_
                                         .slotsOption = "LANCER_OCTREE_RAYS_IN_FLIGHT",
                                         .rtlSources = "LANCER_RTL_OCTREE_SOURCES", .steps = "nodes"};
   using image_t = fx::OctreeImage;
-
   using model_t = rt_octree_model;
 
   // cfg_root_i: the image's node 0 as an octree_node_t.
