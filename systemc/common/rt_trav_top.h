@@ -45,7 +45,6 @@ class rt_trav_top : public sc_core::sc_module {
   static bool has_rtl();        // the unit's Verilated class
   static bool has_rtl_isect();  // the mixed implementation (Vrt_isect_sc, a model that takes it)
   static bool has_waves();      // the unit's Verilated class built with FST tracing
-  static void use_verilated_context() { sc::use_verilated_context(); }
 
   // Throws std::runtime_error for an implementation the build lacks.
   tb_t& tb(rt_trav_impl impl);
