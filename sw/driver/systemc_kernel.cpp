@@ -4,9 +4,9 @@
 
 #include <systemc>
 
-#include "grid/rt_grid_top.h"
+#include "grid/rt_grid_unit.h"
 #include "isect/rt_isect_top.h"
-#include "octree/rt_octree_top.h"
+#include "octree/rt_octree_unit.h"
 
 namespace lancer::systemc_kernel {
 
@@ -30,13 +30,16 @@ struct Systems {
   sc::rt_isect_top* isect;
   sc::rt_grid_top* grid;
   sc::rt_octree_top* octree;
+  sc::rt_trav_top<sc::rt_grid_unit>& of(sc::rt_grid_unit*) { return *grid; }
+  sc::rt_trav_top<sc::rt_octree_unit>& of(sc::rt_octree_unit*) { return *octree; }
 };
 
 // Never destroyed: SystemC cannot tear down an elaborated design and start again.
 Systems& systems() {
   static Systems* const all = [] {
     routeReports();
-    // The grid top first: it gives the Verilated SystemC models their context.
+    // Every traversal top makes the Verilated SystemC models' context current
+    // before it builds them; the grid's comes first, as it always has.
     auto* grid = new sc::rt_grid_top("lancer_grid");
     auto* isect = new sc::rt_isect_top("lancer_isect");
     return new Systems{isect, grid, new sc::rt_octree_top("lancer_octree")};
@@ -54,20 +57,18 @@ std::mutex& mutex() {
 // Every run fetches its system through these, under the lock.
 sc::rt_isect_top& isectSystem() {
   Systems& all = systems();
-  sc::rt_grid_top::use_verilated_context();
+  sc::use_verilated_context();  // the one context of every Verilated SystemC model
   return *all.isect;
 }
 
-sc::rt_grid_top& gridSystem() {
+template <class Unit>
+sc::rt_trav_top<Unit>& traversalSystem() {
   Systems& all = systems();
-  sc::rt_grid_top::use_verilated_context();
-  return *all.grid;
+  sc::use_verilated_context();
+  return all.of(static_cast<Unit*>(nullptr));
 }
 
-sc::rt_octree_top& octreeSystem() {
-  Systems& all = systems();
-  sc::rt_grid_top::use_verilated_context();  // the one context of every Verilated SystemC model
-  return *all.octree;
-}
+template sc::rt_grid_top& traversalSystem<sc::rt_grid_unit>();
+template sc::rt_octree_top& traversalSystem<sc::rt_octree_unit>();
 
 }  // namespace lancer::systemc_kernel

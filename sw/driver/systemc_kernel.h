@@ -15,15 +15,18 @@
 
 namespace lancer::sc {
 class rt_isect_top;
-class rt_grid_top;
-class rt_octree_top;
+template <class Unit>
+class rt_trav_top;
+struct rt_grid_unit;
+struct rt_octree_unit;
 }  // namespace lancer::sc
 
 namespace lancer::systemc_kernel {
 
 std::mutex& mutex();
 sc::rt_isect_top& isectSystem();
-sc::rt_grid_top& gridSystem();
-sc::rt_octree_top& octreeSystem();
+// The system of a traversal unit (sc::rt_grid_unit, sc::rt_octree_unit).
+template <class Unit>
+sc::rt_trav_top<Unit>& traversalSystem();
 
 }  // namespace lancer::systemc_kernel

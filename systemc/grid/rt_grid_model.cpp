@@ -17,7 +17,7 @@ namespace lancer::sc {
 namespace {
 
 constexpr int N = RAYS_IN_FLIGHT;
-constexpr uint32_t SLOT_MASK = (uint32_t(1) << SLOT_W) - 1;
+constexpr uint32_t SLOT_MASK = (uint32_t(1) << rt_grid_unit::SLOT_W) - 1;
 
 // ADDR_W'(value): the RTL truncates cell ids, index positions and triangle ids to the address width.
 constexpr uint32_t addrOf(uint32_t value) {
@@ -44,43 +44,7 @@ void bindIsect(Isect& m, Sig& clk, Sig& rst, sc_core::sc_signal<bool>& reqValid,
 }  // namespace
 
 rt_grid_model::rt_grid_model(sc_core::sc_module_name name, rt_isect_impl isect)
-    : sc_core::sc_module(name),
-      clk_i("clk_i"),
-      rst_ni("rst_ni"),
-      cfg_res_i("cfg_res_i"),
-      cfg_slots_i("cfg_slots_i"),
-      ray_valid_i("ray_valid_i"),
-      ray_ready_o("ray_ready_o"),
-      ray_data_i("ray_data_i"),
-      res_valid_o("res_valid_o"),
-      res_ready_i("res_ready_i"),
-      res_data_o("res_data_o"),
-      visit_valid_o("visit_valid_o"),
-      visit_ready_i("visit_ready_i"),
-      visit_data_o("visit_data_o"),
-      cell_req_valid_o("cell_req_valid_o"),
-      cell_req_ready_i("cell_req_ready_i"),
-      cell_req_addr_o("cell_req_addr_o"),
-      cell_req_tag_o("cell_req_tag_o"),
-      cell_rsp_valid_i("cell_rsp_valid_i"),
-      cell_rsp_data_i("cell_rsp_data_i"),
-      cell_rsp_tag_i("cell_rsp_tag_i"),
-      idx_req_valid_o("idx_req_valid_o"),
-      idx_req_ready_i("idx_req_ready_i"),
-      idx_req_addr_o("idx_req_addr_o"),
-      idx_req_tag_o("idx_req_tag_o"),
-      idx_rsp_valid_i("idx_rsp_valid_i"),
-      idx_rsp_data_i("idx_rsp_data_i"),
-      idx_rsp_tag_i("idx_rsp_tag_i"),
-      tri_req_valid_o("tri_req_valid_o"),
-      tri_req_ready_i("tri_req_ready_i"),
-      tri_req_addr_o("tri_req_addr_o"),
-      tri_req_tag_o("tri_req_tag_o"),
-      tri_rsp_valid_i("tri_rsp_valid_i"),
-      tri_rsp_data_i("tri_rsp_data_i"),
-      tri_rsp_tag_i("tri_rsp_tag_i"),
-      perf_isect_fire_o("perf_isect_fire_o"),
-      perf_step_ready_o("perf_step_ready_o"),
+    : rt_trav_shell<rt_grid_unit>(name),
       slots_(size_t(N)) {
   if (isect == rt_isect_impl::model) {
     auto m = std::make_unique<rt_isect_model>("u_isect");
@@ -121,16 +85,9 @@ fx::GridRes rt_grid_model::resolution() const {
 
 void rt_grid_model::reset() {
   for (Slot& s : slots_) s = Slot{};
-  s1_.valid = s2_.valid = false;
+  q_.clear();
   cellRsp_.valid = triRsp_.valid = false;
   cellArb_ = visitArb_ = idxArb_ = checkArb_ = doneArb_ = RoundRobin{};
-  cellQ_.clear();
-  idxQ_.clear();
-  triQ_.clear();
-  idxBuf_.clear();
-  visitQ_.clear();
-  resQ_.clear();
-  credits_ = IDX_BUF_DEPTH;
 }
 
 void rt_grid_model::startCell(Slot& s, const fx::GridCell& data) {
@@ -188,24 +145,24 @@ void rt_grid_model::seq() {
     const Slot& s = slots_[size_t(k)];
     return inFlight(s) && s.frontierValid && s.queued < CELL_QUEUE;
   });
-  const bool cellGo = cellIdx >= 0 && !cellQ_.full();
+  const bool cellGo = cellIdx >= 0 && !q_.nodeQ.full();
   const int visitIdx = visitArb_.pick(N, [&](int k) {
     const Slot& s = slots_[size_t(k)];
     return s.state == State::Visit && s.queued > 0;
   });
-  const bool visitGo = visitIdx >= 0 && !visitQ_.full();
+  const bool visitGo = visitIdx >= 0 && !q_.visitQ.full();
   const int idxIdx = idxArb_.pick(N, [&](int k) {
     const Slot& s = slots_[size_t(k)];
     return s.state == State::Fetch && s.issued != s.count;
   });
-  const bool idxGo = idxIdx >= 0 && !idxQ_.full() && credits_ != 0;
+  const bool idxGo = idxIdx >= 0 && !q_.idxQ.full() && q_.credits != 0;
   const int checkIdx = checkArb_.pick(N, [&](int k) { return slots_[size_t(k)].state == State::Check; });
   const int doneIdx = doneArb_.pick(N, [&](int k) {
     const Slot& s = slots_[size_t(k)];
     return s.state == State::Done && s.outstanding == 0;
   });
-  const bool doneGo = doneIdx >= 0 && !resQ_.full();
-  const bool idxBufPop = !idxBuf_.empty() && !triQ_.full();
+  const bool doneGo = doneIdx >= 0 && !q_.resQ.full();
+  const bool idxBufPop = !q_.idxBuf.empty() && !q_.triQ.full();
 
   // Memory responses: cell and triangle responses from the boundary registers
   // (the RTL's assertions a_cell_rsp_slot, a_cell_rsp_head, a_tri_rsp_slot,
@@ -236,7 +193,7 @@ void rt_grid_model::seq() {
     }
   }
   const bool idxRsp = idx_rsp_valid_i.read();
-  if (idxRsp && idxBuf_.full()) fail("index response with the index buffer full (credit error)");
+  if (idxRsp && q_.idxBuf.full()) fail("index response with the index buffer full (credit error)");
 
   // rt_isect's result of this cycle: one closest-hit update.
   const bool resValid = isect_res_valid.read();
@@ -262,8 +219,8 @@ void rt_grid_model::seq() {
   }
 
   // Records pushed this cycle, from the registers at the start of the cycle.
-  Visit visitRec;
-  MemReq cellReq, idxReq;
+  rt_visit_entry visitRec;
+  rt_mem_req cellReq, idxReq;
   if (cellGo) {
     const Slot& s = slots_[size_t(cellIdx)];
     cellReq = {addrOf(s.frontier.cellId()), uint32_t(cellIdx)};
@@ -276,14 +233,14 @@ void rt_grid_model::seq() {
     const Slot& s = slots_[size_t(idxIdx)];
     idxReq = {addrOf(s.first + s.issued), uint32_t(idxIdx)};
   }
-  grid_res_t doneRec{};
+  res_t doneRec{};
   if (doneGo) {
     const Slot& s = slots_[size_t(doneIdx)];
     const fx::u128 values[] = {s.rayId, s.cells, s.tests, s.hasHit ? 1u : 0u, s.best.primId,
                                s.best.tNum, s.best.det, s.best.uNum, s.best.vNum};
-    std::array<uint32_t, size_t(fx::wireWords(GRID_RESULT_W))> wire{};
+    std::array<uint32_t, size_t(fx::wireWords(rt_grid_unit::RESULT_W))> wire{};
     fx::packFields(fx::kGridResFields, values, wire);
-    doneRec = toPort<GRID_RESULT_W>(wire);
+    doneRec = toPort<rt_grid_unit::RESULT_W>(wire);
   }
 
   // ---- Register updates of the slots, event by event (each names another slot,
@@ -304,16 +261,16 @@ void rt_grid_model::seq() {
       visitGo && (slots_[size_t(visitIdx)].outstanding < slots_[size_t(visitIdx)].queued || cellSlot == visitIdx);
 
   if (rayFire) slots_[size_t(alloc)].state = State::Setup;
-  if (s2_.valid) {
-    Slot& s = slots_[size_t(s2_.slot)];
+  if (q_.setup.s2.valid) {
+    Slot& s = slots_[size_t(q_.setup.s2.slot)];
     fx::QRay ray;
     std::array<uint32_t, fx::kIsectRayWords> wire{};
-    fromPort<ISECT_RAY_W>(s2_.ray, wire);
+    fromPort<ISECT_RAY_W>(q_.setup.s2.ray, wire);
     fx::unpackRay(wire, ray);
     s.rayId = ray.id;
     s.frontier = fx::GridDda::setup(resolution(), ray);
     s.frontierValid = true;
-    ray.id = uint32_t(s2_.slot);
+    ray.id = uint32_t(q_.setup.s2.slot);
     fx::packWire(ray, wire);
     s.isectRay = toPort<ISECT_RAY_W>(wire);
     s.head = s.queued = 0;
@@ -373,22 +330,22 @@ void rt_grid_model::seq() {
   if (doneGo) slots_[size_t(doneIdx)].state = State::Free;
 
   // ---- FIFOs, credits, arbiter pointers, setup pipeline.
-  if (!cellQ_.empty() && cell_req_ready_i.read()) cellQ_.pop();
-  if (cellGo) cellQ_.push(cellReq);
-  if (!visitQ_.empty() && visit_ready_i.read()) visitQ_.pop();
-  if (visitGo) visitQ_.push(visitRec);
-  if (!idxQ_.empty() && idx_req_ready_i.read()) idxQ_.pop();
-  if (idxGo) idxQ_.push(idxReq);
-  if (!triQ_.empty() && tri_req_ready_i.read()) triQ_.pop();
+  if (!q_.nodeQ.empty() && cell_req_ready_i.read()) q_.nodeQ.pop();
+  if (cellGo) q_.nodeQ.push(cellReq);
+  if (!q_.visitQ.empty() && visit_ready_i.read()) q_.visitQ.pop();
+  if (visitGo) q_.visitQ.push(visitRec);
+  if (!q_.idxQ.empty() && idx_req_ready_i.read()) q_.idxQ.pop();
+  if (idxGo) q_.idxQ.push(idxReq);
+  if (!q_.triQ.empty() && tri_req_ready_i.read()) q_.triQ.pop();
   if (idxBufPop) {
-    triQ_.push(idxBuf_.front());
-    idxBuf_.pop();
+    q_.triQ.push(q_.idxBuf.front());
+    q_.idxBuf.pop();
   }
-  if (idxRsp) idxBuf_.push({addrOf(uint32_t(idx_rsp_data_i.read())), uint32_t(idx_rsp_tag_i.read()) & SLOT_MASK});
-  if (!resQ_.empty() && res_ready_i.read()) resQ_.pop();
-  if (doneGo) resQ_.push(doneRec);
-  if (idxGo && !idxBufPop) --credits_;
-  if (idxBufPop && !idxGo) ++credits_;
+  if (idxRsp) q_.idxBuf.push({addrOf(uint32_t(idx_rsp_data_i.read())), uint32_t(idx_rsp_tag_i.read()) & SLOT_MASK});
+  if (!q_.resQ.empty() && res_ready_i.read()) q_.resQ.pop();
+  if (doneGo) q_.resQ.push(doneRec);
+  if (idxGo && !idxBufPop) --q_.credits;
+  if (idxBufPop && !idxGo) ++q_.credits;
 
   if (cellGo) cellArb_.ack(cellIdx, N);
   if (visitGo) visitArb_.ack(visitIdx, N);
@@ -396,16 +353,8 @@ void rt_grid_model::seq() {
   if (checkIdx >= 0) checkArb_.ack(checkIdx, N);
   if (doneGo) doneArb_.ack(doneIdx, N);
 
-  if (s1_.valid) {
-    s2_.slot = s1_.slot;
-    s2_.ray = s1_.ray;
-  }
-  s2_.valid = s1_.valid;
-  if (rayFire) {
-    s1_.slot = alloc;
-    s1_.ray = ray_data_i.read();
-  }
-  s1_.valid = rayFire;
+  q_.setup.shift();
+  if (rayFire) q_.setup.load(alloc, ray_data_i.read());
 
   cellRsp_.valid = cell_rsp_valid_i.read();
   if (cellRsp_.valid) {
@@ -423,30 +372,21 @@ void rt_grid_model::seq() {
 }
 
 void rt_grid_model::writeOutputs() {
-  cell_req_valid_o.write(!cellQ_.empty());
-  if (!cellQ_.empty()) {
-    cell_req_addr_o.write(mem_addr_t(cellQ_.front().addr));
-    cell_req_tag_o.write(slot_t(cellQ_.front().slot));
-  }
-  idx_req_valid_o.write(!idxQ_.empty());
-  if (!idxQ_.empty()) {
-    idx_req_addr_o.write(mem_addr_t(idxQ_.front().addr));
-    idx_req_tag_o.write(slot_t(idxQ_.front().slot));
-  }
-  tri_req_valid_o.write(!triQ_.empty());
-  if (!triQ_.empty()) {
-    tri_req_addr_o.write(mem_addr_t(triQ_.front().addr));
-    tri_req_tag_o.write(slot_t(triQ_.front().slot));
-  }
-  visit_valid_o.write(!visitQ_.empty());
-  if (!visitQ_.empty()) {
-    const fx::u128 values[] = {visitQ_.front().rayId, visitQ_.front().cellId};
-    std::array<uint32_t, size_t(fx::wireWords(GRID_VISIT_W))> wire{};
+  cell_req_valid_o.write(!q_.nodeQ.empty());
+  if (!q_.nodeQ.empty()) writeRequest(q_.nodeQ, cell_req_addr_o, cell_req_tag_o);
+  idx_req_valid_o.write(!q_.idxQ.empty());
+  if (!q_.idxQ.empty()) writeRequest(q_.idxQ, idx_req_addr_o, idx_req_tag_o);
+  tri_req_valid_o.write(!q_.triQ.empty());
+  if (!q_.triQ.empty()) writeRequest(q_.triQ, tri_req_addr_o, tri_req_tag_o);
+  visit_valid_o.write(!q_.visitQ.empty());
+  if (!q_.visitQ.empty()) {
+    const fx::u128 values[] = {q_.visitQ.front().rayId, q_.visitQ.front().id};
+    std::array<uint32_t, size_t(fx::wireWords(rt_grid_unit::VISIT_W))> wire{};
     fx::packFields(fx::kGridVisitFields, values, wire);
-    visit_data_o.write(toPort<GRID_VISIT_W>(wire));
+    visit_data_o.write(toPort<rt_grid_unit::VISIT_W>(wire));
   }
-  res_valid_o.write(!resQ_.empty());
-  if (!resQ_.empty()) res_data_o.write(resQ_.front());
+  res_valid_o.write(!q_.resQ.empty());
+  if (!q_.resQ.empty()) res_data_o.write(q_.resQ.front());
   bool stepReady = false;
   for (const Slot& s : slots_) stepReady = stepReady || (s.state == State::Visit && s.queued > 0);
   perf_step_ready_o.write(stepReady);

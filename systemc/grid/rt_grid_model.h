@@ -7,8 +7,11 @@
 
 #include <systemc>
 
+#include "common/rt_trav_model_parts.h"
+#include "common/rt_trav_shell.h"
 #include "golden/grid.h"
 #include "grid/rt_grid_types.h"
+#include "grid/rt_grid_unit.h"
 #include "isect/rt_isect_top.h"
 
 namespace lancer::sc {
@@ -43,52 +46,18 @@ namespace lancer::sc {
 // cycle at most one ray accepted, one cell read (one DDA step), one visit,
 // one index read, one triangle read, one test, one result update, one exit
 // test and one result.
-class rt_grid_model : public sc_core::sc_module {
+class rt_grid_model : public rt_trav_shell<rt_grid_unit> {
  public:
-  sc_core::sc_in<bool> clk_i;
-  sc_core::sc_in<bool> rst_ni;
+  // The ports of rt_trav_shell, and the unit's own:
+  sc_core::sc_in<cfg_t> cfg_res_i{"cfg_res_i"};
 
-  sc_core::sc_in<cfg_res_t> cfg_res_i;
-  sc_core::sc_in<cfg_slots_t> cfg_slots_i;
-
-  sc_core::sc_in<bool> ray_valid_i;
-  sc_core::sc_out<bool> ray_ready_o;
-  sc_core::sc_in<isect_ray_t> ray_data_i;
-
-  sc_core::sc_out<bool> res_valid_o;
-  sc_core::sc_in<bool> res_ready_i;
-  sc_core::sc_out<grid_res_t> res_data_o;
-
-  sc_core::sc_out<bool> visit_valid_o;
-  sc_core::sc_in<bool> visit_ready_i;
-  sc_core::sc_out<grid_visit_t> visit_data_o;
-
-  sc_core::sc_out<bool> cell_req_valid_o;
-  sc_core::sc_in<bool> cell_req_ready_i;
-  sc_core::sc_out<mem_addr_t> cell_req_addr_o;
-  sc_core::sc_out<slot_t> cell_req_tag_o;
-  sc_core::sc_in<bool> cell_rsp_valid_i;
-  sc_core::sc_in<grid_cell_t> cell_rsp_data_i;
-  sc_core::sc_in<slot_t> cell_rsp_tag_i;
-
-  sc_core::sc_out<bool> idx_req_valid_o;
-  sc_core::sc_in<bool> idx_req_ready_i;
-  sc_core::sc_out<mem_addr_t> idx_req_addr_o;
-  sc_core::sc_out<slot_t> idx_req_tag_o;
-  sc_core::sc_in<bool> idx_rsp_valid_i;
-  sc_core::sc_in<idx_data_t> idx_rsp_data_i;
-  sc_core::sc_in<slot_t> idx_rsp_tag_i;
-
-  sc_core::sc_out<bool> tri_req_valid_o;
-  sc_core::sc_in<bool> tri_req_ready_i;
-  sc_core::sc_out<mem_addr_t> tri_req_addr_o;
-  sc_core::sc_out<slot_t> tri_req_tag_o;
-  sc_core::sc_in<bool> tri_rsp_valid_i;
-  sc_core::sc_in<isect_tri_t> tri_rsp_data_i;
-  sc_core::sc_in<slot_t> tri_rsp_tag_i;
-
-  sc_core::sc_out<bool> perf_isect_fire_o;
-  sc_core::sc_out<bool> perf_step_ready_o;
+  sc_core::sc_out<bool> cell_req_valid_o{"cell_req_valid_o"};
+  sc_core::sc_in<bool> cell_req_ready_i{"cell_req_ready_i"};
+  sc_core::sc_out<mem_addr_t> cell_req_addr_o{"cell_req_addr_o"};
+  sc_core::sc_out<slot_t> cell_req_tag_o{"cell_req_tag_o"};
+  sc_core::sc_in<bool> cell_rsp_valid_i{"cell_rsp_valid_i"};
+  sc_core::sc_in<node_data_t> cell_rsp_data_i{"cell_rsp_data_i"};
+  sc_core::sc_in<slot_t> cell_rsp_tag_i{"cell_rsp_tag_i"};
 
   SC_HAS_PROCESS(rt_grid_model);
   explicit rt_grid_model(sc_core::sc_module_name name, rt_isect_impl isect = rt_isect_impl::model);
@@ -122,27 +91,6 @@ class rt_grid_model : public sc_core::sc_module {
     fx::IsectResult best;       // zero until the first hit
   };
 
-  // rt_fifo: Depth entries; in_ready = !full, out_valid = !empty, from the
-  // occupancy at the start of the cycle.
-  template <class T>
-  struct Fifo {
-    explicit Fifo(size_t depth) : items(depth) {}
-    std::vector<T> items;
-    size_t head = 0, size = 0;
-    bool full() const { return size == items.size(); }
-    bool empty() const { return size == 0; }
-    const T& front() const { return items[head]; }
-    void pop() { head = (head + 1) % items.size(); --size; }
-    void push(const T& v) { items[(head + size++) % items.size()] = v; }
-    void clear() { head = size = 0; }
-  };
-  struct MemReq {
-    uint32_t addr = 0, slot = 0;
-  };
-  struct Visit {
-    uint32_t rayId = 0, cellId = 0;
-  };
-
   // rt_rr_arb: the lowest requester at or after the pointer, cyclically.
   struct RoundRobin {
     int ptr = 0;
@@ -161,19 +109,12 @@ class rt_grid_model : public sc_core::sc_module {
   struct CellRsp {
     bool valid = false;
     uint32_t tag = 0;
-    grid_cell_t data{};
+    node_data_t data{};
   };
   struct TriRsp {
     bool valid = false;
     uint32_t tag = 0;
     isect_tri_t data{};
-  };
-
-  // rt_grid_setup's valid/slot/ray registers (the arithmetic is GridDda::setup at the slot load).
-  struct SetupStage {
-    bool valid = false;
-    int slot = 0;
-    isect_ray_t ray{};
   };
 
   void seq();
@@ -200,15 +141,10 @@ class rt_grid_model : public sc_core::sc_module {
   std::unique_ptr<sc_core::sc_module> u_isect;
 
   std::vector<Slot> slots_;
-  SetupStage s1_, s2_;
+  rt_trav_fifos<res_t> q_;  // the shell's queues
   CellRsp cellRsp_;
   TriRsp triRsp_;
   RoundRobin cellArb_, visitArb_, idxArb_, checkArb_, doneArb_;
-  Fifo<MemReq> cellQ_{MEMREQ_FIFO_DEPTH}, idxQ_{MEMREQ_FIFO_DEPTH}, triQ_{MEMREQ_FIFO_DEPTH};
-  Fifo<MemReq> idxBuf_{IDX_BUF_DEPTH};  // {triangle id, slot}
-  Fifo<Visit> visitQ_{VISIT_FIFO_DEPTH};
-  Fifo<grid_res_t> resQ_{RES_FIFO_DEPTH};
-  int credits_ = IDX_BUF_DEPTH;
   sc_core::sc_event state_changed_;
 };
 

@@ -5,16 +5,7 @@
 namespace lancer::sc {
 
 rt_isect_model::rt_isect_model(sc_core::sc_module_name name)
-    : sc_core::sc_module(name),
-      clk_i("clk_i"),
-      rst_ni("rst_ni"),
-      req_valid_i("req_valid_i"),
-      req_ready_o("req_ready_o"),
-      req_ray_i("req_ray_i"),
-      req_tri_i("req_tri_i"),
-      res_valid_o("res_valid_o"),
-      res_ready_i("res_ready_i"),
-      res_data_o("res_data_o") {
+    : sc_core::sc_module(name) {
   SC_METHOD(seq);
   sensitive << clk_i.pos() << rst_ni.neg();
   dont_initialize();

@@ -30,19 +30,19 @@ namespace lancer::sc {
 SC_MODULE(rt_isect_model) {
   static constexpr int NUM_STAGES = ISECT_LATENCY;
 
-  sc_core::sc_in<bool> clk_i;
-  sc_core::sc_in<bool> rst_ni;
+  sc_core::sc_in<bool> clk_i{"clk_i"};
+  sc_core::sc_in<bool> rst_ni{"rst_ni"};
 
   // Requests: one ray-triangle pair per transfer.
-  sc_core::sc_in<bool> req_valid_i;
-  sc_core::sc_out<bool> req_ready_o;
-  sc_core::sc_in<isect_ray_t> req_ray_i;
-  sc_core::sc_in<isect_tri_t> req_tri_i;
+  sc_core::sc_in<bool> req_valid_i{"req_valid_i"};
+  sc_core::sc_out<bool> req_ready_o{"req_ready_o"};
+  sc_core::sc_in<isect_ray_t> req_ray_i{"req_ray_i"};
+  sc_core::sc_in<isect_tri_t> req_tri_i{"req_tri_i"};
 
   // Results, in request order.
-  sc_core::sc_out<bool> res_valid_o;
-  sc_core::sc_in<bool> res_ready_i;
-  sc_core::sc_out<isect_res_t> res_data_o;
+  sc_core::sc_out<bool> res_valid_o{"res_valid_o"};
+  sc_core::sc_in<bool> res_ready_i{"res_ready_i"};
+  sc_core::sc_out<isect_res_t> res_data_o{"res_data_o"};
 
   SC_HAS_PROCESS(rt_isect_model);
   explicit rt_isect_model(sc_core::sc_module_name name);

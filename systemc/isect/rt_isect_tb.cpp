@@ -7,19 +7,8 @@
 namespace lancer::sc {
 
 rt_isect_tb::rt_isect_tb(sc_core::sc_module_name name)
-    : sc_core::sc_module(name),
-      clk_i("clk_i"),
-      rst_ni("rst_ni"),
-      req_valid_i("req_valid_i"),
-      req_ready_o("req_ready_o"),
-      req_ray_i("req_ray_i"),
-      req_tri_i("req_tri_i"),
-      res_valid_o("res_valid_o"),
-      res_ready_i("res_ready_i"),
-      res_data_o("res_data_o") {
-  SC_METHOD(clock);
-  sensitive << start_;
-  dont_initialize();
+    : sc_core::sc_module(name) {
+  u_clk.clk_o(clk_i);
 
   SC_METHOD(stream);
   sensitive << clk_i.pos();
@@ -42,21 +31,13 @@ void rt_isect_tb::start(const rt_isect_job& job) {
   offered_ = false;
   lastProgress_ = 0;
   monitorTaken_ = 0;
-  running_ = true;
-  start_.notify(sc_core::SC_ZERO_TIME);
-}
-
-void rt_isect_tb::clock() {
-  const bool level = clk_i.read();
-  if (!level && !running_) return;  // at rest, low, until the next start()
-  clk_i.write(!level);
-  next_trigger(sc_core::sc_time(CLOCK_PERIOD_NS / 2, sc_core::SC_NS));
+  u_clk.start();
 }
 
 void rt_isect_tb::abandon(const std::string& why) {
   tally_.error = why;
   tally_.busy = false;
-  running_ = false;
+  u_clk.stop();
 }
 
 // Edges 0 .. RESET_CYCLES-1 drive reset (low at edges 1 .. RESET_CYCLES); from
@@ -116,7 +97,7 @@ void rt_isect_tb::consume(uint64_t edge) {
       if (++tally_.taken == job_->rays.size()) {
         tally_.lastTake = cycle;
         tally_.busy = false;
-        running_ = false;  // this was the last rising edge of the run
+        u_clk.stop();  // this was the last rising edge of the run
         res_ready_i.write(false);
         return;
       }

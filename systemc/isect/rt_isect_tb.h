@@ -7,6 +7,7 @@
 
 #include <systemc>
 
+#include "common/rt_gated_clock.h"
 #include "golden/records.h"
 #include "isect/rt_isect_cycle.h"
 #include "isect/rt_isect_types.h"
@@ -42,7 +43,7 @@ struct rt_isect_tally {
 // ports they connect to (req_valid_i is an output here), so the DUT and the
 // testbench bind to the same signals with the same code.
 //
-//   clock()    SC_METHOD: a gated clock, 10 ns period; it runs only during a
+//   u_clk      rt_gated_clock: a gated clock, 10 ns period; it runs only during a
 //              run and comes to rest low afterwards, so sc_start() returns by
 //              starvation once the run is done.
 //   stream()   SC_METHOD on clk_i.posedge: first the producer, then the consumer
@@ -62,19 +63,20 @@ struct rt_isect_tally {
 // the same options, and two that behave the same report the same StreamStats.
 SC_MODULE(rt_isect_tb) {
   static constexpr int RESET_CYCLES = 2;
-  static constexpr double CLOCK_PERIOD_NS = 10.0;
 
-  sc_core::sc_out<bool> clk_i;
-  sc_core::sc_out<bool> rst_ni;
+  sc_core::sc_out<bool> clk_i{"clk_i"};
+  sc_core::sc_out<bool> rst_ni{"rst_ni"};
 
-  sc_core::sc_out<bool> req_valid_i;
-  sc_core::sc_in<bool> req_ready_o;
-  sc_core::sc_out<isect_ray_t> req_ray_i;
-  sc_core::sc_out<isect_tri_t> req_tri_i;
+  sc_core::sc_out<bool> req_valid_i{"req_valid_i"};
+  sc_core::sc_in<bool> req_ready_o{"req_ready_o"};
+  sc_core::sc_out<isect_ray_t> req_ray_i{"req_ray_i"};
+  sc_core::sc_out<isect_tri_t> req_tri_i{"req_tri_i"};
 
-  sc_core::sc_in<bool> res_valid_o;
-  sc_core::sc_out<bool> res_ready_i;
-  sc_core::sc_in<isect_res_t> res_data_o;
+  sc_core::sc_in<bool> res_valid_o{"res_valid_o"};
+  sc_core::sc_out<bool> res_ready_i{"res_ready_i"};
+  sc_core::sc_in<isect_res_t> res_data_o{"res_data_o"};
+
+  rt_gated_clock u_clk{"u_clk"};
 
   SC_HAS_PROCESS(rt_isect_tb);
   explicit rt_isect_tb(sc_core::sc_module_name name);
@@ -85,7 +87,6 @@ SC_MODULE(rt_isect_tb) {
   const rt_isect_tally& tally() const { return tally_; }
 
  private:
-  void clock();
   void stream();
   void produce(uint64_t edge);
   void consume(uint64_t edge);
@@ -95,8 +96,6 @@ SC_MODULE(rt_isect_tb) {
 
   const rt_isect_job* job_ = nullptr;
   rt_isect_tally tally_;
-  bool running_ = false;  // the clock runs
-  sc_core::sc_event start_;
 
   uint64_t edge_ = 0;  // rising edges since start()
   std::mt19937_64 rng_;

@@ -5,6 +5,7 @@
 
 #include <systemc>
 
+#include "common/rt_fst_wave.h"
 #include "isect/rt_isect_tb.h"
 
 namespace lancer::sc {
@@ -37,12 +38,11 @@ SC_MODULE(rt_isect_top) {
   void close_wave();
 
  private:
-  struct wave;
   std::unique_ptr<sc_core::sc_module> model_;
   std::unique_ptr<sc_core::sc_module> rtl_;
   rt_isect_tb* model_tb_ = nullptr;
   rt_isect_tb* rtl_tb_ = nullptr;
-  std::unique_ptr<wave> wave_;
+  rt_fst_wave wave_;
 };
 
 }  // namespace lancer::sc

@@ -15,7 +15,7 @@ using namespace octree;
 
 namespace {
 
-constexpr uint32_t SLOT_MASK = (uint32_t(1) << SLOT_W) - 1;
+constexpr uint32_t SLOT_MASK = (uint32_t(1) << rt_octree_unit::SLOT_W) - 1;
 constexpr size_t kNodeWords = size_t(fx::wireWords(NODE_W));
 constexpr size_t kGroupWords = size_t(fx::wireWords(GROUP_W));
 constexpr size_t kNodeValues = fx::valueCount(fx::kOctreeNodeFields);
@@ -90,43 +90,7 @@ rt_octree_model::SlotMask rt_octree_model::SlotMask::operator|(const SlotMask& o
 // ---- The module -----------------------------------------------------------------
 
 rt_octree_model::rt_octree_model(sc_core::sc_module_name name)
-    : sc_core::sc_module(name),
-      clk_i("clk_i"),
-      rst_ni("rst_ni"),
-      cfg_slots_i("cfg_slots_i"),
-      cfg_root_i("cfg_root_i"),
-      ray_valid_i("ray_valid_i"),
-      ray_ready_o("ray_ready_o"),
-      ray_data_i("ray_data_i"),
-      res_valid_o("res_valid_o"),
-      res_ready_i("res_ready_i"),
-      res_data_o("res_data_o"),
-      visit_valid_o("visit_valid_o"),
-      visit_ready_i("visit_ready_i"),
-      visit_data_o("visit_data_o"),
-      node_req_valid_o("node_req_valid_o"),
-      node_req_ready_i("node_req_ready_i"),
-      node_req_addr_o("node_req_addr_o"),
-      node_req_tag_o("node_req_tag_o"),
-      node_rsp_valid_i("node_rsp_valid_i"),
-      node_rsp_data_i("node_rsp_data_i"),
-      node_rsp_tag_i("node_rsp_tag_i"),
-      idx_req_valid_o("idx_req_valid_o"),
-      idx_req_ready_i("idx_req_ready_i"),
-      idx_req_addr_o("idx_req_addr_o"),
-      idx_req_tag_o("idx_req_tag_o"),
-      idx_rsp_valid_i("idx_rsp_valid_i"),
-      idx_rsp_data_i("idx_rsp_data_i"),
-      idx_rsp_tag_i("idx_rsp_tag_i"),
-      tri_req_valid_o("tri_req_valid_o"),
-      tri_req_ready_i("tri_req_ready_i"),
-      tri_req_addr_o("tri_req_addr_o"),
-      tri_req_tag_o("tri_req_tag_o"),
-      tri_rsp_valid_i("tri_rsp_valid_i"),
-      tri_rsp_data_i("tri_rsp_data_i"),
-      tri_rsp_tag_i("tri_rsp_tag_i"),
-      perf_isect_fire_o("perf_isect_fire_o"),
-      perf_step_ready_o("perf_step_ready_o") {
+    : rt_trav_shell<rt_octree_unit>(name) {
   reset();
 
   SC_METHOD(seq);
@@ -153,16 +117,9 @@ void rt_octree_model::reset() {
   done_.clear();
   self_.clear();
   for (int k = 0; k < N; ++k) free_.set(k);
-  s1_.valid = s2_.valid = false;
+  q_.clear();
   visitArb_ = nodeArb_ = idxArb_ = checkArb_ = doneArb_ = RoundRobin{};
   advArb_.fill(RoundRobin{});
-  nodeQ_.clear();
-  idxQ_.clear();
-  triQ_.clear();
-  idxBuf_.clear();
-  visitQ_.clear();
-  resQ_.clear();
-  credits_ = IDX_BUF_DEPTH;
   for (IsectStage& st : isect_) st.valid = false;
   isectPos_ = 0;
   nodeHead_ = idxHead_ = triHead_ = visitHead_ = resHead_ = true;
@@ -338,15 +295,15 @@ void rt_octree_model::seq() {
   const bool rayFire = ray_valid_i.read() && alloc >= 0;
 
   const int visitIdx = visitArb_.pick(enter_);
-  const bool visitGo = visitIdx >= 0 && !visitQ_.full();
+  const bool visitGo = visitIdx >= 0 && !q_.visitQ.full();
   const int nodeIdx = nodeArb_.pick(nodeWant_);
-  const bool nodeGo = nodeIdx >= 0 && !nodeQ_.full();
+  const bool nodeGo = nodeIdx >= 0 && !q_.nodeQ.full();
   const int idxIdx = idxArb_.pick(idxWant_);
-  const bool idxGo = idxIdx >= 0 && !idxQ_.full() && credits_ != 0;
+  const bool idxGo = idxIdx >= 0 && !q_.idxQ.full() && q_.credits != 0;
   const int checkIdx = checkArb_.pick(checkWant_);
   const int doneIdx = doneArb_.pick(done_);
-  const bool doneGo = doneIdx >= 0 && !resQ_.full();
-  const bool idxBufPop = !idxBuf_.empty() && !triQ_.full();
+  const bool doneGo = doneIdx >= 0 && !q_.resQ.full();
+  const bool idxBufPop = !q_.idxBuf.empty() && !q_.triQ.full();
   const SlotMask self = self_;
   std::array<int, ADV_LANES> advIdx{};  // each lane's slot, or -1
   SlotMask advLeft = advWant_;
@@ -354,8 +311,8 @@ void rt_octree_model::seq() {
     advIdx[size_t(l)] = advArb_[size_t(l)].pick(advLeft);
     if (advIdx[size_t(l)] >= 0) advLeft.reset(advIdx[size_t(l)]);
   }
-  const bool setupLoad = s2_.valid;
-  const int setupSlot = s2_.slot;
+  const bool setupLoad = q_.setup.s2.valid;
+  const int setupSlot = q_.setup.s2.slot;
 
   // Memory responses (the RTL's assertions on the response tags and the index buffer).
   const bool nodeRsp = node_rsp_valid_i.read();
@@ -376,7 +333,7 @@ void rt_octree_model::seq() {
     }
   }
   const bool idxRsp = idx_rsp_valid_i.read();
-  if (idxRsp && idxBuf_.full()) fail("index response with the index buffer full (credit error)");
+  if (idxRsp && q_.idxBuf.full()) fail("index response with the index buffer full (credit error)");
 
   // u_isect: the result leaving the last stage in this cycle, and the pair entering.
   IsectStage& stage = isect_[isectPos_];
@@ -390,31 +347,31 @@ void rt_octree_model::seq() {
   isectPos_ = isectPos_ + 1 == size_t(ISECT_LATENCY) ? 0 : isectPos_ + 1;
 
   // ---- FIFO pops (heads of the cycle leave on ready).
-  const bool nodePop = !nodeQ_.empty() && node_req_ready_i.read();
-  const bool idxPop = !idxQ_.empty() && idx_req_ready_i.read();
-  const bool triPop = !triQ_.empty() && tri_req_ready_i.read();
-  const bool visitPop = !visitQ_.empty() && visit_ready_i.read();
-  const bool resPop = !resQ_.empty() && res_ready_i.read();
-  if (nodePop) nodeQ_.pop();
-  if (idxPop) idxQ_.pop();
-  if (triPop) triQ_.pop();
-  if (visitPop) visitQ_.pop();
-  if (resPop) resQ_.pop();
+  const bool nodePop = !q_.nodeQ.empty() && node_req_ready_i.read();
+  const bool idxPop = !q_.idxQ.empty() && idx_req_ready_i.read();
+  const bool triPop = !q_.triQ.empty() && tri_req_ready_i.read();
+  const bool visitPop = !q_.visitQ.empty() && visit_ready_i.read();
+  const bool resPop = !q_.resQ.empty() && res_ready_i.read();
+  if (nodePop) q_.nodeQ.pop();
+  if (idxPop) q_.idxQ.pop();
+  if (triPop) q_.triQ.pop();
+  if (visitPop) q_.visitQ.pop();
+  if (resPop) q_.resQ.pop();
 
   // ---- The slots: at most one state-changing event per slot and cycle, each
   // reading that slot's registers as they were at the start of the cycle.
   if (visitGo) {
     const Slot& s = slots_[size_t(visitIdx)];
-    visitHead_ |= visitQ_.empty();
-    visitQ_.push(Visit{s.rayId, s.nodeId});
+    visitHead_ |= q_.visitQ.empty();
+    q_.visitQ.push(rt_visit_entry{s.rayId, s.nodeId});
     enter(visitIdx);
     visitArb_.ack(visitIdx);
   }
   if (nodeGo) {
     const Slot& s = slots_[size_t(nodeIdx)];
     const bool group = s.state == State::GroupReq;
-    nodeHead_ |= nodeQ_.empty();
-    nodeQ_.push(MemReq{addrOf(group ? s.rec.first : s.stack[size_t(s.depth - 1)].first), uint32_t(nodeIdx)});
+    nodeHead_ |= q_.nodeQ.empty();
+    q_.nodeQ.push(rt_mem_req{addrOf(group ? s.rec.first : s.stack[size_t(s.depth - 1)].first), uint32_t(nodeIdx)});
     setState(nodeIdx, group ? State::WaitGroup : State::WaitRefill);
     nodeArb_.ack(nodeIdx);
   }
@@ -445,8 +402,8 @@ void rt_octree_model::seq() {
   }
   if (idxGo) {
     Slot& s = slots_[size_t(idxIdx)];
-    idxHead_ |= idxQ_.empty();
-    idxQ_.push(MemReq{addrOf(s.rec.first + s.issued), uint32_t(idxIdx)});
+    idxHead_ |= q_.idxQ.empty();
+    q_.idxQ.push(rt_mem_req{addrOf(s.rec.first + s.issued), uint32_t(idxIdx)});
     if (++s.issued == s.rec.count) idxWant_.reset(idxIdx);
     idxArb_.ack(idxIdx);
   }
@@ -477,36 +434,28 @@ void rt_octree_model::seq() {
     const fx::u128 values[kResValues] = {s.rayId,         s.nodes,       s.tests,
                                          s.hasHit ? 1u : 0u, s.best.primId, s.best.tNum,
                                          s.best.det,      s.best.uNum,   s.best.vNum};
-    std::array<uint32_t, size_t(fx::wireWords(RESULT_W))> wire{};
+    std::array<uint32_t, size_t(fx::wireWords(rt_octree_unit::RESULT_W))> wire{};
     fx::packFields(fx::kOctreeResFields, values, wire);
-    resHead_ |= resQ_.empty();
-    resQ_.push(toPort<RESULT_W>(wire));
+    resHead_ |= q_.resQ.empty();
+    q_.resQ.push(toPort<rt_octree_unit::RESULT_W>(wire));
     setState(doneIdx, State::Free);
     doneArb_.ack(doneIdx);
   }
-  if (setupLoad) load(setupSlot, s2_.ray);
+  if (setupLoad) load(setupSlot, q_.setup.s2.ray);
   if (rayFire) setState(alloc, State::Setup);
 
   // ---- Index buffer, triangle requests, credits, setup pipeline.
   if (idxBufPop) {
-    triHead_ |= triQ_.empty();
-    triQ_.push(idxBuf_.front());
-    idxBuf_.pop();
+    triHead_ |= q_.triQ.empty();
+    q_.triQ.push(q_.idxBuf.front());
+    q_.idxBuf.pop();
   }
-  if (idxRsp) idxBuf_.push(MemReq{addrOf(uint32_t(idx_rsp_data_i.read())), uint32_t(idx_rsp_tag_i.read()) & SLOT_MASK});
-  if (idxGo && !idxBufPop) --credits_;
-  if (idxBufPop && !idxGo) ++credits_;
+  if (idxRsp) q_.idxBuf.push(rt_mem_req{addrOf(uint32_t(idx_rsp_data_i.read())), uint32_t(idx_rsp_tag_i.read()) & SLOT_MASK});
+  if (idxGo && !idxBufPop) --q_.credits;
+  if (idxBufPop && !idxGo) ++q_.credits;
 
-  if (s1_.valid) {
-    s2_.slot = s1_.slot;
-    s2_.ray = s1_.ray;
-  }
-  s2_.valid = s1_.valid;
-  if (rayFire) {
-    s1_.slot = alloc;
-    s1_.ray = ray_data_i.read();
-  }
-  s1_.valid = rayFire;
+  q_.setup.shift();
+  if (rayFire) q_.setup.load(alloc, ray_data_i.read());
 
   nodeHead_ |= nodePop;
   idxHead_ |= idxPop;
@@ -526,30 +475,21 @@ void rt_octree_model::writeFlag(sc_core::sc_out<bool>& port, Flag f, bool value,
 }
 
 void rt_octree_model::writeOutputs(bool all) {
-  writeFlag(node_req_valid_o, NODE_VALID, !nodeQ_.empty(), all);
-  if (!nodeQ_.empty() && (nodeHead_ || all)) {
-    node_req_addr_o.write(mem_addr_t(nodeQ_.front().addr));
-    node_req_tag_o.write(slot_t(nodeQ_.front().slot));
+  writeFlag(node_req_valid_o, NODE_VALID, !q_.nodeQ.empty(), all);
+  if (!q_.nodeQ.empty() && (nodeHead_ || all)) writeRequest(q_.nodeQ, node_req_addr_o, node_req_tag_o);
+  writeFlag(idx_req_valid_o, IDX_VALID, !q_.idxQ.empty(), all);
+  if (!q_.idxQ.empty() && (idxHead_ || all)) writeRequest(q_.idxQ, idx_req_addr_o, idx_req_tag_o);
+  writeFlag(tri_req_valid_o, TRI_VALID, !q_.triQ.empty(), all);
+  if (!q_.triQ.empty() && (triHead_ || all)) writeRequest(q_.triQ, tri_req_addr_o, tri_req_tag_o);
+  writeFlag(visit_valid_o, VISIT_VALID, !q_.visitQ.empty(), all);
+  if (!q_.visitQ.empty() && (visitHead_ || all)) {
+    std::array<uint32_t, size_t(fx::wireWords(rt_octree_unit::VISIT_W))> wire{};
+    putField<fx::kOctreeVisitFields, 0>(wire.data(), q_.visitQ.front().rayId);
+    putField<fx::kOctreeVisitFields, 1>(wire.data(), q_.visitQ.front().id);
+    visit_data_o.write(toPort<rt_octree_unit::VISIT_W>(wire));
   }
-  writeFlag(idx_req_valid_o, IDX_VALID, !idxQ_.empty(), all);
-  if (!idxQ_.empty() && (idxHead_ || all)) {
-    idx_req_addr_o.write(mem_addr_t(idxQ_.front().addr));
-    idx_req_tag_o.write(slot_t(idxQ_.front().slot));
-  }
-  writeFlag(tri_req_valid_o, TRI_VALID, !triQ_.empty(), all);
-  if (!triQ_.empty() && (triHead_ || all)) {
-    tri_req_addr_o.write(mem_addr_t(triQ_.front().addr));
-    tri_req_tag_o.write(slot_t(triQ_.front().slot));
-  }
-  writeFlag(visit_valid_o, VISIT_VALID, !visitQ_.empty(), all);
-  if (!visitQ_.empty() && (visitHead_ || all)) {
-    std::array<uint32_t, size_t(fx::wireWords(VISIT_W))> wire{};
-    putField<fx::kOctreeVisitFields, 0>(wire.data(), visitQ_.front().rayId);
-    putField<fx::kOctreeVisitFields, 1>(wire.data(), visitQ_.front().nodeId);
-    visit_data_o.write(toPort<VISIT_W>(wire));
-  }
-  writeFlag(res_valid_o, RES_VALID, !resQ_.empty(), all);
-  if (!resQ_.empty() && (resHead_ || all)) res_data_o.write(resQ_.front());
+  writeFlag(res_valid_o, RES_VALID, !q_.resQ.empty(), all);
+  if (!q_.resQ.empty() && (resHead_ || all)) res_data_o.write(q_.resQ.front());
   nodeHead_ = idxHead_ = triHead_ = visitHead_ = resHead_ = false;
 
   const int usable = std::min<int>(int(cfg_slots_i.read()), N);

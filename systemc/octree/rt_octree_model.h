@@ -7,8 +7,11 @@
 
 #include <systemc>
 
+#include "common/rt_trav_model_parts.h"
+#include "common/rt_trav_shell.h"
 #include "golden/octree.h"
 #include "octree/rt_octree_types.h"
+#include "octree/rt_octree_unit.h"
 
 namespace lancer::sc {
 
@@ -43,52 +46,18 @@ namespace lancer::sc {
 // Speed: per-state slot masks; the arbiters find the next requester with bit
 // scans, and only slots that act on their own in a cycle (DESCEND, FETCH with
 // every result in) or are granted an advance lane are visited.
-class rt_octree_model : public sc_core::sc_module {
+class rt_octree_model : public rt_trav_shell<rt_octree_unit> {
  public:
-  sc_core::sc_in<bool> clk_i;
-  sc_core::sc_in<bool> rst_ni;
+  // The ports of rt_trav_shell, and the unit's own:
+  sc_core::sc_in<cfg_t> cfg_root_i{"cfg_root_i"};
 
-  sc_core::sc_in<octree::cfg_slots_t> cfg_slots_i;
-  sc_core::sc_in<octree::node_t> cfg_root_i;
-
-  sc_core::sc_in<bool> ray_valid_i;
-  sc_core::sc_out<bool> ray_ready_o;
-  sc_core::sc_in<isect_ray_t> ray_data_i;
-
-  sc_core::sc_out<bool> res_valid_o;
-  sc_core::sc_in<bool> res_ready_i;
-  sc_core::sc_out<octree::res_t> res_data_o;
-
-  sc_core::sc_out<bool> visit_valid_o;
-  sc_core::sc_in<bool> visit_ready_i;
-  sc_core::sc_out<octree::visit_t> visit_data_o;
-
-  sc_core::sc_out<bool> node_req_valid_o;
-  sc_core::sc_in<bool> node_req_ready_i;
-  sc_core::sc_out<octree::mem_addr_t> node_req_addr_o;
-  sc_core::sc_out<octree::slot_t> node_req_tag_o;
-  sc_core::sc_in<bool> node_rsp_valid_i;
-  sc_core::sc_in<octree::group_t> node_rsp_data_i;
-  sc_core::sc_in<octree::slot_t> node_rsp_tag_i;
-
-  sc_core::sc_out<bool> idx_req_valid_o;
-  sc_core::sc_in<bool> idx_req_ready_i;
-  sc_core::sc_out<octree::mem_addr_t> idx_req_addr_o;
-  sc_core::sc_out<octree::slot_t> idx_req_tag_o;
-  sc_core::sc_in<bool> idx_rsp_valid_i;
-  sc_core::sc_in<octree::idx_data_t> idx_rsp_data_i;
-  sc_core::sc_in<octree::slot_t> idx_rsp_tag_i;
-
-  sc_core::sc_out<bool> tri_req_valid_o;
-  sc_core::sc_in<bool> tri_req_ready_i;
-  sc_core::sc_out<octree::mem_addr_t> tri_req_addr_o;
-  sc_core::sc_out<octree::slot_t> tri_req_tag_o;
-  sc_core::sc_in<bool> tri_rsp_valid_i;
-  sc_core::sc_in<isect_tri_t> tri_rsp_data_i;
-  sc_core::sc_in<octree::slot_t> tri_rsp_tag_i;
-
-  sc_core::sc_out<bool> perf_isect_fire_o;
-  sc_core::sc_out<bool> perf_step_ready_o;
+  sc_core::sc_out<bool> node_req_valid_o{"node_req_valid_o"};
+  sc_core::sc_in<bool> node_req_ready_i{"node_req_ready_i"};
+  sc_core::sc_out<mem_addr_t> node_req_addr_o{"node_req_addr_o"};
+  sc_core::sc_out<slot_t> node_req_tag_o{"node_req_tag_o"};
+  sc_core::sc_in<bool> node_rsp_valid_i{"node_rsp_valid_i"};
+  sc_core::sc_in<node_data_t> node_rsp_data_i{"node_rsp_data_i"};
+  sc_core::sc_in<slot_t> node_rsp_tag_i{"node_rsp_tag_i"};
 
   SC_HAS_PROCESS(rt_octree_model);
   explicit rt_octree_model(sc_core::sc_module_name name);
@@ -149,46 +118,11 @@ class rt_octree_model : public sc_core::sc_module {
     fx::IsectResult best;  // zero until the first hit
   };
 
-  // rt_fifo: Depth entries; in_ready = !full, out_valid = !empty, from the
-  // occupancy at the start of the cycle.
-  template <class T, size_t Depth>
-  struct Fifo {
-    std::array<T, Depth> items{};
-    size_t head = 0, size = 0;
-    bool full() const { return size == Depth; }
-    bool empty() const { return size == 0; }
-    const T& front() const { return items[head]; }
-    void pop() {
-      head = head + 1 == Depth ? 0 : head + 1;
-      --size;
-    }
-    void push(const T& v) {
-      size_t tail = head + size;
-      if (tail >= Depth) tail -= Depth;
-      items[tail] = v;
-      ++size;
-    }
-    void clear() { head = size = 0; }
-  };
-  struct MemReq {
-    uint32_t addr = 0, slot = 0;
-  };
-  struct Visit {
-    uint32_t rayId = 0, nodeId = 0;
-  };
-
   // rt_rr_arb's pointer: grants the lowest requester at or after it; moves past a used grant.
   struct RoundRobin {
     int ptr = 0;
     int pick(const SlotMask& want) const { return want.pickFrom(ptr); }
     void ack(int granted) { ptr = granted + 1 == N ? 0 : granted + 1; }
-  };
-
-  // The setup pipeline's valid/slot/ray registers (the arithmetic happens at the slot load).
-  struct SetupStage {
-    bool valid = false;
-    int slot = 0;
-    isect_ray_t ray{};
   };
 
   // u_isect: ISECT_LATENCY stages of {valid, result}.
@@ -216,14 +150,9 @@ class rt_octree_model : public sc_core::sc_module {
   // advWant_: NEXT and CHECK without a hit, waiting for an advance lane;
   // self_: DESCEND and FETCH with every result in, acting on their own.
   SlotMask free_, enter_, nodeWant_, idxWant_, checkWant_, advWant_, done_, self_;
-  SetupStage s1_, s2_;
+  rt_trav_fifos<res_t> q_;  // the shell's queues
   RoundRobin visitArb_, nodeArb_, idxArb_, checkArb_, doneArb_;
   std::array<RoundRobin, octree::ADV_LANES> advArb_{};  // lane l takes what lanes before it left
-  Fifo<MemReq, octree::MEMREQ_FIFO_DEPTH> nodeQ_, idxQ_, triQ_;
-  Fifo<MemReq, octree::IDX_BUF_DEPTH> idxBuf_;  // {triangle id, slot}
-  Fifo<Visit, octree::VISIT_FIFO_DEPTH> visitQ_;
-  Fifo<octree::res_t, octree::RES_FIFO_DEPTH> resQ_;
-  int credits_ = octree::IDX_BUF_DEPTH;
   std::array<IsectStage, ISECT_LATENCY> isect_{};
   size_t isectPos_ = 0;
   // Which FIFO heads changed since the outputs were last written.

@@ -5,12 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include "common/error.h"
 #include "driver/devices.h"
@@ -19,92 +17,39 @@
 #include "driver/systemc_isect_device.h"
 #include "driver/verilator_grid_device.h"
 #include "support/grid_cases.h"
+#include "trav_sc_fixture.h"
 
 namespace lancer {
-namespace sc {
-void PrintTo(const GridCycle& c, std::ostream* os) {
-  *os << fmt::format(
-      "cycle {}: ray {}{} res {}{} visit {}{} cell {}@{:#x}/{} idx {}@{:#x}/{} tri {}@{:#x}/{} fire {} step ready {} "
-      "res [{:x}] visit [{:x}]",
-      c.cycle, int(c.rayValid), int(c.rayReady), int(c.resValid), int(c.resReady), int(c.visitValid),
-      int(c.visitReady), int(c.cellReq), c.cellAddr, c.cellTag, int(c.idxReq), c.idxAddr, c.idxTag, int(c.triReq),
-      c.triAddr, c.triTag, int(c.perfIsectFire), int(c.perfStepReady), fmt::join(c.resData, "_"),
-      fmt::join(c.visitData, "_"));
-}
-}  // namespace sc
-
 namespace {
 
 using Impl = SystemCGridDevice::Impl;
+using test::expectSameStats;
+using test::optionsText;
 using test::roughGridOptions;
 
-bool available(Impl impl) {
-  if (impl == Impl::Rtl) return SystemCGridDevice::rtlAvailable();
-  if (impl == Impl::ModelRtlIsect) return SystemCGridDevice::rtlIsectAvailable();
-  return true;
-}
+const test::Describe<fx::GridImage> kDescribe{
+    [](const fx::GridImage& image) {
+      return fmt::format("grid {}x{}x{}", image.res[0], image.res[1], image.res[2]);
+    },
+    test::describeGridRay, test::describeGridTrace};
 
-// Runs golden and `device`, expects identical traces and golden's counters.
+// Runs golden and `device`, expects identical traces and golden's counters;
+// cell reads: every cell entered, plus at most CellQueue - 1 prefetched past the last one per ray.
 TraversalRunStats expectSameTraces(GridDevice& device, const fx::GridImage& image, const std::vector<fx::QRay>& rays,
-                              const TraversalRunOptions& options, const std::string& what) {
+                                   const TraversalRunOptions& options, const std::string& what) {
   GoldenGridDevice golden;
-  std::vector<fx::GridTrace> want, got;
-  const TraversalRunStats g = golden.run(image, rays, want, options);
-  const TraversalRunStats r = device.run(image, rays, got, options);
-  EXPECT_EQ(got.size(), want.size()) << what;
-  int reported = 0;
-  for (size_t k = 0; k < std::min(got.size(), want.size()); ++k) {
-    if (got[k] == want[k]) continue;
-    ADD_FAILURE() << what << ": grid " << image.res[0] << "x" << image.res[1] << "x" << image.res[2] << ", "
-                  << test::describeGridRay(rays[k]) << "\n  " << device.name() << ": " << test::describeGridTrace(got[k])
-                  << "\n  golden: " << test::describeGridTrace(want[k]);
-    if (++reported == 5) break;
-  }
-  EXPECT_EQ(r.rays, rays.size()) << what;
-  EXPECT_EQ(r.steps, g.steps) << what;
-  // Cell reads: every cell entered, plus at most CellQueue - 1 prefetched past the last one per ray.
+  const auto [g, r] = test::expectGoldenTraces<fx::GridImage>(golden, device, image, rays, options, what, kDescribe);
   EXPECT_GE(r.nodeReads, g.nodeReads) << what;
   EXPECT_LE(r.nodeReads, g.nodeReads + (test::kGridCellQueue - 1) * rays.size()) << what;
-  EXPECT_EQ(r.indexReads, g.indexReads) << what;
-  EXPECT_EQ(r.triangleReads, g.triangleReads) << what;
-  EXPECT_EQ(r.isectTests, g.isectTests) << what;
-  EXPECT_EQ(r.isectBusyCycles, r.isectTests) << what;
-  EXPECT_TRUE(r.cycleAccurate) << what;
-  EXPECT_GT(r.cycles, 0u) << what;
   return r;
-}
-
-void expectSameStats(const TraversalRunStats& a, const TraversalRunStats& b, const std::string& what) {
-  EXPECT_EQ(a.cycles, b.cycles) << what;
-  EXPECT_EQ(a.rays, b.rays) << what;
-  EXPECT_EQ(a.steps, b.steps) << what;
-  EXPECT_EQ(a.nodeReads, b.nodeReads) << what;
-  EXPECT_EQ(a.indexReads, b.indexReads) << what;
-  EXPECT_EQ(a.triangleReads, b.triangleReads) << what;
-  EXPECT_EQ(a.isectTests, b.isectTests) << what;
-  EXPECT_EQ(a.isectBusyCycles, b.isectBusyCycles) << what;
-  EXPECT_EQ(a.stepReadyCycles, b.stepReadyCycles) << what;
 }
 
 // ---- Each implementation against the golden model ---------------------------
 
-class ScGrid : public ::testing::TestWithParam<Impl> {
- protected:
-  void SetUp() override {
-    if (!available(GetParam())) GTEST_SKIP() << "this build has no Verilated RTL for this variant";
-  }
-};
+class ScGrid : public test::ScTraversalTest<SystemCGridDevice> {};
 
-std::string implName(const ::testing::TestParamInfo<Impl>& info) {
-  switch (info.param) {
-    case Impl::Model: return "Model";
-    case Impl::Rtl: return "Rtl";
-    case Impl::ModelRtlIsect: return "ModelRtlIsect";
-  }
-  return "?";
-}
-
-INSTANTIATE_TEST_SUITE_P(Impl, ScGrid, ::testing::Values(Impl::Model, Impl::Rtl, Impl::ModelRtlIsect), implName);
+INSTANTIATE_TEST_SUITE_P(Impl, ScGrid, ::testing::Values(Impl::Model, Impl::Rtl, Impl::ModelRtlIsect),
+                         test::implName<Impl>);
 
 TEST_P(ScGrid, MatchesGoldenOnBunnyCameraRays) {
   const test::GridScene q = test::bunnyCamera(32, 32);
@@ -136,72 +81,22 @@ TEST_P(ScGrid, MatchesGoldenWithOneSlotAllSlotsAndNoBackpressure) {
 TEST_P(ScGrid, RepeatedRunsAreIndependentAndReproducible) {
   const test::GridScene q = test::bunnyCamera(6, 6);
   const fx::GridImage image = fx::buildGridImage(q.triangles, fx::chooseGridResolution(q.triangles));
-  std::vector<fx::GridTrace> a, b, c;
-  SystemCGridDevice first(GetParam());
-  const TraversalRunStats sa = first.run(image, q.rays, a, roughGridOptions(3));
-  const TraversalRunStats other = first.run(image, q.rays, b, roughGridOptions(4));
-  SystemCGridDevice second(GetParam());
-  const TraversalRunStats sc = second.run(image, q.rays, c, roughGridOptions(3));
-  EXPECT_EQ(a, c);
-  EXPECT_EQ(a, b);  // traces do not depend on the timing
-  expectSameStats(sa, sc, "same seed, new device");
-  EXPECT_NE(sa.cycles, other.cycles);
+  test::expectRepeatableRuns<SystemCGridDevice>(GetParam(), image, q.rays, roughGridOptions(3), roughGridOptions(4));
 }
 
 TEST_P(ScGrid, EmptyRunAndInvalidOptions) {
   SystemCGridDevice device(GetParam());
   const fx::GridImage image = fx::buildGridImage({}, {1, 1, 1});
-  std::vector<fx::GridTrace> traces(3);
-  const TraversalRunStats s = device.run(image, std::vector<fx::QRay>{}, traces);
-  EXPECT_TRUE(traces.empty());
-  EXPECT_EQ(s.cycles, 0u);
-  const std::vector<fx::QRay> one{fx::QRay{0, {0, 0, 0}, {fx::kDirMax, 0, 0}}};
-  TraversalRunOptions o;
-  o.raysInFlight = device.maxRaysInFlight() + 1;
-  try {
-    device.run(image, one, traces, o);
-    FAIL() << "no InputError";
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(std::to_string(o.raysInFlight)), std::string::npos) << what;
-    EXPECT_NE(what.find(std::to_string(device.maxRaysInFlight())), std::string::npos) << what;
-  }
-  o = {};
-  o.raysInFlight = -1;
-  EXPECT_THROW(device.run(image, one, traces, o), InputError);
-  o = {};
-  o.memLatency = 0;
-  EXPECT_THROW(device.run(image, one, traces, o), InputError);
-  o = {};
-  o.stream.outputStallProbability = 1.0;
-  EXPECT_THROW(device.run(image, one, traces, o), InputError);
+  test::expectEmptyRun<fx::GridImage>(device, image);
+  test::expectInvalidOptionsRejected<fx::GridImage>(device, image);
   // Still usable afterwards.
+  const std::vector<fx::QRay> one{fx::QRay{0, {0, 0, 0}, {fx::kDirMax, 0, 0}}};
   expectSameTraces(device, image, one, {}, "after errors");
 }
 
 // ---- Cycle accuracy -------------------------------------------------------------
 
-std::vector<TraversalRunOptions> timingSettings() {
-  std::vector<TraversalRunOptions> all;
-  TraversalRunOptions o;
-  all.push_back(o);  // latency 20, nothing random
-  o.memLatency = 1;
-  all.push_back(o);
-  all.push_back(roughGridOptions(31));
-  o = roughGridOptions(32, 3);
-  all.push_back(o);
-  o = roughGridOptions(33);
-  o.memLatency = 40;
-  o.memLatencyJitter = 40;
-  o.stream.outputStallProbability = 0.6;
-  all.push_back(o);
-  return all;
-}
-
-std::string optionsText(const TraversalRunOptions& o) {
-  return fmt::format("latency {} jitter {} slots {} stall {} idle {} seed {}", o.memLatency, o.memLatencyJitter,
-                     o.raysInFlight, o.stream.outputStallProbability, o.stream.inputIdleProbability, o.stream.seed);
-}
+std::vector<TraversalRunOptions> timingSettings() { return test::timingSettings(roughGridOptions, 31, 32, 33); }
 
 TEST(ScGridCycleAccuracy, ModelMatchesVerilatedRtlCycleForCycle) {
   if (!SystemCGridDevice::rtlAvailable()) GTEST_SKIP() << "no Verilated rt_grid in this build";
@@ -214,27 +109,7 @@ TEST(ScGridCycleAccuracy, ModelMatchesVerilatedRtlCycleForCycle) {
   SystemCGridDevice model(Impl::Model), rtl(Impl::Rtl);
   for (const test::GridCase& c : cases) {
     for (const TraversalRunOptions& o : timingSettings()) {
-      const std::string what = c.name + ", " + optionsText(o);
-      std::vector<sc::GridCycle> mt, rt;
-      std::vector<fx::GridTrace> a, b;
-      model.setCycleTrace(&mt);
-      rtl.setCycleTrace(&rt);
-      const TraversalRunStats sm = model.run(c.image, c.rays, a, o);
-      const TraversalRunStats sr = rtl.run(c.image, c.rays, b, o);
-      model.setCycleTrace(nullptr);
-      rtl.setCycleTrace(nullptr);
-      expectSameStats(sm, sr, what);
-      EXPECT_EQ(a, b) << what;
-      ASSERT_EQ(mt.size(), rt.size()) << what;
-      size_t differing = 0;
-      for (size_t i = 0; i < mt.size(); ++i) {
-        if (mt[i] == rt[i]) continue;
-        if (++differing <= 3) {
-          ADD_FAILURE() << what << "\n  model: " << ::testing::PrintToString(mt[i])
-                        << "\n  rtl:   " << ::testing::PrintToString(rt[i]);
-        }
-      }
-      EXPECT_EQ(differing, 0u) << what << ": cycles whose port activity differs";
+      test::expectSamePortTraces(model, rtl, c.image, c.rays, o, c.name + ", " + optionsText(o));
     }
   }
 }
@@ -290,22 +165,12 @@ TEST(ScGridDevice, GridAndIsectDevicesShareOneKernel) {
 }
 
 TEST(ScGridDevice, WaveformOfTheRtlOnRequest) {
-  if (!SystemCGridDevice::rtlAvailable() || !SystemCGridDevice::wavesAvailable()) {
-    GTEST_SKIP() << "no Verilated rt_grid with FST tracing in this build";
-  }
   const test::GridScene q = test::bunnyCamera(3, 3);
   const fx::GridImage image = fx::buildGridImage(q.triangles, {8, 8, 8});
-  TraversalRunOptions o = roughGridOptions(50);
-  o.stream.wavePath = ::testing::TempDir() + "rt_grid_sc_wave.fst";
-  std::remove(o.stream.wavePath.c_str());
-  SystemCGridDevice rtl(Impl::Rtl);
-  expectSameTraces(rtl, image, q.rays, o, "with waves");
-  std::FILE* f = std::fopen(o.stream.wavePath.c_str(), "rb");
-  ASSERT_NE(f, nullptr) << o.stream.wavePath;
-  std::fseek(f, 0, SEEK_END);
-  EXPECT_GT(std::ftell(f), 1000);
-  std::fclose(f);
-  std::remove(o.stream.wavePath.c_str());
+  test::expectRtlWave<SystemCGridDevice>("rt_grid_sc_wave.fst", roughGridOptions(50),
+                          [&](SystemCGridDevice& rtl, const TraversalRunOptions& o) {
+                            expectSameTraces(rtl, image, q.rays, o, "with waves");
+                          });
 }
 
 }  // namespace

@@ -121,13 +121,18 @@ TEST_P(ScIsect, SaturatedStreamSustainsOneResultPerCycle) {
   EXPECT_GE(perCycle, 0.99) << stats.results << " results in " << stats.cycles << " cycles";
 }
 
-TEST_P(ScIsect, LatencyIsIsectLatencyCycles) {
-  const auto requests = sctest::randomPairs(1, 3);
-  SystemCIsectDevice device(GetParam());
-  std::vector<IsectCycle> trace;
+// A run of a new device of `impl` with its port trace.
+StreamStats runTraced(SystemCIsectDevice::Impl impl, const std::vector<IsectRequest>& requests,
+                      std::vector<IsectCycle>& trace, const StreamOptions& options = {}) {
+  SystemCIsectDevice device(impl);
   device.setCycleTrace(&trace);
   std::vector<fx::IsectResult> results;
-  const StreamStats stats = device.run(requests, results);
+  return device.run(requests, results, options);
+}
+
+TEST_P(ScIsect, LatencyIsIsectLatencyCycles) {
+  std::vector<IsectCycle> trace;
+  const StreamStats stats = runTraced(GetParam(), sctest::randomPairs(1, 3), trace);
   EXPECT_EQ(stats.cycles, kLatency + 1);
   uint64_t accepted = ~uint64_t(0), taken = ~uint64_t(0);
   for (const IsectCycle& c : trace) {
@@ -140,11 +145,8 @@ TEST_P(ScIsect, LatencyIsIsectLatencyCycles) {
 // The handshake rules and the RTL's backpressure scheme, read off the ports.
 TEST_P(ScIsect, HandshakeFollowsTheStreamRulesAndTheRtlBackpressure) {
   const auto requests = sctest::randomPairs(3000, 8);
-  SystemCIsectDevice device(GetParam());
   std::vector<IsectCycle> trace;
-  device.setCycleTrace(&trace);
-  std::vector<fx::IsectResult> results;
-  device.run(requests, results, StreamOptions{0.6, 0.3, 9, {}});
+  runTraced(GetParam(), requests, trace, StreamOptions{0.6, 0.3, 9, {}});
   ASSERT_FALSE(trace.empty());
   uint64_t inFlight = 0;  // accepted and not yet taken, at the start of the cycle
   size_t nextResult = 0;

@@ -6,12 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include "common/error.h"
 #include "driver/devices.h"
@@ -20,20 +18,9 @@
 #include "golden/octree.h"
 #include "scene/scene.h"
 #include "support/octree_cases.h"
+#include "trav_sc_fixture.h"
 
 namespace lancer {
-namespace sc {
-void PrintTo(const TraversalCycle& c, std::ostream* os) {
-  *os << fmt::format(
-      "cycle {}: ray {}{} res {}{} visit {}{} node {}@{:#x}/{} idx {}@{:#x}/{} tri {}@{:#x}/{} fire {} step {} "
-      "res [{:x}] visit [{:x}]",
-      c.cycle, int(c.rayValid), int(c.rayReady), int(c.resValid), int(c.resReady), int(c.visitValid),
-      int(c.visitReady), int(c.nodeReq), c.nodeAddr, c.nodeTag, int(c.idxReq), c.idxAddr, c.idxTag, int(c.triReq),
-      c.triAddr, c.triTag, int(c.perfIsectFire), int(c.perfStepReady), fmt::join(c.resData, "_"),
-      fmt::join(c.visitData, "_"));
-}
-}  // namespace sc
-
 namespace {
 
 using Impl = SystemCOctreeDevice::Impl;
@@ -41,6 +28,8 @@ using fx::kDirMax;
 using fx::kPosBits;
 using fx::QRay;
 using fx::QTriangle;
+using test::expectSameStats;
+using test::optionsText;
 
 // ---- Stimulus: the unit's shared hard cases (tests/support/octree_cases.h) ----------
 
@@ -63,37 +52,17 @@ TraversalRunOptions roughOptions(uint64_t seed, int raysInFlight = 0) {
 std::string describe(const QRay& r) { return test::describeRay(r); }
 std::string describe(const fx::TraversalTrace& t) { return test::describeTrace(t); }
 
-std::string optionsText(const TraversalRunOptions& o) {
-  return fmt::format("latency {} jitter {} slots {} stall {} idle {} seed {}", o.memLatency, o.memLatencyJitter,
-                     o.raysInFlight, o.stream.outputStallProbability, o.stream.inputIdleProbability, o.stream.seed);
-}
+const test::Describe<fx::OctreeImage> kDescribe{
+    [](const fx::OctreeImage& image) { return fmt::format("octree depth {}", image.depth); },
+    [](const QRay& r) { return describe(r); }, [](const fx::TraversalTrace& t) { return describe(t); }};
 
-bool available(Impl impl) { return impl == Impl::Model || SystemCOctreeDevice::rtlAvailable(); }
-
-// Runs golden and `device`, expects identical traces and golden's counters.
+// Runs golden and `device`, expects identical traces and golden's counters
+// (node reads exactly: no prefetch), and step-ready cycles while nodes are stepped.
 TraversalRunStats expectSameTraces(OctreeDevice& device, const fx::OctreeImage& image, const std::vector<QRay>& rays,
                                    const TraversalRunOptions& options, const std::string& what) {
   GoldenOctreeDevice golden;
-  std::vector<fx::TraversalTrace> want, got;
-  const TraversalRunStats g = golden.run(image, rays, want, options);
-  const TraversalRunStats r = device.run(image, rays, got, options);
-  EXPECT_EQ(got.size(), want.size()) << what;
-  int reported = 0;
-  for (size_t k = 0; k < std::min(got.size(), want.size()); ++k) {
-    if (got[k] == want[k]) continue;
-    ADD_FAILURE() << what << ": octree depth " << image.depth << ", " << describe(rays[k]) << "\n  " << device.name()
-                  << ": " << describe(got[k]) << "\n  golden: " << describe(want[k]);
-    if (++reported == 5) break;
-  }
-  EXPECT_EQ(r.rays, rays.size()) << what;
-  EXPECT_EQ(r.steps, g.steps) << what;
+  const auto [g, r] = test::expectGoldenTraces<fx::OctreeImage>(golden, device, image, rays, options, what, kDescribe);
   EXPECT_EQ(r.nodeReads, g.nodeReads) << what;
-  EXPECT_EQ(r.indexReads, g.indexReads) << what;
-  EXPECT_EQ(r.triangleReads, g.triangleReads) << what;
-  EXPECT_EQ(r.isectTests, g.isectTests) << what;
-  EXPECT_EQ(r.isectBusyCycles, r.isectTests) << what;
-  EXPECT_TRUE(r.cycleAccurate) << what;
-  EXPECT_GT(r.cycles, 0u) << what;
   EXPECT_LE(r.stepReadyCycles, r.cycles + 1) << what;
   if (r.steps > 0) {
     EXPECT_GT(r.stepReadyCycles, 0u) << what;
@@ -101,32 +70,11 @@ TraversalRunStats expectSameTraces(OctreeDevice& device, const fx::OctreeImage& 
   return r;
 }
 
-void expectSameStats(const TraversalRunStats& a, const TraversalRunStats& b, const std::string& what) {
-  EXPECT_EQ(a.cycles, b.cycles) << what;
-  EXPECT_EQ(a.rays, b.rays) << what;
-  EXPECT_EQ(a.steps, b.steps) << what;
-  EXPECT_EQ(a.stepReadyCycles, b.stepReadyCycles) << what;
-  EXPECT_EQ(a.nodeReads, b.nodeReads) << what;
-  EXPECT_EQ(a.indexReads, b.indexReads) << what;
-  EXPECT_EQ(a.triangleReads, b.triangleReads) << what;
-  EXPECT_EQ(a.isectTests, b.isectTests) << what;
-  EXPECT_EQ(a.isectBusyCycles, b.isectBusyCycles) << what;
-}
-
 // ---- Each implementation against the golden model -------------------------------------
 
-class ScOctree : public ::testing::TestWithParam<Impl> {
- protected:
-  void SetUp() override {
-    if (!available(GetParam())) GTEST_SKIP() << "this build has no Verilated rt_octree";
-  }
-};
+class ScOctree : public test::ScTraversalTest<SystemCOctreeDevice> {};
 
-std::string implName(const ::testing::TestParamInfo<Impl>& info) {
-  return info.param == Impl::Model ? "Model" : "Rtl";
-}
-
-INSTANTIATE_TEST_SUITE_P(Impl, ScOctree, ::testing::Values(Impl::Model, Impl::Rtl), implName);
+INSTANTIATE_TEST_SUITE_P(Impl, ScOctree, ::testing::Values(Impl::Model, Impl::Rtl), test::implName<Impl>);
 
 TEST_P(ScOctree, MatchesGoldenOnBunnyCameraRays) {
   const QuantizedScene q = bunnyCamera(32, 32);
@@ -162,53 +110,16 @@ TEST_P(ScOctree, MatchesGoldenWithoutBackpressure) {
 
 TEST_P(ScOctree, RepeatedRunsAreIndependentAndReproducible) {
   const QuantizedScene q = bunnyCamera(6, 6);
-  const fx::OctreeImage image = bunnyImage(q);
-  std::vector<fx::TraversalTrace> a, b, c;
-  SystemCOctreeDevice first(GetParam());
-  const TraversalRunStats sa = first.run(image, q.rays, a, roughOptions(3));
-  const TraversalRunStats other = first.run(image, q.rays, b, roughOptions(4));
-  SystemCOctreeDevice second(GetParam());
-  const TraversalRunStats sc = second.run(image, q.rays, c, roughOptions(3));
-  EXPECT_EQ(a, c);
-  EXPECT_EQ(a, b);  // traces do not depend on the timing
-  expectSameStats(sa, sc, "same seed, new device");
-  EXPECT_NE(sa.cycles, other.cycles);
+  test::expectRepeatableRuns<SystemCOctreeDevice>(GetParam(), bunnyImage(q), q.rays, roughOptions(3), roughOptions(4));
 }
 
 TEST_P(ScOctree, EmptyRunAndInvalidOptions) {
   SystemCOctreeDevice device(GetParam());
   const fx::OctreeImage image = fx::buildOctreeImage({}, 1, 1);
-  std::vector<fx::TraversalTrace> traces(3);
-  const TraversalRunStats s = device.run(image, std::vector<QRay>{}, traces);
-  EXPECT_TRUE(traces.empty());
-  EXPECT_EQ(s.cycles, 0u);
-  const std::vector<QRay> one{QRay{0, {0, 0, 0}, {kDirMax, 0, 0}}};
-  TraversalRunOptions o;
-  o.raysInFlight = device.maxRaysInFlight() + 1;
-  try {
-    device.run(image, one, traces, o);
-    FAIL() << "no InputError";
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(std::to_string(o.raysInFlight)), std::string::npos) << what;
-    EXPECT_NE(what.find(std::to_string(device.maxRaysInFlight())), std::string::npos) << what;
-  }
-  o = {};
-  o.raysInFlight = -1;
-  EXPECT_THROW(device.run(image, one, traces, o), InputError);
-  o = {};
-  o.memLatency = 0;
-  EXPECT_THROW(device.run(image, one, traces, o), InputError);
-  o = {};
-  o.memLatencyJitter = -1;
-  EXPECT_THROW(device.run(image, one, traces, o), InputError);
-  o = {};
-  o.stream.outputStallProbability = 1.0;
-  EXPECT_THROW(device.run(image, one, traces, o), InputError);
-  o = {};
-  o.stream.inputIdleProbability = -0.1;
-  EXPECT_THROW(device.run(image, one, traces, o), InputError);
+  test::expectEmptyRun<fx::OctreeImage>(device, image);
+  test::expectInvalidOptionsRejected<fx::OctreeImage>(device, image);
   // Still usable afterwards.
+  const std::vector<QRay> one{QRay{0, {0, 0, 0}, {kDirMax, 0, 0}}};
   expectSameTraces(device, image, one, {}, "after errors");
 }
 
@@ -281,24 +192,7 @@ TEST_P(ScOctree, OneRayTimingFollowsTheStateMachine) {
 
 // ---- Cycle accuracy ---------------------------------------------------------------------
 
-// Plain (latency 20, latency 1), rough with all slots and with 3, and slow
-// with heavy stalls (the FIFOs fill, the arbiters skip full queues). One slot
-// is left to the golden tests above: it makes runs long and arbitration trivial.
-std::vector<TraversalRunOptions> timingSettings() {
-  std::vector<TraversalRunOptions> all;
-  TraversalRunOptions o;
-  all.push_back(o);
-  o.memLatency = 1;
-  all.push_back(o);
-  all.push_back(roughOptions(31));
-  all.push_back(roughOptions(33, 3));
-  o = roughOptions(34);
-  o.memLatency = 40;
-  o.memLatencyJitter = 40;
-  o.stream.outputStallProbability = 0.6;
-  all.push_back(o);
-  return all;
-}
+std::vector<TraversalRunOptions> timingSettings() { return test::timingSettings(roughOptions, 31, 33, 34); }
 
 std::vector<OctreeCase> cycleCases() {
   const QuantizedScene q = bunnyCamera(16, 16);
@@ -312,27 +206,7 @@ TEST(ScOctreeCycleAccuracy, ModelMatchesVerilatedRtlCycleForCycle) {
   SystemCOctreeDevice model(Impl::Model), rtl(Impl::Rtl);
   for (const OctreeCase& c : cycleCases()) {
     for (const TraversalRunOptions& o : timingSettings()) {
-      const std::string what = c.name + ", " + optionsText(o);
-      std::vector<sc::TraversalCycle> mt, rt;
-      std::vector<fx::TraversalTrace> a, b;
-      model.setCycleTrace(&mt);
-      rtl.setCycleTrace(&rt);
-      const TraversalRunStats sm = model.run(c.image, c.rays, a, o);
-      const TraversalRunStats sr = rtl.run(c.image, c.rays, b, o);
-      model.setCycleTrace(nullptr);
-      rtl.setCycleTrace(nullptr);
-      expectSameStats(sm, sr, what);
-      EXPECT_EQ(a, b) << what;
-      EXPECT_EQ(mt.size(), rt.size()) << what;
-      size_t differing = 0;
-      for (size_t i = 0; i < std::min(mt.size(), rt.size()); ++i) {
-        if (mt[i] == rt[i]) continue;
-        if (++differing <= 3) {
-          ADD_FAILURE() << what << ", first differing cycles\n  model: " << ::testing::PrintToString(mt[i])
-                        << "\n  rtl:   " << ::testing::PrintToString(rt[i]);
-        }
-      }
-      EXPECT_EQ(differing, 0u) << what << ": cycles whose port activity differs";
+      test::expectSamePortTraces(model, rtl, c.image, c.rays, o, c.name + ", " + optionsText(o));
     }
   }
 }
@@ -388,22 +262,12 @@ TEST(ScOctreeDevice, SharesTheKernelWithTheGridUnit) {
 }
 
 TEST(ScOctreeDevice, WaveformOfTheRtlOnRequest) {
-  if (!SystemCOctreeDevice::rtlAvailable() || !SystemCOctreeDevice::wavesAvailable()) {
-    GTEST_SKIP() << "no Verilated rt_octree with FST tracing in this build";
-  }
   const QuantizedScene q = bunnyCamera(3, 3);
   const fx::OctreeImage image = bunnyImage(q);
-  TraversalRunOptions o = roughOptions(60);
-  o.stream.wavePath = ::testing::TempDir() + "rt_octree_sc_wave.fst";
-  std::remove(o.stream.wavePath.c_str());
-  SystemCOctreeDevice rtl(Impl::Rtl);
-  expectSameTraces(rtl, image, q.rays, o, "with waves");
-  std::FILE* f = std::fopen(o.stream.wavePath.c_str(), "rb");
-  ASSERT_NE(f, nullptr) << o.stream.wavePath;
-  std::fseek(f, 0, SEEK_END);
-  EXPECT_GT(std::ftell(f), 1000);
-  std::fclose(f);
-  std::remove(o.stream.wavePath.c_str());
+  test::expectRtlWave<SystemCOctreeDevice>("rt_octree_sc_wave.fst", roughOptions(60),
+                          [&](SystemCOctreeDevice& rtl, const TraversalRunOptions& o) {
+                            expectSameTraces(rtl, image, q.rays, o, "with waves");
+                          });
 }
 
 }  // namespace

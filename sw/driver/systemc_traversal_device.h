@@ -1,0 +1,77 @@
+#pragma once
+
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "common/rt_trav_cycle.h"
+#include "driver/traversal_device.h"
+
+namespace lancer {
+
+namespace sc {
+struct rt_grid_unit;
+struct rt_octree_unit;
+}  // namespace sc
+
+// A traversal unit simulated in SystemC (systemc/common/rt_trav_top.h over the
+// unit's traits, systemc/<unit>/rt_<unit>_unit.h), behind the unit's
+// TraversalDevice interface: traversal unit -> memory, one system per process
+// (sw/driver/systemc_kernel.h). Implementations:
+//   "systemc"      Impl::Model: the unit's hand-written cycle model
+//                  (rt_grid_model with rt_isect_model inside; rt_octree_model
+//                  with rt_isect's timing inside);
+//   "rtl-systemc"  Impl::Rtl: the unit's RTL (with its own rt_isect)
+//                  Verilated with --sc (Vrt_grid_sc, Vrt_octree_sc);
+//   (unnamed)      Impl::ModelRtlIsect: the cycle model with the Verilated
+//                  rt_isect (Vrt_isect_sc) inside, for mixed runs (rt_grid).
+// Each sits on its own testbench and memory model (rt_trav_tb, rt_trav_mem),
+// which drive it as the C++ Verilated devices drive theirs: reset per run, ray
+// ids = indices on the port, the same stimulus draws and memory response times
+// for the same TraversalRunOptions, and the same TraversalRunStats: cycles
+// from the first ray offered to the last result or visit taken, reads per
+// region from the request handshakes, tests and busy cycles from
+// perf_isect_fire_o, stepReadyCycles from perf_step_ready_o. So "systemc",
+// "rtl-systemc" and "rtl" can be compared cycle for cycle.
+//
+// Throws InputError for raysInFlight outside 0..maxRaysInFlight() (naming both),
+// a memory latency < 1 or a negative jitter, stall/idle probabilities outside
+// [0, 1), and an image the unit cannot take (checkImage: a grid resolution
+// outside 1..256; an octree without a root or deeper than the formats allow);
+// std::runtime_error when a run is abandoned (watchdog: 10^6 cycles without
+// progress, inconsistent streams, a model assertion, an address outside the
+// image). StreamOptions::wavePath writes an FST for "rtl-systemc" (when built
+// with LANCER_SC_RTL_WAVES) and is ignored by the cycle models.
+//
+// The members are defined in systemc_traversal_device_impl.h and instantiated,
+// with the unit's checkImage(), by systemc_<unit>_device.cpp.
+template <class Image, class Unit>
+class SystemCTraversalDevice final : public TraversalDevice<Image> {
+ public:
+  enum class Impl { Model, Rtl, ModelRtlIsect };
+
+  explicit SystemCTraversalDevice(Impl impl = Impl::Model);
+
+  std::string_view name() const override;
+  int maxRaysInFlight() const override;
+  TraversalRunStats run(const Image& image, std::span<const fx::QRay> rays, std::vector<fx::TraversalTrace>& traces,
+                        const TraversalRunOptions& options = {}) override;
+
+  // Records the port activity of every cycle of the following runs into
+  // *trace (appended; nullptr turns it off), from the first ray offered.
+  void setCycleTrace(std::vector<sc::TraversalCycle>* trace) { trace_ = trace; }
+
+  // Whether this build has the Verilated unit ("rtl-systemc"), the mixed
+  // implementation (Impl::ModelRtlIsect), and FST tracing of the former.
+  static bool rtlAvailable();
+  static bool rtlIsectAvailable();
+  static bool wavesAvailable();
+
+ private:
+  static void checkImage(const Image& image);  // the unit's own input checks
+
+  Impl impl_;
+  std::vector<sc::TraversalCycle>* trace_ = nullptr;
+};
+
+}  // namespace lancer

@@ -1,0 +1,159 @@
+#pragma once
+
+// The members of SystemCTraversalDevice<Image, Unit>, for the unit's device
+// .cpp to instantiate after it has defined the unit's checkImage():
+// (systemc_grid_device.cpp)
+//   template <> void SystemCGridDevice::checkImage(const fx::GridImage& image) { ... }
+//   template class SystemCTraversalDevice<fx::GridImage, sc::rt_grid_unit>;
+
+#include <array>
+#include <mutex>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <systemc>
+
+#include "common/error.h"
+#include "common/rt_trav_top.h"
+#include "driver/systemc_kernel.h"
+#include "driver/systemc_traversal_device.h"
+
+namespace lancer {
+
+template <class Image, class Unit>
+SystemCTraversalDevice<Image, Unit>::SystemCTraversalDevice(Impl impl) : impl_(impl) {
+  if (impl_ == Impl::Rtl && !rtlAvailable()) {
+    throw std::runtime_error(fmt::format("rtl-systemc is not part of this build (no {})", Unit::kNames.rtlSources));
+  }
+  if (impl_ == Impl::ModelRtlIsect && !rtlIsectAvailable()) {
+    throw std::runtime_error(fmt::format("the {} cycle model with the Verilated rt_isect is not part of this build",
+                                         Unit::kNames.module));
+  }
+}
+
+template <class Image, class Unit>
+std::string_view SystemCTraversalDevice<Image, Unit>::name() const {
+  switch (impl_) {
+    case Impl::Model: return "systemc";
+    case Impl::Rtl: return "rtl-systemc";
+    case Impl::ModelRtlIsect: return "systemc+rtl-isect";
+  }
+  return "systemc";
+}
+
+template <class Image, class Unit>
+int SystemCTraversalDevice<Image, Unit>::maxRaysInFlight() const {
+  return Unit::RAYS_IN_FLIGHT;
+}
+
+template <class Image, class Unit>
+bool SystemCTraversalDevice<Image, Unit>::rtlAvailable() {
+  return sc::rt_trav_top<Unit>::has_rtl();
+}
+
+template <class Image, class Unit>
+bool SystemCTraversalDevice<Image, Unit>::rtlIsectAvailable() {
+  return sc::rt_trav_top<Unit>::has_rtl_isect();
+}
+
+template <class Image, class Unit>
+bool SystemCTraversalDevice<Image, Unit>::wavesAvailable() {
+  return sc::rt_trav_top<Unit>::has_waves();
+}
+
+template <class Image, class Unit>
+TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, std::span<const fx::QRay> rays,
+                                                           std::vector<fx::TraversalTrace>& traces,
+                                                           const TraversalRunOptions& options) {
+  const int maxSlots = maxRaysInFlight();
+  if (options.raysInFlight < 0 || options.raysInFlight > maxSlots) {
+    throw InputError(fmt::format("rays in flight {} is out of range: the SystemC {} unit ({}) has {} ray slots "
+                                 "(use 1..{}, or 0 for all; rebuild with -D{} for more)",
+                                 options.raysInFlight, Unit::kNames.unit, name(), maxSlots, maxSlots,
+                                 Unit::kNames.slotsOption));
+  }
+  if (options.memLatency < 1 || options.memLatencyJitter < 0) {
+    throw InputError(fmt::format("memory latency {} (jitter {}) is out of range: latency >= 1, jitter >= 0",
+                                 options.memLatency, options.memLatencyJitter));
+  }
+  checkImage(image);
+  for (const double p : {options.stream.outputStallProbability, options.stream.inputIdleProbability}) {
+    if (!(p >= 0.0 && p < 1.0)) {
+      throw InputError(fmt::format("{}: stall and idle probabilities must lie in [0, 1), got {}", name(), p));
+    }
+  }
+  const bool wave = impl_ == Impl::Rtl && !options.stream.wavePath.empty();
+  if (wave && !wavesAvailable()) {
+    throw std::runtime_error("rtl-systemc: this build has no FST tracing (LANCER_SC_RTL_WAVES=OFF)");
+  }
+
+  TraversalRunStats stats;
+  const size_t n = rays.size();
+  traces.assign(n, fx::TraversalTrace{});
+  stats.rays = n;
+  if (n == 0) return stats;
+
+  sc::rt_trav_job job;
+  job.rays.reserve(n);
+  job.rayIds.reserve(n);
+  std::array<uint32_t, fx::kIsectRayWords> wire{};
+  for (size_t k = 0; k < n; ++k) {
+    fx::QRay wireRay = rays[k];
+    wireRay.id = uint32_t(k);
+    fx::packWire(wireRay, wire);
+    job.rays.push_back(sc::toPort<sc::ISECT_RAY_W>(wire));
+    job.rayIds.push_back(rays[k].id);
+  }
+  job.slots = uint32_t(options.raysInFlight == 0 ? maxSlots : options.raysInFlight);
+  job.inputIdleProbability = options.stream.inputIdleProbability;
+  job.outputStallProbability = options.stream.outputStallProbability;
+  job.seed = options.stream.seed;
+  job.traces = &traces;
+  job.trace = trace_;
+
+  const sc::rt_trav_impl impl = impl_ == Impl::Rtl ? sc::rt_trav_impl::rtl
+                                : impl_ == Impl::ModelRtlIsect ? sc::rt_trav_impl::model_rtl_isect
+                                                               : sc::rt_trav_impl::model;
+  const std::lock_guard<std::mutex> lock(systemc_kernel::mutex());
+  sc::rt_trav_top<Unit>& top = systemc_kernel::traversalSystem<Unit>();
+  auto& tb = top.tb(impl);
+  auto& mem = top.mem(impl);
+  if (wave) top.open_wave(options.stream.wavePath);
+  try {
+    mem.start(image, options.memLatency, options.memLatencyJitter, options.stream.seed);
+    tb.start(job, image);
+    // The bench's clock stops after the run's last cycle, so sc_start() returns
+    // by starvation exactly when the run is over.
+    sc_core::sc_start();
+  } catch (const sc_core::sc_report& report) {
+    mem.stop();
+    if (wave) top.close_wave();
+    traces.assign(n, fx::TraversalTrace{});
+    throw std::runtime_error(fmt::format("{}: SystemC: {}", name(), report.what()));
+  }
+  mem.stop();
+  if (wave) top.close_wave();
+  const sc::rt_trav_tally& tally = tb.tally();
+  if (!tally.error.empty() || tally.busy || tally.results != n) {
+    throw std::runtime_error(fmt::format("{}: run abandoned: {}", name(),
+                                         tally.error.empty() ? "the clock stopped early" : tally.error));
+  }
+  for (size_t k = 0; k < n; ++k) {
+    if (tally.resultSteps[k] != traces[k].visits.size()) {
+      throw std::runtime_error(fmt::format("{}: ray {} reports {} {} but {} visit records came out", name(), k,
+                                           tally.resultSteps[k], Unit::kNames.steps, traces[k].visits.size()));
+    }
+  }
+  stats.cycles = tally.cycles;
+  stats.steps = tally.visits;
+  stats.stepReadyCycles = tally.stepReadyCycles;
+  stats.nodeReads = tally.nodeReads;
+  stats.indexReads = tally.indexReads;
+  stats.triangleReads = tally.triangleReads;
+  stats.isectTests = tally.isectTests;
+  stats.isectBusyCycles = tally.isectTests;  // at most one pair enters per cycle
+  stats.cycleAccurate = true;
+  return stats;
+}
+
+}  // namespace lancer

@@ -1,0 +1,261 @@
+#pragma once
+
+// What the SystemC tests of every traversal unit share (grid_sc_test.cpp,
+// octree_sc_test.cpp): printing a port cycle, the counters two runs must agree
+// on, a run against the golden model, the cycle model against the Verilated
+// RTL port trace for port trace, the option checks, repeatability and the
+// waveform of the Verilated RTL. Each unit adds its own expectations (the
+// grid's cell prefetch, the octree's timing) around these.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "common/error.h"
+#include "common/rt_trav_cycle.h"
+#include "driver/traversal_device.h"
+
+namespace lancer {
+namespace sc {
+inline void PrintTo(const TraversalCycle& c, std::ostream* os) {
+  *os << fmt::format(
+      "cycle {}: ray {}{} res {}{} visit {}{} node {}@{:#x}/{} idx {}@{:#x}/{} tri {}@{:#x}/{} fire {} step {} "
+      "res [{:x}] visit [{:x}]",
+      c.cycle, int(c.rayValid), int(c.rayReady), int(c.resValid), int(c.resReady), int(c.visitValid),
+      int(c.visitReady), int(c.nodeReq), c.nodeAddr, c.nodeTag, int(c.idxReq), c.idxAddr, c.idxTag, int(c.triReq),
+      c.triAddr, c.triTag, int(c.perfIsectFire), int(c.perfStepReady), fmt::join(c.resData, "_"),
+      fmt::join(c.visitData, "_"));
+}
+}  // namespace sc
+
+namespace test {
+
+// The implementations of a SystemC traversal device (Device::Impl) as test
+// parameters: tests of one the build lacks are skipped.
+template <class Device>
+bool implAvailable(typename Device::Impl impl) {
+  using Impl = typename Device::Impl;
+  if (impl == Impl::Rtl) return Device::rtlAvailable();
+  if (impl == Impl::ModelRtlIsect) return Device::rtlIsectAvailable();
+  return true;
+}
+
+template <class Device>
+class ScTraversalTest : public ::testing::TestWithParam<typename Device::Impl> {
+ protected:
+  void SetUp() override {
+    if (!implAvailable<Device>(this->GetParam())) GTEST_SKIP() << "this build has no Verilated RTL for this variant";
+  }
+};
+
+template <class Impl>
+std::string implName(const ::testing::TestParamInfo<Impl>& info) {
+  switch (info.param) {
+    case Impl::Model: return "Model";
+    case Impl::Rtl: return "Rtl";
+    case Impl::ModelRtlIsect: return "ModelRtlIsect";
+  }
+  return "?";
+}
+
+// The timing settings of the port-trace comparisons: plain (latency 20,
+// latency 1), `rough` with all slots (seed a) and with 3 (seed b), and slow
+// with heavy stalls (seed c: latency 40 + jitter 40, stalls 0.6; the FIFOs
+// fill, the arbiters skip full queues). One slot is left to the golden tests:
+// it makes runs long and arbitration trivial.
+inline std::vector<TraversalRunOptions> timingSettings(TraversalRunOptions (*rough)(uint64_t, int), uint64_t a,
+                                                       uint64_t b, uint64_t c) {
+  std::vector<TraversalRunOptions> all;
+  TraversalRunOptions o;
+  all.push_back(o);
+  o.memLatency = 1;
+  all.push_back(o);
+  all.push_back(rough(a, 0));
+  all.push_back(rough(b, 3));
+  o = rough(c, 0);
+  o.memLatency = 40;
+  o.memLatencyJitter = 40;
+  o.stream.outputStallProbability = 0.6;
+  all.push_back(o);
+  return all;
+}
+
+inline std::string optionsText(const TraversalRunOptions& o) {
+  return fmt::format("latency {} jitter {} slots {} stall {} idle {} seed {}", o.memLatency, o.memLatencyJitter,
+                     o.raysInFlight, o.stream.outputStallProbability, o.stream.inputIdleProbability, o.stream.seed);
+}
+
+// Every counter of two runs of the same stimulus, cycles included.
+inline void expectSameStats(const TraversalRunStats& a, const TraversalRunStats& b, const std::string& what) {
+  EXPECT_EQ(a.cycles, b.cycles) << what;
+  EXPECT_EQ(a.rays, b.rays) << what;
+  EXPECT_EQ(a.steps, b.steps) << what;
+  EXPECT_EQ(a.stepReadyCycles, b.stepReadyCycles) << what;
+  EXPECT_EQ(a.nodeReads, b.nodeReads) << what;
+  EXPECT_EQ(a.indexReads, b.indexReads) << what;
+  EXPECT_EQ(a.triangleReads, b.triangleReads) << what;
+  EXPECT_EQ(a.isectTests, b.isectTests) << what;
+  EXPECT_EQ(a.isectBusyCycles, b.isectBusyCycles) << what;
+}
+
+// How a failing ray is described: the image, the ray, a trace.
+template <class Image>
+struct Describe {
+  std::function<std::string(const Image&)> image;
+  std::function<std::string(const fx::QRay&)> ray;
+  std::function<std::string(const fx::TraversalTrace&)> trace;
+};
+
+struct GoldenAndDevice {
+  TraversalRunStats golden, device;
+};
+
+// Runs `golden` and `device` on the same rays, expects identical traces (the
+// first five differing rays reported) and golden's counters where every unit
+// must have them (steps, index and triangle reads, tests); node reads are the
+// unit's to check (the grid prefetches).
+template <class Image>
+GoldenAndDevice expectGoldenTraces(TraversalDevice<Image>& golden, TraversalDevice<Image>& device, const Image& image,
+                                   const std::vector<fx::QRay>& rays, const TraversalRunOptions& options,
+                                   const std::string& what, const Describe<Image>& describe) {
+  std::vector<fx::TraversalTrace> want, got;
+  const TraversalRunStats g = golden.run(image, rays, want, options);
+  const TraversalRunStats r = device.run(image, rays, got, options);
+  EXPECT_EQ(got.size(), want.size()) << what;
+  int reported = 0;
+  for (size_t k = 0; k < std::min(got.size(), want.size()); ++k) {
+    if (got[k] == want[k]) continue;
+    ADD_FAILURE() << what << ": " << describe.image(image) << ", " << describe.ray(rays[k]) << "\n  " << device.name()
+                  << ": " << describe.trace(got[k]) << "\n  golden: " << describe.trace(want[k]);
+    if (++reported == 5) break;
+  }
+  EXPECT_EQ(r.rays, rays.size()) << what;
+  EXPECT_EQ(r.steps, g.steps) << what;
+  EXPECT_EQ(r.indexReads, g.indexReads) << what;
+  EXPECT_EQ(r.triangleReads, g.triangleReads) << what;
+  EXPECT_EQ(r.isectTests, g.isectTests) << what;
+  EXPECT_EQ(r.isectBusyCycles, r.isectTests) << what;
+  EXPECT_TRUE(r.cycleAccurate) << what;
+  EXPECT_GT(r.cycles, 0u) << what;
+  return {g, r};
+}
+
+// The cycle model and the Verilated RTL (Device: a SystemCTraversalDevice) on
+// the same run: the same counters and traces, and the same port activity in
+// every cycle (the first three differing cycles reported).
+template <class Device, class Image>
+void expectSamePortTraces(Device& model, Device& rtl, const Image& image, const std::vector<fx::QRay>& rays,
+                          const TraversalRunOptions& o, const std::string& what) {
+  std::vector<sc::TraversalCycle> mt, rt;
+  std::vector<fx::TraversalTrace> a, b;
+  model.setCycleTrace(&mt);
+  rtl.setCycleTrace(&rt);
+  const TraversalRunStats sm = model.run(image, rays, a, o);
+  const TraversalRunStats sr = rtl.run(image, rays, b, o);
+  model.setCycleTrace(nullptr);
+  rtl.setCycleTrace(nullptr);
+  expectSameStats(sm, sr, what);
+  EXPECT_EQ(a, b) << what;
+  EXPECT_EQ(mt.size(), rt.size()) << what;
+  size_t differing = 0;
+  for (size_t i = 0; i < std::min(mt.size(), rt.size()); ++i) {
+    if (mt[i] == rt[i]) continue;
+    if (++differing <= 3) {
+      ADD_FAILURE() << what << ", differing cycle\n  model: " << ::testing::PrintToString(mt[i])
+                    << "\n  rtl:   " << ::testing::PrintToString(rt[i]);
+    }
+  }
+  EXPECT_EQ(differing, 0u) << what << ": cycles whose port activity differs";
+}
+
+// Every option outside its range is an InputError, the slot count's naming
+// both the request and the unit's slots; the device stays usable (the caller
+// runs it again).
+template <class Image>
+void expectInvalidOptionsRejected(TraversalDevice<Image>& device, const Image& image) {
+  std::vector<fx::TraversalTrace> traces;
+  const std::vector<fx::QRay> one{fx::QRay{0, {0, 0, 0}, {fx::kDirMax, 0, 0}}};
+  TraversalRunOptions o;
+  o.raysInFlight = device.maxRaysInFlight() + 1;
+  try {
+    device.run(image, one, traces, o);
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(std::to_string(o.raysInFlight)), std::string::npos) << what;
+    EXPECT_NE(what.find(std::to_string(device.maxRaysInFlight())), std::string::npos) << what;
+  }
+  o = {};
+  o.raysInFlight = -1;
+  EXPECT_THROW(device.run(image, one, traces, o), InputError);
+  o = {};
+  o.memLatency = 0;
+  EXPECT_THROW(device.run(image, one, traces, o), InputError);
+  o = {};
+  o.memLatencyJitter = -1;
+  EXPECT_THROW(device.run(image, one, traces, o), InputError);
+  o = {};
+  o.stream.outputStallProbability = 1.0;
+  EXPECT_THROW(device.run(image, one, traces, o), InputError);
+  o = {};
+  o.stream.inputIdleProbability = -0.1;
+  EXPECT_THROW(device.run(image, one, traces, o), InputError);
+}
+
+// No rays: no traces, no cycles.
+template <class Image>
+void expectEmptyRun(TraversalDevice<Image>& device, const Image& image) {
+  std::vector<fx::TraversalTrace> traces(3);
+  const TraversalRunStats s = device.run(image, std::vector<fx::QRay>{}, traces);
+  EXPECT_TRUE(traces.empty());
+  EXPECT_EQ(s.cycles, 0u);
+}
+
+// Two runs of one device and one of a new device: the same seed gives the same
+// counters, another seed other cycles, every run the same traces.
+template <class Device, class Image>
+void expectRepeatableRuns(typename Device::Impl impl, const Image& image, const std::vector<fx::QRay>& rays,
+                          const TraversalRunOptions& seedA, const TraversalRunOptions& seedB) {
+  std::vector<fx::TraversalTrace> a, b, c;
+  Device first(impl);
+  const TraversalRunStats sa = first.run(image, rays, a, seedA);
+  const TraversalRunStats other = first.run(image, rays, b, seedB);
+  Device second(impl);
+  const TraversalRunStats sc = second.run(image, rays, c, seedA);
+  EXPECT_EQ(a, c);
+  EXPECT_EQ(a, b);  // traces do not depend on the timing
+  expectSameStats(sa, sc, "same seed, new device");
+  EXPECT_NE(sa.cycles, other.cycles);
+}
+
+// The FST the Verilated RTL (Device::Impl::Rtl) writes for
+// StreamOptions::wavePath = TempDir()/file: `run` runs the device with the
+// options; the file is there afterwards and not trivially small. Skipped
+// without a Verilated unit with FST tracing.
+template <class Device>
+void expectRtlWave(const std::string& file, TraversalRunOptions o,
+                   const std::function<void(Device&, const TraversalRunOptions&)>& run) {
+  if (!Device::rtlAvailable() || !Device::wavesAvailable()) {
+    GTEST_SKIP() << "no Verilated unit with FST tracing in this build";
+  }
+  o.stream.wavePath = ::testing::TempDir() + file;
+  std::remove(o.stream.wavePath.c_str());
+  Device rtl(Device::Impl::Rtl);
+  run(rtl, o);
+  std::FILE* f = std::fopen(o.stream.wavePath.c_str(), "rb");
+  ASSERT_NE(f, nullptr) << o.stream.wavePath;
+  std::fseek(f, 0, SEEK_END);
+  EXPECT_GT(std::ftell(f), 1000);
+  std::fclose(f);
+  std::remove(o.stream.wavePath.c_str());
+}
+
+}  // namespace test
+}  // namespace lancer
