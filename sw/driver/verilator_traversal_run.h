@@ -238,20 +238,7 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
         const size_t k = size_t(res[0]);
         if (k >= offered || finished[k]) fail(fmt::format("a result for ray {} that is not in flight", k));
         finished[k] = 1;
-        resultElements[k] = uint32_t(res[1]);
-        fx::TraversalTrace& t = traces[k];
-        t.tests = uint64_t(res[2]);
-        if (res[3]) {
-          fx::IsectResult hit;
-          hit.rayId = rays[k].id;
-          hit.primId = uint32_t(res[4]);
-          hit.hit = true;
-          hit.tNum = res[5];
-          hit.det = res[6];
-          hit.uNum = res[7];
-          hit.vNum = res[8];
-          t.hit = hit;
-        }
+        resultElements[k] = fx::takeTraversalResult(res, rays[k].id, traces[k]);
         ++results;
         stats.cycles = cycle - firstCycle + 1;
         progress = true;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -17,5 +18,26 @@ struct TraversalTrace {
   std::optional<IsectResult> hit;  // closest hit (closerResult order)
   bool operator==(const TraversalTrace&) const = default;
 };
+
+// A traversal unit's result record, its fields unpacked in traversalResFields
+// order (ray id, elements visited, tests, hit, prim id, t_num, det, u_num,
+// v_num), into `trace` of the ray whose own id is `rayId`: the test count and
+// the closest hit. Returns the elements visited, which the caller checks
+// against the visit stream. One decoder for every model of every unit.
+inline uint32_t takeTraversalResult(const std::array<u128, 9>& fields, uint32_t rayId, TraversalTrace& trace) {
+  trace.tests = uint64_t(fields[2]);
+  if (fields[3]) {
+    IsectResult hit;
+    hit.rayId = rayId;
+    hit.primId = uint32_t(fields[4]);
+    hit.hit = true;
+    hit.tNum = fields[5];
+    hit.det = fields[6];
+    hit.uNum = fields[7];
+    hit.vNum = fields[8];
+    trace.hit = hit;
+  }
+  return uint32_t(fields[1]);
+}
 
 }  // namespace lancer::fx

@@ -85,20 +85,7 @@ void rt_trav_stream::sample(uint64_t cycle, const rt_trav_sample& s) {
     const size_t k = size_t(v[0]);
     if (k >= offered_ || finished_[k]) return abandon(fmt::format("a result for ray {} that is not in flight", k));
     finished_[k] = 1;
-    tally_.resultSteps[k] = uint32_t(v[1]);
-    fx::TraversalTrace& t = (*job_->traces)[k];
-    t.tests = uint64_t(v[2]);
-    if (v[3]) {
-      fx::IsectResult hit;
-      hit.rayId = job_->rayIds[k];
-      hit.primId = uint32_t(v[4]);
-      hit.hit = true;
-      hit.tNum = v[5];
-      hit.det = v[6];
-      hit.uNum = v[7];
-      hit.vNum = v[8];
-      t.hit = hit;
-    }
+    tally_.resultSteps[k] = fx::takeTraversalResult(v, job_->rayIds[k], (*job_->traces)[k]);
     ++tally_.results;
     tally_.cycles = cycle - firstCycle_ + 1;
     progress = true;
