@@ -283,18 +283,12 @@ struct Tally {
       exactRef[v] += o.exactRef[v];
       exactEmbree[v] += o.exactEmbree[v];
     }
-    rays += o.rays;
-    agreeing += o.agreeing;
-    hitMiss += o.hitMiss;
-    differentT += o.differentT;
-    clear += o.clear;
-    clearRefRight += o.clearRefRight;
-    clearEmbreeRight += o.clearEmbreeRight;
-    doubtful += o.doubtful;
-    doubtfulRefRight += o.doubtfulRefRight;
-    doubtfulEmbreeRight += o.doubtfulEmbreeRight;
-    longDoubleDoubt += o.longDoubleDoubt;
-    refWrongLongDoubleSure += o.refWrongLongDoubleSure;
+    for (int Tally::*count : {&Tally::rays, &Tally::agreeing, &Tally::hitMiss, &Tally::differentT, &Tally::clear,
+                              &Tally::clearRefRight, &Tally::clearEmbreeRight, &Tally::doubtful,
+                              &Tally::doubtfulRefRight, &Tally::doubtfulEmbreeRight, &Tally::longDoubleDoubt,
+                              &Tally::refWrongLongDoubleSure}) {
+      this->*count += o.*count;
+    }
     return *this;
   }
 };

@@ -285,9 +285,12 @@ class Ports {
     top_.eval();
   }
   ~Ports() { top_.final(); }
+  // Offers `r` (req_valid_i high) and settles the combinational outputs.
   void offer(const IsectRequest& r) {
     toPort(top_.req_ray_i, fx::packWire(r.ray));
     toPort(top_.req_tri_i, fx::packWire(r.tri));
+    top_.req_valid_i = 1;
+    top_.eval();
   }
   void tick() {
     top_.clk_i = 1;
@@ -306,7 +309,6 @@ TEST(RtIsectPorts, LatencyIsExactlyIsectLatency) {
   Ports p;
   const auto pairs = rtltest::randomPairs(1, 3);
   p.offer(pairs[0]);
-  p.top_.req_valid_i = 1;
   p.top_.res_ready_i = 1;
   p.top_.eval();
   ASSERT_TRUE(p.top_.req_ready_o);
@@ -335,8 +337,6 @@ TEST(RtIsectPorts, FullStallHoldsLatencyItemsAndDataThenDrainsAtFullRate) {
   size_t accepted = 0;
   for (int cycle = 0; cycle < 20; ++cycle) {
     p.offer(pairs[accepted]);
-    p.top_.req_valid_i = 1;
-    p.top_.eval();
     if (p.top_.req_ready_o) ++accepted;
     p.tick();
   }
@@ -352,8 +352,6 @@ TEST(RtIsectPorts, FullStallHoldsLatencyItemsAndDataThenDrainsAtFullRate) {
   size_t taken = 0;
   for (int cycle = 0; cycle < 20; ++cycle) {
     p.offer(pairs[accepted]);
-    p.top_.req_valid_i = 1;
-    p.top_.eval();
     EXPECT_TRUE(p.top_.req_ready_o) << "cycle " << cycle;
     EXPECT_TRUE(p.top_.res_valid_o) << "cycle " << cycle;
     EXPECT_EQ(fx::unpackResult(p.result()), fx::intersect(pairs[taken].ray, pairs[taken].tri));
@@ -371,7 +369,6 @@ TEST(RtIsectPorts, AssertionsAreLive) {
   p.top_.res_ready_i = 0;
   for (int cycle = 0; cycle < fx::kIsectLatency; ++cycle) {  // all accepted
     p.offer(pairs[size_t(cycle)]);
-    p.top_.req_valid_i = 1;
     p.tick();
   }
   p.offer(pairs[size_t(fx::kIsectLatency)]);  // refused, and correctly held
