@@ -54,19 +54,10 @@ module rt_grid #(
   input  logic [3*rt_pkg::GRID_RESOLUTION_W-1:0] cfg_res_i,    // {Rz, Ry, Rx}, each 1..256
   input  logic [CfgSlotsW-1:0]                   cfg_slots_i,  // slots to use, 1..RaysInFlight
 
-  // Rays in.
-  input  logic                                   ray_valid_i,
-  output logic                                   ray_ready_o,
-  input  rt_pkg::isect_ray_t                     ray_data_i,
+`include "rt_trav_ports.svh"
 
-  // One result per ray, in any order.
-  output logic                                   res_valid_o,
-  input  logic                                   res_ready_i,
+  // One result per ray, one record per cell entered.
   output rt_pkg::grid_res_t                      res_data_o,
-
-  // One record per cell entered, in visiting order per ray.
-  output logic                                   visit_valid_o,
-  input  logic                                   visit_ready_i,
   output rt_pkg::grid_visit_t                    visit_data_o,
 
   // Cell table reads.
@@ -76,30 +67,7 @@ module rt_grid #(
   output logic [SlotW-1:0]                       cell_req_tag_o,
   input  logic                                   cell_rsp_valid_i,
   input  rt_pkg::grid_cell_t                     cell_rsp_data_i,
-  input  logic [SlotW-1:0]                       cell_rsp_tag_i,
-
-  // Index list reads.
-  output logic                                   idx_req_valid_o,
-  input  logic                                   idx_req_ready_i,
-  output logic [rt_pkg::MEM_ADDR_W-1:0]          idx_req_addr_o,
-  output logic [SlotW-1:0]                       idx_req_tag_o,
-  input  logic                                   idx_rsp_valid_i,
-  input  logic [31:0]                            idx_rsp_data_i,
-  input  logic [SlotW-1:0]                       idx_rsp_tag_i,
-
-  // Triangle table reads.
-  output logic                                   tri_req_valid_o,
-  input  logic                                   tri_req_ready_i,
-  output logic [rt_pkg::MEM_ADDR_W-1:0]          tri_req_addr_o,
-  output logic [SlotW-1:0]                       tri_req_tag_o,
-  input  logic                                   tri_rsp_valid_i,
-  input  rt_pkg::isect_tri_t                     tri_rsp_data_i,
-  input  logic [SlotW-1:0]                       tri_rsp_tag_i,
-
-  // Performance: a ray-triangle pair enters rt_isect this cycle; some slot
-  // can enter a cell this cycle (in VISIT, its next cell read issued).
-  output logic                                   perf_isect_fire_o,
-  output logic                                   perf_step_ready_o
+  input  logic [SlotW-1:0]                       cell_rsp_tag_i
 );
 
   localparam int N        = RaysInFlight;
@@ -141,18 +109,9 @@ module rt_grid #(
     .N(N), .IdxBufDepth(IdxBufDepth), .NodeRspW(rt_pkg::GRID_CELL_W), .RegRsp(1'b1),
     .VisitIdW(ID_W), .ExitW(ACC_W), .DenW(TRIPLE_W)
   ) u_shell (
-    .clk_i,
-    .rst_ni,
-    .cfg_slots_i,
-    .ray_valid_i,
-    .ray_ready_o,
-    .ray_data_i,
-    .res_valid_o,
-    .res_ready_i,
-    .res_data_o,
-    .visit_valid_o,
-    .visit_ready_i,
-    .visit_data_o,
+    // The unit's own ports by name (.*): the same ports as the shell's, but
+    // for the cell port, the shell's node port.
+    .*,
     .node_req_valid_o (cell_req_valid_o),
     .node_req_ready_i (cell_req_ready_i),
     .node_req_addr_o  (cell_req_addr_o),
@@ -160,22 +119,6 @@ module rt_grid #(
     .node_rsp_valid_i (cell_rsp_valid_i),
     .node_rsp_data_i  (cell_rsp_data_i),
     .node_rsp_tag_i   (cell_rsp_tag_i),
-    .idx_req_valid_o,
-    .idx_req_ready_i,
-    .idx_req_addr_o,
-    .idx_req_tag_o,
-    .idx_rsp_valid_i,
-    .idx_rsp_data_i,
-    .idx_rsp_tag_i,
-    .tri_req_valid_o,
-    .tri_req_ready_i,
-    .tri_req_addr_o,
-    .tri_req_tag_o,
-    .tri_rsp_valid_i,
-    .tri_rsp_data_i,
-    .tri_rsp_tag_i,
-    .perf_isect_fire_o,
-    .perf_step_ready_o,
     .free_i        (free),
     .alloc_o       (ray_fire),
     .alloc_slot_o  (alloc_idx),

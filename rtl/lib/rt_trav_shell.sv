@@ -58,16 +58,9 @@ module rt_trav_shell #(
   input  logic [CfgSlotsW-1:0]          cfg_slots_i,  // slots to use, 1..N
 
   // ---- The unit's ports ----
-  input  logic                          ray_valid_i,
-  output logic                          ray_ready_o,
-  input  rt_pkg::isect_ray_t            ray_data_i,
+`include "rt_trav_ports.svh"
 
-  output logic                          res_valid_o,
-  input  logic                          res_ready_i,
   output logic [ResW-1:0]               res_data_o,
-
-  output logic                          visit_valid_o,
-  input  logic                          visit_ready_i,
   output logic [32+VisitIdW-1:0]        visit_data_o,
 
   output logic                          node_req_valid_o,
@@ -77,25 +70,6 @@ module rt_trav_shell #(
   input  logic                          node_rsp_valid_i,
   input  logic [NodeRspW-1:0]           node_rsp_data_i,
   input  logic [SlotW-1:0]              node_rsp_tag_i,
-
-  output logic                          idx_req_valid_o,
-  input  logic                          idx_req_ready_i,
-  output logic [rt_pkg::MEM_ADDR_W-1:0] idx_req_addr_o,
-  output logic [SlotW-1:0]              idx_req_tag_o,
-  input  logic                          idx_rsp_valid_i,
-  input  logic [31:0]                   idx_rsp_data_i,
-  input  logic [SlotW-1:0]              idx_rsp_tag_i,
-
-  output logic                          tri_req_valid_o,
-  input  logic                          tri_req_ready_i,
-  output logic [rt_pkg::MEM_ADDR_W-1:0] tri_req_addr_o,
-  output logic [SlotW-1:0]              tri_req_tag_o,
-  input  logic                          tri_rsp_valid_i,
-  input  rt_pkg::isect_tri_t            tri_rsp_data_i,
-  input  logic [SlotW-1:0]              tri_rsp_tag_i,
-
-  output logic                          perf_isect_fire_o,  // a pair enters rt_isect
-  output logic                          perf_step_ready_o,  // some slot wants a visit
 
   // ---- The walk's side ----
   // Allocation (a ray accepted into alloc_slot_o) and the slot's setup.

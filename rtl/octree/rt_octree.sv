@@ -55,19 +55,10 @@ module rt_octree #(
   input  logic [CfgSlotsW-1:0]                   cfg_slots_i,  // slots to use, 1..RaysInFlight
   input  rt_pkg::octree_node_t                   cfg_root_i,   // node 0 (the root's record)
 
-  // Rays in.
-  input  logic                                   ray_valid_i,
-  output logic                                   ray_ready_o,
-  input  rt_pkg::isect_ray_t                     ray_data_i,
+`include "rt_trav_ports.svh"
 
-  // One result per ray, in any order.
-  output logic                                   res_valid_o,
-  input  logic                                   res_ready_i,
+  // One result per ray, one record per node entered.
   output rt_pkg::octree_res_t                    res_data_o,
-
-  // One record per node entered, in visiting order per ray.
-  output logic                                   visit_valid_o,
-  input  logic                                   visit_ready_i,
   output rt_pkg::octree_visit_t                  visit_data_o,
 
   // Child-group reads: the eight records first .. first+7, element 0 least significant.
@@ -77,30 +68,7 @@ module rt_octree #(
   output logic [SlotW-1:0]                       node_req_tag_o,
   input  logic                                   node_rsp_valid_i,
   input  rt_pkg::octree_node_t [rt_pkg::OCTREE_CHILDREN-1:0] node_rsp_data_i,
-  input  logic [SlotW-1:0]                       node_rsp_tag_i,
-
-  // Index list reads.
-  output logic                                   idx_req_valid_o,
-  input  logic                                   idx_req_ready_i,
-  output logic [rt_pkg::MEM_ADDR_W-1:0]          idx_req_addr_o,
-  output logic [SlotW-1:0]                       idx_req_tag_o,
-  input  logic                                   idx_rsp_valid_i,
-  input  logic [31:0]                            idx_rsp_data_i,
-  input  logic [SlotW-1:0]                       idx_rsp_tag_i,
-
-  // Triangle table reads.
-  output logic                                   tri_req_valid_o,
-  input  logic                                   tri_req_ready_i,
-  output logic [rt_pkg::MEM_ADDR_W-1:0]          tri_req_addr_o,
-  output logic [SlotW-1:0]                       tri_req_tag_o,
-  input  logic                                   tri_rsp_valid_i,
-  input  rt_pkg::isect_tri_t                     tri_rsp_data_i,
-  input  logic [SlotW-1:0]                       tri_rsp_tag_i,
-
-  // Performance: a ray-triangle pair enters rt_isect this cycle; some slot is
-  // in ENTER (the unit has a node step to take).
-  output logic                                   perf_isect_fire_o,
-  output logic                                   perf_step_ready_o
+  input  logic [SlotW-1:0]                       node_rsp_tag_i
 );
 
   localparam int N      = RaysInFlight;
@@ -154,41 +122,11 @@ module rt_octree #(
     .N(N), .IdxBufDepth(IdxBufDepth), .NodeRspW(GROUP_W), .RegRsp(1'b0),
     .VisitIdW(32), .ExitW(T_W), .DenW(COM_W)
   ) u_shell (
-    .clk_i,
-    .rst_ni,
-    .cfg_slots_i,
-    .ray_valid_i,
-    .ray_ready_o,
-    .ray_data_i,
-    .res_valid_o,
-    .res_ready_i,
-    .res_data_o,
-    .visit_valid_o,
-    .visit_ready_i,
-    .visit_data_o,
-    .node_req_valid_o,
-    .node_req_ready_i,
-    .node_req_addr_o,
-    .node_req_tag_o,
-    .node_rsp_valid_i,
+    // The unit's own ports by name (.*): the same ports as the shell's. The
+    // child group by an explicit connection: Yosys 0.23 sizes an implicit
+    // connection of a package type's packed array as one element.
+    .*,
     .node_rsp_data_i,
-    .node_rsp_tag_i,
-    .idx_req_valid_o,
-    .idx_req_ready_i,
-    .idx_req_addr_o,
-    .idx_req_tag_o,
-    .idx_rsp_valid_i,
-    .idx_rsp_data_i,
-    .idx_rsp_tag_i,
-    .tri_req_valid_o,
-    .tri_req_ready_i,
-    .tri_req_addr_o,
-    .tri_req_tag_o,
-    .tri_rsp_valid_i,
-    .tri_rsp_data_i,
-    .tri_rsp_tag_i,
-    .perf_isect_fire_o,
-    .perf_step_ready_o,
     .free_i        (free),
     .alloc_o       (ray_fire),
     .alloc_slot_o  (alloc_idx),
