@@ -146,12 +146,17 @@ module rt_trav_shell #(
     logic [rt_pkg::BARY_W-1:0]     v_num;
   } best_t;
 
+  localparam int GEOM_W = 3 * P + 3 * DIR_W;
+  localparam int BEST_W = 32 + rt_pkg::T_NUM_W + rt_pkg::DET_ABS_W + 2 * rt_pkg::BARY_W;
+
   // ---- Records kept by slot index (no reset: written at init, before read) ----
+  // Plain vectors, read into the struct types: Yosys 0.23 keeps only one
+  // element's flops of an unpacked array of a packed struct.
   logic [31:0]      ray_id_q [N];
-  ray_geom_t        geom_q   [N];
+  logic [GEOM_W-1:0] geom_q  [N];
   logic [DIR_W-1:0] dom_q    [N];
   logic [DenW-1:0]  den_q    [N];
-  best_t            best_q   [N];
+  logic [BEST_W-1:0] best_q  [N];
   logic [N-1:0]     has_hit_q;
 
   // ---- Ray input and slot allocation --------------------------------------------

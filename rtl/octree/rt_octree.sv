@@ -103,9 +103,11 @@ module rt_octree #(
   logic [31:0]         done_nodes, done_tests;
 
   // ---- Records kept by slot index -------------------------------------------------
+  // The child groups as plain vectors, read into group_t: Yosys 0.23 keeps
+  // only one element's flops of an unpacked array of a packed struct.
   logic [31:0]         nodes_q [N];
   logic [31:0]         tests_q [N];
-  group_t              group_q [N];
+  logic [GROUP_W-1:0]  group_q [N];
 
   // The setup's outputs.
   logic                 su_valid, su_enter;
