@@ -62,22 +62,13 @@ module rt_grid_setup #(
   logic               s1_valid;
   logic [2:0]         s1_active, s1_neg;
 
+  // The ray in, and valid, slot, ray, active, neg and dom out, by name.
   rt_setup_front #(.SlotW(SlotW)) u_front (
-    .clk_i,
-    .rst_ni,
-    .valid_i,
-    .slot_i,
-    .ray_i,
+    .*,
     .mag_o       (mag),
     .s1_valid_o  (s1_valid),
     .s1_active_o (s1_active),
-    .s1_neg_o    (s1_neg),
-    .valid_o,
-    .slot_o,
-    .ray_o,
-    .active_o,
-    .neg_o,
-    .dom_o
+    .s1_neg_o    (s1_neg)
   );
 
   // ---- Stage 1: scaled origin and direction ------------------------------------

@@ -57,22 +57,15 @@ module rt_octree_setup #(
   logic [2:0]         s1_active, unused_s1_neg;
   logic [2:0]         s2_active, s2_neg;
 
+  // The ray in, and valid, slot, ray and dom out, by name.
   rt_setup_front #(.SlotW(SlotW)) u_front (
-    .clk_i,
-    .rst_ni,
-    .valid_i,
-    .slot_i,
-    .ray_i,
+    .*,
     .mag_o       (mag),
     .s1_valid_o  (s1_valid),
     .s1_active_o (s1_active),
     .s1_neg_o    (unused_s1_neg),
-    .valid_o,
-    .slot_o,
-    .ray_o,
     .active_o    (s2_active),
-    .neg_o       (s2_neg),
-    .dom_o
+    .neg_o       (s2_neg)
   );
 
   // ---- Stage 1: |d| and the mirrored origin ------------------------------------
