@@ -61,13 +61,15 @@ module rt_octree #(
   output rt_pkg::octree_res_t                    res_data_o,
   output rt_pkg::octree_visit_t                  visit_data_o,
 
-  // Child-group reads: the eight records first .. first+7, element 0 least significant.
+  // Child-group reads: the eight octree_node_t records first .. first+7,
+  // element 0 least significant (as plain bits: Yosys 0.23 reads a port of a
+  // package type's packed array as one element).
   output logic                                   node_req_valid_o,
   input  logic                                   node_req_ready_i,
   output logic [rt_pkg::MEM_ADDR_W-1:0]          node_req_addr_o,
   output logic [SlotW-1:0]                       node_req_tag_o,
   input  logic                                   node_rsp_valid_i,
-  input  rt_pkg::octree_node_t [rt_pkg::OCTREE_CHILDREN-1:0] node_rsp_data_i,
+  input  logic [rt_pkg::OCTREE_CHILDREN*rt_pkg::OCTREE_NODE_W-1:0] node_rsp_data_i,
   input  logic [SlotW-1:0]                       node_rsp_tag_i
 );
 
@@ -124,11 +126,8 @@ module rt_octree #(
     .N(N), .IdxBufDepth(IdxBufDepth), .NodeRspW(GROUP_W), .RegRsp(1'b0),
     .VisitIdW(32), .ExitW(T_W), .DenW(COM_W)
   ) u_shell (
-    // The unit's own ports by name (.*): the same ports as the shell's. The
-    // child group by an explicit connection: Yosys 0.23 sizes an implicit
-    // connection of a package type's packed array as one element.
+    // The unit's own ports by name (.*): the same ports as the shell's.
     .*,
-    .node_rsp_data_i,
     .free_i        (free),
     .alloc_o       (ray_fire),
     .alloc_slot_o  (alloc_idx),
