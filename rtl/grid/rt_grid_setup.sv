@@ -7,7 +7,8 @@
 //            pair[a] = product of the other stepping axes' |D| (1 if none),
 //            then acc[a] = dist[a] * pair[a], triple = pair[x] * |D[x]| (x
 //            stepping), cell id = (z * Ry + y) * Rx + x
-// The outputs are the stage-2 registers. A ray with no stepping axis
+// The outputs are the stage-2 registers; rt_setup_front carries the ray and
+// computes |d|, the step directions and the dominant. A ray with no stepping axis
 // (all-zero direction) gets active = 0; the slot then ends it after its first
 // cell.
 //
@@ -55,66 +56,45 @@ module rt_grid_setup #(
   localparam int DIST_W   = POS_W + 1;
   localparam int ID_W     = 3 * CELL_W;
 
-  // ---- Stage 1 ---------------------------------------------------------------
-  logic                 s1_valid_q;
-  logic [SlotW-1:0]     s1_slot_q;
-  rt_pkg::isect_ray_t   s1_ray_q;
+  // ---- The shared front: valid, slot and ray through both stages, |d|,
+  // activity, step direction, dominant ---------------------------------------------
+  logic [3*DIR_W-1:0] mag;
+  logic               s1_valid;
+  logic [2:0]         s1_active, s1_neg;
+
+  // The ray in, and valid, slot, ray, active, neg and dom out, by name.
+  rt_setup_front #(.SlotW(SlotW)) u_front (
+    .*,
+    .mag_o       (mag),
+    .s1_valid_o  (s1_valid),
+    .s1_active_o (s1_active),
+    .s1_neg_o    (s1_neg)
+  );
+
+  // ---- Stage 1: scaled origin and direction ------------------------------------
   logic [3*GPOS_W-1:0]  s1_x_q;
   logic [3*GDIR_W-1:0]  s1_absd_q;
-  logic [2:0]           s1_active_q, s1_neg_q;
-  logic [DIR_W-1:0]     s1_dom_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      s1_valid_q <= 1'b0;
-    end else begin
-      s1_valid_q <= valid_i;
-    end
-  end
 
   always_ff @(posedge clk_i) begin
     if (valid_i) begin : b_stage1
-      logic [DIR_W-1:0] d, mag, dom;
       logic [RES_W-1:0] r;
-      dom = '0;
       for (int a = 0; a < 3; a++) begin
-        d   = ray_i.dir[a];
-        r   = cfg_res_i[a*RES_W +: RES_W];
-        mag = d[DIR_W-1] ? DIR_W'(-d) : d;
-        s1_active_q[a]               <= (d != '0);
-        s1_neg_q[a]                  <= d[DIR_W-1];
+        r = cfg_res_i[a*RES_W +: RES_W];
         s1_x_q[a*GPOS_W +: GPOS_W]    <= GPOS_W'(ray_i.org[a]) * GPOS_W'(r);
-        s1_absd_q[a*GDIR_W +: GDIR_W] <= GDIR_W'(mag) * GDIR_W'(r);
-        if (mag > dom) dom = mag;
+        s1_absd_q[a*GDIR_W +: GDIR_W] <= GDIR_W'(mag[a*DIR_W +: DIR_W]) * GDIR_W'(r);
       end
-      s1_dom_q  <= dom;
-      s1_slot_q <= slot_i;
-      s1_ray_q  <= ray_i;
     end
   end
 
   // ---- Stage 2 ---------------------------------------------------------------
-  logic                 s2_valid_q;
-  logic [SlotW-1:0]     s2_slot_q;
-  rt_pkg::isect_ray_t   s2_ray_q;
   logic [3*CELL_W-1:0]  s2_cell_q;
   logic [ID_W-1:0]      s2_cell_id_q;
   logic [3*ACC_W-1:0]   s2_acc_q;
   logic [3*PAIR_W-1:0]  s2_pair_q;
   logic [TRIPLE_W-1:0]  s2_triple_q;
-  logic [2:0]           s2_active_q, s2_neg_q;
-  logic [DIR_W-1:0]     s2_dom_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      s2_valid_q <= 1'b0;
-    end else begin
-      s2_valid_q <= s1_valid_q;
-    end
-  end
 
   always_ff @(posedge clk_i) begin
-    if (s1_valid_q) begin : b_stage2
+    if (s1_valid) begin : b_stage2
       logic [3*GDIR_W-1:0] m;     // |D| masked to 1 on axes that do not step
       logic [3*CELL_W-1:0] cel;
       logic [3*PAIR_W-1:0] pair;
@@ -122,7 +102,7 @@ module rt_grid_setup #(
       logic [DIST_W-1:0]   dst;
       logic [RES_W-1:0]    r, c;
       for (int a = 0; a < 3; a++) begin
-        m[a*GDIR_W +: GDIR_W] = s1_active_q[a] ? s1_absd_q[a*GDIR_W +: GDIR_W] : GDIR_W'(1);
+        m[a*GDIR_W +: GDIR_W] = s1_active[a] ? s1_absd_q[a*GDIR_W +: GDIR_W] : GDIR_W'(1);
       end
       pair[0*PAIR_W +: PAIR_W] = PAIR_W'(m[1*GDIR_W +: GDIR_W]) * PAIR_W'(m[2*GDIR_W +: GDIR_W]);
       pair[1*PAIR_W +: PAIR_W] = PAIR_W'(m[0*GDIR_W +: GDIR_W]) * PAIR_W'(m[2*GDIR_W +: GDIR_W]);
@@ -135,7 +115,7 @@ module rt_grid_setup #(
         cel[a*CELL_W +: CELL_W] = CELL_W'(c);
         lower = GPOS_W'(c) << POS_W;
         // Distance to the boundary crossed next: upper - X stepping up, else X - lower.
-        if (s1_active_q[a] && !s1_neg_q[a]) begin
+        if (s1_active[a] && !s1_neg[a]) begin
           dst = DIST_W'(lower + (GPOS_W'(1) << POS_W) - xs);
         end else begin
           dst = DIST_W'(xs - lower);
@@ -148,24 +128,13 @@ module rt_grid_setup #(
                       ID_W'(cel[0 +: CELL_W]);
       s2_pair_q    <= pair;
       s2_triple_q  <= TRIPLE_W'(pair[0 +: PAIR_W]) * TRIPLE_W'(m[0 +: GDIR_W]);
-      s2_slot_q    <= s1_slot_q;
-      s2_ray_q     <= s1_ray_q;
-      s2_active_q  <= s1_active_q;
-      s2_neg_q     <= s1_neg_q;
-      s2_dom_q     <= s1_dom_q;
     end
   end
 
-  assign valid_o   = s2_valid_q;
-  assign slot_o    = s2_slot_q;
-  assign ray_o     = s2_ray_q;
   assign cell_o    = s2_cell_q;
   assign cell_id_o = s2_cell_id_q;
-  assign active_o  = s2_active_q;
-  assign neg_o     = s2_neg_q;
   assign acc_o     = s2_acc_q;
   assign pair_o    = s2_pair_q;
   assign triple_o  = s2_triple_q;
-  assign dom_o     = s2_dom_q;
 
 endmodule

@@ -1,6 +1,8 @@
 // rt_grid_slots: the ray slots of rt_grid — per-slot state machines, DDA
-// registers, cell queues, counters and closest hits — updated by the unit's
-// events, each addressed to one slot by index.
+// registers, cell queues and counters — updated by the unit's events, each
+// addressed to one slot by index. The ray, its closest hit and the exit test
+// are rt_trav_shell's: the slots take the closest-hit state (hit_i, take_i)
+// and the exit test's answer, and give the exit accumulator of the cell.
 //
 // Slot state machine (docs/grid-unit.md, "Slot state machine"):
 //   FREE -alloc-> SETUP -init-> VISIT -visit grant-> WAIT_CELL | FETCH | (cell done)
@@ -31,8 +33,7 @@
 //
 // Latency: every transition takes one clock edge. Throughput: per cycle one
 // allocation, one init, one cell grant (one DDA step), one cell response, one
-// visit, one index grant, one isect result (one closest-hit update), one check
-// grant (one exit test), one result.
+// visit, one index grant, one isect result, one check grant, one result.
 module rt_grid_slots #(
   parameter int unsigned N         = 32,  // ray slots
   parameter int unsigned CellQueue = 2,   // cells per slot requested and not finished (power of 2, >= 2)
@@ -49,15 +50,12 @@ module rt_grid_slots #(
   input  logic [SlotW-1:0]                       alloc_slot_i,
   input  logic                                   init_i,
   input  logic [SlotW-1:0]                       init_slot_i,
-  input  rt_pkg::isect_ray_t                     init_ray_i,
   input  logic [3*rt_pkg::CELL_INDEX_W-1:0]      init_cell_i,
   input  logic [3*rt_pkg::CELL_INDEX_W-1:0]      init_cell_id_i,
   input  logic [2:0]                             init_active_i,
   input  logic [2:0]                             init_neg_i,
   input  logic [3*rt_pkg::GRID_ACC_W-1:0]        init_acc_i,
   input  logic [3*rt_pkg::GRID_PAIR_W-1:0]       init_pair_i,
-  input  logic [rt_pkg::GRID_TRIPLE_W-1:0]       init_triple_i,
-  input  logic [rt_pkg::DIR_W-1:0]               init_dom_i,
 
   // Cell reads: a granted slot's frontier cell is read and the DDA steps.
   output logic [N-1:0]                           want_cell_o,
@@ -72,7 +70,6 @@ module rt_grid_slots #(
   output logic [N-1:0]                           want_visit_o,
   input  logic                                   visit_go_i,
   input  logic [SlotW-1:0]                       visit_slot_i,
-  output logic [31:0]                            visit_ray_id_o,
   output logic [3*rt_pkg::CELL_INDEX_W-1:0]      visit_cell_id_o,
 
   // Index reads of the current cell.
@@ -81,26 +78,27 @@ module rt_grid_slots #(
   input  logic [SlotW-1:0]                       idx_slot_i,
   output logic [rt_pkg::MEM_ADDR_W-1:0]          idx_addr_o,    // first + issued
 
-  // Intersection: the ray of a triangle response, and the results.
-  input  logic                                   tri_valid_i,
-  input  logic [SlotW-1:0]                       tri_slot_i,
-  output rt_pkg::isect_ray_t                     tri_ray_o,     // ray_id = slot index
+  output logic [N-1:0]                           fetching_o,    // slots in FETCH
+
+  // Intersection results, and the closest-hit state (rt_trav_shell's).
   input  logic                                   res_valid_i,
-  input  rt_pkg::isect_res_t                     res_data_i,    // ray_id = slot index
+  input  logic [SlotW-1:0]                       res_slot_i,
+  input  logic [N-1:0]                           hit_i,         // a closest hit so far
+  input  logic                                   take_i,        // the result becomes res_slot_i's closest hit
 
   // Exit tests of slots with a hit.
   output logic [N-1:0]                           want_check_o,
   input  logic                                   check_go_i,
   input  logic [SlotW-1:0]                       check_slot_i,
+  output logic [rt_pkg::GRID_ACC_W-1:0]          check_exit_o,  // exit accumulator of check_slot_i's cell
+  input  logic                                   check_holds_i, // the hit lies within the cell
 
   // Results.
   output logic [N-1:0]                           want_done_o,
   input  logic                                   done_go_i,
   input  logic [SlotW-1:0]                       done_slot_i,
-  output rt_pkg::grid_res_t                      done_rec_o,
-
-  // Performance: some slot can enter a cell this cycle.
-  output logic                                   step_ready_o
+  output logic [31:0]                            done_cells_o,  // of done_slot_i
+  output logic [31:0]                            done_tests_o
 );
 
   localparam int RES_W    = rt_pkg::GRID_RESOLUTION_W;
@@ -108,27 +106,14 @@ module rt_grid_slots #(
   localparam int ID_W     = 3 * CELL_W;
   localparam int ACC_W    = rt_pkg::GRID_ACC_W;
   localparam int PAIR_W   = rt_pkg::GRID_PAIR_W;
-  localparam int TRIPLE_W = rt_pkg::GRID_TRIPLE_W;
-  localparam int DIR_W    = rt_pkg::DIR_W;
   localparam int POS_W    = rt_pkg::POS_W;
-  localparam int T_NUM_W  = rt_pkg::T_NUM_W;
-  localparam int BARY_W   = rt_pkg::BARY_W;
   localparam int ADDR_W   = rt_pkg::MEM_ADDR_W;
-  localparam int DET_W    = rt_pkg::DET_ABS_W;
-  localparam int RAY_W    = rt_pkg::ISECT_RAY_W;
   localparam int D        = CellQueue;
   localparam int NE       = (2 ** SlotW) * D;   // entries addressed {slot, entry}
   localparam int QW1      = QW + 1;
-  // Exit test: exit_acc * dominant * det  vs  t_num * triple.
-  localparam int LHS_W    = ACC_W + DIR_W + DET_W;
-  localparam int RHS_W    = T_NUM_W + TRIPLE_W;
-  localparam int CHK_W    = (LHS_W > RHS_W) ? LHS_W : RHS_W;
-  // Closest hit: t_num * det of the other.
-  localparam int CLO_W    = T_NUM_W + DET_W;
 
   // ---- State vectors (bit s = slot s) -------------------------------------------
   logic [N-1:0]   free_q, setup_q, visit_q, wait_q, fetch_q, check_q, done_q;
-  logic [N-1:0]   hit_q;     // a closest hit so far
   logic [N-1:0]   iss_q;     // FETCH with index reads left to issue
   logic [N-1:0]   front_q;   // the frontier lies in the grid (cells left to request)
   logic [D*N-1:0] qc_q;      // bit j*N+s: slot s has more than j cells queued
@@ -136,23 +121,14 @@ module rt_grid_slots #(
   logic [QW*N-1:0] hd_q;     // bit b*N+s: bit b of slot s's queue head entry
 
   // ---- Per-slot registers (arrays, no reset) ----------------------------------------
-  logic [RAY_W-1:0]    ray_q   [N];   // the ray with ray_id = slot index (for rt_isect)
-  logic [31:0]         rid_q   [N];   // the ray's own id
   logic [3*CELL_W-1:0] fcell_q [N];   // frontier cell {z, y, x}
   logic [ID_W-1:0]     fid_q   [N];   // frontier cell id
   logic [3*ACC_W-1:0]  facc_q  [N];   // frontier accumulators N[a]
   logic [3*PAIR_W-1:0] pair_q  [N];
   logic [2:0]          act_q   [N];
   logic [2:0]          neg_q   [N];
-  logic [TRIPLE_W-1:0] triple_q[N];
-  logic [DIR_W-1:0]    dom_q   [N];
   logic [31:0]         first_q [N], count_q [N], issued_q [N], received_q [N];  // the current cell
   logic [31:0]         cells_q [N], tests_q [N];
-  // Closest hit (zero until the first): prim id, t_num, det, u_num, v_num.
-  logic [31:0]         bprim_q [N];
-  logic [T_NUM_W-1:0]  btnum_q [N];
-  logic [DET_W-1:0]    bdet_q  [N];
-  logic [BARY_W-1:0]   bu_q    [N], bv_q [N];
   // Cell queue entries, index {slot, entry}.
   logic [ID_W-1:0]     ecid_q  [NE];  // cell id
   logic [ACC_W-1:0]    eexit_q [NE];  // exit accumulator of the cell
@@ -250,42 +226,15 @@ module rt_grid_slots #(
     end
   end
 
-  // ---- Closest hit: one result per cycle against its slot's best ---------------------
-  // fx::closerResult: t1 < t2 as t_num1 * det2 < t_num2 * det1, ties to the lower prim id.
+  // ---- The exit accumulator of the check grant's cell (rt_trav_shell tests it) ------
   logic [SlotW-1:0] r_slot;
-  logic             take;
-  assign r_slot = res_data_i.ray_id[SlotW-1:0];
-
-  always_comb begin : b_closest
-    logic [CLO_W-1:0] clo_new, clo_old;
-    take    = 1'b0;
-    clo_new = '0;
-    clo_old = '0;
-    if (res_valid_i && res_data_i.hit) begin
-      clo_new = CLO_W'(res_data_i.t_num) * CLO_W'(bdet_q[r_slot]);
-      clo_old = CLO_W'(btnum_q[r_slot]) * CLO_W'(res_data_i.det);
-      take    = !hit_q[r_slot] || clo_new < clo_old ||
-                (clo_new == clo_old && res_data_i.prim_id < bprim_q[r_slot]);
-    end
-  end
-
-  // ---- Exit test of the check grant (fx::GridDda::holds) -----------------------------
-  // The hit lies within the cell: !(N_exit * dominant * det < t_num * triple).
-  logic [QW-1:0] k_hd;
-  logic          holds;
-  assign k_hd = head(hd_q, check_slot_i);
-
-  always_comb begin : b_exit
-    logic [CHK_W-1:0] lhs, rhs;
-    holds = 1'b0;
-    lhs   = '0;
-    rhs   = '0;
-    if (check_go_i) begin
-      lhs   = CHK_W'(eexit_q[{check_slot_i, k_hd}]) * CHK_W'(dom_q[check_slot_i]) * CHK_W'(bdet_q[check_slot_i]);
-      rhs   = CHK_W'(btnum_q[check_slot_i]) * CHK_W'(triple_q[check_slot_i]);
-      holds = !(lhs < rhs);
-    end
-  end
+  logic [QW-1:0]    k_hd;
+  logic             take, holds;
+  assign r_slot       = res_slot_i;
+  assign take         = take_i;
+  assign holds        = check_holds_i;
+  assign k_hd         = head(hd_q, check_slot_i);
+  assign check_exit_o = eexit_q[{check_slot_i, k_hd}];
 
   // ---- This cycle's events, per slot index --------------------------------------------
   // Cell grant g: the new entry goes behind the queued ones.
@@ -327,16 +276,16 @@ module rt_grid_slots #(
 
     fetch_set = onehot(stv && !cv, visit_slot_i) | onehot(stw && !cw, cell_rsp_tag_i);
     // A hit so far: CHECK. No hit: DONE after the last cell, else the next cell.
-    check_set = onehot(cv && hit_q[visit_slot_i], visit_slot_i) |
-                onehot(cw && hit_q[cell_rsp_tag_i], cell_rsp_tag_i) |
-                onehot(cr && (hit_q[r_slot] || take), r_slot);
-    done_set  = onehot(cv && !hit_q[visit_slot_i] && last_v, visit_slot_i) |
-                onehot(cw && !hit_q[cell_rsp_tag_i] && last_t, cell_rsp_tag_i) |
-                onehot(cr && !(hit_q[r_slot] || take) && last_r, r_slot) |
+    check_set = onehot(cv && hit_i[visit_slot_i], visit_slot_i) |
+                onehot(cw && hit_i[cell_rsp_tag_i], cell_rsp_tag_i) |
+                onehot(cr && (hit_i[r_slot] || take), r_slot);
+    done_set  = onehot(cv && !hit_i[visit_slot_i] && last_v, visit_slot_i) |
+                onehot(cw && !hit_i[cell_rsp_tag_i] && last_t, cell_rsp_tag_i) |
+                onehot(cr && !(hit_i[r_slot] || take) && last_r, r_slot) |
                 onehot(check_go_i && (holds || last_k), check_slot_i);
-    pop_set   = onehot(cv && !hit_q[visit_slot_i] && !last_v, visit_slot_i) |
-                onehot(cw && !hit_q[cell_rsp_tag_i] && !last_t, cell_rsp_tag_i) |
-                onehot(cr && !(hit_q[r_slot] || take) && !last_r, r_slot) |
+    pop_set   = onehot(cv && !hit_i[visit_slot_i] && !last_v, visit_slot_i) |
+                onehot(cw && !hit_i[cell_rsp_tag_i] && !last_t, cell_rsp_tag_i) |
+                onehot(cr && !(hit_i[r_slot] || take) && !last_r, r_slot) |
                 onehot(check_go_i && !(holds || last_k), check_slot_i);
   end
 
@@ -390,7 +339,6 @@ module rt_grid_slots #(
       fetch_q <= '0;
       check_q <= '0;
       done_q  <= '0;
-      hit_q   <= '0;
       iss_q   <= '0;
       front_q <= '0;
       qc_q    <= '0;
@@ -404,7 +352,6 @@ module rt_grid_slots #(
       fetch_q <= (fetch_q & ~res_oh) | fetch_set;
       check_q <= (check_q & ~chk_oh) | check_set;
       done_q  <= (done_q & ~done_oh) | done_set;
-      hit_q   <= (hit_q & ~init_oh) | onehot(res_valid_i && take, r_slot);
       iss_q   <= (iss_q & ~igo_oh) | fetch_set;
       front_q <= (front_q & ~onehot(cell_go_i && st_leaves, cell_slot_i)) | init_oh;
       qc_q    <= qc_d;
@@ -414,34 +361,16 @@ module rt_grid_slots #(
   end
 
   // ---- Per-slot registers ---------------------------------------------------------------
-  // The ray as rt_isect sees it: the slot index in the ray id field.
-  rt_pkg::isect_ray_t init_isect_ray;
-  logic [31:0]        init_slot_id;
-  assign init_slot_id = 32'(init_slot_i);
-  always_comb begin
-    init_isect_ray        = init_ray_i;
-    init_isect_ray.ray_id = init_slot_id;
-  end
-
   always_ff @(posedge clk_i) begin
     if (init_i) begin
-      ray_q[init_slot_i]    <= init_isect_ray;
-      rid_q[init_slot_i]    <= init_ray_i.ray_id;
       fcell_q[init_slot_i]  <= init_cell_i;
       fid_q[init_slot_i]    <= init_cell_id_i;
       facc_q[init_slot_i]   <= init_acc_i;
       pair_q[init_slot_i]   <= init_pair_i;
       act_q[init_slot_i]    <= init_active_i;
       neg_q[init_slot_i]    <= init_neg_i;
-      triple_q[init_slot_i] <= init_triple_i;
-      dom_q[init_slot_i]    <= init_dom_i;
       cells_q[init_slot_i]  <= '0;
       tests_q[init_slot_i]  <= '0;
-      bprim_q[init_slot_i]  <= '0;
-      btnum_q[init_slot_i]  <= '0;
-      bdet_q[init_slot_i]   <= '0;
-      bu_q[init_slot_i]     <= '0;
-      bv_q[init_slot_i]     <= '0;
     end
     if (cell_go_i) begin
       ecid_q[{cell_slot_i, g_push}]  <= fid_q[cell_slot_i];
@@ -473,16 +402,7 @@ module rt_grid_slots #(
       received_q[cell_rsp_tag_i] <= '0;
     end
     if (idx_go_i) issued_q[idx_slot_i] <= issued_q[idx_slot_i] + 1'b1;
-    if (res_valid_i) begin
-      received_q[r_slot] <= received_q[r_slot] + 1'b1;
-      if (take) begin
-        bprim_q[r_slot] <= res_data_i.prim_id;
-        btnum_q[r_slot] <= res_data_i.t_num;
-        bdet_q[r_slot]  <= res_data_i.det;
-        bu_q[r_slot]    <= res_data_i.u_num;
-        bv_q[r_slot]    <= res_data_i.v_num;
-      end
-    end
+    if (res_valid_i) received_q[r_slot] <= received_q[r_slot] + 1'b1;
   end
 
   // ---- Outputs ----------------------------------------------------------------------------
@@ -492,24 +412,12 @@ module rt_grid_slots #(
   assign want_idx_o      = iss_q;
   assign want_check_o    = check_q;
   assign want_done_o     = done_q & ~oc_q[0 +: N];
-  assign step_ready_o    = (want_visit_o != '0);
+  assign fetching_o      = fetch_q;
   assign cell_id_o       = fid_q[cell_slot_i];
-  assign visit_ray_id_o  = rid_q[visit_slot_i];
   assign visit_cell_id_o = ecid_q[{visit_slot_i, v_hd}];
   assign idx_addr_o      = ADDR_W'(first_q[idx_slot_i] + issued_q[idx_slot_i]);
-  assign tri_ray_o       = ray_q[tri_slot_i];
-
-  always_comb begin
-    done_rec_o.ray_id  = rid_q[done_slot_i];
-    done_rec_o.cells   = cells_q[done_slot_i];
-    done_rec_o.tests   = tests_q[done_slot_i];
-    done_rec_o.hit     = hit_q[done_slot_i];
-    done_rec_o.prim_id = bprim_q[done_slot_i];
-    done_rec_o.t_num   = btnum_q[done_slot_i];
-    done_rec_o.det     = bdet_q[done_slot_i];
-    done_rec_o.u_num   = bu_q[done_slot_i];
-    done_rec_o.v_num   = bv_q[done_slot_i];
-  end
+  assign done_cells_o    = cells_q[done_slot_i];
+  assign done_tests_o    = tests_q[done_slot_i];
 
 `ifdef RT_ASSERT_ON
   logic r_expected;  // a result is due: fewer received than issued
@@ -524,14 +432,12 @@ module rt_grid_slots #(
   a_check_go   : assert property (@(posedge clk_i) disable iff (!rst_ni) check_go_i |-> check_q[check_slot_i]);
   a_done_go    : assert property (@(posedge clk_i) disable iff (!rst_ni) done_go_i |-> want_done_o[done_slot_i]);
   // Responses: a cell response answers an outstanding read of its slot (the
-  // head's, for a slot waiting in WAIT_CELL); triangles and results arrive for
-  // a slot in FETCH that expects them.
+  // head's, for a slot waiting in WAIT_CELL); results arrive for a slot in
+  // FETCH that expects them (rt_trav_shell checks the triangles' slots).
   a_cell_rsp_slot : assert property (@(posedge clk_i) disable iff (!rst_ni)
       cell_rsp_valid_i |-> t_out != '0);
   a_cell_rsp_head : assert property (@(posedge clk_i) disable iff (!rst_ni)
       cell_rsp_valid_i && wait_q[cell_rsp_tag_i] |-> t_cnt == t_out);
-  a_tri_rsp_slot : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      tri_valid_i |-> fetch_q[tri_slot_i]);
   a_res_fetch : assert property (@(posedge clk_i) disable iff (!rst_ni)
       res_valid_i |-> fetch_q[r_slot] && r_expected);
   // Every slot is in one state (parity catches any slot in two).

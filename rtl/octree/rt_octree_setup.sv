@@ -12,6 +12,9 @@
 //            (inactive axes: -inf / +inf, values 0), and the root test
 //            max t0 < min t1 over the active axes (true with none active)
 //
+// rt_setup_front carries the ray through both stages and computes |d|, the
+// active and negative axes and the dominant.
+//
 // Latency:    a ray accepted at edge t (valid_i high in the cycle before t) is on
 //             valid_o after edge t+1; the slot loads it at edge t+2.
 // Throughput: one ray per cycle; the pipeline never stalls (the slot is
@@ -47,84 +50,62 @@ module rt_octree_setup #(
   localparam int T_W    = rt_pkg::OCTREE_T_W;
   localparam int ORG_W  = P + 1;
 
-  // ---- Stage 1 ---------------------------------------------------------------
-  logic                 s1_valid_q;
-  logic [SlotW-1:0]     s1_slot_q;
-  rt_pkg::isect_ray_t   s1_ray_q;
-  logic [2:0]           s1_active_q, s1_neg_q;
+  // ---- The shared front: valid, slot and ray through both stages, |d|, the
+  // active axes, the mirrored ones, dominant ------------------------------------
+  logic [3*DIR_W-1:0] mag;
+  logic               s1_valid;
+  logic [2:0]         s1_active, unused_s1_neg;
+  logic [2:0]         s2_active, s2_neg;
+
+  // The ray in, and valid, slot, ray and dom out, by name.
+  rt_setup_front #(.SlotW(SlotW)) u_front (
+    .*,
+    .mag_o       (mag),
+    .s1_valid_o  (s1_valid),
+    .s1_active_o (s1_active),
+    .s1_neg_o    (unused_s1_neg),
+    .active_o    (s2_active),
+    .neg_o       (s2_neg)
+  );
+
+  // ---- Stage 1: |d| and the mirrored origin ------------------------------------
   logic [3*MAG_W-1:0]   s1_mag_q;
   logic [3*ORG_W-1:0]   s1_org_q;
-  logic [DIR_W-1:0]     s1_dom_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      s1_valid_q <= 1'b0;
-    end else begin
-      s1_valid_q <= valid_i;
-    end
-  end
 
   // The stage's arithmetic only in the cycles it loads (as in rt_isect: a
   // simulator then evaluates it once per ray, not in every cycle).
   always_ff @(posedge clk_i) begin
     if (valid_i) begin
-      logic [DIR_W-1:0] dom;
-      dom = '0;
       for (int a = 0; a < 3; a++) begin
-        logic [DIR_W-1:0] d, mag;
+        logic [DIR_W-1:0] d;
         logic [ORG_W-1:0] o;
         d = ray_i.dir[a];
         o = ORG_W'(ray_i.org[a]);
-        mag = d[DIR_W-1] ? DIR_W'(-d) : d;
-        s1_active_q[a] <= (d != '0);
-        s1_neg_q[a]    <= d[DIR_W-1];
-        s1_mag_q[a*MAG_W +: MAG_W] <= mag[MAG_W-1:0];
+        s1_mag_q[a*MAG_W +: MAG_W] <= mag[a*DIR_W +: MAG_W];
         // min + max - o: mirrored about the root's centre, not about 0.
         s1_org_q[a*ORG_W +: ORG_W] <= d[DIR_W-1] ? (ORG_W'(1) << P) - o : o;
-        if (mag > dom) dom = mag;
       end
-      s1_slot_q <= slot_i;
-      s1_ray_q  <= ray_i;
-      s1_dom_q  <= dom;
     end
   end
 
   // ---- Stage 2 ---------------------------------------------------------------
-  logic                 s2_valid_q;
-  logic [SlotW-1:0]     s2_slot_q;
-  rt_pkg::isect_ray_t   s2_ray_q;
-  logic [2:0]           s2_active_q, s2_neg_q;
   logic [3*ORG_W-1:0]   s2_org_q;
   logic [3*PAIR_W-1:0]  s2_pair_q;
   logic [COM_W-1:0]     s2_common_q;
-  logic [DIR_W-1:0]     s2_dom_q;
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      s2_valid_q <= 1'b0;
-    end else begin
-      s2_valid_q <= s1_valid_q;
-    end
-  end
 
   always_ff @(posedge clk_i) begin
-    if (s1_valid_q) begin
+    if (s1_valid) begin
       logic [MAG_W-1:0]  m [3];       // |d| masked to 1 on inactive axes
       logic [PAIR_W-1:0] pair_x;
       for (int a = 0; a < 3; a++) begin
-        m[a] = s1_active_q[a] ? s1_mag_q[a*MAG_W +: MAG_W] : MAG_W'(1);
+        m[a] = s1_active[a] ? s1_mag_q[a*MAG_W +: MAG_W] : MAG_W'(1);
       end
       pair_x = PAIR_W'(m[1]) * PAIR_W'(m[2]);
       s2_pair_q[0*PAIR_W +: PAIR_W] <= pair_x;
       s2_pair_q[1*PAIR_W +: PAIR_W] <= PAIR_W'(m[0]) * PAIR_W'(m[2]);
       s2_pair_q[2*PAIR_W +: PAIR_W] <= PAIR_W'(m[0]) * PAIR_W'(m[1]);
       s2_common_q <= COM_W'(pair_x) * COM_W'(m[0]);
-      s2_slot_q   <= s1_slot_q;
-      s2_ray_q    <= s1_ray_q;
-      s2_active_q <= s1_active_q;
-      s2_neg_q    <= s1_neg_q;
       s2_org_q    <= s1_org_q;
-      s2_dom_q    <= s1_dom_q;
     end
   end
 
@@ -138,8 +119,8 @@ module rt_octree_setup #(
       logic [T_W-1:0] low, high;
       low  = T_W'(s2_org_q[a*ORG_W +: ORG_W]) * T_W'(s2_pair_q[a*PAIR_W +: PAIR_W]);
       high = (T_W'(s2_pair_q[a*PAIR_W +: PAIR_W]) << P) - low;
-      t0[a] = s2_active_q[a] ? -$signed(low) : '0;
-      t1[a] = s2_active_q[a] ? $signed(high) : '0;
+      t0[a] = s2_active[a] ? -$signed(low) : '0;
+      t1[a] = s2_active[a] ? $signed(high) : '0;
       t0_o[a*T_W +: T_W] = t0[a];
       t1_o[a*T_W +: T_W] = t1[a];
     end
@@ -150,18 +131,14 @@ module rt_octree_setup #(
     enter_o = 1'b1;
     for (int a = 0; a < 3; a++) begin
       for (int b = 0; b < 3; b++) begin
-        if (s2_active_q[a] && s2_active_q[b] && !(t0[a] < t1[b])) enter_o = 1'b0;
+        if (s2_active[a] && s2_active[b] && !(t0[a] < t1[b])) enter_o = 1'b0;
       end
     end
   end
 
-  assign valid_o  = s2_valid_q;
-  assign slot_o   = s2_slot_q;
-  assign ray_o    = s2_ray_q;
-  assign mirror_o = {s2_neg_q[0], s2_neg_q[1], s2_neg_q[2]};
-  assign active_o = s2_active_q;
+  assign mirror_o = {s2_neg[0], s2_neg[1], s2_neg[2]};
+  assign active_o = s2_active;
   assign origin_o = s2_org_q;
   assign common_o = s2_common_q;
-  assign dom_o    = s2_dom_q;
 
 endmodule

@@ -1,8 +1,6 @@
 # Sources of rt_grid for scripts/synth, relative to rtl/, in compile order
 # (the generated package is read first by the script).
-lib/rt_fifo.sv
-lib/rt_rr_arb.sv
-isect/rt_isect.sv
+-f rt_trav_shell.f
 grid/rt_grid_setup.sv
 grid/rt_grid_slots.sv
 grid/rt_grid.sv

@@ -1,8 +1,6 @@
 # Sources of rt_octree for scripts/synth, relative to rtl/, in compile order
 # (the generated package is read first by the script).
-lib/rt_fifo.sv
-lib/rt_rr_arb.sv
-isect/rt_isect.sv
+-f rt_trav_shell.f
 octree/rt_octree_setup.sv
 octree/rt_octree_slots.sv
 octree/rt_octree.sv

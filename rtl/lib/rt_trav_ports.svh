@@ -1,0 +1,41 @@
+// The ports every traversal unit shares with its rt_trav_shell, included in
+// the port lists of rt_trav_shell, rt_grid and rt_octree (which add their
+// result and visit records, their configuration and their walk's memory port).
+// Needs the module's SlotW; every line ends with a comma.
+
+  // Rays in.
+  input  logic                          ray_valid_i,
+  output logic                          ray_ready_o,
+  input  rt_pkg::isect_ray_t            ray_data_i,
+
+  // One result per ray, in any order (res_data_o: the unit's record).
+  output logic                          res_valid_o,
+  input  logic                          res_ready_i,
+
+  // One record per region entered, in visiting order per ray (visit_data_o:
+  // the unit's record).
+  output logic                          visit_valid_o,
+  input  logic                          visit_ready_i,
+
+  // Index list reads.
+  output logic                          idx_req_valid_o,
+  input  logic                          idx_req_ready_i,
+  output logic [rt_pkg::MEM_ADDR_W-1:0] idx_req_addr_o,
+  output logic [SlotW-1:0]              idx_req_tag_o,
+  input  logic                          idx_rsp_valid_i,
+  input  logic [31:0]                   idx_rsp_data_i,
+  input  logic [SlotW-1:0]              idx_rsp_tag_i,
+
+  // Triangle table reads.
+  output logic                          tri_req_valid_o,
+  input  logic                          tri_req_ready_i,
+  output logic [rt_pkg::MEM_ADDR_W-1:0] tri_req_addr_o,
+  output logic [SlotW-1:0]              tri_req_tag_o,
+  input  logic                          tri_rsp_valid_i,
+  input  rt_pkg::isect_tri_t            tri_rsp_data_i,
+  input  logic [SlotW-1:0]              tri_rsp_tag_i,
+
+  // Performance: a ray-triangle pair enters rt_isect this cycle; some slot
+  // waits to enter its next region (the visit arbiter has a request).
+  output logic                          perf_isect_fire_o,
+  output logic                          perf_step_ready_o,

@@ -1,0 +1,483 @@
+// rt_trav_shell: what every traversal unit (rt_grid, rt_octree) does the same
+// way around its own walk, which sits beside it (the unit's slots module).
+//
+//   ray_*      rays in (valid/ready); the lowest free usable slot takes a ray
+//              (a fixed-priority arbiter: an rt_rr_arb whose pointer never
+//              moves), so ray_ready_o depends on slot state only
+//   records    per slot, written at the unit's init: the ray's id and geometry,
+//              its dominant |d| and the unit's exit-test denominator; the
+//              closest hit so far (zero until the first) and whether there is one
+//   node port  the walk's reads (grid cells, octree child groups): round robin
+//              over the slots that want one, through a 2-entry request FIFO;
+//              the response goes to the walk, registered when RegRsp
+//   visit_*    one record {ray id, visit_id_i} per region entered (round robin,
+//              4-entry FIFO)
+//   idx port   one index-list read per test (round robin), credit-limited by
+//              the index buffer (IdxBufDepth entries, the credits)
+//   tri port   one triangle read per index response, in index-response order
+//   u_isect    rt_isect; the slot index travels in the ray id field; a
+//              triangle response enters it in the cycle it arrives, or in the
+//              next one when RegRsp (registered at the boundary)
+//   closest    one isect result per cycle updates its slot's closest hit
+//              (rt_closest_hit)
+//   check      one exit test per cycle (round robin over the slots that want
+//              one; rt_exit_test with the walk's exit parameter)
+//   res_*      one record per ray: {ray id, done_count_i, done_tests_i, hit,
+//              the closest hit} (round robin, 2-entry FIFO)
+//
+// The walk sees only grants (go, slot index), the responses, the results and
+// the closest-hit state; it gives want vectors, addresses, the visit id, the
+// exit parameter and the counts of the granted slots.
+//
+// Memory ports: requests are valid/ready (a 2-entry FIFO holds each port's
+// request stream); responses have no ready: the unit always accepts them
+// (credits: index responses land in the index buffer, which is never
+// overfilled; node and triangle responses are consumed in their cycle, or
+// registered and consumed in the next one). Responses per port come in request
+// order; the tag is the slot.
+//
+// Latency: 0 cycles from a want to its grant; each FIFO 1 cycle; the triangle
+// response 0 (RegRsp = 0) or 1 cycle to rt_isect, then ISECT_LATENCY.
+// Throughput: per cycle at most one ray accepted, one node read, one visit
+// record, one index read, one triangle read, one intersection test, one
+// closest-hit update, one exit test and one result.
+module rt_trav_shell #(
+  parameter int unsigned N           = 32,  // ray slots, 1..256
+  parameter int unsigned IdxBufDepth = 64,  // index responses buffered (credits)
+  parameter int unsigned NodeRspW    = 64,  // width of a node response
+  parameter bit          RegRsp      = 1'b0,// register node and triangle responses at the boundary
+  parameter int unsigned VisitIdW    = 32,  // width of the region id of a visit record
+  parameter int unsigned ExitW       = 8,   // width of the exit parameter
+  parameter int unsigned DenW        = 8,   // width of the exit test's denominator
+  parameter int unsigned SlotW     = (N > 1) ? $clog2(N) : 1,  // derived
+  parameter int unsigned CfgSlotsW = $clog2(N + 1),            // derived
+  parameter int unsigned ResW      = rt_pkg::ISECT_RES_W + 64  // derived: {ray id, count, tests, hit, hit record}
+) (
+  input  logic                          clk_i,
+  input  logic                          rst_ni,
+  input  logic [CfgSlotsW-1:0]          cfg_slots_i,  // slots to use, 1..N
+
+  // ---- The unit's ports ----
+`include "rt_trav_ports.svh"
+
+  output logic [ResW-1:0]               res_data_o,
+  output logic [32+VisitIdW-1:0]        visit_data_o,
+
+  output logic                          node_req_valid_o,
+  input  logic                          node_req_ready_i,
+  output logic [rt_pkg::MEM_ADDR_W-1:0] node_req_addr_o,
+  output logic [SlotW-1:0]              node_req_tag_o,
+  input  logic                          node_rsp_valid_i,
+  input  logic [NodeRspW-1:0]           node_rsp_data_i,
+  input  logic [SlotW-1:0]              node_rsp_tag_i,
+
+  // ---- The walk's side ----
+  // Allocation (a ray accepted into alloc_slot_o) and the slot's setup.
+  input  logic [N-1:0]                  free_i,
+  output logic                          alloc_o,
+  output logic [SlotW-1:0]              alloc_slot_o,
+  input  logic                          init_i,
+  input  logic [SlotW-1:0]              init_slot_i,
+  input  rt_pkg::isect_ray_t            init_ray_i,
+  input  logic [rt_pkg::DIR_W-1:0]      init_dom_i,
+  input  logic [DenW-1:0]               init_den_i,
+
+  // Node reads and their responses.
+  input  logic [N-1:0]                  want_node_i,
+  output logic                          node_go_o,
+  output logic [SlotW-1:0]              node_slot_o,
+  input  logic [rt_pkg::MEM_ADDR_W-1:0] node_addr_i,      // of node_slot_o
+  output logic                          node_valid_o,
+  output logic [SlotW-1:0]              node_tag_o,
+  output logic [NodeRspW-1:0]           node_data_o,
+
+  // Visits.
+  input  logic [N-1:0]                  want_visit_i,
+  output logic                          visit_go_o,
+  output logic [SlotW-1:0]              visit_slot_o,
+  input  logic [VisitIdW-1:0]           visit_id_i,       // of visit_slot_o
+
+  // Index reads, and the intersection results.
+  input  logic [N-1:0]                  want_idx_i,
+  output logic                          idx_go_o,
+  output logic [SlotW-1:0]              idx_slot_o,
+  input  logic [rt_pkg::MEM_ADDR_W-1:0] idx_addr_i,       // of idx_slot_o
+  input  logic [N-1:0]                  expect_i,         // slots that expect triangles (assertions only)
+  output logic                          isect_valid_o,    // a result of slot isect_slot_o
+  output logic [SlotW-1:0]              isect_slot_o,
+  output logic                          take_o,           // it becomes the slot's closest hit
+  output logic [N-1:0]                  has_hit_o,        // a closest hit so far
+
+  // Exit tests.
+  input  logic [N-1:0]                  want_check_i,
+  output logic                          check_go_o,
+  output logic [SlotW-1:0]              check_slot_o,
+  input  logic [ExitW-1:0]              check_exit_i,     // of check_slot_o
+  output logic                          check_holds_o,
+
+  // Results.
+  input  logic [N-1:0]                  want_done_i,
+  output logic                          done_go_o,
+  output logic [SlotW-1:0]              done_slot_o,
+  input  logic [31:0]                   done_count_i,     // of done_slot_o: regions entered
+  input  logic [31:0]                   done_tests_i      // and tests issued
+);
+
+  localparam int ADDR_W   = rt_pkg::MEM_ADDR_W;
+  localparam int P        = rt_pkg::POS_W;
+  localparam int DIR_W    = rt_pkg::DIR_W;
+  localparam int MEMREQ_W = ADDR_W + SlotW;
+  localparam int IDXBUF_W = 32 + SlotW;
+  localparam int CREDIT_W = $clog2(IdxBufDepth + 1);
+  localparam int NP1      = N + 1;
+
+  // The ray's geometry, for rt_isect (where the slot index takes the id's place).
+  typedef struct packed {
+    logic [2:0][P-1:0]     org;
+    logic [2:0][DIR_W-1:0] dir;
+  } ray_geom_t;
+
+  // A closest hit as kept per slot (isect_res_t without ray id and hit).
+  typedef struct packed {
+    logic [31:0]                   prim_id;
+    logic [rt_pkg::T_NUM_W-1:0]    t_num;
+    logic [rt_pkg::DET_ABS_W-1:0]  det;
+    logic [rt_pkg::BARY_W-1:0]     u_num;
+    logic [rt_pkg::BARY_W-1:0]     v_num;
+  } best_t;
+
+  localparam int GEOM_W = 3 * P + 3 * DIR_W;
+  localparam int BEST_W = 32 + rt_pkg::T_NUM_W + rt_pkg::DET_ABS_W + 2 * rt_pkg::BARY_W;
+
+  // ---- Records kept by slot index (no reset: written at init, before read) ----
+  // Plain vectors, read into the struct types: Yosys 0.23 keeps only one
+  // element's flops of an unpacked array of a packed struct.
+  logic [31:0]      ray_id_q [N];
+  logic [GEOM_W-1:0] geom_q  [N];
+  logic [DIR_W-1:0] dom_q    [N];
+  logic [DenW-1:0]  den_q    [N];
+  logic [BEST_W-1:0] best_q  [N];
+  logic [N-1:0]     has_hit_q;
+
+  // ---- Ray input and slot allocation --------------------------------------------
+  logic [N-1:0] usable, unused_alloc_gnt;
+
+  assign usable = N'((NP1'(1) << cfg_slots_i) - 1'b1);
+
+  rt_rr_arb #(.N(N)) u_alloc_arb (
+    .clk_i, .rst_ni, .req_i(free_i & usable), .ack_i(1'b0),
+    .valid_o(ray_ready_o), .gnt_o(unused_alloc_gnt), .idx_o(alloc_slot_o));
+
+  assign alloc_o = ray_valid_i && ray_ready_o;
+
+  // ---- Arbiters -------------------------------------------------------------------
+  logic         node_any, visit_any, idx_any, done_any;
+  // The arbiters' one-hot grants are not needed: the walk takes indices.
+  logic [N-1:0] unused_node_gnt, unused_visit_gnt, unused_idx_gnt, unused_check_gnt, unused_done_gnt;
+  logic         nodeq_ready, visitq_ready, idxq_ready, resq_ready;
+  logic [CREDIT_W-1:0] credit_q;
+  logic         idxbuf_pop;
+
+  rt_rr_arb #(.N(N)) u_node_arb (
+    .clk_i, .rst_ni, .req_i(want_node_i), .ack_i(node_go_o),
+    .valid_o(node_any), .gnt_o(unused_node_gnt), .idx_o(node_slot_o));
+  rt_rr_arb #(.N(N)) u_visit_arb (
+    .clk_i, .rst_ni, .req_i(want_visit_i), .ack_i(visit_go_o),
+    .valid_o(visit_any), .gnt_o(unused_visit_gnt), .idx_o(visit_slot_o));
+  rt_rr_arb #(.N(N)) u_idx_arb (
+    .clk_i, .rst_ni, .req_i(want_idx_i), .ack_i(idx_go_o),
+    .valid_o(idx_any), .gnt_o(unused_idx_gnt), .idx_o(idx_slot_o));
+  rt_rr_arb #(.N(N)) u_check_arb (
+    .clk_i, .rst_ni, .req_i(want_check_i), .ack_i(check_go_o),
+    .valid_o(check_go_o), .gnt_o(unused_check_gnt), .idx_o(check_slot_o));
+  rt_rr_arb #(.N(N)) u_done_arb (
+    .clk_i, .rst_ni, .req_i(want_done_i), .ack_i(done_go_o),
+    .valid_o(done_any), .gnt_o(unused_done_gnt), .idx_o(done_slot_o));
+
+  // A node read needs room in its request FIFO, a visit room in the visit FIFO.
+  assign node_go_o  = node_any && nodeq_ready;
+  assign visit_go_o = visit_any && visitq_ready;
+  // An index read needs a credit: a place in the index buffer for its response.
+  assign idx_go_o   = idx_any && idxq_ready && (credit_q != '0);
+  assign done_go_o  = done_any && resq_ready;
+
+  assign perf_step_ready_o = (want_visit_i != '0);
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      credit_q <= CREDIT_W'(IdxBufDepth);
+    end else if (idx_go_o && !idxbuf_pop) begin
+      credit_q <= credit_q - 1'b1;
+    end else if (idxbuf_pop && !idx_go_o) begin
+      credit_q <= credit_q + 1'b1;
+    end
+  end
+
+  // ---- Node and triangle responses: in their cycle, or registered ---------------------
+  logic               tri_valid;
+  logic [SlotW-1:0]   tri_slot;
+  rt_pkg::isect_tri_t tri_data;
+
+  if (RegRsp) begin : g_reg_rsp
+    // A node or triangle response arriving in cycle c is used in cycle c+1.
+    logic                node_valid_q, tri_valid_q;
+    logic [SlotW-1:0]    node_tag_q, tri_tag_q;
+    logic [NodeRspW-1:0] node_data_q;
+    rt_pkg::isect_tri_t  tri_data_q;
+
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        node_valid_q <= 1'b0;
+        tri_valid_q  <= 1'b0;
+      end else begin
+        node_valid_q <= node_rsp_valid_i;
+        tri_valid_q  <= tri_rsp_valid_i;
+      end
+    end
+
+    always_ff @(posedge clk_i) begin
+      if (node_rsp_valid_i) begin
+        node_tag_q  <= node_rsp_tag_i;
+        node_data_q <= node_rsp_data_i;
+      end
+      if (tri_rsp_valid_i) begin
+        tri_tag_q  <= tri_rsp_tag_i;
+        tri_data_q <= tri_rsp_data_i;
+      end
+    end
+
+    assign node_valid_o = node_valid_q;
+    assign node_tag_o   = node_tag_q;
+    assign node_data_o  = node_data_q;
+    assign tri_valid    = tri_valid_q;
+    assign tri_slot     = tri_tag_q;
+    assign tri_data     = tri_data_q;
+  end else begin : g_direct_rsp
+    assign node_valid_o = node_rsp_valid_i;
+    assign node_tag_o   = node_rsp_tag_i;
+    assign node_data_o  = node_rsp_data_i;
+    assign tri_valid    = tri_rsp_valid_i;
+    assign tri_slot     = tri_rsp_tag_i;
+    assign tri_data     = tri_rsp_data_i;
+  end
+
+  // ---- Node reads and visit records ----------------------------------------------------
+  // The visit record as a wire of its own: Yosys 0.23 drops a size cast inside
+  // a concatenation, and takes no field of an array element.
+  logic [31:0]          visit_ray_id;
+  logic [32+VisitIdW-1:0] visit_rec;
+  assign visit_ray_id = ray_id_q[visit_slot_o];
+  assign visit_rec    = {visit_ray_id, visit_id_i};
+
+  rt_fifo #(.Width(MEMREQ_W), .Depth(2)) u_node_q (
+    .clk_i, .rst_ni,
+    .in_valid_i (node_go_o),
+    .in_ready_o (nodeq_ready),
+    .in_data_i  ({node_addr_i, node_slot_o}),
+    .out_valid_o(node_req_valid_o),
+    .out_ready_i(node_req_ready_i),
+    .out_data_o ({node_req_addr_o, node_req_tag_o})
+  );
+
+  rt_fifo #(.Width(32 + VisitIdW), .Depth(4)) u_visit_q (
+    .clk_i, .rst_ni,
+    .in_valid_i (visit_go_o),
+    .in_ready_o (visitq_ready),
+    .in_data_i  (visit_rec),
+    .out_valid_o(visit_valid_o),
+    .out_ready_i(visit_ready_i),
+    .out_data_o (visit_data_o)
+  );
+
+  // ---- Index reads, index buffer, triangle reads -------------------------------------
+  logic [ADDR_W-1:0]   tri_addr;
+  logic                idxbuf_valid, idxbuf_ready, triq_ready;
+  logic [IDXBUF_W-1:0] idxbuf_data;
+
+  rt_fifo #(.Width(MEMREQ_W), .Depth(2)) u_idx_q (
+    .clk_i, .rst_ni,
+    .in_valid_i (idx_go_o),
+    .in_ready_o (idxq_ready),
+    .in_data_i  ({idx_addr_i, idx_slot_o}),
+    .out_valid_o(idx_req_valid_o),
+    .out_ready_i(idx_req_ready_i),
+    .out_data_o ({idx_req_addr_o, idx_req_tag_o})
+  );
+
+  rt_fifo #(.Width(IDXBUF_W), .Depth(IdxBufDepth)) u_idx_buf (
+    .clk_i, .rst_ni,
+    .in_valid_i (idx_rsp_valid_i),
+    .in_ready_o (idxbuf_ready),
+    .in_data_i  ({idx_rsp_data_i, idx_rsp_tag_i}),
+    .out_valid_o(idxbuf_valid),
+    .out_ready_i(triq_ready),
+    .out_data_o (idxbuf_data)
+  );
+  assign idxbuf_pop = idxbuf_valid && triq_ready;
+  assign tri_addr   = ADDR_W'(idxbuf_data[IDXBUF_W-1 -: 32]);
+
+  rt_fifo #(.Width(MEMREQ_W), .Depth(2)) u_tri_q (
+    .clk_i, .rst_ni,
+    .in_valid_i (idxbuf_valid),
+    .in_ready_o (triq_ready),
+    .in_data_i  ({tri_addr, idxbuf_data[SlotW-1:0]}),
+    .out_valid_o(tri_req_valid_o),
+    .out_ready_i(tri_req_ready_i),
+    .out_data_o ({tri_req_addr_o, tri_req_tag_o})
+  );
+
+  // ---- Intersection: the triangle and its slot's ray ------------------------------------
+  // The slot index travels in the ray id field through rt_isect; the real ray
+  // id stays in ray_id_q. rt_isect's results are always taken (res_ready_i =
+  // 1), so its req_ready_o is always 1 and a triangle enters at once.
+  rt_pkg::isect_ray_t isect_ray;
+  ray_geom_t          tri_geom;
+  logic               isect_req_ready;
+  rt_pkg::isect_res_t isect_res;
+
+  assign tri_geom = geom_q[tri_slot];
+  always_comb begin
+    isect_ray.ray_id = 32'(tri_slot);
+    isect_ray.org    = tri_geom.org;
+    isect_ray.dir    = tri_geom.dir;
+  end
+
+  rt_isect u_isect (
+    .clk_i,
+    .rst_ni,
+    .req_valid_i (tri_valid),
+    .req_ready_o (isect_req_ready),
+    .req_ray_i   (isect_ray),
+    .req_tri_i   (tri_data),
+    .res_valid_o (isect_valid_o),
+    .res_ready_i (1'b1),
+    .res_data_o  (isect_res)
+  );
+  assign perf_isect_fire_o = tri_valid && isect_req_ready;
+
+  // ---- Closest hit: one result per cycle against its slot's best --------------------
+  best_t res_best, res_new;
+  assign isect_slot_o = isect_res.ray_id[SlotW-1:0];
+  // (The whole element first: Yosys 0.23 takes no field of an array element.)
+  assign res_best = best_q[isect_slot_o];
+  always_comb begin
+    res_new.prim_id = isect_res.prim_id;
+    res_new.t_num   = isect_res.t_num;
+    res_new.det     = isect_res.det;
+    res_new.u_num   = isect_res.u_num;
+    res_new.v_num   = isect_res.v_num;
+  end
+
+  rt_closest_hit u_closest (
+    .valid_i      (isect_valid_o),
+    .hit_i        (isect_res.hit),
+    .prim_id_i    (isect_res.prim_id),
+    .t_num_i      (isect_res.t_num),
+    .det_i        (isect_res.det),
+    .has_best_i   (has_hit_q[isect_slot_o]),
+    .best_prim_i  (res_best.prim_id),
+    .best_t_num_i (res_best.t_num),
+    .best_det_i   (res_best.det),
+    .take_o
+  );
+  assign has_hit_o = has_hit_q;
+
+  // ---- Exit test of the check grant ------------------------------------------------
+  best_t chk_best;
+  assign chk_best = best_q[check_slot_o];
+
+  rt_exit_test #(.ExitW(ExitW), .DenW(DenW)) u_exit (
+    .valid_i (check_go_o),
+    .exit_i  (check_exit_i),
+    .dom_i   (dom_q[check_slot_o]),
+    .den_i   (den_q[check_slot_o]),
+    .t_num_i (chk_best.t_num),
+    .det_i   (chk_best.det),
+    .holds_o (check_holds_o)
+  );
+
+  // ---- The records kept by slot index ---------------------------------------------------
+  ray_geom_t init_geom;
+  assign init_geom.org = init_ray_i.org;
+  assign init_geom.dir = init_ray_i.dir;
+
+  always_ff @(posedge clk_i) begin
+    if (init_i) begin
+      ray_id_q[init_slot_i] <= init_ray_i.ray_id;
+      geom_q[init_slot_i]   <= init_geom;
+      dom_q[init_slot_i]    <= init_dom_i;
+      den_q[init_slot_i]    <= init_den_i;
+      best_q[init_slot_i]   <= '0;
+    end
+    if (take_o) best_q[isect_slot_o] <= res_new;
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      has_hit_q <= '0;
+    end else begin
+      if (init_i) has_hit_q[init_slot_i] <= 1'b0;
+      if (take_o) has_hit_q[isect_slot_o] <= 1'b1;
+    end
+  end
+
+  // ---- Results -------------------------------------------------------------------------
+  // The record is assembled only in a cycle with a done grant.
+  logic [ResW-1:0] done_rec;
+  best_t           done_best;
+  logic [31:0]     done_ray_id;
+  logic            done_hit;
+  always_comb begin
+    done_best   = '0;
+    done_ray_id = '0;
+    done_hit    = 1'b0;
+    if (done_any) begin
+      done_best   = best_q[done_slot_o];
+      done_ray_id = ray_id_q[done_slot_o];
+      done_hit    = has_hit_q[done_slot_o];
+    end
+  end
+  assign done_rec = {done_ray_id, done_count_i, done_tests_i, done_hit, done_best};
+
+  rt_fifo #(.Width(ResW), .Depth(2)) u_res_q (
+    .clk_i, .rst_ni,
+    .in_valid_i (done_go_o),
+    .in_ready_o (resq_ready),
+    .in_data_i  (done_rec),
+    .out_valid_o(res_valid_o),
+    .out_ready_i(res_ready_i),
+    .out_data_o (res_data_o)
+  );
+
+`ifdef RT_ASSERT_ON
+  // The state of the slots the triangles and results name.
+  logic tri_expected, res_expected;
+  assign tri_expected = expect_i[tri_slot];
+  assign res_expected = expect_i[isect_slot_o];
+
+  // Output streams (results, visits, the three request ports) come straight
+  // from rt_fifo instances, whose a_out_hold checks that valid never drops and
+  // data holds until taken; they are not checked twice here.
+  // Input stream (the producer's duty).
+  a_ray_hold : assert property (@(posedge clk_i) disable iff (!rst_ni)
+      ray_valid_i && !ray_ready_o |=> ray_valid_i && $stable(ray_data_i));
+  // Responses: credits guarantee room, triangles and results name a slot that
+  // expects them.
+  a_idx_buf_room : assert property (@(posedge clk_i) disable iff (!rst_ni)
+      idx_rsp_valid_i |-> idxbuf_ready);
+  a_isect_ready : assert property (@(posedge clk_i) disable iff (!rst_ni)
+      tri_valid |-> isect_req_ready);
+  a_tri_rsp_slot : assert property (@(posedge clk_i) disable iff (!rst_ni)
+      tri_valid |-> tri_expected);
+  a_res_slot : assert property (@(posedge clk_i) disable iff (!rst_ni)
+      isect_valid_o |-> res_expected);
+  a_cfg_slots : assert property (@(posedge clk_i) disable iff (!rst_ni)
+      cfg_slots_i != '0 && cfg_slots_i <= CfgSlotsW'(N));
+  a_credit_range : assert property (@(posedge clk_i) disable iff (!rst_ni)
+      credit_q <= CREDIT_W'(IdxBufDepth));
+  if (N > 256) begin : g_slots_check
+    $error("rt_trav_shell: RaysInFlight must lie in 1..256 (the setup carries an 8-bit slot)");
+  end
+`endif
+
+endmodule
