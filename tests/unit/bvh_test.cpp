@@ -102,6 +102,21 @@ AccelOptions leafOptions(int leafSize) {
   return options;
 }
 
+// Runs body(name, scene, bvh, agree) on every test scene with leaves of 1 and
+// 4 triangles, each against brute force; no ray may mismatch.
+template <class Body>
+void forEachSceneAndLeafSize(Body body) {
+  for (const std::string& name : sceneNames()) {
+    const Scene& scene = cachedScene(name);
+    for (int leafSize : {1, 4}) {
+      const Bvh bvh(scene, leafOptions(leafSize));
+      Agreement agree(scene, bvh, fmt::format("{} leaf {}", name, leafSize));
+      body(name, scene, bvh, agree);
+      EXPECT_EQ(agree.mismatches(), 0) << name << " leaf " << leafSize;
+    }
+  }
+}
+
 CameraOptions resolution(int width, int height) {
   CameraOptions options;
   options.width = width;
@@ -233,72 +248,60 @@ TEST(Bvh, MatchesBruteForceOnRandomRays) {
 }
 
 TEST(Bvh, MatchesBruteForceOnAxisParallelRaysWithSignedZeros) {
-  for (const std::string& name : sceneNames()) {
-    const Scene& scene = cachedScene(name);
-    for (int leafSize : {1, 4}) {
-      const Bvh bvh(scene, leafOptions(leafSize));
-      Agreement agree(scene, bvh, fmt::format("{} leaf {}", name, leafSize));
-      std::mt19937 rng(99);
-      std::uniform_int_distribution<size_t> pickNode(0, bvh.nodeCount() - 1);
-      std::uniform_int_distribution<size_t> pickTri(0, scene.size() - 1);
-      std::uniform_int_distribution<int> coin(0, 1);
-      for (int i = 0; i < 1200; ++i) {
-        const int axis = i % 3;
-        // Cross-axis coordinates: exactly on a node's bounds planes (where the
-        // slab test meets 0 * inf), on a vertex, or anywhere in the bounds.
-        const BvhNode& node = bvh.nodes()[pickNode(rng)];
-        const Triangle& tri = scene.triangles[pickTri(rng)];
-        glm::vec3 o = randomIn(scene.bounds, rng);
-        for (int a = 0; a < 3; ++a) {
-          if (a == axis) continue;
-          switch ((i / 3) % 3) {
-            case 0: o[a] = coin(rng) ? node.lo[a] : node.hi[a]; break;
-            case 1: o[a] = tri.v0[a]; break;
-            default: break;
-          }
+  forEachSceneAndLeafSize([](const std::string& name, const Scene& scene, const Bvh& bvh, Agreement& agree) {
+    std::mt19937 rng(99);
+    std::uniform_int_distribution<size_t> pickNode(0, bvh.nodeCount() - 1);
+    std::uniform_int_distribution<size_t> pickTri(0, scene.size() - 1);
+    std::uniform_int_distribution<int> coin(0, 1);
+    for (int i = 0; i < 1200; ++i) {
+      const int axis = i % 3;
+      // Cross-axis coordinates: exactly on a node's bounds planes (where the
+      // slab test meets 0 * inf), on a vertex, or anywhere in the bounds.
+      const BvhNode& node = bvh.nodes()[pickNode(rng)];
+      const Triangle& tri = scene.triangles[pickTri(rng)];
+      glm::vec3 o = randomIn(scene.bounds, rng);
+      for (int a = 0; a < 3; ++a) {
+        if (a == axis) continue;
+        switch ((i / 3) % 3) {
+          case 0: o[a] = coin(rng) ? node.lo[a] : node.hi[a]; break;
+          case 1: o[a] = tri.v0[a]; break;
+          default: break;
         }
-        // Along the axis: outside the scene, inside it, or on a node plane.
-        const bool negative = coin(rng);
-        switch ((i / 9) % 3) {
-          case 0: o[axis] = negative ? scene.bounds.hi[axis] + 1.0f : scene.bounds.lo[axis] - 1.0f; break;
-          case 1: break;
-          default: o[axis] = coin(rng) ? node.lo[axis] : node.hi[axis]; break;
-        }
-        glm::vec3 d(coin(rng) ? 0.0f : -0.0f, coin(rng) ? 0.0f : -0.0f, coin(rng) ? 0.0f : -0.0f);
-        d[axis] = negative ? -1.0f : 1.0f;
-        agree.check(Ray{o, d});
-        // One zero component only: a ray in a coordinate plane.
-        d[(axis + 1) % 3] = negative ? 0.37f : -0.61f;
-        agree.check(Ray{o, d});
       }
-      EXPECT_EQ(agree.mismatches(), 0) << name << " leaf " << leafSize;
-      EXPECT_GT(agree.hits(), 100) << name;
+      // Along the axis: outside the scene, inside it, or on a node plane.
+      const bool negative = coin(rng);
+      switch ((i / 9) % 3) {
+        case 0: o[axis] = negative ? scene.bounds.hi[axis] + 1.0f : scene.bounds.lo[axis] - 1.0f; break;
+        case 1: break;
+        default: o[axis] = coin(rng) ? node.lo[axis] : node.hi[axis]; break;
+      }
+      glm::vec3 d(coin(rng) ? 0.0f : -0.0f, coin(rng) ? 0.0f : -0.0f, coin(rng) ? 0.0f : -0.0f);
+      d[axis] = negative ? -1.0f : 1.0f;
+      agree.check(Ray{o, d});
+      // One zero component only: a ray in a coordinate plane.
+      d[(axis + 1) % 3] = negative ? 0.37f : -0.61f;
+      agree.check(Ray{o, d});
     }
-  }
+    EXPECT_GT(agree.hits(), 100) << name;
+  });
 }
 
 TEST(Bvh, MatchesBruteForceOnRaysAimedAtVerticesAndEdgeMidpoints) {
-  for (const std::string& name : sceneNames()) {
-    const Scene& scene = cachedScene(name);
-    for (int leafSize : {1, 4}) {
-      const Bvh bvh(scene, leafOptions(leafSize));
-      Agreement agree(scene, bvh, fmt::format("{} leaf {}", name, leafSize));
-      std::mt19937 rng(7);
-      const size_t step = std::max<size_t>(1, scene.size() / 150);
-      for (size_t t = 0; t < scene.size(); t += step) {
-        const Triangle& tri = scene.triangles[t];
-        const std::array<glm::vec3, 6> targets = {tri.v0, tri.v1, tri.v2, 0.5f * (tri.v0 + tri.v1),
-                                                   0.5f * (tri.v1 + tri.v2), 0.5f * (tri.v2 + tri.v0)};
-        for (const glm::vec3& target : targets) {
-          for (const glm::vec3& o : {randomOutside(scene.bounds, rng), randomIn(scene.bounds, rng)}) {
-            agree.check(Ray{o, target - o});
-          }
+  forEachSceneAndLeafSize([](const std::string& name, const Scene& scene, const Bvh& bvh, Agreement& agree) {
+    std::mt19937 rng(7);
+    const size_t step = std::max<size_t>(1, scene.size() / 150);
+    for (size_t t = 0; t < scene.size(); t += step) {
+      const Triangle& tri = scene.triangles[t];
+      const std::array<glm::vec3, 6> targets = {tri.v0, tri.v1, tri.v2, 0.5f * (tri.v0 + tri.v1),
+                                                 0.5f * (tri.v1 + tri.v2), 0.5f * (tri.v2 + tri.v0)};
+      for (const glm::vec3& target : targets) {
+        for (const glm::vec3& o : {randomOutside(scene.bounds, rng), randomIn(scene.bounds, rng)}) {
+          agree.check(Ray{o, target - o});
         }
       }
-      EXPECT_EQ(agree.mismatches(), 0) << name << " leaf " << leafSize;
-      EXPECT_GT(agree.hits(), agree.rays() / 2) << name;
     }
-  }
+    EXPECT_GT(agree.hits(), agree.rays() / 2) << name;
+  });
 }
 
 TEST(Bvh, MatchesBruteForceOnTMaxLimitedRays) {
