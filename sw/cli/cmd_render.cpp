@@ -9,24 +9,20 @@ namespace lancer::cli {
 
 void addRenderCommand(CLI::App& app) {
   struct Args {
-    SceneOptions scene;
+    TracerArgs tracer;
     CameraArgs camera;
-    AccelArgs accel;
     std::string out = "lancer.png";
-    std::string report;
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("render", "Render a shaded image with the reference tracer");
-  args->scene.add(*cmd);
+  args->tracer.add(*cmd);
   args->camera.add(*cmd);
-  args->accel.add(*cmd, {"grid", "octree", "bvh", "embree"});
   cmd->add_option("--out", args->out, "PNG file to write")->capture_default_str();
-  cmd->add_option("--report", args->report, "JSON report file");
   cmd->callback([args] {
-    const Scene scene = args->scene.load();
-    const PinholeCamera camera = frameScene(scene, args->camera.resolve());
+    const Scene scene = args->tracer.scene.load();
     double buildSeconds = 0;
-    const auto accel = buildAccel(args->accel.accel, scene, args->accel.options, &buildSeconds);
+    const auto accel = args->tracer.build(scene, &buildSeconds);
+    const PinholeCamera camera = frameScene(scene, args->camera.resolve());
     const std::vector<Ray> rays = camera.generateRays();
     const TracedRays traced = traceTimed("render", *accel, rays);
     writePng(shadeHits(scene, rays, traced.hits, camera.width(), camera.height()), args->out);
@@ -37,7 +33,7 @@ void addRenderCommand(CLI::App& app) {
     report["width"] = camera.width();
     report["height"] = camera.height();
     report["image"] = args->out;
-    writeReport(args->report, report);
+    writeReport(args->tracer.report, report);
   });
 }
 

@@ -30,24 +30,20 @@ void writeHitsCsv(const std::string& path, const std::vector<std::optional<Hit>>
 
 void addTraceCommand(CLI::App& app) {
   struct Args {
-    SceneOptions scene;
+    TracerArgs tracer;
     RaySource source;
-    AccelArgs accel;
     std::string hits;
-    std::string report;
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("trace", "Closest hits of rays with the reference tracer, as CSV");
-  args->scene.add(*cmd);
+  args->tracer.add(*cmd);
   args->source.add(*cmd);
-  args->accel.add(*cmd, {"grid", "octree", "bvh", "embree"});
   cmd->add_option("--hits", args->hits, "CSV file to write: ray,hit,prim,t,u,v")->required();
-  cmd->add_option("--report", args->report, "JSON report file");
   cmd->callback([args] {
-    const Scene scene = args->scene.load();
-    const Rays rays = loadRays(args->source, scene);
+    const Scene scene = args->tracer.scene.load();
     double buildSeconds = 0;
-    const auto accel = buildAccel(args->accel.accel, scene, args->accel.options, &buildSeconds);
+    const auto accel = args->tracer.build(scene, &buildSeconds);
+    const Rays rays = loadRays(args->source, scene);
     const TracedRays traced = traceTimed("trace", *accel, rays.rays);
     writeHitsCsv(args->hits, traced.hits);
     fmt::print("trace: {} ({} triangles), {} rays from {}, {} hit, {} in {:.3f} s -> {}\n", scene.name,
@@ -56,7 +52,7 @@ void addTraceCommand(CLI::App& app) {
     nlohmann::json report = tracerReport("trace", scene, *accel, rays.rays.size(), traced, buildSeconds);
     report["rays_source"] = rays.origin;
     report["hits_csv"] = args->hits;
-    writeReport(args->report, report);
+    writeReport(args->tracer.report, report);
   });
 }
 

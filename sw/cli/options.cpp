@@ -58,6 +58,16 @@ CameraOptions CameraArgs::resolve() const {
   return options;
 }
 
+void TracerArgs::add(CLI::App& app) {
+  scene.add(app);
+  accel.add(app, {"grid", "octree", "bvh", "embree"});
+  app.add_option("--report", report, "JSON report file");
+}
+
+std::unique_ptr<Accel> TracerArgs::build(const Scene& loaded, double* buildSeconds) const {
+  return buildAccel(accel.accel, loaded, accel.options, buildSeconds);
+}
+
 void AccelArgs::add(CLI::App& app, const std::vector<std::string>& allowed) {
   app.add_option("--accel", accel, "Acceleration structure")
       ->check(CLI::IsMember(allowed))

@@ -2,6 +2,7 @@
 
 // Options shared by the subcommands, so every command spells them the same way.
 
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -37,6 +38,17 @@ struct AccelArgs {
   std::string accel = "bvh";
   AccelOptions options;
   void add(CLI::App& app, const std::vector<std::string>& allowed);
+};
+
+// What the reference-tracer commands (render, trace) share: the scene, the
+// structure (any of the four) and the report. build() builds the structure
+// over the loaded scene (which must outlive it), timing the build.
+struct TracerArgs {
+  SceneOptions scene;
+  AccelArgs accel;
+  std::string report;
+  void add(CLI::App& app);
+  std::unique_ptr<Accel> build(const Scene& loaded, double* buildSeconds) const;
 };
 
 // Rays from --rays FILE, or from the camera when no file is given.
