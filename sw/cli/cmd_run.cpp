@@ -188,20 +188,10 @@ void run(const Args& args) {
       {"host_seconds", hostSeconds},
       {"model_seconds", job.modelSeconds},
       {"golden_seconds", job.goldenSeconds},
-      {"reference_disagreements", cmp.disagreements},
-      {"reference_hit_miss_differs", cmp.hitMissDiffers},
-      {"reference_prim_differs", cmp.primDiffers},
-      {"t_error_max_lattice_units", cmp.maxTError},
-      {"t_error_mean_lattice_units", cmp.meanTError},
-      {"arbiter",
-       {{"judged", cmp.arbiter.judged},
-        {"reference", {{"correct", cmp.arbiter.reference[0]}, {"tie", cmp.arbiter.reference[1]},
-                       {"rounding", cmp.arbiter.reference[2]}, {"wrong", cmp.arbiter.reference[3]}}},
-        {"hardware", {{"correct", cmp.arbiter.hardware[0]}, {"tie", cmp.arbiter.hardware[1]},
-                      {"within_bound", cmp.arbiter.hardware[2]}, {"beyond_bound", cmp.arbiter.hardware[3]}}}}},
       {"output_stall_probability", args.job.stream.outputStallProbability},
       {"seed", args.job.stream.seed},
   };
+  report.update(toJson(cmp));
   for (const JobCounter& c : job.counters) {
     if (isWhole(c.value)) {
       report[c.key] = int64_t(c.value);

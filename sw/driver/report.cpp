@@ -86,6 +86,23 @@ Tolerance latticeTolerance(const QuantizedRay& ray, const Quantizer& quantizer, 
   return {edge, edge / glm::length(glm::dvec3(sceneRay.dir)), 0.0};
 }
 
+nlohmann::json toJson(const ReferenceComparison& cmp) {
+  const ArbiterCounts& a = cmp.arbiter;
+  return {
+      {"reference_disagreements", cmp.disagreements},
+      {"reference_hit_miss_differs", cmp.hitMissDiffers},
+      {"reference_prim_differs", cmp.primDiffers},
+      {"t_error_max_lattice_units", cmp.maxTError},
+      {"t_error_mean_lattice_units", cmp.meanTError},
+      {"arbiter",
+       {{"judged", a.judged},
+        {"reference", {{"correct", a.reference[0]}, {"tie", a.reference[1]}, {"rounding", a.reference[2]},
+                       {"wrong", a.reference[3]}}},
+        {"hardware", {{"correct", a.hardware[0]}, {"tie", a.hardware[1]}, {"within_bound", a.hardware[2]},
+                      {"beyond_bound", a.hardware[3]}}}}},
+  };
+}
+
 ReferenceComparison compareWithReference(const Scene& scene, std::span<const Ray> rays,
                                          std::span<const std::optional<Hit>> reference,
                                          const JobResult& job, const Quantizer& quantizer) {

@@ -55,6 +55,12 @@ struct ReferenceComparison {
 Tolerance latticeTolerance(const QuantizedRay& ray, const Quantizer& quantizer, const Ray& sceneRay,
                            const Triangle& tri);
 
+// The comparison's report keys: reference_disagreements,
+// reference_hit_miss_differs, reference_prim_differs, t_error_max_lattice_units,
+// t_error_mean_lattice_units and arbiter {judged, reference {correct, tie,
+// rounding, wrong}, hardware {correct, tie, within_bound, beyond_bound}}.
+nlohmann::json toJson(const ReferenceComparison& cmp);
+
 ReferenceComparison compareWithReference(const Scene& scene, std::span<const Ray> rays,
                                          std::span<const std::optional<Hit>> reference,
                                          const JobResult& job, const Quantizer& quantizer);
