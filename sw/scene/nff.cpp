@@ -141,7 +141,8 @@ class Builder {
     scene_.normals.push_back(n);
   }
 
-  void polygon(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>* normals);
+  // `start`: the line the polygon's entity began on, for its messages.
+  void polygon(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>* normals, int start);
   void sphere(const glm::vec3& center, float radius, int divisions);
   void cone(const glm::vec3& base, float baseRadius, const glm::vec3& apex, float apexRadius, int slices);
 
@@ -157,13 +158,15 @@ class Builder {
 // remaining vertex lies in the corner's triangle (edges included); collinear
 // and repeated vertices are dropped without a triangle. Triangles keep the
 // polygon's winding. O(n^3) at worst, fine for the SPD's 144-vertex gears.
-void Builder::polygon(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>* normals) {
+void Builder::polygon(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>* normals, int start) {
   glm::dvec3 newell(0.0);
   for (size_t i = 0; i < points.size(); ++i) {
     const glm::dvec3 p(points[i]), q(points[(i + 1) % points.size()]);
     newell += glm::dvec3((p.y - q.y) * (p.z + q.z), (p.z - q.z) * (p.x + q.x), (p.x - q.x) * (p.y + q.y));
   }
-  if (glm::length(newell) == 0.0) lines_.fail("polygon has no area (all its vertices on a line)");
+  if (glm::length(newell) == 0.0) {
+    lines_.fail(fmt::format("polygon started at line {} has no area (its vertices on a line, or its halves cancel)", start));
+  }
   const glm::dvec3 a = glm::abs(newell);
   const int drop = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
   const int ux = (drop + 1) % 3, uy = (drop + 2) % 3;
@@ -210,7 +213,9 @@ void Builder::polygon(const std::vector<glm::vec3>& points, const std::vector<gl
       continue;
     }
     ++i;
-    if (++stall > n) lines_.fail(fmt::format("polygon of {} vertices cannot be triangulated (it crosses itself)", points.size()));
+    if (++stall > n) {
+      lines_.fail(fmt::format("polygon started at line {} cannot be triangulated (it crosses itself)", start));
+    }
   }
   if (ring.size() == 3 && cross(at(ring[0]), at(ring[1]), at(ring[2])) != 0.0) {
     triangle(points[ring[0]], points[ring[1]], points[ring[2]], {normalOf(ring[0]), normalOf(ring[1]), normalOf(ring[2])});
@@ -385,7 +390,7 @@ Scene readNff(std::istream& in, const std::string& name, const NffOptions& optio
           normals.push_back(glm::normalize(nrm));
         }
       }
-      build.polygon(points, stride == 6 ? &normals : nullptr);
+      build.polygon(points, stride == 6 ? &normals : nullptr, start);
     } else if (key == "s") {
       const auto n = numbersOf(lines, *tokens, 1, {4}, "'s'");
       build.sphere(vec(n, 0), n[3], options.sphereDivisions);

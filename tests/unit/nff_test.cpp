@@ -202,9 +202,9 @@ TEST(Nff, ErrorsNameTheFileAndLine) {
   EXPECT_NE(errorOf("p 3\n0 0 0\n1 x 0\n0 1 0\n").find("test.nff:3: expected a finite number, got 'x'"),
             std::string::npos);
   EXPECT_NE(errorOf("p 2\n0 0 0\n1 0 0\n").find("polygon of 2 vertices"), std::string::npos);
-  EXPECT_NE(errorOf("p 3\n0 0 0\n1 1 1\n2 2 2\n").find("polygon has no area"), std::string::npos);
+  EXPECT_NE(errorOf("p 3\n0 0 0\n1 1 1\n2 2 2\n").find("polygon started at line 1 has no area"), std::string::npos);
   // A bow tie: its two halves cancel, no area to triangulate.
-  EXPECT_NE(errorOf("p 4\n0 0 0\n1 1 0\n1 0 0\n0 1 0\n").find("test.nff:5: polygon has no area"), std::string::npos);
+  EXPECT_NE(errorOf("p 4\n0 0 0\n1 1 0\n1 0 0\n0 1 0\n").find("test.nff:5: polygon started at line 1 has no area"), std::string::npos);
   EXPECT_NE(errorOf("s 0 0 0 0\n").find("sphere of radius 0"), std::string::npos);
   EXPECT_NE(errorOf("c\n0 0 0 1\n0 0 0 1\n").find("base and apex coincide"), std::string::npos);
   EXPECT_NE(errorOf("l 1 2 3\n").find("the scene has no triangles"), std::string::npos);
