@@ -1,6 +1,7 @@
 #include "scene/scene.h"
 
 #include <array>
+#include <cmath>
 #include <fstream>
 #include <new>
 #include <tuple>
@@ -13,6 +14,7 @@
 #include <algorithm>
 
 #include <assimp/Importer.hpp>
+#include <assimp/ObjMaterial.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <fmt/format.h>
@@ -55,6 +57,31 @@ class AddressSpaceCap {
   bool active_ = false;
 };
 
+// The Whitted terms of an MTL material (and of any format assimp maps the same
+// way). MTL's illum decides what is traced: illum >= 3 reflects, with Ks's
+// largest component as the weight (illum 2's highlight-only Ks has no mirror);
+// a dissolve d < 1 transmits T = 1 - d; Ni is the index of refraction and Ns
+// the highlight's exponent. Ni <= 0 on a transmitting material is an error;
+// on an opaque one it is unused (exporters write Ni 0 there) and becomes 1.
+void readWhittedTerms(const aiMaterial& mat, const std::string& path, Material& material) {
+  int illum = 2;
+  mat.Get(AI_MATKEY_OBJ_ILLUM, illum);
+  aiColor3D specular(0.0f, 0.0f, 0.0f);
+  mat.Get(AI_MATKEY_COLOR_SPECULAR, specular);
+  if (illum >= 3) material.ks = std::max({specular.r, specular.g, specular.b});
+  float value = 0.0f;
+  if (mat.Get(AI_MATKEY_SHININESS, value) == AI_SUCCESS) material.shine = std::max(value, 0.0f);
+  if (mat.Get(AI_MATKEY_OPACITY, value) == AI_SUCCESS) material.transmittance = std::clamp(1.0f - value, 0.0f, 1.0f);
+  if (mat.Get(AI_MATKEY_REFRACTI, value) == AI_SUCCESS) material.ior = value;
+  if (material.ior <= 0.0f || !std::isfinite(material.ior)) {
+    if (material.transmittance > 0.0f) {
+      throw InputError(fmt::format("{}: material '{}': index of refraction {} must be > 0 on a transmitting material",
+                                   path, material.name, material.ior));
+    }
+    material.ior = 1.0f;
+  }
+}
+
 Scene loadWithAssimp(const std::string& path) {
   if (!std::ifstream(path)) throw InputError(fmt::format("{}: cannot open file", path));
   std::error_code sizeError;
@@ -85,6 +112,7 @@ Scene loadWithAssimp(const std::string& path) {
     aiColor3D color;
     if (mat->Get(AI_MATKEY_COLOR_DIFFUSE, color) == AI_SUCCESS) material.diffuse = {color.r, color.g, color.b};
     if (mat->Get(AI_MATKEY_COLOR_EMISSIVE, color) == AI_SUCCESS) material.emission = {color.r, color.g, color.b};
+    readWhittedTerms(*mat, path, material);
     scene.materials.push_back(material);
   }
   if (scene.materials.empty()) scene.materials.push_back(Material{"default"});

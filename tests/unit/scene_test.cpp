@@ -38,6 +38,44 @@ TEST(Scene, TriangleOrderFollowsTheFile) {
   EXPECT_EQ(scene.triangles[1].v2, glm::vec3(0, 0, 1));
 }
 
+// MTL's Whitted terms: illum >= 3 reflects with Ks, d < 1 transmits with Ni,
+// illum 2's Ks is a highlight only, Ni 0 on an opaque material is unused.
+TEST(Scene, ReadsTheWhittedTermsOfMtlMaterials) {
+  const auto dir = std::filesystem::temp_directory_path();
+  std::ofstream(dir / "lancer_whitted.mtl") << "newmtl mirror\nKd 0.1 0.1 0.1\nKs 0.8 0.7 0.6\nNs 50\nillum 3\n"
+                                               "newmtl glass\nKd 0 0 0\nd 0.25\nNi 1.5\nillum 7\n"
+                                               "newmtl plastic\nKd 1 0 0\nKs 0.9 0.9 0.9\nNi 0\nillum 2\n";
+  std::ofstream(dir / "lancer_whitted.obj") << "mtllib lancer_whitted.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                               "usemtl mirror\nf 1 2 3\nusemtl glass\nf 1 2 3\n"
+                                               "usemtl plastic\nf 1 2 3\n";
+  const Scene scene = loadScene((dir / "lancer_whitted.obj").string());
+  ASSERT_EQ(scene.size(), 3u);
+  const Material& mirror = scene.materials[scene.materialOf[0]];
+  EXPECT_EQ(mirror.name, "mirror");
+  EXPECT_FLOAT_EQ(mirror.ks, 0.8f);
+  EXPECT_FLOAT_EQ(mirror.shine, 50.0f);
+  EXPECT_FLOAT_EQ(mirror.transmittance, 0.0f);
+  const Material& glass = scene.materials[scene.materialOf[1]];
+  EXPECT_FLOAT_EQ(glass.transmittance, 0.75f);
+  EXPECT_FLOAT_EQ(glass.ior, 1.5f);
+  const Material& plastic = scene.materials[scene.materialOf[2]];
+  EXPECT_FLOAT_EQ(plastic.ks, 0.0f);
+  EXPECT_FLOAT_EQ(plastic.ior, 1.0f);
+  // A transmitting material without a usable index of refraction is an error naming it.
+  std::ofstream(dir / "lancer_whitted.mtl") << "newmtl badglass\nd 0.5\nNi 0\n";
+  std::ofstream(dir / "lancer_whitted.obj") << "mtllib lancer_whitted.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                               "usemtl badglass\nf 1 2 3\n";
+  try {
+    loadScene((dir / "lancer_whitted.obj").string());
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("material 'badglass': index of refraction 0 must be > 0"), std::string::npos)
+        << e.what();
+  }
+  std::filesystem::remove(dir / "lancer_whitted.mtl");
+  std::filesystem::remove(dir / "lancer_whitted.obj");
+}
+
 TEST(Scene, BadFilesAreClearErrors) {
   EXPECT_THROW(loadScene("/nonexistent/scene.obj"), InputError);
   EXPECT_THROW(loadScene(test::kAssimpModels + "/invalid/malformed.obj"), InputError);
