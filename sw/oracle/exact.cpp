@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "scene/aabb.h"
 
 namespace lancer {
 
@@ -181,7 +182,10 @@ void measureCrossing(const Ray& ray, const Triangle& tri, double t, ExactRelatio
   rel.boundaryDistance = rel.minBarycentric >= 0.0 ? inside : -outside;
 }
 
-ExactRelation exactRelation(const Ray& ray, const Triangle& tri) {
+// The exact predicates of one pair; with `measure`, also the rounded
+// barycentric, boundary distance and cosine that judging needs (the closest-hit
+// search does not).
+ExactRelation exactRelation(const Ray& ray, const Triangle& tri, bool measure) {
   const glm::vec3 o = ray.origin, d = ray.dir;
   const glm::vec3 v[3] = {tri.v0, tri.v1, tri.v2};
   // Positions (origin and vertices) share one scale, the direction has its own:
@@ -212,13 +216,15 @@ ExactRelation exactRelation(const Ray& ray, const Triangle& tri) {
     const int sign = sgn(si) * side;
     inside = inside && sign >= 0;
     boundary = boundary || sign == 0;
-    mpq_class barycentric(si, den);
-    barycentric.canonicalize();  // (GMP's rationals need a positive denominator)
-    rel.minBarycentric = std::min(rel.minBarycentric, barycentric.get_d());
+    if (measure) {
+      mpq_class barycentric(si, den);
+      barycentric.canonicalize();  // (GMP's rationals need a positive denominator)
+      rel.minBarycentric = std::min(rel.minBarycentric, barycentric.get_d());
+    }
   }
   const mpz_class num = det3(a[0], a[1], a[2]);
   rel.t.emplace(num, den, static_cast<long>(positionBase) - directionBase);
-  measureCrossing(ray, tri, rel.t->toDouble(), rel);
+  if (measure) measureCrossing(ray, tri, rel.t->toDouble(), rel);
   bool inRange = sgn(num) * side > 0;  // t > 0
   if (inRange && std::isfinite(ray.tMax)) {
     // t <= tMax exactly: tMax as a one-element ExactT.
@@ -231,8 +237,7 @@ ExactRelation exactRelation(const Ray& ray, const Triangle& tri) {
 }
 
 void checkRay(const Ray& ray) {
-  const auto finite = [](const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
-  if (!finite(ray.origin) || !finite(ray.dir) || std::isnan(ray.tMax)) {
+  if (!allFinite(ray.origin) || !allFinite(ray.dir) || std::isnan(ray.tMax)) {
     throw InputError(fmt::format("exact oracle: ray ({}, {}, {}) + t ({}, {}, {}) has a NaN or infinite component",
                                  ray.origin.x, ray.origin.y, ray.origin.z, ray.dir.x, ray.dir.y, ray.dir.z));
   }
@@ -255,7 +260,7 @@ ExactRelation ExactOracle::relation(const Ray& ray, uint32_t prim) const {
     throw InputError(fmt::format("exact oracle: triangle {} does not exist (the scene has {})", prim,
                                  scene_.triangles.size()));
   }
-  return exactRelation(ray, scene_.triangles[prim]);
+  return exactRelation(ray, scene_.triangles[prim], /*measure=*/true);
 }
 
 std::optional<ExactHit> ExactOracle::intersect(const Ray& ray, ExactStats* stats) const {
@@ -264,7 +269,7 @@ std::optional<ExactHit> ExactOracle::intersect(const Ray& ray, ExactStats* stats
   ExactStats local;
   std::optional<Candidate> best;
   const auto exactOf = [&](Candidate& c) -> const ExactT& {
-    if (!c.exact) c.exact = exactRelation(ray, scene_.triangles[c.prim]).t;
+    if (!c.exact) c.exact = exactRelation(ray, scene_.triangles[c.prim], /*measure=*/false).t;
     return *c.exact;
   };
   for (uint32_t prim = 0; prim < scene_.triangles.size(); ++prim) {
@@ -275,7 +280,7 @@ std::optional<ExactHit> ExactOracle::intersect(const Ray& ray, ExactStats* stats
     Candidate c{prim, f.t, f.tLow, f.tHigh, false, std::nullopt};
     if (f.kind == FilterOutcome::Unsure) {
       ++local.exactPairs;
-      ExactRelation rel = exactRelation(ray, tri);
+      ExactRelation rel = exactRelation(ray, tri, /*measure=*/false);
       if (!rel.hit) continue;
       c.t = c.tLow = c.tHigh = rel.t->toDouble();
       c.onBoundary = rel.onBoundary;
