@@ -13,7 +13,7 @@ struct WatertightRay {
   glm::vec3 origin;
   glm::vec3 dir;  // for the hit distance (the plane equation, in double)
   int kx = 0, ky = 1, kz = 2;  // kz: the dominant axis of the direction
-  float sx = 0, sy = 0, sz = 1;  // shear taking the direction onto +z
+  float sx = 0, sy = 0;  // shear taking the direction onto the kz axis
   float tMax = kInfinity;
 
   explicit WatertightRay(const Ray& ray);

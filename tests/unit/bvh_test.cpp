@@ -287,7 +287,7 @@ TEST(Bvh, MatchesBruteForceOnAxisParallelRaysWithSignedZeros) {
 }
 
 TEST(Bvh, MatchesBruteForceOnRaysAimedAtVerticesAndEdgeMidpoints) {
-  forEachSceneAndLeafSize([](const std::string& name, const Scene& scene, const Bvh& bvh, Agreement& agree) {
+  forEachSceneAndLeafSize([](const std::string& name, const Scene& scene, const Bvh&, Agreement& agree) {
     std::mt19937 rng(7);
     const size_t step = std::max<size_t>(1, scene.size() / 150);
     for (size_t t = 0; t < scene.size(); t += step) {
