@@ -360,7 +360,11 @@ Scene readNff(std::istream& in, const std::string& name, const NffOptions& optio
       scene.background = vec(numbersOf(lines, *tokens, 1, {3}, "'b'"), 0);
     } else if (key == "l") {
       const auto n = numbersOf(lines, *tokens, 1, {3, 6}, "'l'");
-      scene.lights.push_back({vec(n, 0), n.size() == 6 ? vec(n, 3) : glm::vec3(1.0f)});
+      Light light;
+      light.position = vec(n, 0);
+      if (n.size() == 6) light.color = vec(n, 3);
+      light.name = fmt::format("l@{}", start);
+      scene.lights.push_back(light);
     } else if (key == "f") {
       const auto n = numbersOf(lines, *tokens, 1, {8}, "'f'");
       Material m;

@@ -56,10 +56,17 @@ struct Material {
   float ior = 1.0f;            // index of refraction, > 0
 };
 
-// A light that casts shadows. NFF's lights are points with an optional colour.
+// A light that casts shadows. NFF's lights are points with an optional colour;
+// glTF's KHR_lights_punctual adds spot and directional lights. Area lights are
+// not listed here: they are the triangles whose material has an emission.
 struct Light {
-  glm::vec3 position{0.0f};
-  glm::vec3 color{1.0f};
+  enum class Kind : uint8_t { Point, Spot, Directional };
+  Kind kind = Kind::Point;
+  glm::vec3 position{0.0f};                   // point and spot
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};     // spot and directional: where the light travels (unit)
+  glm::vec3 color{1.0f};                      // colour times intensity
+  float innerConeCos = 1.0f, outerConeCos = 0.0f;  // spot: full inside inner, none outside outer
+  std::string name;                           // for the effects plan and errors
 };
 
 // A triangle scene. Triangle ids ("prim") are indices into `triangles`; their
