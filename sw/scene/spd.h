@@ -16,14 +16,17 @@ namespace lancer {
 //
 //   tetra  the recursive tetrahedral pyramid: 4^sizeFactor triangles (default
 //          size factor 6: 4096), one light, no reflection.
+//   gears  sizeFactor^3 meshed gears with 144-vertex concave faces (default 4:
+//          64 gears, 9345 polygons), every fifth one a transmitter, over a
+//          reflective square; five lights.
 //
 // The SPD writes index of refraction 0 for opaque materials; Lancer's NFF
 // reader asks for > 0, so these files say 1 (meaningless where T = 0).
 
 // The names generateSpdNff() accepts.
 std::vector<std::string> spdSceneNames();
-// Throws InputError for an unknown name or a size factor out of range (tetra: 1..8;
-// 0 picks the SPD default).
+// Throws InputError for an unknown name or a size factor out of range (1..8; 0 picks
+// the SPD default: tetra 6, gears 4).
 std::string generateSpdNff(std::string_view name, int sizeFactor = 0);
 // The generated scene read back, named "builtin:spd-<name>".
 Scene makeSpdScene(std::string_view name, int sizeFactor = 0);

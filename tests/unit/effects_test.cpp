@@ -505,5 +505,38 @@ TEST(EffectsSpd, TetraCountsAgreeWithTheSpdTable) {
   EXPECT_EQ(tracer.excludedOriginHits(), 0u);  // the offset alone keeps every ray off its own triangle
 }
 
+TEST(EffectsSpd, GearsAreMeshedConcaveGears) {
+  const Scene gears = loadScene("builtin:spd-gears");
+  // The ground's 2 triangles, 64 gears of two 144-vertex faces (142 triangles
+  // each by ear clipping) and 144 rectangles (2 triangles each).
+  EXPECT_EQ(gears.size(), 2u + 64u * (2u * 142u + 144u * 2u));
+  EXPECT_EQ(gears.lights.size(), 5u);
+  size_t transmitters = 0, reflectors = 0;
+  for (const Material& m : gears.materials) {
+    transmitters += m.transmittance > 0.0f;
+    reflectors += m.ks > 0.0f;
+    if (m.transmittance > 0.0f) EXPECT_FLOAT_EQ(m.ior, 1.1f);
+  }
+  EXPECT_EQ(reflectors, 1u);  // the ground
+  EXPECT_EQ(transmitters, 13u);  // (4 ix + 2 iy + iz) mod 5 == 0 for 13 of the 64 gears
+  EXPECT_EQ(makeSpdScene("gears", 1).size(), 2u + 2u * 142u + 144u * 2u);
+}
+
+// The SPD's table for gears: 245086 eye hit rays, 304643 reflection rays,
+// 207564 refraction rays (total internal reflections included), 2246955 shadow rays.
+TEST(EffectsSpd, GearsCountsAgreeWithTheSpdTable) {
+  const Scene gears = loadScene("builtin:spd-gears");
+  const std::vector<Ray> rays = frameScene(gears, CameraOptions{}).generateRays(Sampling::Corners);
+  const Bvh bvh(gears, AccelOptions{});
+  RefWaveTracer tracer(gears, bvh);
+  const WhittedResult r = traceWhitted(gears, planEffects(gears, {}), rays, tracer);
+  EXPECT_NEAR(double(r.eyeHitRays), 245086.0, 0.01 * 245086.0);
+  EXPECT_NEAR(double(r.reflectRays), 304643.0, 0.01 * 304643.0);
+  EXPECT_NEAR(double(r.refractRays), 207564.0, 0.01 * 207564.0);
+  EXPECT_NEAR(double(r.shadowRays), 2246955.0, 0.01 * 2246955.0);
+  EXPECT_GT(r.totalInternalReflections, 0u);
+  EXPECT_EQ(r.selfHits, 0u);
+}
+
 }  // namespace
 }  // namespace lancer
