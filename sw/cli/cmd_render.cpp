@@ -2,12 +2,10 @@
 // With --whitted, the SPD's classical Whitted tracer (docs/effects.md): the
 // effects plan, shadow, reflection and refraction rays in waves, the SPD counts.
 #include <chrono>
-#include <optional>
 
 #include <fmt/format.h>
 
 #include "cli/options.h"
-#include "common/progress.h"
 #include "effects/ref_tracer.h"
 #include "effects/whitted.h"
 #include "ref/shade.h"
@@ -25,7 +23,6 @@ void renderWhitted(const Scene& scene, const Accel& accel, const PinholeCamera& 
   const std::vector<Ray> eye = camera.generateRays(sampling);
   RefWaveTracer tracer(scene, accel);
   const auto start = std::chrono::steady_clock::now();
-  std::optional<Progress> bar;
   const WhittedResult result = traceWhitted(scene, plan, eye, tracer, [&](int generation, size_t rays) {
     fmt::print("  wave {}: {} rays\n", generation, rays);
   });

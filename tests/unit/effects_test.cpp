@@ -182,7 +182,9 @@ void expectContract(const Scene& scene, const RecordingTracer& t, const WhittedR
       EXPECT_EQ(w.anyHit, w.cls == RayClass::Shadow);
       const Triangle& tri = scene.triangles[w.originPrim];
       const float s = glm::dot(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0), w.ray.dir);
-      if (s != 0.0f) EXPECT_EQ(w.side, s > 0 ? 1 : -1);
+      if (s != 0.0f) {
+        EXPECT_EQ(w.side, s > 0 ? 1 : -1);
+      }
       if (w.cls == RayClass::Shadow) {
         EXPECT_TRUE(std::isfinite(w.ray.tMax));
       } else {
@@ -515,7 +517,9 @@ TEST(EffectsSpd, GearsAreMeshedConcaveGears) {
   for (const Material& m : gears.materials) {
     transmitters += m.transmittance > 0.0f;
     reflectors += m.ks > 0.0f;
-    if (m.transmittance > 0.0f) EXPECT_FLOAT_EQ(m.ior, 1.1f);
+    if (m.transmittance > 0.0f) {
+      EXPECT_FLOAT_EQ(m.ior, 1.1f);
+    }
   }
   EXPECT_EQ(reflectors, 1u);  // the ground
   EXPECT_EQ(transmitters, 13u);  // (4 ix + 2 iy + iz) mod 5 == 0 for 13 of the 64 gears
