@@ -43,8 +43,39 @@ std::string lightReason(const Light& light, size_t index) {
 }
 
 std::string materialName(const Material& m, size_t index) {
-  return m.name.empty() ? fmt::format("material #{}", index) : fmt::format("material {}", m.name);
+  return m.name.empty() ? fmt::format("#{}", index) : m.name;
 }
+
+// Reasons that many materials share ("T 0.8, index of refraction 1.1" on 13 gears)
+// become one line naming the first few, in the order first met.
+class MaterialReasons {
+ public:
+  void add(const std::string& what, const std::string& material) {
+    for (auto& [w, names] : groups_) {
+      if (w == what) {
+        names.push_back(material);
+        return;
+      }
+    }
+    groups_.push_back({what, {material}});
+  }
+  void appendTo(std::vector<std::string>& reasons) const {
+    constexpr size_t kNamed = 3;
+    for (const auto& [what, names] : groups_) {
+      if (names.size() == 1) {
+        reasons.push_back(fmt::format("material {}: {}", names[0], what));
+        continue;
+      }
+      const size_t shown = std::min(kNamed, names.size());
+      reasons.push_back(fmt::format("{} materials ({}{}): {}", names.size(),
+                                    fmt::join(names.begin(), names.begin() + long(shown), ", "),
+                                    names.size() > shown ? ", ..." : "", what));
+    }
+  }
+
+ private:
+  std::vector<std::pair<std::string, std::vector<std::string>>> groups_;
+};
 
 }  // namespace
 
@@ -82,6 +113,7 @@ EffectsPlan planEffects(const Scene& scene, const EffectsOptions& options) {
 
   // Only materials some triangle uses call for anything.
   std::vector<size_t> used(scene.materials.size(), 0);
+  MaterialReasons reflecting, refracting;
   for (const uint32_t m : scene.materialOf) ++used[m];
   for (size_t m = 0; m < scene.materials.size(); ++m) {
     if (!used[m]) continue;
@@ -89,18 +121,18 @@ EffectsPlan planEffects(const Scene& scene, const EffectsOptions& options) {
     const std::string name = materialName(mat, m);
     if (mat.emission != glm::vec3(0.0f)) {
       plan.emissiveTriangles += used[m];
-      shadow.reasons.push_back(fmt::format("{}: {} emissive triangle{} (area light, {} sample{} each)", name,
+      shadow.reasons.push_back(fmt::format("material {}: {} emissive triangle{} (area light, {} sample{} each)", name,
                                            used[m], used[m] == 1 ? "" : "s", options.lightSamples,
                                            options.lightSamples == 1 ? "" : "s"));
     }
-    if (mat.ks > 0.0f) reflection.reasons.push_back(fmt::format("{}: Ks {:g}", name, mat.ks));
+    if (mat.ks > 0.0f) reflecting.add(fmt::format("Ks {:g}", mat.ks), name);
     if (mat.transmittance > 0.0f) {
-      if (mat.ks <= 0.0f) {
-        reflection.reasons.push_back(fmt::format("{}: T {:g} (transmitters reflect, SPD rule 8)", name, mat.transmittance));
-      }
-      refraction.reasons.push_back(fmt::format("{}: T {:g}, index of refraction {:g}", name, mat.transmittance, mat.ior));
+      if (mat.ks <= 0.0f) reflecting.add(fmt::format("T {:g} (transmitters reflect, SPD rule 8)", mat.transmittance), name);
+      refracting.add(fmt::format("T {:g}, index of refraction {:g}", mat.transmittance, mat.ior), name);
     }
   }
+  reflecting.appendTo(reflection.reasons);
+  refracting.appendTo(refraction.reasons);
   shadow.calledFor = !shadow.reasons.empty();
   reflection.calledFor = !reflection.reasons.empty();
   refraction.calledFor = !refraction.reasons.empty();
