@@ -224,6 +224,16 @@ void Loop::shade(const WaveRay& r, const Hit& h, uint32_t k, std::vector<WaveRay
 
 WhittedResult traceWhitted(const Scene& scene, const EffectsPlan& plan, std::span<const Ray> cameraSamples,
                            WaveTracer& tracer, const WaveProgress& progress) {
+  // Every hit may spawn a shadow ray per light and per area-light sample: refuse
+  // a run whose waves could outgrow memory rather than fail in the middle of it.
+  constexpr uint64_t kMaxWaveRays = uint64_t(1) << 28;
+  const uint64_t perHit = scene.lights.size() + uint64_t(plan.emissiveTriangles) * uint64_t(plan.lightSamples);
+  if (plan.has(RayClass::Shadow) && perHit > kMaxWaveRays / std::max<uint64_t>(cameraSamples.size(), 1)) {
+    throw InputError(fmt::format(
+        "{} camera samples x {} shadow rays a hit ({} lights, {} emissive triangles x --light-samples {}) could "
+        "make a wave of more than {} rays: lower --light-samples or the resolution, or leave shadows out with --effects",
+        cameraSamples.size(), perHit, scene.lights.size(), plan.emissiveTriangles, plan.lightSamples, kMaxWaveRays));
+  }
   WhittedResult out;
   out.samples.assign(cameraSamples.size(), glm::vec3(0.0f));
   std::vector<WaveRay> wave(cameraSamples.size());

@@ -81,7 +81,8 @@ using WaveProgress = std::function<void(int generation, size_t rays)>;
 // The classical Whitted loop of the SPD's Testing Procedures (docs/effects.md):
 // `cameraSamples[s]` is the eye ray of sample s. Waves: the primary rays, then
 // each generation's shadow and secondary rays together. Throws InputError if a
-// camera ray is not finite or has a zero direction.
+// camera ray is not finite or has a zero direction, or if the shadow rays of one
+// wave could exceed 2^28 (camera samples x (lights + emissive triangles x light samples)).
 WhittedResult traceWhitted(const Scene& scene, const EffectsPlan& plan, std::span<const Ray> cameraSamples,
                            WaveTracer& tracer, const WaveProgress& progress = {});
 
