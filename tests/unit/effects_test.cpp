@@ -275,6 +275,21 @@ TEST(Whitted, BackFacingLightSpawnsNoShadowRayEvenOnATransmitter) {
   EXPECT_GT(run.result.refractionsTraced, 0u);  // the glass tile refracts the eye rays down
 }
 
+TEST(Whitted, OpaqueBackIsShadedTwoSided) {
+  // From below, onto the back of the opaque tile, the light below too: the hit
+  // counts as a back hit and is lit from its back side.
+  const Scene scene = load("backlight.nff");
+  RecordingTracer tracer(scene);
+  const std::vector<Ray> rays = {Ray{{-1.5f, -2.0f, 0.0f}, {0.0f, 1.0f, 0.0f}}};
+  const WhittedRun run = runWhitted(scene, tracer, {}, rays);
+  EXPECT_EQ(run.result.eyeHitRays, 1u);
+  EXPECT_EQ(run.result.opaqueBackHits, 1u);
+  EXPECT_EQ(run.result.shadowRays, 1u);
+  ASSERT_EQ(tracer.waves.size(), 2u);
+  EXPECT_EQ(tracer.waves[1][0].side, -1);
+  EXPECT_FALSE(tracer.answers[1][0].has_value());  // nothing between it and the light
+}
+
 TEST(Whitted, ShadowTestUsesTheShadingNormal) {
   // One triangle in y = 0 facing +y, the light above; its vertex normals either
   // agree with it or point down, away from the light.
