@@ -1,5 +1,7 @@
 #include "driver/wave_tracer.h"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "driver/report.h"
@@ -42,7 +44,13 @@ std::optional<QuantizedRay> HardwareWaveTracer::latticeRay(const WaveRay& ray, u
     glm::dvec3 point;
     for (int a = 0; a < 3; ++a) point[a] = double(parent.org[a]) + t * double(parent.dir[a]);
     point += double(ray.side) * offset_ * normals_[hit.primId];
-    q = quantizer_.quantizeFrom(point, ray.ray, index);
+    Ray shortened = ray.ray;
+    if (std::isfinite(shortened.tMax)) {  // stop short of the light (an emitter's own triangle)
+      const double perT = glm::length(quantizer_.toLattice(glm::dvec3(ray.ray.dir)) -
+                                      quantizer_.toLattice(glm::dvec3(0.0)));
+      shortened.tMax = float(std::max(0.0, double(shortened.tMax) - kSegmentEndMarginUnits / perT));
+    }
+    q = quantizer_.quantizeFrom(point, shortened, index);
   }
   if (q) q->q.anyHit = ray.anyHit;
   return q;

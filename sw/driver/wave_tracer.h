@@ -25,6 +25,12 @@ namespace lancer {
 // side it leaves to (docs/number-formats.md).
 inline constexpr double kSecondaryOffsetUnits = 1.0;
 
+// A shadow ray's segment ends this many lattice units (along the ray) before
+// its light: the lattice ray deviates from the float one by up to about 2.3
+// units across the lattice (docs/number-formats.md), so a segment ending
+// exactly on an area light's triangle would be blocked by the lamp itself.
+inline constexpr double kSegmentEndMarginUnits = 4.0;
+
 // What the hardware did for one class of rays over a run.
 struct ClassHardwareStats {
   uint64_t rays = 0;          // rays of the class
