@@ -87,6 +87,10 @@ struct Scene {
 
   size_t size() const { return triangles.size(); }
   void computeBounds();
+  // The area lights: ids of the triangles whose material's emission has a
+  // positive component, in id order (the Cornell box's lamp, glTF/MTL emissive
+  // materials). Empty when the scene has none.
+  std::vector<uint32_t> emissiveTriangles() const;
 };
 
 // Names accepted by loadScene() besides files.
