@@ -75,30 +75,34 @@ class Reader {
     readMaterials();
     readLightDefinitions();
     readCameraDefinitions();
-    const Json& nodes = array(doc_, "nodes", "the file");
+    const Json& nodes = array(doc_, "nodes", kTopLevel);
     visited_.assign(nodes.size(), false);
     for (const size_t root : roots(nodes)) walk(nodes, root, glm::mat4(1.0f));
     return std::move(out_);
   }
 
  private:
-  [[noreturn]] void fail(const std::string& what) const { throw InputError(fmt::format("{}: {}", path_, what)); }
+  // The file's own fields have no owner to name.
+  static inline const std::string kTopLevel;
+  [[noreturn]] void fail(const std::string& owner, const std::string& what) const {
+    throw InputError(owner.empty() ? fmt::format("{}: {}", path_, what) : fmt::format("{}: {}: {}", path_, owner, what));
+  }
 
   // ---- Typed fields, each error naming what it belongs to ----
   const Json& array(const Json& object, const char* key, const std::string& owner) const {
     static const Json kEmpty = Json::array();
     if (!object.contains(key)) return kEmpty;
-    if (!object[key].is_array()) fail(fmt::format("{}: '{}' must be an array", owner, key));
+    if (!object[key].is_array()) fail(owner, fmt::format("'{}' must be an array", key));
     return object[key];
   }
   const Json* object(const Json& parent, const char* key, const std::string& owner) const {
     if (!parent.contains(key)) return nullptr;
-    if (!parent[key].is_object()) fail(fmt::format("{}: '{}' must be an object", owner, key));
+    if (!parent[key].is_object()) fail(owner, fmt::format("'{}' must be an object", key));
     return &parent[key];
   }
   float number(const Json& object, const char* key, float fallback, const std::string& owner) const {
     if (!object.contains(key)) return fallback;
-    if (!object[key].is_number()) fail(fmt::format("{}: '{}' must be a number", owner, key));
+    if (!object[key].is_number()) fail(owner, fmt::format("'{}' must be a number", key));
     return toFloat(object[key]);
   }
   std::vector<float> numbers(const Json& object, const char* key, size_t count, std::vector<float> fallback,
@@ -107,7 +111,7 @@ class Reader {
     const Json& value = object[key];
     if (!value.is_array() || value.size() != count ||
         !std::all_of(value.begin(), value.end(), [](const Json& v) { return v.is_number(); })) {
-      fail(fmt::format("{}: '{}' must be an array of {} numbers", owner, key, count));
+      fail(owner, fmt::format("'{}' must be an array of {} numbers", key, count));
     }
     std::vector<float> out;
     for (const Json& v : value) out.push_back(toFloat(v));
@@ -115,7 +119,7 @@ class Reader {
   }
   size_t index(const Json& object, const char* key, size_t limit, const std::string& owner, const char* what) const {
     if (!object[key].is_number_unsigned() || object[key].get<uint64_t>() >= limit) {
-      fail(fmt::format("{}: '{}' must name one of the file's {} {}", owner, key, limit, what));
+      fail(owner, fmt::format("'{}' must name one of the file's {} {}", key, limit, what));
     }
     return object[key].get<size_t>();
   }
@@ -125,7 +129,7 @@ class Reader {
 
   // ---- Materials: name and emissive strength ----
   void readMaterials() {
-    const Json& materials = array(doc_, "materials", "the file");
+    const Json& materials = array(doc_, "materials", kTopLevel);
     for (size_t i = 0; i < materials.size(); ++i) {
       GltfExtras::MaterialExtras extras;
       extras.name = name(materials[i], fmt::format("{}", i));
@@ -134,7 +138,7 @@ class Reader {
         if (const Json* strength = object(*ext, "KHR_materials_emissive_strength", owner)) {
           extras.emissiveStrength = number(*strength, "emissiveStrength", 1.0f, owner);
           if (!(extras.emissiveStrength >= 0.0f && std::isfinite(extras.emissiveStrength))) {
-            fail(fmt::format("{}: emissive strength {} must be a finite number >= 0", owner, extras.emissiveStrength));
+            fail(owner, fmt::format("emissive strength {} must be a finite number >= 0", extras.emissiveStrength));
           }
         }
         // Ranges are checked with the other factors (readGltfTerms in scene.cpp).
@@ -149,8 +153,8 @@ class Reader {
 
   // ---- KHR_lights_punctual: the definitions, placed later by their nodes ----
   void readLightDefinitions() {
-    const Json* ext = object(doc_, "extensions", "the file");
-    const Json* punctual = ext ? object(*ext, "KHR_lights_punctual", "the file") : nullptr;
+    const Json* ext = object(doc_, "extensions", kTopLevel);
+    const Json* punctual = ext ? object(*ext, "KHR_lights_punctual", kTopLevel) : nullptr;
     if (!punctual) return;
     const Json& lights = array(*punctual, "lights", "KHR_lights_punctual");
     for (size_t i = 0; i < lights.size(); ++i) {
@@ -158,7 +162,7 @@ class Reader {
       Light light;
       light.name = name(def, fmt::format("light {}", i));
       const std::string owner = fmt::format("light '{}'", light.name);
-      if (!def.is_object()) fail(fmt::format("{}: must be an object", owner));
+      if (!def.is_object()) fail(owner, "must be an object");
       const std::string type = def.contains("type") && def["type"].is_string() ? def["type"].get<std::string>() : "";
       if (type == "point") {
         light.kind = Light::Kind::Point;
@@ -167,25 +171,26 @@ class Reader {
       } else if (type == "directional") {
         light.kind = Light::Kind::Directional;
       } else {
-        fail(fmt::format("{}: type '{}' is not point, spot or directional", owner, type));
+        fail(owner, fmt::format("type '{}' is not point, spot or directional", type));
       }
       const std::vector<float> color = numbers(def, "color", 3, {1.0f, 1.0f, 1.0f}, owner);
       const float intensity = number(def, "intensity", 1.0f, owner);
       if (!(intensity >= 0.0f && std::isfinite(intensity))) {
-        fail(fmt::format("{}: intensity {} must be a finite number >= 0", owner, intensity));
+        fail(owner, fmt::format("intensity {} must be a finite number >= 0", intensity));
       }
       for (const float c : color) {
-        if (!(c >= 0.0f && std::isfinite(c))) fail(fmt::format("{}: colour component {} must be a finite number >= 0", owner, c));
+        if (!(c >= 0.0f && std::isfinite(c))) {
+          fail(owner, fmt::format("colour component {} must be a finite number >= 0", c));
+        }
       }
       light.color = glm::vec3(color[0], color[1], color[2]) * intensity;
       if (light.kind == Light::Kind::Spot) {
         const Json* spot = object(def, "spot", owner);
-        if (!spot) fail(fmt::format("{}: a spot light needs 'spot' (its cone)", owner));
+        if (!spot) fail(owner, "a spot light needs 'spot' (its cone)");
         const float inner = number(*spot, "innerConeAngle", 0.0f, owner);
         const float outer = number(*spot, "outerConeAngle", std::numbers::pi_v<float> / 4.0f, owner);
         if (!(inner >= 0.0f && inner < outer && outer <= std::numbers::pi_v<float> / 2.0f)) {
-          fail(fmt::format("{}: cone angles inner {} and outer {} must satisfy 0 <= inner < outer <= pi/2", owner, inner,
-                           outer));
+          fail(owner, fmt::format("cone angles inner {} and outer {} must satisfy 0 <= inner < outer <= pi/2", inner, outer));
         }
         light.innerConeCos = std::cos(inner);
         light.outerConeCos = std::cos(outer);
@@ -196,7 +201,7 @@ class Reader {
 
   // ---- Cameras: perspective ones become views (orthographic ones are skipped) ----
   void readCameraDefinitions() {
-    const Json& cameras = array(doc_, "cameras", "the file");
+    const Json& cameras = array(doc_, "cameras", kTopLevel);
     for (size_t i = 0; i < cameras.size(); ++i) {
       const std::string owner = fmt::format("camera '{}'", name(cameras[i], fmt::format("{}", i)));
       const std::string type =
@@ -204,13 +209,13 @@ class Reader {
       std::optional<float> yfov;
       if (type == "perspective") {
         const Json* perspective = object(cameras[i], "perspective", owner);
-        if (!perspective || !perspective->contains("yfov")) fail(fmt::format("{}: a perspective camera needs 'yfov'", owner));
+        if (!perspective || !perspective->contains("yfov")) fail(owner, "a perspective camera needs 'yfov'");
         yfov = number(*perspective, "yfov", 0.0f, owner);
         if (!(*yfov > 0.0f && *yfov < std::numbers::pi_v<float>)) {
-          fail(fmt::format("{}: yfov {} must be in (0, pi) radians", owner, *yfov));
+          fail(owner, fmt::format("yfov {} must be in (0, pi) radians", *yfov));
         }
       } else if (type != "orthographic") {
-        fail(fmt::format("{}: type '{}' is not perspective or orthographic", owner, type));
+        fail(owner, fmt::format("type '{}' is not perspective or orthographic", type));
       }
       cameraFov_.push_back(yfov);
       cameraNames_.push_back(owner);
@@ -222,14 +227,14 @@ class Reader {
   // scenes: every node no other node lists as a child.
   std::vector<size_t> roots(const Json& nodes) const {
     std::vector<size_t> out;
-    const Json& scenes = array(doc_, "scenes", "the file");
+    const Json& scenes = array(doc_, "scenes", kTopLevel);
     if (!scenes.empty()) {
-      const size_t s = doc_.contains("scene") ? index(doc_, "scene", scenes.size(), "the file", "scenes") : 0;
+      const size_t s = doc_.contains("scene") ? index(doc_, "scene", scenes.size(), kTopLevel, "scenes") : 0;
       const std::string owner = fmt::format("scene {}", s);
       const Json& list = array(scenes[s], "nodes", owner);
       for (size_t k = 0; k < list.size(); ++k) {
         if (!list[k].is_number_unsigned() || list[k].get<uint64_t>() >= nodes.size()) {
-          fail(fmt::format("{}: node {} must name one of the file's {} nodes", owner, list[k].dump(), nodes.size()));
+          fail(owner, fmt::format("node {} must name one of the file's {} nodes", list[k].dump(), nodes.size()));
         }
         out.push_back(list[k].get<size_t>());
       }
@@ -237,7 +242,7 @@ class Reader {
     }
     std::vector<bool> child(nodes.size(), false);
     for (size_t n = 0; n < nodes.size(); ++n) {
-      for (const Json& c : array(nodes[n], "children", "node")) {
+      for (const Json& c : array(nodes[n], "children", nodeLabel(nodes, n))) {
         if (c.is_number_unsigned() && c.get<uint64_t>() < nodes.size()) child[c.get<size_t>()] = true;
       }
     }
@@ -266,26 +271,25 @@ class Reader {
 
   void walk(const Json& nodes, size_t n, const glm::mat4& parent) {
     const std::string owner = nodeLabel(nodes, n);
-    if (visited_[n]) fail(fmt::format("{} is reached twice: the node graph must be a tree", owner));
+    if (visited_[n]) fail(kTopLevel, fmt::format("{} is reached twice: the node graph must be a tree", owner));
     visited_[n] = true;
     const Json& node = nodes[n];
-    if (!node.is_object()) fail(fmt::format("{}: must be an object", owner));
+    if (!node.is_object()) fail(owner, "must be an object");
     const glm::mat4 world = parent * localTransform(node, owner);
     const glm::vec3 origin(world[3]);
     const glm::vec3 forward = glm::normalize(glm::vec3(world * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f)));
     if (const Json* ext = object(node, "extensions", owner)) {
       if (const Json* punctual = object(*ext, "KHR_lights_punctual", owner)) {
-        if (!punctual->contains("light")) fail(fmt::format("{}: KHR_lights_punctual needs 'light'", owner));
+        if (!punctual->contains("light")) fail(owner, "KHR_lights_punctual needs 'light'");
         Light light = lightDefs_[index(*punctual, "light", lightDefs_.size(), owner, "lights")];
         light.position = origin;
         light.direction = forward;
         const bool placed = light.kind != Light::Kind::Directional, aimed = light.kind != Light::Kind::Point;
-        if ((placed && !allFinite(light.position)) || (aimed && !allFinite(light.direction))) {
-          fail(fmt::format("light '{}' on {}: its world {} ({}, {}, {}) is not finite", light.name, owner,
-                           placed && !allFinite(light.position) ? "position" : "direction",
-                           placed && !allFinite(light.position) ? light.position.x : light.direction.x,
-                           placed && !allFinite(light.position) ? light.position.y : light.direction.y,
-                           placed && !allFinite(light.position) ? light.position.z : light.direction.z));
+        const bool badPosition = placed && !allFinite(light.position);
+        if (badPosition || (aimed && !allFinite(light.direction))) {
+          const glm::vec3 v = badPosition ? light.position : light.direction;
+          fail(kTopLevel, fmt::format("light '{}' on {}: its world {} ({}, {}, {}) is not finite", light.name, owner,
+                           badPosition ? "position" : "direction", v.x, v.y, v.z));
         }
         out_.lights.push_back(light);
       }
@@ -299,14 +303,14 @@ class Reader {
         view.up = glm::normalize(glm::vec3(world * glm::vec4(0.0f, 1.0f, 0.0f, 0.0f)));
         view.fovYDegrees = glm::degrees(*cameraFov_[c]);
         if (!allFinite(view.eye) || !allFinite(view.target) || !allFinite(view.up)) {
-          fail(fmt::format("{} on {}: its world position or orientation is not finite", cameraNames_[c], owner));
+          fail(kTopLevel, fmt::format("{} on {}: its world position or orientation is not finite", cameraNames_[c], owner));
         }
         out_.view = view;
       }
     }
     for (const Json& c : array(node, "children", owner)) {
       if (!c.is_number_unsigned() || c.get<uint64_t>() >= nodes.size()) {
-        fail(fmt::format("{}: child {} must name one of the file's {} nodes", owner, c.dump(), nodes.size()));
+        fail(owner, fmt::format("child {} must name one of the file's {} nodes", c.dump(), nodes.size()));
       }
       walk(nodes, c.get<size_t>(), world);
     }
@@ -322,12 +326,6 @@ class Reader {
 };
 
 }  // namespace
-
-bool isGltfPath(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  return extension == ".gltf" || extension == ".glb";
-}
 
 GltfExtras readGltfExtras(const std::string& path) {
   Json doc;

@@ -31,9 +31,6 @@ struct GltfExtras {
   std::vector<MaterialExtras> materials;
 };
 
-// True for the file names loadScene() treats as glTF 2.0 (.gltf text, .glb binary).
-bool isGltfPath(const std::string& path);
-
 // Reads the JSON of a .gltf file, or the JSON chunk of a .glb container.
 // Throws InputError naming the file, and the light, camera, node or material at
 // fault: malformed JSON, a wrong container, a field of the wrong type, a node

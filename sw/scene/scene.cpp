@@ -134,13 +134,13 @@ void readGltfTerms(const aiMaterial& mat, const GltfExtras::MaterialExtras& extr
   material.shine = alpha > 0.0f ? std::min(kMaxShine, 2.0f / (alpha * alpha) - 2.0f) : kMaxShine;
 }
 
-Scene loadWithAssimp(const std::string& path) {
+Scene loadWithAssimp(const std::string& path, bool isGltf) {
   if (!std::ifstream(path)) throw InputError(fmt::format("{}: cannot open file", path));
   // glTF: what assimp drops or mangles (lights' names, the camera, emissive
   // strength) comes from the JSON, read first so its errors name the light,
   // camera or material rather than assimp's parse.
   std::optional<GltfExtras> gltf;
-  if (isGltfPath(path)) gltf = readGltfExtras(path);
+  if (isGltf) gltf = readGltfExtras(path);
   std::error_code sizeError;
   const uint64_t fileBytes = std::filesystem::file_size(path, sizeError);
   Assimp::Importer importer;
@@ -220,7 +220,8 @@ Scene loadScene(const std::string& nameOrPath) {
   std::string extension = std::filesystem::path(nameOrPath).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
   if (extension == ".nff") return loadNff(nameOrPath);
-  return loadWithAssimp(nameOrPath);
+  // glTF through assimp plus our reader of what assimp drops (lights, camera, extensions).
+  return loadWithAssimp(nameOrPath, extension == ".gltf" || extension == ".glb");
 }
 
 Scene subdivide(const Scene& scene, int times) {

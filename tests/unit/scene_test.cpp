@@ -240,7 +240,8 @@ TEST(Gltf, TheFirstPerspectiveCameraIsTheView) {
   EXPECT_FALSE(loadScene(writeGltf(gltfWithOneTriangle()).string()).view.has_value());
 }
 
-// Each mapped material term against docs/scenes.md's formulas.
+// Each mapped material term against docs/scenes.md's formulas. The file does not
+// list its extensions in "extensionsUsed" (assimp would then skip them): they are read anyway.
 TEST(Gltf, MetallicRoughnessTransmissionIorAndEmissionMapOntoWhittedTerms) {
   nlohmann::json gltf = gltfWithOneTriangle();
   gltf["materials"] = nlohmann::json::parse(R"([
@@ -359,11 +360,15 @@ TEST(Gltf, BadLightsMaterialsAndJsonAreErrorsNamingThem) {
   EXPECT_TRUE(contains(error, "node 1 'bulb node': 'light' must name one of the file's 3 lights")) << error;
   error = lightError([&](nlohmann::json& g) { g["nodes"][4]["children"] = {3}; });
   EXPECT_TRUE(contains(error, "node 3 'parent' is reached twice")) << error;
-  // A material factor out of range, a camera without a field of view.
+  // Material factors out of range, a camera without a field of view.
   nlohmann::json gltf = gltfWithOneTriangle();
   gltf["materials"][0]["pbrMetallicRoughness"] = {{"roughnessFactor", 2}};
   error = loadError(writeGltf(gltf));
   EXPECT_TRUE(contains(error, "material 'plain': roughness factor 2 must be in [0, 1]")) << error;
+  gltf = gltfWithOneTriangle();
+  gltf["materials"][0]["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", -2}};
+  error = loadError(writeGltf(gltf));
+  EXPECT_TRUE(contains(error, "material 'plain': emissive strength -2 must be a finite number >= 0")) << error;
   gltf = gltfWithOneTriangle();
   gltf["cameras"] = {{{"name", "eye"}, {"type", "perspective"}, {"perspective", {{"yfov", 0}}}}};
   error = loadError(writeGltf(gltf));
