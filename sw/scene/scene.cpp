@@ -101,7 +101,8 @@ void readWhittedTerms(const aiMaterial& mat, const std::string& path, Material& 
 //   kd = max(0, 1 - ks - T)                        the rest is diffuse, in the base colour
 //   shine = 2 / alpha^2 - 2 with alpha = roughness^2 (the Phong exponent of the
 //           microfacet lobe of that width, Walter et al. 2007), at most kMaxShine
-// Factors outside [0, 1] are errors; so is an ior <= 0 on a transmitting
+// Factors outside [0, 1] are errors, as are a negative or non-finite emission
+// (factor times strength) and an ior <= 0 on a transmitting
 // material (on an opaque one it is unused and reads as 1.5). glTF's alpha is
 // coverage, not transmission, and is not read.
 // The core factors come through assimp, the extensions' from our JSON reader.
@@ -118,6 +119,10 @@ void readGltfTerms(const aiMaterial& mat, const GltfExtras::MaterialExtras& extr
     if (!(value >= 0.0f && value <= 1.0f)) {
       throw InputError(fmt::format("{}: material '{}': {} {} must be in [0, 1]", path, material.name, what, value));
     }
+  }
+  if (!allFinite(material.emission) || glm::any(glm::lessThan(material.emission, glm::vec3(0.0f)))) {
+    throw InputError(fmt::format("{}: material '{}': emission ({}, {}, {}) must be finite and >= 0", path, material.name,
+                                 material.emission.r, material.emission.g, material.emission.b));
   }
   if (!(material.ior > 0.0f && std::isfinite(material.ior))) {
     if (transmission > 0.0f) {

@@ -370,6 +370,10 @@ TEST(Gltf, BadLightsMaterialsAndJsonAreErrorsNamingThem) {
   error = loadError(writeGltf(gltf));
   EXPECT_TRUE(contains(error, "material 'plain': emissive strength -2 must be a finite number >= 0")) << error;
   gltf = gltfWithOneTriangle();
+  gltf["materials"][0]["emissiveFactor"] = {1, -0.5, 0};
+  error = loadError(writeGltf(gltf));
+  EXPECT_TRUE(contains(error, "material 'plain': emission (1, -0.5, 0) must be finite and >= 0")) << error;
+  gltf = gltfWithOneTriangle();
   gltf["cameras"] = {{{"name", "eye"}, {"type", "perspective"}, {"perspective", {{"yfov", 0}}}}};
   error = loadError(writeGltf(gltf));
   EXPECT_TRUE(contains(error, "camera 'eye': yfov 0 must be in (0, pi) radians")) << error;
