@@ -142,8 +142,13 @@ nlohmann::json gltfWithOneTriangle() {
   })");
 }
 
-std::filesystem::path writeGltf(const nlohmann::json& gltf, const std::string& name = "lancer_scene.gltf") {
-  const auto path = std::filesystem::temp_directory_path() / name;
+// The test's own file name (CTest runs the tests in parallel): lancer_<test>.gltf.
+std::string gltfName(const char* extension = ".gltf") {
+  return std::string("lancer_") + ::testing::UnitTest::GetInstance()->current_test_info()->name() + extension;
+}
+
+std::filesystem::path writeGltf(const nlohmann::json& gltf) {
+  const auto path = std::filesystem::temp_directory_path() / gltfName();
   std::ofstream(path) << gltf.dump(2);
   return path;
 }
@@ -299,7 +304,7 @@ TEST(Gltf, ReadsTheBinaryContainer) {
   auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
   const std::string glb = "glTF" + u32(2) + u32(uint32_t(12 + 8 + json.size() + 8 + bin.size())) + u32(uint32_t(json.size())) +
                           "JSON" + json + u32(uint32_t(bin.size())) + "BIN" + std::string(1, '\0') + bin;
-  const auto path = std::filesystem::temp_directory_path() / "lancer_scene.glb";
+  const auto path = std::filesystem::temp_directory_path() / gltfName(".glb");
   std::ofstream(path, std::ios::binary) << glb;
   const Scene scene = loadScene(path.string());
   EXPECT_EQ(scene.size(), 1u);
@@ -307,11 +312,11 @@ TEST(Gltf, ReadsTheBinaryContainer) {
   EXPECT_EQ(scene.lights[1].name, "spotty");
   // A container cut short names the file.
   std::ofstream(path, std::ios::binary) << glb.substr(0, 40);
-  EXPECT_TRUE(contains(loadError(path), "lancer_scene.glb: truncated glTF binary container")) << loadError(path);
+  EXPECT_TRUE(contains(loadError(path), gltfName(".glb") + ": truncated glTF binary container")) << loadError(path);
 }
 
 TEST(Gltf, BadLightsMaterialsAndJsonAreErrorsNamingThem) {
-  const std::string file = "lancer_scene.gltf";
+  const std::string file = gltfName();
   // An index of refraction <= 0 on a transmitting material.
   for (const double ior : {0.0, -1.0}) {
     nlohmann::json gltf = gltfWithOneTriangle();
