@@ -91,6 +91,22 @@ void readWhittedTerms(const aiMaterial& mat, const std::string& path, Material& 
   }
 }
 
+// A triangle's unit vertex normals from its mesh, each falling back to the
+// geometric normal (zero for a degenerate triangle) where the mesh has none or
+// the file's is zero or not finite.
+ShadingNormals shadingNormals(const Triangle& tri, const aiMesh* mesh, const aiFace& face) {
+  const glm::vec3 cross = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
+  const float area = glm::length(cross);
+  const glm::vec3 geometric = area > 0.0f && std::isfinite(area) ? cross / area : glm::vec3(0.0f);
+  std::array<glm::vec3, 3> n{geometric, geometric, geometric};
+  for (int k = 0; k < 3 && mesh->mNormals; ++k) {
+    const glm::vec3 file = toVec(mesh->mNormals[face.mIndices[k]]);
+    const float length = glm::length(file);
+    if (length > 0.0f && std::isfinite(length)) n[k] = file / length;
+  }
+  return {n[0], n[1], n[2]};
+}
+
 // glTF's metallic-roughness material in Whitted terms (docs/scenes.md, "glTF
 // 2.0"). Whitted tracing has only perfect mirrors and clear refraction, so
 // roughness takes away the mirror: with smoothness s = 1 - roughness and the
@@ -186,6 +202,13 @@ Scene loadWithAssimp(const std::string& path, bool isGltf) {
     scene.materials.push_back(material);
   }
   if (scene.materials.empty()) scene.materials.push_back(Material{"default"});
+  // Vertex normals (OBJ vn, glTF NORMAL, ...) become shading normals when any
+  // triangle mesh has them; a mesh without them, and a zero or non-finite
+  // normal, take the triangle's geometric normal.
+  bool withNormals = false;
+  for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
+    withNormals |= (ai->mMeshes[m]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) && ai->mMeshes[m]->mNormals;
+  }
   // Triangle order: meshes in aiScene order, faces in order within a mesh.
   for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
     const aiMesh* mesh = ai->mMeshes[m];
@@ -203,6 +226,7 @@ Scene loadWithAssimp(const std::string& path, bool isGltf) {
       }
       scene.triangles.push_back(tri);
       scene.materialOf.push_back(material);
+      if (withNormals) scene.normals.push_back(shadingNormals(tri, mesh, face));
     }
   }
   if (scene.triangles.empty()) throw InputError(fmt::format("{}: scene has no triangles", path));

@@ -384,6 +384,25 @@ TEST(Gltf, BadLightsMaterialsAndJsonAreErrorsNamingThem) {
   EXPECT_TRUE(contains(error, "camera 'eye': yfov 0 must be in (0, pi) radians")) << error;
 }
 
+// Vertex normals become unit shading normals; a face without them (or with a
+// zero one) takes its geometric normal; a file without any leaves them empty.
+TEST(Scene, VertexNormalsAreShadingNormals) {
+  const auto path = std::filesystem::temp_directory_path() / "lancer_normals.obj";
+  std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 2\nvn 0 3 4\nvn 0 0 0\n"
+                         "f 1//1 2//2 3//3\nf 1 3 2\n";
+  const Scene scene = loadScene(path.string());
+  ASSERT_EQ(scene.size(), 2u);
+  ASSERT_EQ(scene.normals.size(), 2u);
+  EXPECT_EQ(scene.normals[0].n0, glm::vec3(0, 0, 1));
+  expectNear(scene.normals[0].n1, {0, 0.6f, 0.8f}, "normalised");
+  EXPECT_EQ(scene.normals[0].n2, glm::vec3(0, 0, 1));  // zero in the file: the geometric normal
+  EXPECT_EQ(scene.normals[1].n0, glm::vec3(0, 0, -1));  // none: the geometric normal (wound the other way)
+  EXPECT_EQ(scene.normals[1].n2, glm::vec3(0, 0, -1));
+  std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  EXPECT_TRUE(loadScene(path.string()).normals.empty());
+  std::filesystem::remove(path);
+}
+
 // MTL's Ke makes an OBJ material emissive, an area light.
 TEST(Scene, MtlKeIsAnAreaLight) {
   const auto dir = std::filesystem::temp_directory_path();
