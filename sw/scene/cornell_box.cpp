@@ -73,9 +73,10 @@ Scene makeCornellBox() {
   scene.computeBounds();
   scene.view = View{{278.0f, 273.0f, -800.0f}, {278.0f, 273.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 39.3f};
   // A point light under the lamp's centre, 10 mm below the ceiling (9.5 mm below
-  // the lamp, so its shadow rays never meet the lamp): the box shows a point
-  // light's hard shadows beside the lamp's sampled soft ones. Half of NFF's
-  // white light, so lamp and point light together do not saturate.
+  // the lamp, which hides it only from a ~3 mm ring of ceiling around the lamp's
+  // edge): the box shows a point light's hard shadows beside the lamp's sampled
+  // soft ones. Half of NFF's white light, so lamp and point light together do
+  // not saturate.
   Light point;
   point.kind = Light::Kind::Point;
   point.position = {278.0f, 538.8f, 279.5f};
