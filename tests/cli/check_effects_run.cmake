@@ -1,4 +1,5 @@
-# `lancer run` on a scene with effects: every wave through the Verilated RTL,
+# `lancer run` on a scene with effects: every wave through the Verilated RTL
+# (and the SystemC models),
 # bit-exact against golden, the plan and the SPD counts in the report, no
 # self-hits; the float reference's counts beside them.
 function(must_run var)
@@ -9,8 +10,11 @@ function(must_run var)
   set(${var} "${out}" PARENT_SCOPE)
 endfunction()
 
-foreach(accel grid octree bvh)
-  must_run(printed ${LANCER} run --scene ${DATA}/spheres.nff --sampling corners --accel ${accel} --model rtl
+foreach(run grid:rtl octree:rtl bvh:rtl grid:systemc octree:rtl-systemc)
+  string(REPLACE ":" ";" parts ${run})
+  list(GET parts 0 accel)
+  list(GET parts 1 model)
+  must_run(printed ${LANCER} run --scene ${DATA}/spheres.nff --sampling corners --accel ${accel} --model ${model}
            --width 20 --height 20 --image ${OUT}/effects_${accel}.png --report ${OUT}/effects_${accel}.json)
   foreach(line "refraction yes" "any-hit saving" "SPD count" "bit-exact vs golden")
     if(accel STREQUAL "bvh" AND line STREQUAL "any-hit saving")
