@@ -1,14 +1,9 @@
 # `lancer run` on a scene with effects: every wave through the Verilated RTL
-# (and the SystemC models),
-# bit-exact against golden, the plan and the SPD counts in the report, no
-# self-hits; the float reference's counts beside them.
-function(must_run var)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT status EQUAL 0)
-    message(FATAL_ERROR "failed (${status}): ${ARGN}\n${out}\n${err}")
-  endif()
-  set(${var} "${out}" PARENT_SCOPE)
-endfunction()
+# (and the SystemC models), bit-exact against golden, the plan and the SPD
+# counts in the report, no self-hits; the float reference's counts beside them.
+# (must_run: check_whitted.cmake's, which defines it before it runs anything.)
+set(LANCER_CLI_DEFINE_ONLY ON)
+include(${CMAKE_CURRENT_LIST_DIR}/check_whitted.cmake)
 
 foreach(run grid:rtl octree:rtl bvh:rtl grid:systemc octree:rtl-systemc)
   string(REPLACE ":" ";" parts ${run})

@@ -12,6 +12,9 @@ function(json_of file var)
   file(READ ${file} json)
   set(${var} "${json}" PARENT_SCOPE)
 endfunction()
+if(LANCER_CLI_DEFINE_ONLY)  # included for its functions (check_effects_run.cmake)
+  return()
+endif()
 
 must_run(printed ${LANCER} render --scene ${DATA}/spheres.nff --whitted --sampling corners --width 24 --height 24
          --image ${OUT}/spheres.png --report ${OUT}/spheres.json)
