@@ -82,6 +82,23 @@ void readWhittedTerms(const aiMaterial& mat, const std::string& path, Material& 
   }
 }
 
+// Every term of a loaded material finite, the weights >= 0: a NaN, an infinity
+// (1e39 reads as one) or a negative Ks in a file would reach the shader as NaN
+// or negative light (found by tests/fuzz/fuzz_mtl).
+void checkMaterialTerms(const Material& m, const std::string& path) {
+  for (const auto& [term, c] : {std::pair{"diffuse colour (Kd)", m.diffuse}, std::pair{"emission (Ke)", m.emission}}) {
+    if (!allFinite(c)) {
+      throw InputError(fmt::format("{}: material '{}': {} ({}, {}, {}) is not finite", path, m.name, term, c.x, c.y, c.z));
+    }
+  }
+  for (const auto& [term, w] : {std::pair{"specular weight (Ks)", m.ks}, std::pair{"shininess (Ns)", m.shine},
+                                std::pair{"transmittance (1 - d)", m.transmittance}}) {
+    if (!(w >= 0.0f) || !std::isfinite(w)) {
+      throw InputError(fmt::format("{}: material '{}': {} {} must be finite and >= 0", path, m.name, term, w));
+    }
+  }
+}
+
 Scene loadWithAssimp(const std::string& path) {
   if (!std::ifstream(path)) throw InputError(fmt::format("{}: cannot open file", path));
   std::error_code sizeError;
@@ -113,6 +130,7 @@ Scene loadWithAssimp(const std::string& path) {
     if (mat->Get(AI_MATKEY_COLOR_DIFFUSE, color) == AI_SUCCESS) material.diffuse = {color.r, color.g, color.b};
     if (mat->Get(AI_MATKEY_COLOR_EMISSIVE, color) == AI_SUCCESS) material.emission = {color.r, color.g, color.b};
     readWhittedTerms(*mat, path, material);
+    checkMaterialTerms(material, path);
     scene.materials.push_back(material);
   }
   if (scene.materials.empty()) scene.materials.push_back(Material{"default"});
