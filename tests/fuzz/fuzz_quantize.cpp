@@ -80,7 +80,9 @@ void checkRay(const Quantizer& quantizer, const Ray& ray) {
   // a unit, plus the rounding of computing the entry point in double.
   const double unit = quantizer.unit();
   const glm::dvec3 o(ray.origin), d(ray.dir);
-  const glm::dvec3 entry = (o + q->tEnter * d - quantizer.latticeOrigin()) / unit;
+  // Grouped as the quantizer does: the origin relative to the lattice first
+  // (o + t d alone would absorb t d into a far-away o).
+  const glm::dvec3 entry = ((o - quantizer.latticeOrigin()) + q->tEnter * d) / unit;
   const glm::dvec3 slack = 8e-16 * (glm::abs(o - quantizer.latticeOrigin()) + glm::abs(q->tEnter * d)) / unit;
   for (int axis = 0; axis < 3; ++axis) {
     const double exact = std::clamp(entry[axis], 0.0, double(fx::kPosMax));

@@ -102,6 +102,22 @@ TEST(Scene, NonFiniteOrNegativeMtlTermsAreErrors) {
   std::filesystem::remove(dir / "lancer_bad_terms.obj");
 }
 
+// Found by tests/fuzz/fuzz_mtl: these 8 bytes as an MTL file crash assimp 5.2
+// (SIGSEGV in its MTL parser). OBJ and MTL files with a NUL byte are refused.
+TEST(Scene, ObjOrMtlWithANulByteIsAnErrorNotACrash) {
+  const auto dir = std::filesystem::temp_directory_path();
+  std::ofstream(dir / "lancer_nul.obj") << "mtllib lancer_nul.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n";
+  std::ofstream(dir / "lancer_nul.mtl", std::ios::binary) << std::string("\x01\0a\0< 1<", 8);
+  try {
+    loadScene((dir / "lancer_nul.obj").string());
+    ADD_FAILURE() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("lancer_nul.mtl has a NUL byte"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(dir / "lancer_nul.mtl");
+  std::filesystem::remove(dir / "lancer_nul.obj");
+}
+
 TEST(Scene, BadFilesAreClearErrors) {
   EXPECT_THROW(loadScene("/nonexistent/scene.obj"), InputError);
   EXPECT_THROW(loadScene(test::kAssimpModels + "/invalid/malformed.obj"), InputError);
