@@ -382,7 +382,12 @@ Scene readNff(std::istream& in, const std::string& name, const NffOptions& optio
       m.ior = n[7];
       if (m.kd < 0 || m.ks < 0 || m.shine < 0) lines.fail("Kd, Ks and Shine must be >= 0");
       if (m.transmittance < 0) lines.fail(fmt::format("transmittance T = {} is negative", m.transmittance));
-      if (m.ior <= 0) lines.fail(fmt::format("index of refraction {} must be > 0", m.ior));
+      // The SPD's generators write 0 on opaque surfaces, where it means nothing.
+      if (m.transmittance > 0 && m.ior <= 0) {
+        lines.fail(fmt::format("index of refraction {} must be > 0 on a transmitting surface (T = {})", m.ior,
+                               m.transmittance));
+      }
+      if (m.transmittance == 0 && m.ior <= 0) m.ior = 1.0f;
       build.setMaterial(m);
     } else if (key == "p" || key == "pp") {
       if (tokens->size() != 2) lines.fail(fmt::format("'{}' takes the vertex count", key));

@@ -25,6 +25,7 @@
 
 #include "common/error.h"
 #include "scene/nff.h"
+#include "scene/spd.h"
 
 namespace lancer {
 
@@ -194,8 +195,10 @@ Scene loadWithAssimp(const std::string& path) {
 
 Scene loadScene(const std::string& nameOrPath) {
   if (nameOrPath == kDefaultSceneName || nameOrPath == "cornell") return makeCornellBox();
+  if (nameOrPath.starts_with("builtin:spd-")) return makeSpdScene(nameOrPath.substr(12));
   if (nameOrPath.starts_with("builtin:")) {
-    throw InputError(fmt::format("unknown built-in scene '{}' (available: {})", nameOrPath, kDefaultSceneName));
+    throw InputError(fmt::format("unknown built-in scene '{}' (available: {}, builtin:spd-tetra, builtin:spd-gears)", nameOrPath,
+                                 kDefaultSceneName));
   }
   // NFF by our own reader: assimp's drops Ks, T and the index of refraction.
   std::string extension = std::filesystem::path(nameOrPath).extension().string();
