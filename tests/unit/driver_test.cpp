@@ -126,7 +126,7 @@ struct CornellJob {
 TEST(DriverJob, GoldenAgainstItselfIsExactAndMatchesTheReference) {
   CornellJob c;
   GoldenIsectDevice model, golden;
-  const auto job = runIsectJob(c.scene, c.rays, c.quantizer, bvhCandidates(c.bvh, 2.0f * float(c.quantizer.unit())),
+  const auto job = runIsectJob(c.scene, quantizeRays(c.quantizer, c.rays), c.quantizer, bvhCandidates(c.bvh, 2.0f * float(c.quantizer.unit())),
                                model, golden, JobConfig{});
   EXPECT_EQ(job.mismatchedRays, 0u);
   EXPECT_FALSE(job.firstMismatch.has_value());
@@ -144,7 +144,7 @@ TEST(DriverJob, ReportsTheFirstMismatchAsAReproducer) {
   const uint32_t bad = 16 * 32 + 16;  // the centre pixel hits the back wall
   FaultyDevice model(bad);
   GoldenIsectDevice golden;
-  const auto job = runIsectJob(c.scene, c.rays, c.quantizer, bvhCandidates(c.bvh, 2.0f * float(c.quantizer.unit())),
+  const auto job = runIsectJob(c.scene, quantizeRays(c.quantizer, c.rays), c.quantizer, bvhCandidates(c.bvh, 2.0f * float(c.quantizer.unit())),
                                model, golden, JobConfig{});
   EXPECT_EQ(job.mismatchedRays, 1u);
   ASSERT_TRUE(job.firstMismatch.has_value());
