@@ -11,6 +11,12 @@
 namespace lancer {
 
 Quantizer::Quantizer(const Aabb& bounds) {
+  // An empty box (no triangles) or a non-finite one has no lattice: every ray
+  // would quantize from a NaN origin (found by tests/fuzz/fuzz_quantize).
+  if (bounds.empty() || !allFinite(bounds.lo) || !allFinite(bounds.hi)) {
+    throw InputError(fmt::format("scene bounds ({}, {}, {}) .. ({}, {}, {}) are empty or not finite: no lattice to quantize to",
+                                 bounds.lo.x, bounds.lo.y, bounds.lo.z, bounds.hi.x, bounds.hi.y, bounds.hi.z));
+  }
   const glm::dvec3 lo(bounds.lo), hi(bounds.hi);
   double side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
   if (!(side > 0.0) || !std::isfinite(side)) side = 1.0;  // a point-like scene still gets a lattice

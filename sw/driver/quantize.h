@@ -23,6 +23,7 @@ struct QuantizedRay {
 // entry point; the direction is scaled so its dominant component is +-kDirMax.
 class Quantizer {
  public:
+  // Throws InputError if the bounds are empty or not finite.
   explicit Quantizer(const Aabb& sceneBounds);
 
   // Throws InputError if a vertex lies outside the lattice cube by more than half a unit.

@@ -136,6 +136,11 @@ class Builder {
       fallback.name = "default";
       setMaterial(fallback);
     }
+    // A sphere or cone near the edge of float range can put its tessellated
+    // vertices beyond it (found by tests/fuzz/fuzz_nff).
+    if (!allFinite(a) || !allFinite(b) || !allFinite(c)) {
+      lines_.fail("the primitive reaches beyond float range (a tessellated vertex is infinite)");
+    }
     scene_.triangles.push_back({a, b, c});
     scene_.materialOf.push_back(*current_);
     scene_.normals.push_back(n);
@@ -396,7 +401,9 @@ Scene readNff(std::istream& in, const std::string& name, const NffOptions& optio
         if (stride == 6) {
           const glm::vec3 nrm = vec(n, stride * size_t(i) + 3);
           if (nrm == glm::vec3(0.0f)) lines.fail(fmt::format("patch started at line {}: vertex {} has a zero normal", start, i));
-          normals.push_back(glm::normalize(nrm));
+          // In double: in float the squared length of a tiny or huge normal
+          // under- or overflows, and the normal becomes NaN or zero.
+          normals.push_back(glm::vec3(glm::normalize(glm::dvec3(nrm))));
         }
       }
       build.polygon(points, stride == 6 ? &normals : nullptr, start);

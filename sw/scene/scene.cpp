@@ -1,6 +1,8 @@
 #include "scene/scene.h"
 
 #include <array>
+#include <cctype>
+#include <iterator>
 #include <cmath>
 #include <fstream>
 #include <new>
@@ -13,7 +15,9 @@
 
 #include <algorithm>
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
+#include <assimp/IOStream.hpp>
 #include <assimp/ObjMaterial.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -92,6 +96,46 @@ void readWhittedTerms(const aiMaterial& mat, const std::string& path, Material& 
   }
 }
 
+// Assimp 5.2's MTL parser dies of SIGSEGV on some files with NUL bytes (the
+// 8 bytes of tests/fuzz/corpus/mtl/assimp_segv_nul_bytes.mtl, found by
+// fuzz_mtl). No text format has NUL bytes, so the files assimp opens for OBJ
+// and MTL are read through this filter, which refuses such a file (assimp then
+// fails or goes on without it) and remembers it for the error message.
+class TextFilesIOSystem : public Assimp::DefaultIOSystem {
+ public:
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    std::string ext = std::filesystem::path(file).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == ".obj" || ext == ".mtl") {
+      std::ifstream in(file, std::ios::binary);
+      const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      if (bytes.find('\0') != std::string::npos) {
+        refused = file;
+        return nullptr;
+      }
+    }
+    return DefaultIOSystem::Open(file, mode);
+  }
+  std::string refused;  // the last file refused
+};
+
+// Every term of a loaded material finite, the weights >= 0: a NaN, an infinity
+// (1e39 reads as one) or a negative Ks in a file would reach the shader as NaN
+// or negative light (found by tests/fuzz/fuzz_mtl).
+void checkMaterialTerms(const Material& m, const std::string& path) {
+  for (const auto& [term, c] : {std::pair{"diffuse colour (Kd)", m.diffuse}, std::pair{"emission (Ke)", m.emission}}) {
+    if (!allFinite(c)) {
+      throw InputError(fmt::format("{}: material '{}': {} ({}, {}, {}) is not finite", path, m.name, term, c.x, c.y, c.z));
+    }
+  }
+  for (const auto& [term, w] : {std::pair{"specular weight (Ks)", m.ks}, std::pair{"shininess (Ns)", m.shine},
+                                std::pair{"transmittance (1 - d)", m.transmittance}}) {
+    if (!(w >= 0.0f) || !std::isfinite(w)) {
+      throw InputError(fmt::format("{}: material '{}': {} {} must be finite and >= 0", path, m.name, term, w));
+    }
+  }
+}
+
 // A triangle's unit vertex normals from its mesh, each falling back to the
 // geometric normal (zero for a degenerate triangle) where the mesh has none or
 // the file's is zero or not finite.
@@ -166,6 +210,8 @@ Scene loadWithAssimp(const std::string& path, bool isGltf) {
   std::error_code sizeError;
   const uint64_t fileBytes = std::filesystem::file_size(path, sizeError);
   Assimp::Importer importer;
+  auto* files = new TextFilesIOSystem;  // owned by the importer
+  importer.SetIOHandler(files);
   // Keep vertices exactly as written (no joining, no normal generation): shared
   // vertices are already shared by index in the formats we read, and any
   // re-computation would risk moving them.
@@ -177,6 +223,9 @@ Scene loadWithAssimp(const std::string& path, bool isGltf) {
     ai = importer.ReadFile(path, flags);
   } catch (const std::bad_alloc&) {
     throw InputError(fmt::format("{}: cannot read scene: it declares more data than fits in memory", path));
+  }
+  if (!files->refused.empty()) {
+    throw InputError(fmt::format("{}: cannot read scene: {} has a NUL byte (not a text file)", path, files->refused));
   }
   if (!ai || !ai->mRootNode) {
     throw InputError(fmt::format("{}: cannot read scene: {}", path, importer.GetErrorString()));
@@ -200,6 +249,7 @@ Scene loadWithAssimp(const std::string& path, bool isGltf) {
     } else {
       readWhittedTerms(*mat, path, material);
     }
+    checkMaterialTerms(material, path);
     scene.materials.push_back(material);
   }
   if (scene.materials.empty()) scene.materials.push_back(Material{"default"});

@@ -122,6 +122,48 @@ TEST(Scene, ReadsTheWhittedTermsOfMtlMaterials) {
   std::filesystem::remove(dir / "lancer_whitted.obj");
 }
 
+// Found by tests/fuzz/fuzz_mtl: NaN, infinite and negative MTL terms were
+// loaded as they stood. Each is now an error naming the file and material.
+TEST(Scene, NonFiniteOrNegativeMtlTermsAreErrors) {
+  const auto dir = std::filesystem::temp_directory_path();
+  std::ofstream(dir / "lancer_bad_terms.obj") << "mtllib lancer_bad_terms.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                                 "usemtl m\nf 1 2 3\n";
+  for (const auto& [terms, needle] : {std::pair{"Ks -5 -5 -5\nillum 3", "specular weight (Ks) -5"},
+                                      std::pair{"Ks nan 0 0\nillum 3", "specular weight (Ks) nan"},
+                                      std::pair{"Ns 1e39", "shininess (Ns) inf"},
+                                      std::pair{"d nan", "transmittance (1 - d) nan"},
+                                      std::pair{"Kd inf 0 0", "diffuse colour (Kd) (inf, 0, 0) is not finite"},
+                                      std::pair{"Ke 1e39 1 1", "emission (Ke) (inf, 1, 1) is not finite"}}) {
+    std::ofstream(dir / "lancer_bad_terms.mtl") << "newmtl m\n" << terms << "\n";
+    try {
+      loadScene((dir / "lancer_bad_terms.obj").string());
+      ADD_FAILURE() << "expected an error for " << terms;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("lancer_bad_terms.obj: material 'm': " + std::string(needle)),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  std::filesystem::remove(dir / "lancer_bad_terms.mtl");
+  std::filesystem::remove(dir / "lancer_bad_terms.obj");
+}
+
+// Found by tests/fuzz/fuzz_mtl: these 8 bytes as an MTL file crash assimp 5.2
+// (SIGSEGV in its MTL parser). OBJ and MTL files with a NUL byte are refused.
+TEST(Scene, ObjOrMtlWithANulByteIsAnErrorNotACrash) {
+  const auto dir = std::filesystem::temp_directory_path();
+  std::ofstream(dir / "lancer_nul.obj") << "mtllib lancer_nul.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n";
+  std::ofstream(dir / "lancer_nul.mtl", std::ios::binary) << std::string("\x01\0a\0< 1<", 8);
+  try {
+    loadScene((dir / "lancer_nul.obj").string());
+    ADD_FAILURE() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("lancer_nul.mtl has a NUL byte"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(dir / "lancer_nul.mtl");
+  std::filesystem::remove(dir / "lancer_nul.obj");
+}
+
 // ---- glTF 2.0 ------------------------------------------------------------------------
 
 // One triangle (0,0,0) (1,0,0) (0,1,0) as a data-URI buffer, the geometry every
