@@ -1,0 +1,26 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace lancer::sweep {
+
+// Runs argv[0] (searched on PATH) with argv, its stdout and stderr appended to
+// `log` (created if missing), in the current directory. Returns its exit status
+// (128 + the signal if it was killed; 127 if it could not start).
+int runLogged(const std::vector<std::string>& argv, const std::string& log);
+
+// Runs argv and returns its stdout; status set to the exit status.
+std::string runCaptured(const std::vector<std::string>& argv, int& status);
+
+// The last non-empty line of a text file ("" if none), for error messages.
+std::string lastLine(const std::string& path);
+
+// A command line as a shell would read it (for logs and Slurm scripts).
+std::string shellJoin(const std::vector<std::string>& argv);
+
+// Writes `text` to `path` through a temporary file and a rename, so a reader
+// (a resumed sweep, a merge) never sees half a file. Throws InputError.
+void writeAtomically(const std::string& path, const std::string& text);
+
+}  // namespace lancer::sweep
