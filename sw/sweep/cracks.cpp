@@ -123,13 +123,16 @@ class Builder {
     }
     if (candidates.empty()) return false;
     const Vec d = candidates[std::uniform_int_distribution<size_t>(0, candidates.size() - 1)(rng)];
-    // The farthest origin on the lattice: m2 as large as every axis allows, of the right parity.
+    // A far origin on the lattice: m2 about as large as every axis allows, of the right parity.
     int64_t m2 = INT64_MAX;
     for (int k = 0; k < 3; ++k) {
       if (d[size_t(k)] > 0) m2 = std::min(m2, p2[size_t(k)]);
       if (d[size_t(k)] < 0) m2 = std::min(m2, 2 * fx::kPosMax - p2[size_t(k)]);
     }
     if ((m2 & 1) != int64_t(half)) --m2;
+    // A unit inside the lattice cube rather than on its faces, where the float
+    // origin could round outside and be clipped.
+    if (m2 > 2) m2 -= 2;
     if (m2 < 1) return false;
     Vec origin{};
     for (int k = 0; k < 3; ++k) origin[size_t(k)] = (p2[size_t(k)] - m2 * d[size_t(k)]) / 2;

@@ -71,7 +71,7 @@ std::string executeJob(const std::string& out, const Spec& spec, const Job& job)
   if (!fs::exists(lancer)) return fail(fmt::format("no {} (the width's build failed or never ran)", lancer));
   const auto step = [&](const std::vector<std::string>& argv, const std::string& what) {
     const int rc = runLogged(argv, log);
-    return rc == 0 ? std::string() : fail(fmt::format("{} exited {}: {}", what, rc, lastLine(log)));
+    return rc == 0 ? std::string() : fail(fmt::format("{} exited {}: {}", what, rc, errorLine(log)));
   };
 
   nlohmann::json result = {{"job", job.toJson()}, {"inputs", jobInputs(spec, job)}, {"tree", tree}};

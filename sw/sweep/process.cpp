@@ -108,6 +108,25 @@ std::string lastLine(const std::string& path) {
   return cr == std::string::npos ? last : last.substr(cr + 1);
 }
 
+std::string errorLine(const std::string& path) {
+  std::ifstream in(path);
+  std::string line, lastError;
+  bool afterCmake = false;
+  while (std::getline(in, line)) {
+    const size_t start = line.find_first_not_of(" \t\r");
+    if (start == std::string::npos) continue;
+    if (afterCmake) return line.substr(start);
+    if (line.find("CMake Error") != std::string::npos) {
+      afterCmake = true;
+      continue;
+    }
+    std::string lower = line;
+    for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (lower.find("error") != std::string::npos) lastError = line.substr(start);
+  }
+  return lastError.empty() ? lastLine(path) : lastError;
+}
+
 std::string shellJoin(const std::vector<std::string>& argv) {
   std::string out;
   for (const std::string& a : argv) {

@@ -16,6 +16,10 @@ std::string runCaptured(const std::vector<std::string>& argv, int& status);
 // The last non-empty line of a text file ("" if none), for error messages.
 std::string lastLine(const std::string& path);
 
+// The line of a log that says what went wrong: the message of the first
+// "CMake Error", else the last line with "error", else the last line.
+std::string errorLine(const std::string& path);
+
 // A command line as a shell would read it (for logs and Slurm scripts).
 std::string shellJoin(const std::vector<std::string>& argv);
 

@@ -79,14 +79,14 @@ TreeResult buildTree(const Spec& spec, const Width& w, const std::string& out) {
     }
     configure.insert(configure.end(), spec.cmakeArgs.begin(), spec.cmakeArgs.end());
     if (const int rc = runLogged(configure, r.log); rc != 0) {
-      return fail(fmt::format("configuring {} failed (exit {}): {}", r.dir, rc, lastLine(r.log)));
+      return fail(fmt::format("configuring {} failed (exit {}): {}", r.dir, rc, errorLine(r.log)));
     }
   }
 
   const auto start = std::chrono::steady_clock::now();
   const int rc = runLogged({"cmake", "--build", r.dir, "--target", "lancer", "-j", std::to_string(spec.buildJobs)}, r.log);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (rc != 0) return fail(fmt::format("building lancer in {} failed (exit {}): {}", r.dir, rc, lastLine(r.log)));
+  if (rc != 0) return fail(fmt::format("building lancer in {} failed (exit {}): {}", r.dir, rc, errorLine(r.log)));
 
   // Ninja says "no work to do" when the tree was up to date: keep the time of
   // the build that made it, recorded in the tree.
@@ -128,7 +128,7 @@ nlohmann::json synthTree(const Spec& spec, const Width& w, const std::string& to
   const int rc = runLogged({spec.source + "/scripts/sweep-synth", tree, top, cache}, log);
   if (rc != 0) {
     return {{"error", fmt::format("width {}: synthesis of {} failed (exit {}): {} (log {})", w.name(), top, rc,
-                                  lastLine(log), log)}};
+                                  errorLine(log), log)}};
   }
   nlohmann::json j = readJson(cache);
   if (!j.is_object()) return {{"error", fmt::format("width {}: synthesis of {} wrote no {}", w.name(), top, cache)}};

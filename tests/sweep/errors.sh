@@ -15,9 +15,9 @@ check() {  # check NAME EXPECTED-STATUS PATTERN -- command...
     echo "ok   $name"
   fi
 }
-base=(--tree "$width=$tree" --scenes builtin:cornell --image 12 --crack-rays 48 --models golden --no-plots -j 2)
+base=(--tree "$width=$tree" --image 12 --crack-rays 48 --models golden --no-plots -j 2)
 
-check unknown-unit 1 "unknown unit 'bogus'" -- "$lancer" sweep --widths "$width" "${base[@]}" --units isect,bogus --out "$work/a"
+check unknown-unit 1 "unknown unit 'bogus'" -- "$lancer" sweep --widths "$width" "${base[@]}" --scenes builtin:cornell --units isect,bogus --out "$work/a"
 check width-low 1 "width 3/10: 3 bits lies outside what the formats admit \(4..24\)" -- \
   "$lancer" sweep --widths 3/10 --scenes builtin:cornell --out "$work/a"
 check width-high 1 "width 12/25: 25 bits lies outside" -- "$lancer" sweep --widths 12/25 --scenes builtin:cornell --out "$work/a"
@@ -34,10 +34,10 @@ grep -q "job w${width/\//-}.isect.golden.s1.c0of2 (width $width, unit isect, mod
 
 # Resume: the good scene's jobs are kept; a removed result is the only job rerun.
 check resume-all 0 "3 jobs planned, 3 with results, 0 to run" -- \
-  "$lancer" sweep --widths "$width" "${base[@]}" --chunks 2 --out "$work/s"
+  "$lancer" sweep --widths "$width" "${base[@]}" --scenes builtin:cornell --chunks 2 --out "$work/s"
 rm "$work/s/jobs/w${width/\//-}.isect.golden.s0.c1of2.json"
 check resume-one 0 "3 jobs planned, 2 with results, 1 to run" -- \
-  "$lancer" sweep --widths "$width" "${base[@]}" --chunks 2 --out "$work/s"
+  "$lancer" sweep --widths "$width" "${base[@]}" --scenes builtin:cornell --chunks 2 --out "$work/s"
 # Cracks: every ray aimed exactly at a shared edge or vertex hits (column "cracks" is 0).
 python3 - "$work/s/sweep.csv" <<'PY' || fails=$((fails + 1))
 import csv, sys
@@ -51,8 +51,8 @@ print("ok   cracks: 0 of", rows[0]["crack_rays"])
 PY
 
 # A failed build names the width and keeps the other width's results.
-check bad-build 4 "width 6/6: configuring .* failed" -- \
-  "$lancer" sweep --widths "$width,6/6" "${base[@]}" --tree-pattern "$work/tree-{pos}-{dir}" \
+check bad-build 4 "width 6/6: configuring .* failed \\(exit 1\\): LANCER_MEM_ADDR_BITS must lie in 10..30" -- \
+  "$lancer" sweep --widths "$width,6/6" "${base[@]}" --scenes builtin:cornell --tree-pattern "$work/tree-{pos}-{dir}" \
   --cmake-arg=-DLANCER_MEM_ADDR_BITS=5 --out "$work/b"
 grep -q "^$width," "$work/b/sweep.csv" || { echo "FAIL bad-build: the good width's rows are gone"; fails=$((fails + 1)); }
 
