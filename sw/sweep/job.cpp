@@ -12,20 +12,6 @@ namespace lancer::sweep {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-nlohmann::json readJson(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return nullptr;
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception&) {
-    return nullptr;
-  }
-}
-
-}  // namespace
-
 nlohmann::json jobInputs(const Spec& spec, const Job& job) {
   nlohmann::json j = {{"scene", spec.scenes[size_t(job.scene)]}, {"seed", spec.seed},
                       {"mem_latency", spec.memLatency}, {"grid_res", spec.gridRes},

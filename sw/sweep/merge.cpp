@@ -19,16 +19,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-nlohmann::json readJson(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return nullptr;
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception&) {
-    return nullptr;
-  }
-}
-
 // The sums over a group of job results (camera chunks, or several scenes).
 struct Totals {
   uint64_t rays = 0, inLattice = 0, hit = 0, disagreements = 0, hitMiss = 0, prim = 0, compared = 0;

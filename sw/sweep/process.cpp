@@ -143,6 +143,16 @@ std::string shellJoin(const std::vector<std::string>& argv) {
   return out;
 }
 
+nlohmann::json readJson(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return nullptr;
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception&) {
+    return nullptr;
+  }
+}
+
 void writeAtomically(const std::string& path, const std::string& text) {
   const std::string tmp = fmt::format("{}.tmp{}", path, getpid());
   {

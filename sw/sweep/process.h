@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace lancer::sweep {
 
 // Runs argv[0] (searched on PATH) with argv, its stdout and stderr appended to
@@ -25,6 +27,9 @@ std::string shellJoin(const std::vector<std::string>& argv);
 
 // Writes `text` to `path` through a temporary file and a rename, so a reader
 // (a resumed sweep, a merge) never sees half a file. Throws InputError.
+// The JSON in a file, or null if it is missing or not JSON (a result not written yet).
+nlohmann::json readJson(const std::string& path);
+
 void writeAtomically(const std::string& path, const std::string& text);
 
 }  // namespace lancer::sweep

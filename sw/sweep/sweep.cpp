@@ -27,16 +27,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-nlohmann::json readJson(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return nullptr;
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception&) {
-    return nullptr;
-  }
-}
-
 void failJob(const std::string& out, const Spec& spec, const Job& job, const std::string& why) {
   fs::create_directories(out + "/jobs");
   writeAtomically(jobErrorPath(out, job),

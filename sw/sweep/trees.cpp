@@ -30,16 +30,6 @@ bool ccacheAvailable() {
   return status == 0;
 }
 
-nlohmann::json readJson(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return nullptr;
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception&) {
-    return nullptr;
-  }
-}
-
 }  // namespace
 
 std::string lancerOf(const std::string& tree) { return tree + "/sw/lancer"; }
