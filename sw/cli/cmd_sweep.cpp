@@ -49,6 +49,10 @@ sweep::Spec resolveSpec(const SweepArgs& a, const CLI::App& cmd) {
     for (const std::string& w : a.widths) s.widths.push_back(sweep::parseWidth(w, "--widths"));
   }
   if (given("--scenes")) s.scenes = a.scenes;
+  // Scene files by absolute path: the jobs (Slurm tasks too) may run elsewhere.
+  for (std::string& scene : s.scenes) {
+    if (scene.rfind("builtin:", 0) != 0) scene = std::filesystem::absolute(scene).lexically_normal().string();
+  }
   if (given("--units")) s.units = a.units;
   if (given("--models")) s.models = a.models;
   if (given("--image")) s.image = a.spec.image;

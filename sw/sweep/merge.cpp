@@ -96,6 +96,7 @@ const std::vector<Column>& columns() {
       {"arbiter_hw_beyond_bound", true}, {"arbiter_ref_wrong", true}, {"crack_rays", true},
       {"cracks", true}, {"crack_ref_hit_miss_differs", true}, {"crack_rays_rejected", true},
       {"unit_steps", true}, {"reference_steps", true}, {"extra_steps_fraction", true},
+      {"steps_vs_widest_fraction", true},
       {"mismatches_vs_golden", true}, {"isect_latency_cycles", true}, {"cycles", true},
       {"cycles_per_ray", true}, {"tests_per_cycle", true}, {"tests_per_ray", true}, {"cells", true},
       {"flip_flops", true}, {"logic_depth", true}, {"fmax_mhz_est", true}, {"ns_per_ray_at_fmax", true},
@@ -229,6 +230,21 @@ MergeResult mergeSweep(const std::string& out, FILE* table, bool plots) {
         }
       }
     }
+  }
+  // The unit's own walk against itself at the widest width of the sweep (the
+  // same structure on the same lattice cube, so what differs is the narrower
+  // arithmetic's conservative stepping).
+  for (nlohmann::json& row : rows) {
+    row["steps_vs_widest_fraction"] = nullptr;
+    if (row["unit_steps"].is_null()) continue;
+    const nlohmann::json* widest = nullptr;
+    for (const nlohmann::json& other : rows) {
+      if (other["unit"] != row["unit"] || other["model"] != row["model"] || other["scene"] != row["scene"]) continue;
+      const int bits = other["pos_bits"].get<int>() + other["dir_bits"].get<int>();
+      if (!widest || bits > (*widest)["pos_bits"].get<int>() + (*widest)["dir_bits"].get<int>()) widest = &other;
+    }
+    const double base = double((*widest)["unit_steps"].get<uint64_t>());
+    row["steps_vs_widest_fraction"] = num(ratio(double(row["unit_steps"].get<uint64_t>()), base) - 1.0);
   }
   m.rows = rows.size();
 
