@@ -53,7 +53,8 @@ TreeResult buildTree(const Spec& spec, const Width& w, const std::string& out) {
     return r;
   };
 
-  if (fs::exists(r.dir + "/CMakeCache.txt")) {
+  const bool configured = !fs::exists(r.dir + "/CMakeCache.txt");
+  if (!configured) {
     const std::string p = cacheValue(r.dir, "LANCER_POS_BITS"), d = cacheValue(r.dir, "LANCER_DIR_BITS");
     if (p != std::to_string(w.pos) || d != std::to_string(w.dir)) {
       return fail(fmt::format("tree {} is configured for {}/{}, not {}", r.dir, p, d, w.name()));
@@ -78,17 +79,19 @@ TreeResult buildTree(const Spec& spec, const Width& w, const std::string& out) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (rc != 0) return fail(fmt::format("building lancer in {} failed (exit {}): {}", r.dir, rc, errorLine(r.log)));
 
-  // Ninja says "no work to do" when the tree was up to date: keep the time of
-  // the build that made it, recorded in the tree.
+  // Ninja says "no work to do" when the tree was up to date. The figure kept
+  // in the tree is its first build, from a fresh configure (what a new width
+  // costs); an incremental rebuild is only recorded if nothing better is known.
   std::ifstream in(r.log);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   r.upToDate = text.find("ninja: no work to do") != std::string::npos;
   const std::string marker = r.dir + "/lancer-sweep-build.json";
-  if (!r.upToDate) {
+  const nlohmann::json known = readJson(marker);
+  if (!r.upToDate && (configured || !known.is_object())) {
+    writeAtomically(marker, nlohmann::json{{"build_seconds", seconds}, {"from_scratch", configured}}.dump() + "\n");
     r.buildSeconds = seconds;
-    writeAtomically(marker, nlohmann::json{{"build_seconds", seconds}}.dump() + "\n");
-  } else if (const nlohmann::json m = readJson(marker); m.is_object()) {
-    r.buildSeconds = m.value("build_seconds", 0.0);
+  } else if (known.is_object()) {
+    r.buildSeconds = known.value("build_seconds", 0.0);
   }
   if (!fs::exists(lancerOf(r.dir))) return fail(fmt::format("no {} after the build", lancerOf(r.dir)));
   r.ok = true;
