@@ -171,7 +171,14 @@ int runSweep(const Spec& spec, const RunOptions& options) {
   if (!trees.is_object()) trees = nlohmann::json::object();
   std::set<Width> broken;
   for (const Width& w : spec.widths) {
-    if (!needed.count(w)) continue;
+    if (!needed.count(w)) {
+      // Not rebuilt: its record, with the build time its tree holds now.
+      if (trees.contains(w.name())) {
+        const std::optional<double> s = recordedBuildSeconds(trees[w.name()].value("dir", spec.treeOf(w)));
+        trees[w.name()]["build_seconds"] = s ? nlohmann::json(*s) : nlohmann::json(nullptr);
+      }
+      continue;
+    }
     fmt::print("sweep: width {}: building lancer in {}\n", w.name(), spec.treeOf(w));
     std::fflush(stdout);
     const TreeResult t = buildTree(spec, w, out);
@@ -185,6 +192,7 @@ int runSweep(const Spec& spec, const RunOptions& options) {
     }
     writeAtomically(out + "/trees.json", trees.dump(2) + "\n");
   }
+  writeAtomically(out + "/trees.json", trees.dump(2) + "\n");
   if (spec.synth) {
     nlohmann::json synth = readJson(out + "/synth.json");
     if (!synth.is_object()) synth = nlohmann::json::object();

@@ -34,6 +34,12 @@ bool ccacheAvailable() {
 
 std::string lancerOf(const std::string& tree) { return tree + "/sw/lancer"; }
 
+std::optional<double> recordedBuildSeconds(const std::string& tree) {
+  const nlohmann::json m = readJson(tree + "/lancer-sweep-build.json");
+  if (!m.is_object() || !m.contains("build_seconds")) return std::nullopt;
+  return m["build_seconds"].get<double>();
+}
+
 nlohmann::json TreeResult::toJson() const {
   nlohmann::json j = {{"width", width.name()}, {"dir", dir}, {"ok", ok}, {"up_to_date", upToDate},
                       {"build_seconds", buildSeconds ? nlohmann::json(*buildSeconds) : nlohmann::json(nullptr)}};
@@ -86,12 +92,12 @@ TreeResult buildTree(const Spec& spec, const Width& w, const std::string& out) {
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   r.upToDate = text.find("ninja: no work to do") != std::string::npos;
   const std::string marker = r.dir + "/lancer-sweep-build.json";
-  const nlohmann::json known = readJson(marker);
-  if (!r.upToDate && (configured || !known.is_object())) {
+  const std::optional<double> known = recordedBuildSeconds(r.dir);
+  if (!r.upToDate && (configured || !known)) {
     writeAtomically(marker, nlohmann::json{{"build_seconds", seconds}, {"from_scratch", configured}}.dump() + "\n");
     r.buildSeconds = seconds;
-  } else if (known.is_object()) {
-    r.buildSeconds = known.value("build_seconds", 0.0);
+  } else {
+    r.buildSeconds = known;
   }
   if (!fs::exists(lancerOf(r.dir))) return fail(fmt::format("no {} after the build", lancerOf(r.dir)));
   r.ok = true;

@@ -30,6 +30,9 @@ struct TreeResult {
 // build (ok = false, error set). Logs go to <out>/trees/<tag>.log.
 TreeResult buildTree(const Spec& spec, const Width& w, const std::string& out);
 
+// The build seconds recorded in a tree (its build from a fresh configure), if any.
+std::optional<double> recordedBuildSeconds(const std::string& tree);
+
 // The `lancer` binary of a tree.
 std::string lancerOf(const std::string& tree);
 
