@@ -109,17 +109,20 @@ nlohmann::json synthTree(const Spec& spec, const Width& w, const std::string& to
   const std::string cache = fmt::format("{}/synth/{}/sweep-synth.json", tree, top);
   const std::string pkg = tree + "/generated/rtl/rt_pkg.sv";
   if (fs::exists(cache) && fs::exists(pkg)) {
-    // Valid while nothing it was made from is newer: the package and the RTL sources.
-    auto newest = fs::last_write_time(pkg);
+    // Valid while it was made from the same package (by content: a rebuild
+    // rewrites the file) and no RTL source is newer.
+    auto newest = fs::last_write_time(cache);
+    bool stale = false;
     for (const auto& e : fs::recursive_directory_iterator(spec.source + "/rtl")) {
-      if (e.is_regular_file()) newest = std::max(newest, e.last_write_time());
+      if (e.is_regular_file() && e.last_write_time() > newest) stale = true;
     }
-    if (fs::last_write_time(cache) > newest) {
-      nlohmann::json j = readJson(cache);
-      if (j.is_object() && !j.contains("error")) {
-        j["cached"] = true;
-        return j;
-      }
+    int status = 0;
+    const std::string sum = runCaptured({"sha256sum", pkg}, status);
+    nlohmann::json j = readJson(cache);
+    if (!stale && status == 0 && j.is_object() && !j.contains("error") &&
+        sum.substr(0, sum.find(' ')) == j.value("pkg_sha256", "")) {
+      j["cached"] = true;
+      return j;
     }
   }
   const std::string log = fmt::format("{}/trees/{}-synth-{}.log", out, w.tag(), top);
