@@ -63,6 +63,7 @@ sweep::Spec resolveSpec(const SweepArgs& a, const CLI::App& cmd) {
   if (given("--mem-latency")) s.memLatency = a.spec.memLatency;
   if (given("--clock-mhz")) s.clockMhz = a.spec.clockMhz;
   if (given("--synth")) s.synth = true;
+  if (given("--synth-units")) s.synthUnits = a.spec.synthUnits;
   if (given("--source")) s.source = a.spec.source;
   if (given("--tree-pattern")) s.treePattern = a.spec.treePattern;
   if (given("--build-jobs")) s.buildJobs = a.spec.buildJobs;
@@ -96,6 +97,9 @@ void addSweep(CLI::App& app) {
   cmd->add_option("--mem-latency", a->spec.memLatency, "Memory latency of the traversal units")->capture_default_str();
   cmd->add_option("--clock-mhz", a->spec.clockMhz, "Clock of the simulated rates in the run reports")->capture_default_str();
   cmd->add_flag("--synth", a->spec.synth, "Synthesize each width's units with Yosys (slow; cached per tree)");
+  cmd->add_option("--synth-units", a->spec.synthUnits, "With --synth, only these units (rt_grid and rt_octree take "
+                                                      "minutes and GBs each)")
+      ->delimiter(',');
   cmd->add_option("--source", a->spec.source, "Lancer source tree to configure the width trees from")
       ->default_str(LANCER_SOURCE_DIR);
   cmd->add_option("--tree-pattern", a->spec.treePattern, "Where a width's tree goes: {pos} and {dir} are replaced "

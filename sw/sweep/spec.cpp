@@ -62,6 +62,11 @@ void Spec::validate() const {
     }
   }
   if (units.empty()) throw InputError("--units: no unit to sweep");
+  for (const std::string& u : synthUnits) {
+    if (std::find(units.begin(), units.end(), u) == units.end()) {
+      throw InputError(fmt::format("--synth-units: '{}' is not one of the sweep's units", u));
+    }
+  }
   for (const std::string& m : models) {
     if (m != "golden" && m != "systemc" && m != "rtl" && m != "rtl-systemc") {
       throw InputError(fmt::format("--models: unknown model '{}' (golden, systemc, rtl, rtl-systemc)", m));
@@ -101,7 +106,7 @@ nlohmann::json Spec::toJson() const {
   return {{"widths", ws},           {"scenes", scenes},         {"units", units},
           {"models", models},       {"image", image},           {"chunks", chunks},
           {"crack_rays", crackRays}, {"seed", seed},             {"grid_res", gridRes},
-          {"mem_latency", memLatency}, {"clock_mhz", clockMhz}, {"synth", synth},
+          {"mem_latency", memLatency}, {"clock_mhz", clockMhz}, {"synth", synth}, {"synth_units", synthUnits},
           {"source", source},       {"tree_pattern", treePattern}, {"trees", trees},
           {"cmake_args", cmakeArgs}, {"build_jobs", buildJobs}};
 }
@@ -111,7 +116,7 @@ Spec Spec::fromJson(const nlohmann::json& j, const std::string& where) {
   if (!j.is_object()) throw InputError(fmt::format("{}: a sweep spec is a JSON object", where));
   static const std::vector<std::string> known{"widths", "scenes", "units", "models", "image", "chunks",
                                               "crack_rays", "seed", "grid_res", "mem_latency", "clock_mhz",
-                                              "synth", "source", "tree_pattern", "trees", "cmake_args",
+                                              "synth", "synth_units", "source", "tree_pattern", "trees", "cmake_args",
                                               "build_jobs"};
   for (const auto& [key, value] : j.items()) {
     if (std::find(known.begin(), known.end(), key) == known.end()) {
@@ -131,6 +136,7 @@ Spec Spec::fromJson(const nlohmann::json& j, const std::string& where) {
     s.memLatency = j.value("mem_latency", s.memLatency);
     s.clockMhz = j.value("clock_mhz", s.clockMhz);
     s.synth = j.value("synth", s.synth);
+    s.synthUnits = j.value("synth_units", s.synthUnits);
     s.source = j.value("source", s.source);
     s.treePattern = j.value("tree_pattern", s.treePattern);
     s.trees = j.value("trees", s.trees);

@@ -44,6 +44,7 @@ struct Spec {
   int memLatency = 20;
   double clockMhz = 500;    // the clock for simulated rates when not synthesized
   bool synth = false;
+  std::vector<std::string> synthUnits;  // the units synthesized (empty: every unit of the sweep)
   std::string source;       // the Lancer source tree the width trees are configured from
   std::string treePattern;  // a tree's path, {pos} and {dir} replaced
   std::map<std::string, std::string> trees;  // width name -> an existing tree to use

@@ -198,7 +198,7 @@ int runSweep(const Spec& spec, const RunOptions& options) {
     if (!synth.is_object()) synth = nlohmann::json::object();
     for (const Width& w : spec.widths) {
       if (broken.count(w)) continue;
-      for (const std::string& unit : spec.units) {
+      for (const std::string& unit : spec.synthUnits.empty() ? spec.units : spec.synthUnits) {
         const std::string top = synthTopOf(unit);
         fmt::print("sweep: width {}: synthesis of {}\n", w.name(), top);
         std::fflush(stdout);
