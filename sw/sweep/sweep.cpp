@@ -188,7 +188,7 @@ int runSweep(const Spec& spec, const RunOptions& options) {
       broken.insert(w);
     } else {
       fmt::print("sweep: width {}: {}\n", w.name(),
-                 t.upToDate ? "up to date" : fmt::format("built in {:.0f} s", t.buildSeconds.value_or(0)));
+                 t.upToDate ? "up to date" : "brought up to date");
     }
     writeAtomically(out + "/trees.json", trees.dump(2) + "\n");
   }
