@@ -80,7 +80,7 @@ module rt_grid #(
   localparam int DIR_W    = rt_pkg::DIR_W;
 
   // ---- The shell: streams, memory ports, rt_isect, closest hits, exit tests ----------
-  logic [N-1:0]        free, want_cell, want_visit, want_idx, want_check, want_done, fetching, has_hit;
+  logic [N-1:0]        free, want_cell, want_visit, want_idx, want_check, want_done, fetching, bound;
   logic                ray_fire, cell_go, visit_go, idx_go, check_go, done_go;
   logic [SlotW-1:0]    alloc_idx, cell_idx, visit_idx, idx_idx, check_idx, done_idx;
   logic                cell_valid, isect_valid, take, check_holds;
@@ -146,7 +146,7 @@ module rt_grid #(
     .isect_valid_o (isect_valid),
     .isect_slot_o  (isect_slot),
     .take_o        (take),
-    .has_hit_o     (has_hit),
+    .bound_o       (bound),
     .want_check_i  (want_check),
     .check_go_o    (check_go),
     .check_slot_o  (check_idx),
@@ -214,7 +214,7 @@ module rt_grid #(
     .fetching_o      (fetching),
     .res_valid_i     (isect_valid),
     .res_slot_i      (isect_slot),
-    .hit_i           (has_hit),
+    .bound_i         (bound),
     .take_i          (take),
     .want_check_o    (want_check),
     .check_go_i      (check_go),

@@ -1,17 +1,17 @@
 // rt_grid_slots: the ray slots of rt_grid — per-slot state machines, DDA
 // registers, cell queues and counters — updated by the unit's events, each
 // addressed to one slot by index. The ray, its closest hit and the exit test
-// are rt_trav_shell's: the slots take the closest-hit state (hit_i, take_i)
+// are rt_trav_shell's: the slots take the exit-test state (bound_i, take_i)
 // and the exit test's answer, and give the exit accumulator of the cell.
 //
 // Slot state machine (docs/grid-unit.md, "Slot state machine"):
 //   FREE -alloc-> SETUP -init-> VISIT -visit grant-> WAIT_CELL | FETCH | (cell done)
 //   WAIT_CELL -its cell arrives-> FETCH | (cell done)
 //   FETCH: one index read per index grant; (cell done) with its last result
-//   (cell done): a hit so far -> CHECK; else the last cell -> DONE; else the
-//                next cell -> VISIT
-//   CHECK -check grant-> DONE if the hit lies in the cell or it is the last,
-//                        else the next cell -> VISIT
+//   (cell done): bound (a hit so far, or a segment end) -> CHECK; else the
+//                last cell -> DONE; else the next cell -> VISIT
+//   CHECK -check grant-> DONE if the bound lies in the cell (or an any-hit ray
+//                        has its hit), or it is the last, else the next cell -> VISIT
 //   DONE -result grant (no cell read outstanding)-> FREE
 //
 // Cell prefetch. Each slot reads its cells ahead of the traversal: the DDA
@@ -83,10 +83,10 @@ module rt_grid_slots #(
   // Intersection results, and the closest-hit state (rt_trav_shell's).
   input  logic                                   res_valid_i,
   input  logic [SlotW-1:0]                       res_slot_i,
-  input  logic [N-1:0]                           hit_i,         // a closest hit so far
+  input  logic [N-1:0]                           bound_i,       // exit-tested: a closest hit so far, or a segment end
   input  logic                                   take_i,        // the result becomes res_slot_i's closest hit
 
-  // Exit tests of slots with a hit.
+  // Exit tests of slots with a bound.
   output logic [N-1:0]                           want_check_o,
   input  logic                                   check_go_i,
   input  logic [SlotW-1:0]                       check_slot_i,
@@ -275,17 +275,17 @@ module rt_grid_slots #(
     last_k    = elast_q[{check_slot_i, k_hd}];
 
     fetch_set = onehot(stv && !cv, visit_slot_i) | onehot(stw && !cw, cell_rsp_tag_i);
-    // A hit so far: CHECK. No hit: DONE after the last cell, else the next cell.
-    check_set = onehot(cv && hit_i[visit_slot_i], visit_slot_i) |
-                onehot(cw && hit_i[cell_rsp_tag_i], cell_rsp_tag_i) |
-                onehot(cr && (hit_i[r_slot] || take), r_slot);
-    done_set  = onehot(cv && !hit_i[visit_slot_i] && last_v, visit_slot_i) |
-                onehot(cw && !hit_i[cell_rsp_tag_i] && last_t, cell_rsp_tag_i) |
-                onehot(cr && !(hit_i[r_slot] || take) && last_r, r_slot) |
+    // Bound (a hit so far, or a segment end): CHECK. None: DONE after the last cell, else the next cell.
+    check_set = onehot(cv && bound_i[visit_slot_i], visit_slot_i) |
+                onehot(cw && bound_i[cell_rsp_tag_i], cell_rsp_tag_i) |
+                onehot(cr && (bound_i[r_slot] || take), r_slot);
+    done_set  = onehot(cv && !bound_i[visit_slot_i] && last_v, visit_slot_i) |
+                onehot(cw && !bound_i[cell_rsp_tag_i] && last_t, cell_rsp_tag_i) |
+                onehot(cr && !(bound_i[r_slot] || take) && last_r, r_slot) |
                 onehot(check_go_i && (holds || last_k), check_slot_i);
-    pop_set   = onehot(cv && !hit_i[visit_slot_i] && !last_v, visit_slot_i) |
-                onehot(cw && !hit_i[cell_rsp_tag_i] && !last_t, cell_rsp_tag_i) |
-                onehot(cr && !(hit_i[r_slot] || take) && !last_r, r_slot) |
+    pop_set   = onehot(cv && !bound_i[visit_slot_i] && !last_v, visit_slot_i) |
+                onehot(cw && !bound_i[cell_rsp_tag_i] && !last_t, cell_rsp_tag_i) |
+                onehot(cr && !(bound_i[r_slot] || take) && !last_r, r_slot) |
                 onehot(check_go_i && !(holds || last_k), check_slot_i);
   end
 

@@ -10,8 +10,12 @@
 //   stage 2  shear: s{x,y}[k] = d[kz]*r{x,y}[k] - d{x,y}*rz[k]        (12 mul)
 //   stage 3  edge functions U, V, W                                    (6 mul)
 //   stage 4  sign test, det = U + V + W, products U*az, V*bz, W*cz      (3 mul)
-//   stage 5  T = sum of the products, hit = inside && det != 0 && t > 0
-//   stage 6  sign normalization; every numeric field is zero on a miss
+//   stage 5  T = sum of the products, hit = inside && det != 0 && t > 0,
+//            |det| * t_max (the segment end's bound)                  (1 mul)
+//   stage 6  within the segment: |T| * 2^SEG_FRAC_W <= |det| * t_max; sign
+//            normalization; every numeric field is zero on a miss
+// The ray's any_hit flag is the traversal units' (they end a walk at its
+// first hit); the pipeline tests every pair the same way.
 //
 // Latency:    rt_pkg::ISECT_LATENCY (= 6) register stages. A request accepted at
 //             clock edge t is on res_valid_o / res_data_o after edge t+5 and is
@@ -54,6 +58,11 @@ module rt_isect (
   localparam int BARY_W    = rt_pkg::BARY_W;
   localparam int RAY_ID_W  = rt_pkg::RAY_ID_W;
   localparam int PRIM_ID_W = rt_pkg::PRIM_ID_W;
+  localparam int SEG_W     = rt_pkg::SEG_END_W;
+  localparam int SEG_FRAC  = rt_pkg::SEG_FRAC_W;
+  // |det| * t_max, and |T| * 2^SEG_FRAC: the segment test's two sides.
+  localparam int SEG_PROD_W = DET_ABS_W + SEG_W;
+  localparam int SEG_CMP_W  = (SEG_PROD_W > T_NUM_W + SEG_FRAC) ? SEG_PROD_W : T_NUM_W + SEG_FRAC;
   // The datapath below is written as this many register stages.
   localparam int NUM_STAGES = 6;
 
@@ -221,6 +230,7 @@ module rt_isect (
   dir_vec_t             dir1_q;
   logic [RAY_ID_W-1:0]  ray_id1_q;
   logic [PRIM_ID_W-1:0] prim_id1_q;
+  logic [SEG_W-1:0]     seg1_q;
 
   always_ff @(posedge clk_i) begin
     if (stage_load[0]) begin : s1_load
@@ -232,6 +242,7 @@ module rt_isect (
       dir1_q     <= rotate_dir(req_ray_i.dir, kz);
       ray_id1_q  <= req_ray_i.ray_id;
       prim_id1_q <= req_tri_i.prim_id;
+      seg1_q     <= req_ray_i.t_max;
     end
   end
 
@@ -242,6 +253,7 @@ module rt_isect (
   logic                 dz_neg2_q;
   logic [RAY_ID_W-1:0]  ray_id2_q;
   logic [PRIM_ID_W-1:0] prim_id2_q;
+  logic [SEG_W-1:0]     seg2_q;
 
   always_ff @(posedge clk_i) begin
     if (stage_load[1]) begin
@@ -251,6 +263,7 @@ module rt_isect (
       dz_neg2_q  <= dir1_q.z[DIR_W-1];
       ray_id2_q  <= ray_id1_q;
       prim_id2_q <= prim_id1_q;
+      seg2_q     <= seg1_q;
     end
   end
 
@@ -264,6 +277,7 @@ module rt_isect (
   logic                     dz_neg3_q;
   logic [RAY_ID_W-1:0]      ray_id3_q;
   logic [PRIM_ID_W-1:0]     prim_id3_q;
+  logic [SEG_W-1:0]         seg3_q;
 
   always_ff @(posedge clk_i) begin
     if (stage_load[2]) begin
@@ -274,6 +288,7 @@ module rt_isect (
       dz_neg3_q  <= dz_neg2_q;
       ray_id3_q  <= ray_id2_q;
       prim_id3_q <= prim_id2_q;
+      seg3_q     <= seg2_q;
     end
   end
 
@@ -290,6 +305,7 @@ module rt_isect (
   logic                     dz_neg4_q;
   logic [RAY_ID_W-1:0]      ray_id4_q;
   logic [PRIM_ID_W-1:0]     prim_id4_q;
+  logic [SEG_W-1:0]         seg4_q;
 
   always_ff @(posedge clk_i) begin
     if (stage_load[3]) begin : s4_load
@@ -308,6 +324,7 @@ module rt_isect (
       dz_neg4_q  <= dz_neg3_q;
       ray_id4_q  <= ray_id3_q;
       prim_id4_q <= prim_id3_q;
+      seg4_q     <= seg3_q;
     end
   end
 
@@ -322,13 +339,17 @@ module rt_isect (
   logic signed [EDGE_W-1:0] edge_v5_q, edge_w5_q;
   logic [RAY_ID_W-1:0]      ray_id5_q;
   logic [PRIM_ID_W-1:0]     prim_id5_q;
+  logic [SEG_PROD_W-1:0]    seg_bound5_q;
 
   always_ff @(posedge clk_i) begin
     if (stage_load[4]) begin : s5_load
-      logic signed [T_W-1:0] t;
-      logic                  flip;
+      logic signed [T_W-1:0]   t;
+      logic                    flip;
+      logic [DET_ABS_W-1:0]    det_abs;
       t          = tp_u_q + tp_v_q + tp_w_q;
       flip       = det4_q[DET_W-1] ^ dz_neg4_q;
+      det_abs    = DET_ABS_W'(det4_q[DET_W-1] ? -det4_q : det4_q);
+      seg_bound5_q <= SEG_PROD_W'(det_abs) * SEG_PROD_W'(seg4_q);
       hit5_q     <= cand4_q && (|t) && (t[T_W-1] == flip);
       flip5_q    <= flip;
       t5_q       <= t;
@@ -349,15 +370,18 @@ module rt_isect (
 
   always_ff @(posedge clk_i) begin
     if (stage_load[5]) begin : s6_load
-      logic det_neg;
+      logic               det_neg, hit;
+      logic [T_NUM_W-1:0] t_abs;
       det_neg       = det5_q[DET_W-1];
+      t_abs         = T_NUM_W'(flip5_q ? -t5_q : t5_q);
+      hit           = hit5_q && (SEG_CMP_W'(t_abs) << SEG_FRAC) <= SEG_CMP_W'(seg_bound5_q);
       res_q.ray_id  <= ray_id5_q;
       res_q.prim_id <= prim_id5_q;
-      res_q.hit     <= hit5_q;
-      res_q.t_num   <= hit5_q ? T_NUM_W'(flip5_q ? -t5_q : t5_q) : '0;
-      res_q.det     <= hit5_q ? DET_ABS_W'(det_neg ? -det5_q : det5_q) : '0;
-      res_q.u_num   <= hit5_q ? BARY_W'(det_neg ? -edge_v5_q : edge_v5_q) : '0;
-      res_q.v_num   <= hit5_q ? BARY_W'(det_neg ? -edge_w5_q : edge_w5_q) : '0;
+      res_q.hit     <= hit;
+      res_q.t_num   <= hit ? t_abs : '0;
+      res_q.det     <= hit ? DET_ABS_W'(det_neg ? -det5_q : det5_q) : '0;
+      res_q.u_num   <= hit ? BARY_W'(det_neg ? -edge_v5_q : edge_v5_q) : '0;
+      res_q.v_num   <= hit ? BARY_W'(det_neg ? -edge_w5_q : edge_w5_q) : '0;
     end
   end
 

@@ -4,9 +4,11 @@
 //   ray_*      rays in (valid/ready); the lowest free usable slot takes a ray
 //              (a fixed-priority arbiter: an rt_rr_arb whose pointer never
 //              moves), so ray_ready_o depends on slot state only
-//   records    per slot, written at the unit's init: the ray's id and geometry,
-//              its dominant |d| and the unit's exit-test denominator; the
-//              closest hit so far (zero until the first) and whether there is one
+//   records    per slot, written at the unit's init: the ray's id, geometry,
+//              segment end and any-hit flag, its dominant |d| and the unit's
+//              exit-test denominator; the closest hit so far and whether there
+//              is one (before the first, the record holds the segment end as a
+//              pseudo hit {t_num = t_max, det = 2^SEG_FRAC_W}: fx::walkBound)
 //   node port  the walk's reads (grid cells, octree child groups): round robin
 //              over the slots that want one, through a 2-entry request FIFO;
 //              the response goes to the walk, registered when RegRsp
@@ -21,7 +23,10 @@
 //   closest    one isect result per cycle updates its slot's closest hit
 //              (rt_closest_hit)
 //   check      one exit test per cycle (round robin over the slots that want
-//              one; rt_exit_test with the walk's exit parameter)
+//              one; rt_exit_test with the walk's exit parameter against the
+//              record: the closest hit, or the segment end). A slot is tested
+//              when bound_o (a hit, or a segment end); an any-hit ray with a
+//              hit holds at once (its walk ends after the region of its hit)
 //   res_*      one record per ray: {ray id, done_count_i, done_tests_i, hit,
 //              the closest hit} (round robin, 2-entry FIFO)
 //
@@ -106,7 +111,7 @@ module rt_trav_shell #(
   output logic                          isect_valid_o,    // a result of slot isect_slot_o
   output logic [SlotW-1:0]              isect_slot_o,
   output logic                          take_o,           // it becomes the slot's closest hit
-  output logic [N-1:0]                  has_hit_o,        // a closest hit so far
+  output logic [N-1:0]                  bound_o,          // exit-tested: a closest hit so far, or a segment end
 
   // Exit tests.
   input  logic [N-1:0]                  want_check_i,
@@ -157,7 +162,8 @@ module rt_trav_shell #(
   logic [DIR_W-1:0] dom_q    [N];
   logic [DenW-1:0]  den_q    [N];
   logic [BEST_W-1:0] best_q  [N];
-  logic [N-1:0]     has_hit_q;
+  logic [rt_pkg::SEG_END_W-1:0] seg_q [N];
+  logic [N-1:0]     has_hit_q, bounded_q, any_hit_q;
 
   // ---- Ray input and slot allocation --------------------------------------------
   logic [N-1:0] usable, unused_alloc_gnt;
@@ -337,9 +343,11 @@ module rt_trav_shell #(
 
   assign tri_geom = geom_q[tri_slot];
   always_comb begin
-    isect_ray.ray_id = 32'(tri_slot);
-    isect_ray.org    = tri_geom.org;
-    isect_ray.dir    = tri_geom.dir;
+    isect_ray.ray_id  = 32'(tri_slot);
+    isect_ray.org     = tri_geom.org;
+    isect_ray.dir     = tri_geom.dir;
+    isect_ray.t_max   = seg_q[tri_slot];
+    isect_ray.any_hit = any_hit_q[tri_slot];
   end
 
   rt_isect u_isect (
@@ -380,26 +388,35 @@ module rt_trav_shell #(
     .best_det_i   (res_best.det),
     .take_o
   );
-  assign has_hit_o = has_hit_q;
+  assign bound_o = has_hit_q | bounded_q;
 
   // ---- Exit test of the check grant ------------------------------------------------
   best_t chk_best;
-  assign chk_best = best_q[check_slot_o];
+  logic  chk_settled, chk_holds;
+  assign chk_best      = best_q[check_slot_o];
+  assign chk_settled   = any_hit_q[check_slot_o] && has_hit_q[check_slot_o];
+  assign check_holds_o = chk_settled || chk_holds;
 
   rt_exit_test #(.ExitW(ExitW), .DenW(DenW)) u_exit (
-    .valid_i (check_go_o),
+    .valid_i (check_go_o && !chk_settled),
     .exit_i  (check_exit_i),
     .dom_i   (dom_q[check_slot_o]),
     .den_i   (den_q[check_slot_o]),
     .t_num_i (chk_best.t_num),
     .det_i   (chk_best.det),
-    .holds_o (check_holds_o)
+    .holds_o (chk_holds)
   );
 
   // ---- The records kept by slot index ---------------------------------------------------
   ray_geom_t init_geom;
+  best_t     init_best;  // the segment end as a pseudo hit
   assign init_geom.org = init_ray_i.org;
   assign init_geom.dir = init_ray_i.dir;
+  always_comb begin
+    init_best         = '0;
+    init_best.t_num   = rt_pkg::T_NUM_W'(init_ray_i.t_max);
+    init_best.det     = rt_pkg::DET_ABS_W'(1) << rt_pkg::SEG_FRAC_W;
+  end
 
   always_ff @(posedge clk_i) begin
     if (init_i) begin
@@ -407,7 +424,8 @@ module rt_trav_shell #(
       geom_q[init_slot_i]   <= init_geom;
       dom_q[init_slot_i]    <= init_dom_i;
       den_q[init_slot_i]    <= init_den_i;
-      best_q[init_slot_i]   <= '0;
+      best_q[init_slot_i]   <= init_best;
+      seg_q[init_slot_i]    <= init_ray_i.t_max;
     end
     if (take_o) best_q[isect_slot_o] <= res_new;
   end
@@ -415,8 +433,14 @@ module rt_trav_shell #(
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       has_hit_q <= '0;
+      bounded_q <= '0;
+      any_hit_q <= '0;
     end else begin
-      if (init_i) has_hit_q[init_slot_i] <= 1'b0;
+      if (init_i) begin
+        has_hit_q[init_slot_i] <= 1'b0;
+        bounded_q[init_slot_i] <= init_ray_i.t_max != '1;
+        any_hit_q[init_slot_i] <= init_ray_i.any_hit;
+      end
       if (take_o) has_hit_q[isect_slot_o] <= 1'b1;
     end
   end
@@ -432,9 +456,9 @@ module rt_trav_shell #(
     done_ray_id = '0;
     done_hit    = 1'b0;
     if (done_any) begin
-      done_best   = best_q[done_slot_o];
       done_ray_id = ray_id_q[done_slot_o];
       done_hit    = has_hit_q[done_slot_o];
+      if (done_hit) done_best = best_q[done_slot_o];  // (not the segment end)
     end
   end
   assign done_rec = {done_ray_id, done_count_i, done_tests_i, done_hit, done_best};

@@ -89,12 +89,12 @@ module rt_octree #(
   } group_t;
 
   // ---- Per-slot signals ---------------------------------------------------------
-  logic [N-1:0]        free, want_visit, want_node, want_idx, want_check, want_done, has_hit;
+  logic [N-1:0]        free, want_visit, want_node, want_idx, want_check, want_done, bound;
   logic [N-1:0]        fetching, waiting_node;
   logic                ray_fire, visit_go, node_go, idx_go, check_go, done_go;
   logic [SlotW-1:0]    alloc_idx, visit_idx, node_idx, idx_idx, check_idx, done_idx;
   logic                node_valid, isect_valid, check_holds;
-  logic                unused_take;  // the slots read the closest-hit state from has_hit
+  logic                unused_take;  // the slots read the exit-test state from bound
   logic [SlotW-1:0]    node_tag, res_slot;
   logic [GROUP_W-1:0]  node_data;
   logic                visit_at_root;
@@ -155,7 +155,7 @@ module rt_octree #(
     .isect_valid_o (isect_valid),
     .isect_slot_o  (res_slot),
     .take_o        (unused_take),
-    .has_hit_o     (has_hit),
+    .bound_o       (bound),
     .want_check_i  (want_check),
     .check_go_o    (check_go),
     .check_slot_o  (check_idx),
@@ -233,7 +233,7 @@ module rt_octree #(
     .fetching_o       (fetching),
     .res_valid_i      (isect_valid),
     .res_slot_i       (res_slot),
-    .hit_i            (has_hit),
+    .bound_i          (bound),
     .want_check_o     (want_check),
     .check_go_i       (check_go),
     .check_slot_i     (check_idx),

@@ -6,8 +6,9 @@
 //   ENTER -visit grant-> GROUP_REQ (interior) | FETCH (leaf, count > 0) | CHECK (empty leaf)
 //   GROUP_REQ -node grant-> WAIT_GROUP -node response-> DESCEND -> ENTER | NEXT
 //   FETCH: one index request per index grant; -> CHECK once every result is in
-//   CHECK without a hit: advance on an advance-lane grant; with a hit: on the
-//   check grant DONE if the exit test holds, else advance in the exit lane
+//   CHECK without a bound (no hit, no segment end): advance on an advance-lane
+//   grant; with one: on the check grant DONE if the exit test holds (or an
+//   any-hit ray has its hit), else advance in the exit lane
 //   NEXT: advance on an advance-lane grant
 //   advance: DONE at depth 0; sibling -> ENTER | REFILL_REQ | NEXT; pop -> NEXT | DONE
 //   REFILL_REQ -node grant-> WAIT_REFILL -node response-> ENTER
@@ -31,7 +32,7 @@
 // per cycle) and lasts one cycle: one slot at most, the registered response
 // tag. FETCH ends the cycle after the result that completes the leaf (one per
 // cycle): the registered result slot. The advance runs in AdvLanes shared
-// lanes, granted round robin to the slots in NEXT or in CHECK without a hit,
+// lanes, granted round robin to the slots in NEXT or in CHECK without a bound,
 // and in one more lane for the slot whose exit test fails: AdvLanes + 1
 // advance datapaths, not one per slot; a slot waits only when more than
 // AdvLanes slots want to advance in the same cycle.
@@ -94,8 +95,8 @@ module rt_octree_slots #(
   input  logic                                   res_valid_i,
   input  logic [SlotW-1:0]                       res_slot_i,
 
-  // Exit tests of slots with a hit.
-  input  logic [N-1:0]                           hit_i,            // a closest hit so far
+  // Exit tests of slots with a bound.
+  input  logic [N-1:0]                           bound_i,          // exit-tested: a closest hit so far, or a segment end
   output logic [N-1:0]                           want_check_o,
   input  logic                                   check_go_i,
   input  logic [SlotW-1:0]                       check_slot_i,
@@ -210,7 +211,7 @@ module rt_octree_slots #(
   assign visit_empty = (visit_rec_i.count == '0);
 
   // ---- The advance lanes -----------------------------------------------------------
-  // A slot advances (fx::nextChild) in NEXT, in CHECK without a hit, and when
+  // A slot advances (fx::nextChild) in NEXT, in CHECK without a bound, and when
   // the exit test it is granted fails. The first two wait in want_adv for one
   // of AdvLanes round-robin lanes (lane l takes the next requester that no
   // lane before it took); the exit test has a lane of its own (lane AdvLanes).
@@ -231,7 +232,7 @@ module rt_octree_slots #(
   logic                  lane_go [LANES];
   logic [SlotW-1:0]      lane_slot [LANES];
 
-  assign want_adv    = next_q | (check_q & ~hit_i);
+  assign want_adv    = next_q | (check_q & ~bound_i);
   assign lane_req[0] = want_adv;
   for (genvar l = 0; l < AdvLanes; l++) begin : g_adv_arb
     logic [N-1:0] gnt;
@@ -458,7 +459,7 @@ module rt_octree_slots #(
   assign want_visit_o   = enter_q;
   assign want_node_o    = group_req_q | refill_req_q;
   assign want_idx_o     = iss_q;
-  assign want_check_o   = check_q & hit_i;
+  assign want_check_o   = check_q & bound_i;
   assign want_done_o    = done_q;
   assign fetching_o     = fetch_q;
   assign waiting_node_o = wait_group_q | wait_refill_q;
@@ -472,7 +473,7 @@ module rt_octree_slots #(
       if (visit_go_i) a_visit_enter : assert (enter_q[visit_slot_i]);
       if (idx_go_i) a_idx_fetch : assert (iss_q[idx_slot_i]);
       if (res_valid_i) a_res_fetch : assert (fetch_q[res_slot_i] && received_q[res_slot_i] != issued_q[res_slot_i]);
-      if (check_go_i) a_check_wants : assert (check_q[check_slot_i] && hit_i[check_slot_i]);
+      if (check_go_i) a_check_wants : assert (check_q[check_slot_i] && bound_i[check_slot_i]);
       // An interior node one lattice unit wide cannot be split: the image is malformed.
       if (desc_q) a_stack_depth : assert (depth_q[desc_slot_q] < DEPTH_W'(STACK));
     end

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <algorithm>
 #include <memory>
+#include <numeric>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -14,6 +15,9 @@
 #include "common/progress.h"
 #include "driver/job.h"
 #include "driver/report.h"
+#include "driver/wave_tracer.h"
+#include "effects/ref_tracer.h"
+#include "effects/whitted.h"
 #include "golden/isect.h"
 #include "golden/octree.h"
 #include "ref/bvh.h"
@@ -33,6 +37,7 @@ struct Args {
   RaySource source;
   std::string accel = "bvh";
   JobConfig job;
+  EffectsArgs effects;
   double clockMhz = kDefaultClockMhz;
   int posBits = fx::kPosBits;
   int dirBits = fx::kDirBits;
@@ -96,6 +101,123 @@ void checkFormats(const Args& args) {
   }
 }
 
+// The figures of one primary-ray job against the float reference (the plain
+// run, and the primary wave of an effects run).
+void printReferenceComparison(const ReferenceComparison& cmp) {
+  fmt::print("  vs float reference  {} rays differ ({} hit/miss, {} triangle); t error max {:.3f}, mean {:.4f} lattice units\n",
+             cmp.disagreements, cmp.hitMissDiffers, cmp.primDiffers, cmp.maxTError, cmp.meanTError);
+  if (cmp.arbiter.judged) {
+    const ArbiterCounts& a = cmp.arbiter;
+    fmt::print("  exact arbiter       reference {} correct, {} tie, {} rounding, {} wrong; "
+               "hardware {} correct, {} tie, {} within its lattice bound, {} beyond\n",
+               a.reference[0], a.reference[1], a.reference[2], a.reference[3], a.hardware[0], a.hardware[1],
+               a.hardware[2], a.hardware[3]);
+    if (a.firstHardwareBeyond) fmt::print("  first ray beyond the hardware's bound: {}\n", *a.firstHardwareBeyond);
+    if (a.firstReferenceWrong) fmt::print("  first ray the reference got wrong: {}\n", *a.firstReferenceWrong);
+  }
+}
+
+// The SPD counts of a Whitted run, keyed as in the report.
+std::vector<std::pair<const char*, uint64_t>> spdCounts(const WhittedResult& r) {
+  return {{"eye_hit_rays", r.eyeHitRays},   {"reflect_rays", r.reflectRays},
+          {"refract_rays", r.refractRays},  {"shadow_rays", r.shadowRays},
+          {"shadow_rays_blocked", r.shadowRaysBlocked}, {"self_hits", r.selfHits}};
+}
+
+// An effects run (docs/effects.md): the Whitted loop's waves through the
+// hardware, every wave checked against the golden model bit for bit, and the
+// same loop on the float reference tracer for the counts.
+void runEffects(const Args& args, const Scene& scene, const EffectsPlan& plan, const Quantizer& quantizer,
+                std::chrono::steady_clock::time_point hostStart) {
+  const Sampling sampling = args.effects.parsedSampling();
+  const PinholeCamera camera = frameScene(scene, args.source.camera.resolve());
+  const std::vector<Ray> eye = camera.generateRays(sampling);
+  HardwareWaveTracer tracer(args.accel, scene, quantizer, args.job);
+  const WhittedResult hw = traceWhitted(scene, plan, eye, tracer, [&](int generation, size_t n) {
+    fmt::print("  wave {}: {} rays on {} {}\n", generation, n, args.accel, args.job.model);
+  });
+  const Bvh reference(scene, AccelOptions{});
+  RefWaveTracer refTracer(scene, reference);
+  const WhittedResult ref = traceWhitted(scene, plan, eye, refTracer);
+  const double hostSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - hostStart).count();
+  const double clockHz = args.clockMhz * 1e6;
+
+  fmt::print("run: {} ({} triangles), {} {} samples {}x{}, model {}, accel {}, formats pos {} / dir {} bits\n",
+             scene.name, scene.size(), eye.size(), toString(sampling), camera.width(), camera.height(),
+             args.job.model, args.accel, fx::kPosBits, fx::kDirBits);
+  fmt::print("  {:<11} {:>9} {:>9} {:>11} {:>10} {:>11} {:>11} {:>10}\n", "class", "rays", "hits", "tests", "steps",
+             "cycles", "sim us", "mismatch");
+  nlohmann::json classes;
+  uint64_t totalCycles = 0;
+  for (int c = 0; c < kRayClassCount; ++c) {
+    const RayClass cls = RayClass(c);
+    const ClassHardwareStats& s = tracer.stats(cls);
+    totalCycles += s.cycles;
+    if (!plan.has(cls)) continue;
+    const double simSeconds = double(s.cycles) / clockHz;
+    fmt::print("  {:<11} {:>9} {:>9} {:>11} {:>10} {:>11} {:>11.1f} {:>10}\n", toString(cls), s.rays, s.hits,
+               s.intersectionTests, s.steps, s.cycles, simSeconds * 1e6, s.mismatches);
+    classes[std::string(toString(cls))] = {
+        {"rays", s.rays},         {"rays_in_lattice", s.traced},  {"hits", s.hits},
+        {"intersection_tests", s.intersectionTests}, {"steps", s.steps}, {"memory_reads", s.memoryReads},
+        {"cycles", s.cycles},     {"simulated_seconds", simSeconds}, {"mismatches", s.mismatches},
+        {"host_seconds", s.modelSeconds + s.goldenSeconds}, {"model_seconds", s.modelSeconds},
+        {"golden_seconds", s.goldenSeconds}};
+    if (s.closestHitSteps || s.closestHitTests) {
+      classes[std::string(toString(cls))]["closest_hit_steps"] = s.closestHitSteps;
+      classes[std::string(toString(cls))]["closest_hit_tests"] = s.closestHitTests;
+    }
+  }
+  if (!tracer.cycleAccurate()) fmt::print("  (golden model: no cycle timing)\n");
+  const ClassHardwareStats& shadow = tracer.stats(RayClass::Shadow);
+  if (shadow.rays && args.accel != "bvh") {
+    fmt::print("  any-hit saving      shadow rays took {} steps and {} tests; as closest-hit rays {} and {} ({:.1f}% fewer steps)\n",
+               shadow.steps, shadow.intersectionTests, shadow.closestHitSteps, shadow.closestHitTests,
+               shadow.closestHitSteps ? 100.0 * (1.0 - double(shadow.steps) / double(shadow.closestHitSteps)) : 0.0);
+  }
+  fmt::print("  {:<20} {:>10} {:>10}\n", "SPD count", "hardware", "float ref");
+  const auto hwCounts = spdCounts(hw), refCounts = spdCounts(ref);
+  for (size_t k = 0; k < hwCounts.size(); ++k) {
+    fmt::print("  {:<20} {:>10} {:>10}\n", hwCounts[k].first, hwCounts[k].second, refCounts[k].second);
+  }
+  if (tracer.originsOutside()) {
+    fmt::print("  {} secondary rays left the lattice cube at their origin (not traced)\n", tracer.originsOutside());
+  }
+  fmt::print("  host                {:.2f} s in all; simulated {:.1f} us at {:g} MHz for {} cycles\n", hostSeconds,
+             double(totalCycles) / clockHz * 1e6, args.clockMhz, totalCycles);
+  fmt::print("  bit-exact vs golden {} rays in {} waves, {} mismatches\n", std::accumulate(hw.waveRays.begin(), hw.waveRays.end(), uint64_t(0)),
+             hw.waveRays.size(), tracer.mismatches());
+
+  if (!args.image.empty()) {
+    writePng(samplesToImage(hw.samples, camera.width(), camera.height(), sampling), args.image);
+    fmt::print("  image               {} (shaded from the model's hits)\n", args.image);
+  }
+  nlohmann::json report = {
+      {"command", "run"},           {"scene", scene.name},        {"triangles", scene.size()},
+      {"accel", args.accel},        {"model", args.job.model},    {"pos_bits", fx::kPosBits},
+      {"dir_bits", fx::kDirBits},   {"sampling", toString(sampling)}, {"width", camera.width()},
+      {"height", camera.height()},  {"eye_rays", eye.size()},     {"plan", plan.toJson()},
+      {"classes", classes},         {"cycles", totalCycles},      {"cycle_accurate", tracer.cycleAccurate()},
+      {"clock_hz", clockHz},        {"mismatches", tracer.mismatches()}, {"host_seconds", hostSeconds},
+      {"origin_offset_lattice_units", tracer.offsetUnits()}, {"origins_outside_lattice", tracer.originsOutside()},
+      {"wave_rays", hw.waveRays},   {"total_internal_reflections", hw.totalInternalReflections},
+      {"refraction_rays_traced", hw.refractionsTraced}};
+  for (const auto& [key, value] : hwCounts) report[key] = value;
+  nlohmann::json refJson;
+  for (const auto& [key, value] : refCounts) refJson[key] = value;
+  report["float_reference"] = refJson;
+  if (const auto& m = tracer.firstMismatch()) {
+    fmt::print(stderr, "{}", m->details);
+    report["first_mismatch"] = {{"generation", m->generation}, {"class", toString(m->cls)}, {"index", m->index},
+                                {"report", m->details}};
+  }
+  writeReport(args.report, report);
+  if (tracer.mismatches()) {
+    throw CheckFailed(fmt::format("model {} disagrees with the golden model on {} wave rays", args.job.model,
+                                  tracer.mismatches()));
+  }
+}
+
 void run(const Args& args) {
   checkFormats(args);
   const auto hostStart = std::chrono::steady_clock::now();
@@ -105,8 +227,18 @@ void run(const Args& args) {
                                  args.accel, fmt::join(models, ", ")));
   }
   const Scene scene = args.scene.load();
-  const Rays rays = loadRays(args.source, scene);
+  const EffectsPlan plan = planEffects(scene, args.effects.options());
+  const Sampling sampling = args.effects.parsedSampling();
   const Quantizer quantizer(scene.bounds);
+  fmt::print("{}", plan.describe());
+  const bool secondary =
+      plan.has(RayClass::Shadow) || plan.has(RayClass::Reflection) || plan.has(RayClass::Refraction);
+  if (args.source.fromCamera() && (secondary || sampling == Sampling::Corners)) {
+    runEffects(args, scene, plan, quantizer, hostStart);
+    return;
+  }
+  if (secondary) fmt::print("  (rays from {}: primary rays only; effects need camera rays)\n", args.source.raysFile);
+  const Rays rays = loadRays(args.source, scene);
 
   Progress progress(fmt::format("run {} {}", args.accel, args.job.model), rays.rays.size());
   const JobResult job = runJob(args.accel, scene, rays.rays, quantizer, args.job, [&](size_t n) { progress.advance(n); });
@@ -145,17 +277,7 @@ void run(const Args& args) {
              job.goldenSeconds);
   fmt::print("  bit-exact vs golden {} rays ({} entered the lattice, {} hit), {} mismatches\n", rays.rays.size(),
              inLattice, hitCount, job.mismatchedRays);
-  fmt::print("  vs float reference  {} rays differ ({} hit/miss, {} triangle); t error max {:.3f}, mean {:.4f} lattice units\n",
-             cmp.disagreements, cmp.hitMissDiffers, cmp.primDiffers, cmp.maxTError, cmp.meanTError);
-  if (cmp.arbiter.judged) {
-    const ArbiterCounts& a = cmp.arbiter;
-    fmt::print("  exact arbiter       reference {} correct, {} tie, {} rounding, {} wrong; "
-               "hardware {} correct, {} tie, {} within its lattice bound, {} beyond\n",
-               a.reference[0], a.reference[1], a.reference[2], a.reference[3], a.hardware[0], a.hardware[1],
-               a.hardware[2], a.hardware[3]);
-    if (a.firstHardwareBeyond) fmt::print("  first ray beyond the hardware's bound: {}\n", *a.firstHardwareBeyond);
-    if (a.firstReferenceWrong) fmt::print("  first ray the reference got wrong: {}\n", *a.firstReferenceWrong);
-  }
+  printReferenceComparison(cmp);
 
   if (!args.image.empty()) {
     if (!rays.camera) throw InputError("--image needs camera rays (no --rays file)");
@@ -257,6 +379,7 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--image", args->image, "PNG drawn from the model's own hits");
   cmd->add_option("--hits", args->hits, "CSV of the model's hits, with the raw fixed-point fields in hex");
   cmd->add_option("--wave", args->job.stream.wavePath, "FST waveform of the RTL (rtl model only; slow)");
+  args->effects.add(*cmd);
   cmd->add_option("--repro", args->repro, "Where a mismatch's reproducer rays file goes")->capture_default_str();
   cmd->callback([args] { run(*args); });
 }

@@ -78,6 +78,25 @@ void AccelArgs::add(CLI::App& app, const std::vector<std::string>& allowed) {
   app.add_option("--octree-leaf", options.octreeLeafSize, "Octree leaf size in triangles (default: heuristic)");
 }
 
+void EffectsArgs::add(CLI::App& app, CLI::Option* needs) {
+  std::vector<CLI::Option*> added = {
+      app.add_option("--effects", effects,
+                     "Ray classes to trace, comma-separated: primary,shadow,reflection,refraction "
+                     "(default: all the scene calls for)")
+          ->delimiter(','),
+      app.add_option("--max-depth", maxDepth, "Deepest ray tree; the eye ray has depth 1 (SPD rule 7)")
+          ->capture_default_str(),
+      app.add_option("--light-samples", lightSamples, "Shadow rays per emissive triangle per hit (area lights)")
+          ->capture_default_str(),
+      app.add_option("--sampling", sampling,
+                     "Eye rays at pixel centers (WxH) or pixel corners ((W+1)x(H+1), averaged 4 to a pixel, "
+                     "as the SPD counts)")
+          ->capture_default_str()};
+  if (needs) {
+    for (CLI::Option* o : added) o->needs(needs);
+  }
+}
+
 void RaySource::add(CLI::App& app) {
   app.add_option("--rays", raysFile, "Rays file (see traces/README.md); default: camera rays");
   camera.add(app);

@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "effects/plan.h"
 #include "ref/accel.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
@@ -51,6 +52,20 @@ struct TracerArgs {
   std::unique_ptr<Accel> build(const Scene& loaded, double* buildSeconds) const;
 };
 
+// The effects of a Whitted run (docs/effects.md): --effects, --max-depth,
+// --light-samples, --sampling. `lancer render --whitted` and `lancer run` share them.
+struct EffectsArgs {
+  std::vector<std::string> effects;
+  int maxDepth = 5;
+  int lightSamples = 1;
+  std::string sampling = "centers";
+  // Adds the options; with `needs`, each requires that flag (e.g. --whitted).
+  void add(CLI::App& app, CLI::Option* needs = nullptr);
+  EffectsOptions options() const { return {effects, maxDepth, lightSamples}; }
+  // Throws InputError naming --sampling for an unknown value.
+  Sampling parsedSampling() const { return parseSampling(sampling); }
+};
+
 // Rays from --rays FILE, or from the camera when no file is given.
 struct RaySource {
   std::string raysFile;
@@ -85,6 +100,7 @@ void addRenderCommand(CLI::App& app);
 void addTraceCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addRunCommand(CLI::App& app);
+void addSpdCommand(CLI::App& app);
 void addSweepCommand(CLI::App& app);  // sweep, sweep-job, sweep-merge, crack-rays
 
 }  // namespace lancer::cli

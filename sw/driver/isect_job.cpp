@@ -42,7 +42,7 @@ std::string describeMismatch(const Mismatch& m) {
   return out;
 }
 
-JobResult runIsectJob(const Scene& scene, std::span<const Ray> rays, const Quantizer& quantizer,
+JobResult runIsectJob(const Scene& scene, std::span<const std::optional<QuantizedRay>> rays, const Quantizer& quantizer,
                       const CandidateSource& candidates, IsectDevice& model, IsectDevice& golden,
                       const JobConfig& config, const ProgressFn& onProgress) {
   JobResult job;
@@ -61,8 +61,9 @@ JobResult runIsectJob(const Scene& scene, std::span<const Ray> rays, const Quant
     const size_t end = std::min(rays.size(), begin + config.raysPerBatch);
     requests.clear();
     for (size_t i = begin; i < end; ++i) {
-      job.rays[i] = quantizer.quantize(rays[i], uint32_t(i));
+      job.rays[i] = rays[i];
       if (!job.rays[i]) continue;
+      job.rays[i]->q.id = uint32_t(i);
       const fx::QRay& q = job.rays[i]->q;
       found.clear();
       candidates(Ray{glm::vec3(quantizer.sceneOrigin(q)), glm::vec3(quantizer.sceneDirection(q))}, found);

@@ -31,10 +31,11 @@ struct Mismatch {
 // The reproducer text of a mismatch: inputs in hex, both records, differing bits.
 std::string describeMismatch(const Mismatch& mismatch);
 
-// Streams every (ray, candidate) pair through `model` and through `golden`,
+// Streams every (ray, candidate) pair of the rays that entered the lattice
+// (rays[k], id k; the candidates ignore segment ends) through `model` and through `golden`,
 // compares the two output streams record by record, bit for bit, and reduces
 // the model's results to each ray's closest hit (fx::closerResult).
-JobResult runIsectJob(const Scene& scene, std::span<const Ray> rays, const Quantizer& quantizer,
+JobResult runIsectJob(const Scene& scene, std::span<const std::optional<QuantizedRay>> rays, const Quantizer& quantizer,
                       const CandidateSource& candidates, IsectDevice& model, IsectDevice& golden,
                       const JobConfig& config, const ProgressFn& onProgress = {});
 

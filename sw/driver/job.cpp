@@ -19,25 +19,44 @@ namespace {
 // float rounding of the dequantized ray (the hardware's ray itself is exact).
 constexpr float kCandidateMarginUnits = 2.0f;
 
-JobResult runBvhPath(const Scene& scene, std::span<const Ray> rays, const Quantizer& quantizer,
-                     const JobConfig& config, const ProgressFn& onProgress) {
-  auto model = makeIsectDevice(config.model);
-  GoldenIsectDevice golden;
-  const Bvh bvh(scene, AccelOptions{});
-  return runIsectJob(scene, rays, quantizer, bvhCandidates(bvh, kCandidateMarginUnits * float(quantizer.unit())),
-                     *model, golden, config, onProgress);
-}
+// The host BVH feeding the intersection pipeline.
+class BvhPath final : public HardwarePath {
+ public:
+  BvhPath(const Scene& scene, const Quantizer& quantizer, const JobConfig& config)
+      : scene_(scene), quantizer_(quantizer), config_(config), model_(makeIsectDevice(config.model)),
+        bvh_(scene, AccelOptions{}),
+        candidates_(bvhCandidates(bvh_, kCandidateMarginUnits * float(quantizer.unit()))) {}
+  JobResult run(std::span<const std::optional<QuantizedRay>> rays, const ProgressFn& onProgress) override {
+    return runIsectJob(scene_, rays, quantizer_, candidates_, *model_, golden_, config_, onProgress);
+  }
 
-// A traversal unit's path: its model against its golden model, over the image
-// the driver builds for the scene.
+ private:
+  const Scene& scene_;
+  const Quantizer& quantizer_;
+  JobConfig config_;
+  std::unique_ptr<IsectDevice> model_;
+  GoldenIsectDevice golden_;
+  Bvh bvh_;
+  CandidateSource candidates_;
+};
+
+// A traversal unit: its model against its golden model, over the image the
+// driver builds for the scene.
 template <class Image, auto makeDevice, auto buildImageFor>
-JobResult runTraversalPath(const Scene& scene, std::span<const Ray> rays, const Quantizer& quantizer,
-                           const JobConfig& config, const ProgressFn& onProgress) {
-  auto model = makeDevice(config.model);
-  GoldenTraversalDevice<Image> golden;
-  const Image image = buildImageFor(scene, quantizer, config.accel);
-  return runTraversalJob(image, rays, quantizer, *model, golden, config, onProgress);
-}
+class TraversalPath final : public HardwarePath {
+ public:
+  TraversalPath(const Scene& scene, const Quantizer& quantizer, const JobConfig& config)
+      : config_(config), model_(makeDevice(config.model)), image_(buildImageFor(scene, quantizer, config.accel)) {}
+  JobResult run(std::span<const std::optional<QuantizedRay>> rays, const ProgressFn& onProgress) override {
+    return runTraversalJob(image_, rays, *model_, golden_, config_, onProgress);
+  }
+
+ private:
+  JobConfig config_;
+  std::unique_ptr<TraversalDevice<Image>> model_;
+  GoldenTraversalDevice<Image> golden_;
+  Image image_;
+};
 
 }  // namespace
 
@@ -50,18 +69,28 @@ std::vector<std::string> modelsFor(const std::string& accel) {
   return {};
 }
 
-JobResult runJob(const std::string& accel, const Scene& scene, std::span<const Ray> rays,
-                 const Quantizer& quantizer, const JobConfig& config, const ProgressFn& onProgress) {
-  if (accel == "bvh") return runBvhPath(scene, rays, quantizer, config, onProgress);
+QuantizedRays quantizeRays(const Quantizer& quantizer, std::span<const Ray> rays) {
+  QuantizedRays out(rays.size());
+  for (size_t i = 0; i < rays.size(); ++i) out[i] = quantizer.quantize(rays[i], uint32_t(i));
+  return out;
+}
+
+std::unique_ptr<HardwarePath> makeHardwarePath(const std::string& accel, const Scene& scene,
+                                               const Quantizer& quantizer, const JobConfig& config) {
+  if (accel == "bvh") return std::make_unique<BvhPath>(scene, quantizer, config);
   if (accel == "grid") {
-    return runTraversalPath<fx::GridImage, makeGridDevice, buildGridImageFor>(scene, rays, quantizer, config,
-                                                                           onProgress);
+    return std::make_unique<TraversalPath<fx::GridImage, makeGridDevice, buildGridImageFor>>(scene, quantizer, config);
   }
   if (accel == "octree") {
-    return runTraversalPath<fx::OctreeImage, makeOctreeDevice, buildOctreeImageFor>(scene, rays, quantizer, config,
-                                                                                 onProgress);
+    return std::make_unique<TraversalPath<fx::OctreeImage, makeOctreeDevice, buildOctreeImageFor>>(scene, quantizer,
+                                                                                                   config);
   }
   throw InputError(fmt::format("no hardware path for --accel {} (available: {})", accel, fmt::join(hardwareAccels(), ", ")));
+}
+
+JobResult runJob(const std::string& accel, const Scene& scene, std::span<const Ray> rays,
+                 const Quantizer& quantizer, const JobConfig& config, const ProgressFn& onProgress) {
+  return makeHardwarePath(accel, scene, quantizer, config)->run(quantizeRays(quantizer, rays), onProgress);
 }
 
 }  // namespace lancer

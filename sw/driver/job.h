@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -40,6 +41,8 @@ struct JobResult {
   uint64_t cycles = 0;
   bool cycleAccurate = true;
   uint64_t intersectionTests = 0;
+  uint64_t steps = 0;        // traversal units: cells or nodes entered (0 on the bvh path)
+  uint64_t memoryReads = 0;  // traversal units: reads of every region
   std::vector<JobCounter> counters;
   double modelSeconds = 0;   // host time inside the model
   double goldenSeconds = 0;  // host time inside the golden model
@@ -65,8 +68,26 @@ using ProgressFn = std::function<void(size_t raysDone)>;
 std::vector<std::string> hardwareAccels();
 std::vector<std::string> modelsFor(const std::string& accel);
 
-// Runs `rays` through the path. Throws InputError for an unknown path or model,
-// or a configuration the model cannot run.
+// Rays as a job takes them: ray k quantized with id k, nullopt where it misses
+// the lattice cube.
+using QuantizedRays = std::vector<std::optional<QuantizedRay>>;
+QuantizedRays quantizeRays(const Quantizer& quantizer, std::span<const Ray> rays);
+
+// A hardware path (--accel) on a model (--model), set up once for a scene: its
+// memory image or host BVH, the model and the golden model. Each run() is one
+// job: `rays` (ray k has id k) through both, compared ray by ray bit for bit.
+// A path runs any number of jobs (the waves of an effects run).
+class HardwarePath {
+ public:
+  virtual ~HardwarePath() = default;
+  virtual JobResult run(std::span<const std::optional<QuantizedRay>> rays, const ProgressFn& onProgress = {}) = 0;
+};
+
+// Throws InputError for an unknown path or model, or a configuration the model cannot run.
+std::unique_ptr<HardwarePath> makeHardwarePath(const std::string& accel, const Scene& scene,
+                                               const Quantizer& quantizer, const JobConfig& config);
+
+// Runs `rays` through the path: quantizeRays, then one job.
 JobResult runJob(const std::string& accel, const Scene& scene, std::span<const Ray> rays,
                  const Quantizer& quantizer, const JobConfig& config, const ProgressFn& onProgress = {});
 

@@ -6,10 +6,17 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "golden/isect.h"
 
 namespace lancer {
 
 Quantizer::Quantizer(const Aabb& bounds) {
+  // An empty box (no triangles) or a non-finite one has no lattice: every ray
+  // would quantize from a NaN origin (found by tests/fuzz/fuzz_quantize).
+  if (bounds.empty() || !allFinite(bounds.lo) || !allFinite(bounds.hi)) {
+    throw InputError(fmt::format("scene bounds ({}, {}, {}) .. ({}, {}, {}) are empty or not finite: no lattice to quantize to",
+                                 bounds.lo.x, bounds.lo.y, bounds.lo.z, bounds.hi.x, bounds.hi.y, bounds.hi.z));
+  }
   const glm::dvec3 lo(bounds.lo), hi(bounds.hi);
   double side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
   if (!(side > 0.0) || !std::isfinite(side)) side = 1.0;  // a point-like scene still gets a lattice
@@ -68,13 +75,47 @@ std::optional<QuantizedRay> Quantizer::quantize(const Ray& ray, uint32_t id) con
   for (int axis = 0; axis < 3; ++axis) {
     out.q.org[axis] = std::clamp<int64_t>(std::llrint(entry[axis]), 0, fx::kPosMax);
   }
+  finish(out, o, d, double(ray.tMax));
+  return out;
+}
+
+std::optional<QuantizedRay> Quantizer::quantizeFrom(const glm::dvec3& latticeOrigin, const Ray& ray,
+                                                    uint32_t id) const {
+  QuantizedRay out;
+  out.q.id = id;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int64_t c = std::llrint(latticeOrigin[axis]);
+    if (!(c >= 0 && c <= fx::kPosMax)) return std::nullopt;
+    out.q.org[axis] = c;
+  }
+  const glm::dvec3 o = toLattice(glm::dvec3(ray.origin));
+  const glm::dvec3 d = glm::dvec3(ray.dir) * scale_;
+  // The scene t of the lattice origin, projected on the ray.
+  const glm::dvec3 org(double(out.q.org[0]), double(out.q.org[1]), double(out.q.org[2]));
+  out.tEnter = glm::dot(org - o, d) / glm::dot(d, d);
+  finish(out, o, d, double(ray.tMax));
+  return out;
+}
+
+void Quantizer::finish(QuantizedRay& out, const glm::dvec3& o, const glm::dvec3& d, double tMax) const {
   // Direction: the dominant component becomes exactly +-kDirMax, the others round.
   const double magnitude = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
   const double toDir = double(fx::kDirMax) / magnitude;
   for (int axis = 0; axis < 3; ++axis) out.q.dir[axis] = std::llrint(d[axis] * toDir);
   // A lattice-t unit moves the ray by q = d * toDir lattice units: t_scene = t_lattice * toDir.
   out.tScale = toDir;
-  return out;
+  // Segment end: the end point's displacement from the lattice origin along the
+  // dominant axis, rounded down to 2^-F units; none if the end is outside the cube.
+  out.q.tMax = fx::kSegEndNone;
+  if (!std::isfinite(tMax)) return;
+  const glm::dvec3 end = o + tMax * d;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!(end[axis] >= 0.0 && end[axis] <= double(fx::kPosMax))) return;
+  }
+  const int k = fx::dominantAxis(out.q.dir);
+  const double along = (end[k] - double(out.q.org[k])) * (out.q.dir[k] > 0 ? 1.0 : -1.0);
+  const double code = std::floor(std::max(along, 0.0) * double(uint64_t(1) << fx::kSegFracBits));
+  out.q.tMax = uint64_t(std::min(code, double(fx::kSegEndNone - 1)));
 }
 
 glm::dvec3 Quantizer::sceneOrigin(const fx::QRay& q) const {

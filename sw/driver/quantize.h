@@ -23,6 +23,7 @@ struct QuantizedRay {
 // entry point; the direction is scaled so its dominant component is +-kDirMax.
 class Quantizer {
  public:
+  // Throws InputError if the bounds are empty or not finite.
   explicit Quantizer(const Aabb& sceneBounds);
 
   // Throws InputError if a vertex lies outside the lattice cube by more than half a unit.
@@ -30,8 +31,16 @@ class Quantizer {
   // Every triangle of the scene, id = its index.
   std::vector<fx::QTriangle> quantize(const Scene& scene) const;
   // nullopt if the ray misses the cube (or leaves it before t = 0, or before tMax).
-  // The ray must already be validated (finite, non-zero direction).
+  // The ray must already be validated (finite, non-zero direction). A finite
+  // tMax inside the cube becomes the segment end (rounded down to its code:
+  // formats.h); one beyond the cube, none.
   std::optional<QuantizedRay> quantize(const Ray& ray, uint32_t id) const;
+  // A ray from a point given in lattice coordinates (a hardware hit moved off
+  // its surface), along ray.dir, ending at ray's tMax as quantize() does; t maps
+  // back to `ray`'s own parameter. The origin rounds to the nearest lattice
+  // point; nullopt if that lies outside the cube.
+  std::optional<QuantizedRay> quantizeFrom(const glm::dvec3& latticeOrigin, const Ray& ray, uint32_t id) const;
+  glm::dvec3 toLattice(const glm::dvec3& scenePoint) const { return (scenePoint - lo_) * scale_; }
 
   // The hardware's ray back in scene space (what it really traces), in double.
   glm::dvec3 sceneOrigin(const fx::QRay& q) const;
@@ -41,6 +50,10 @@ class Quantizer {
   const glm::dvec3& latticeOrigin() const { return lo_; }
 
  private:
+  // The quantized direction of lattice direction d, tScale, and the segment end
+  // of a ray whose origin in the lattice is o, for the lattice origin out.q.org.
+  void finish(QuantizedRay& out, const glm::dvec3& o, const glm::dvec3& d, double tMax) const;
+
   glm::dvec3 lo_;
   double scale_;  // lattice units per scene unit
 };

@@ -110,7 +110,7 @@ std::string describeTraversalMismatch(std::string_view unit, std::string_view el
 }
 
 template <class Image>
-JobResult runTraversalJob(const Image& image, std::span<const Ray> rays, const Quantizer& quantizer,
+JobResult runTraversalJob(const Image& image, std::span<const std::optional<QuantizedRay>> rays,
                           TraversalDevice<Image>& model, TraversalDevice<Image>& golden, const JobConfig& config,
                           const ProgressFn& onProgress) {
   using Unit = TraversalUnit<Image>;
@@ -138,8 +138,10 @@ JobResult runTraversalJob(const Image& image, std::span<const Ray> rays, const Q
     const size_t end = std::min(rays.size(), begin + config.raysPerBatch);
     batch.clear();
     for (size_t i = begin; i < end; ++i) {
-      job.rays[i] = quantizer.quantize(rays[i], uint32_t(i));
-      if (job.rays[i]) batch.push_back(job.rays[i]->q);
+      job.rays[i] = rays[i];
+      if (!job.rays[i]) continue;
+      job.rays[i]->q.id = uint32_t(i);
+      batch.push_back(job.rays[i]->q);
     }
     auto start = std::chrono::steady_clock::now();
     accumulate(total, model.run(image, batch, modelTraces, options));
@@ -164,6 +166,8 @@ JobResult runTraversalJob(const Image& image, std::span<const Ray> rays, const Q
   job.cycles = total.cycles;
   job.cycleAccurate = total.cycleAccurate;
   job.intersectionTests = total.isectTests;
+  job.steps = total.steps;
+  job.memoryReads = total.memoryReads();
   const double cycles = double(std::max<uint64_t>(total.cycles, 1));
   Unit::addImageCounters(job, image);
   job.addCounter(Unit::kStepsKey, Unit::kStepsLabel, double(total.steps));
@@ -185,9 +189,9 @@ JobResult runTraversalJob(const Image& image, std::span<const Ray> rays, const Q
   return job;
 }
 
-template JobResult runTraversalJob(const fx::GridImage&, std::span<const Ray>, const Quantizer&, GridDevice&,
+template JobResult runTraversalJob(const fx::GridImage&, std::span<const std::optional<QuantizedRay>>, GridDevice&,
                                    GridDevice&, const JobConfig&, const ProgressFn&);
-template JobResult runTraversalJob(const fx::OctreeImage&, std::span<const Ray>, const Quantizer&, OctreeDevice&,
-                                   OctreeDevice&, const JobConfig&, const ProgressFn&);
+template JobResult runTraversalJob(const fx::OctreeImage&, std::span<const std::optional<QuantizedRay>>,
+                                   OctreeDevice&, OctreeDevice&, const JobConfig&, const ProgressFn&);
 
 }  // namespace lancer

@@ -22,12 +22,12 @@ fx::GridImage buildGridImageFor(const Scene& scene, const Quantizer& quantizer, 
 // octreeLeafSize (0: fx::kDefaultOctreeLeafSize).
 fx::OctreeImage buildOctreeImageFor(const Scene& scene, const Quantizer& quantizer, const AccelOptions& options);
 
-// Runs every ray that enters the lattice through `model` and `golden` and
-// compares, per ray, bit for bit: the elements visited in order, the tests
-// issued, and the closest hit record. Throws InputError for a rays-in-flight
-// count or memory latency the model cannot run.
+// Runs every ray that entered the lattice (rays[k], id k) through `model` and
+// `golden` and compares, per ray, bit for bit: the elements visited in order,
+// the tests issued, and the closest hit record. Throws InputError for a
+// rays-in-flight count or memory latency the model cannot run.
 template <class Image>
-JobResult runTraversalJob(const Image& image, std::span<const Ray> rays, const Quantizer& quantizer,
+JobResult runTraversalJob(const Image& image, std::span<const std::optional<QuantizedRay>> rays,
                           TraversalDevice<Image>& model, TraversalDevice<Image>& golden, const JobConfig& config,
                           const ProgressFn& onProgress = {});
 

@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "driver/rtl_coverage.h"
 #include "driver/traversal_device.h"
 #include "golden/stimulus.h"
 #include "verilated.h"
@@ -41,6 +42,7 @@ class VerilatedUnit {
     context_->traceEverOn(true);
     context_->fatalOnError(false);  // a failed assertion becomes an exception (checkAssertions)
     top_ = std::make_unique<Top>(context_.get(), name_.c_str());
+    rtl_coverage::attach(*context_);  // no-op unless LANCER_RTL_COVERAGE
   }
   // Verilator reports errors (a failed assertion's $stop) to, and destroys
   // scopes through, the calling thread's current context: the last one
@@ -53,6 +55,7 @@ class VerilatedUnit {
     VerilatedContext* const mine = context_.get();
     select();
     closeWave();
+    rtl_coverage::detach(*context_);
     if (top_) top_->final();
     top_.reset();
     context_.reset();

@@ -66,6 +66,19 @@ static_assert(kPosBits >= 4 && kDirBits >= 4, "formats narrower than 4 bits are 
 static_assert(kShearBits <= 63, "shear must fit int64: lower LANCER_POS_BITS + LANCER_DIR_BITS");
 static_assert(kTBits <= 127, "T must fit __int128: need 3*POS_BITS + 2*DIR_BITS <= 123");
 
+// ---- The ray segment (docs/number-formats.md, "Segment end") -----------------
+// A ray may end before the lattice's edge (a shadow ray at its light). Its end is
+// a displacement along the dominant axis, in lattice units with kSegFracBits
+// fraction bits: t_max = floor(2^F * |p_end - o|_kz). A hit's displacement is
+// exactly t_num / det (t = t_num / (DIR_MAX * det), times |d[kz]| = DIR_MAX), so
+// the hit counts iff t_num * 2^F <= t_max * det: an exact integer test, and a
+// hit exactly at the end counts. A hit inside the lattice moves less than 2^P
+// along any axis, so the all-ones code (>= 2^(P+1) - 2^-F) is "no end": no hit
+// is ever beyond it and the units walk exactly as for an unbounded ray.
+inline constexpr int kSegFracBits = 8;
+inline constexpr int kSegEndBits = kPosBits + 1 + kSegFracBits;
+inline constexpr uint64_t kSegEndNone = (uint64_t(1) << kSegEndBits) - 1;
+
 // ---- Uniform grid traversal unit (docs/grid-unit.md) ---------------------------
 // Resolution per axis 1..kGridResMax. The grid covers the lattice cube [0, 2^P)
 // and works in per-axis scaled coordinates X = x * R (exact integers), where

@@ -153,7 +153,8 @@ GridTrace traverseGrid(const GridImage& image, const QRay& ray) {
       ++trace.tests;
       if (r.hit && (!trace.hit || closerResult(r, *trace.hit))) trace.hit = r;
     }
-    if (trace.hit && dda.holds(*trace.hit)) break;
+    if (ray.anyHit && trace.hit) break;  // any hit answers: no exit test
+    if (const auto bound = walkBound(ray, trace.hit); bound && dda.holds(*bound)) break;
     if (!dda.advance()) break;
   }
   return trace;

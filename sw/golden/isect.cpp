@@ -46,10 +46,13 @@ IsectResult intersect(const QRay& ray, const QTriangle& tri) {
   const bool flip = (det < 0) != (dz < 0);
   const i128 tSigned = flip ? -t : t;
   if (tSigned <= 0) return res;
+  // Step 8: within the segment, t_num * 2^F <= t_max * det (formats.h).
   const bool negDet = det < 0;
+  const u128 absDet = u128(negDet ? -det : det);
+  if (mul256(u128(ray.tMax), absDet) < mul256(u128(tSigned), u128(1) << kSegFracBits)) return res;
   res.hit = true;
   res.tNum = u128(tSigned);
-  res.det = u128(negDet ? -det : det);
+  res.det = absDet;
   res.uNum = u128(negDet ? -v : v);
   res.vNum = u128(negDet ? -w : w);
   return res;
@@ -59,6 +62,20 @@ bool closerResult(const IsectResult& a, const IsectResult& b) {
   const U256 ta = mul256(a.tNum, b.det);
   const U256 tb = mul256(b.tNum, a.det);
   return ta < tb || (ta == tb && a.primId < b.primId);
+}
+
+IsectResult segmentEndBound(const QRay& ray) {
+  IsectResult end;
+  end.rayId = ray.id;
+  end.tNum = ray.tMax;
+  end.det = u128(1) << kSegFracBits;
+  return end;
+}
+
+std::optional<IsectResult> walkBound(const QRay& ray, const std::optional<IsectResult>& closest) {
+  if (closest) return closest;
+  if (ray.bounded()) return segmentEndBound(ray);
+  return std::nullopt;
 }
 
 double tOf(const IsectResult& res, const QRay& ray) {

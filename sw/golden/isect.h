@@ -1,5 +1,7 @@
 #pragma once
 
+#include <optional>
+
 #include "golden/records.h"
 
 namespace lancer::fx {
@@ -19,8 +21,17 @@ namespace lancer::fx {
 //  5. inside unless the signs of U, V, W disagree; det = U + V + W, zero for a ray
 //     in the triangle's plane or a degenerate triangle (a miss);
 //  6. T = U*a[kz] + V*b[kz] + W*c[kz]; t = T / (d[kz] * det), a hit iff t > 0;
-//  7. signs normalized so every output is non-negative; a miss outputs zeros.
+//  7. signs normalized so every output is non-negative; a miss outputs zeros;
+//  8. a hit beyond the ray's segment end (t_num * 2^F > t_max * det) is a miss.
 IsectResult intersect(const QRay& ray, const QTriangle& tri);
+
+// The segment end as a pseudo hit (hit = 0; t_num = t_max, det = 2^F, so
+// t_num / det is the end's displacement, as a hit's): what a traversal unit's
+// exit test compares with before the ray has a hit.
+IsectResult segmentEndBound(const QRay& ray);
+// What ends a traversal walk after a region: the closest hit so far, else the
+// segment end of a bounded ray, else nothing (the walk runs to the lattice's edge).
+std::optional<IsectResult> walkBound(const QRay& ray, const std::optional<IsectResult>& closest);
 
 // Dominant axis of an integer direction, the same rule as the float reference.
 int dominantAxis(const std::array<int64_t, 3>& dir);

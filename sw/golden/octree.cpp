@@ -100,7 +100,12 @@ struct Walker {
         ++trace.tests;
         if (r.hit && (!trace.hit || closerResult(r, *trace.hit))) trace.hit = r;
       }
-      done = trace.hit && hitWithin(*trace.hit, t1, setup);
+      if (ray.anyHit && trace.hit) {  // any hit answers: no exit test
+        done = true;
+        return;
+      }
+      const auto bound = walkBound(ray, trace.hit);
+      done = bound && hitWithin(*bound, t1, setup);
       return;
     }
     // Mid-plane parameters: halvings, or +-inf for an axis the ray never

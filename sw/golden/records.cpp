@@ -129,7 +129,7 @@ void unpackFields(std::span<const FieldSpec> fields, std::span<const uint32_t> w
 
 std::array<u128, kIsectRayValues> fieldArray(const QRay& r) {
   return {r.id, u128(r.org[0]), u128(r.org[1]), u128(r.org[2]),
-          u128(i128(r.dir[0])), u128(i128(r.dir[1])), u128(i128(r.dir[2]))};
+          u128(i128(r.dir[0])), u128(i128(r.dir[1])), u128(i128(r.dir[2])), r.tMax, r.anyHit ? 1u : 0u};
 }
 
 std::array<u128, kIsectTriValues> fieldArray(const QTriangle& t) {
@@ -157,6 +157,8 @@ void unpackRay(std::span<const uint32_t> wire, QRay& ray) {
   ray.id = uint32_t(values[at++]);
   ray.org = takeSigned<3>(values, at);
   ray.dir = takeSigned<3>(values, at);
+  ray.tMax = uint64_t(values[at++]);
+  ray.anyHit = values[at++] != 0;
 }
 
 void unpackTriangle(std::span<const uint32_t> wire, QTriangle& tri) {

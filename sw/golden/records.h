@@ -43,6 +43,8 @@ inline constexpr FieldSpec kIsectRayFields[] = {
     {"ray_id", kRayIdBits, 1, false, "ray id, carried to the result"},
     {"org", kPosBits, 3, false, "origin on the position lattice, [0]=x"},
     {"dir", kDirBits, 3, true, "direction, dominant component = +-DIR_MAX"},
+    {"t_max", kSegEndBits, 1, false, "segment end, dominant-axis displacement * 2^SEG_FRAC; all ones: none"},
+    {"any_hit", 1, 1, false, "1: any hit on the segment answers (traversal units stop at the first)"},
 };
 // ---- isect_tri_t: a quantized triangle -----------------------------------------
 inline constexpr FieldSpec kIsectTriFields[] = {
@@ -132,7 +134,10 @@ struct QRay {
   uint32_t id = 0;
   std::array<int64_t, 3> org{};  // 0 .. kPosMax
   std::array<int64_t, 3> dir{};  // -kDirMax .. kDirMax
+  uint64_t tMax = kSegEndNone;   // segment end (formats.h); kSegEndNone: none
+  bool anyHit = false;           // shadow rays: the walk ends at the first region with a hit
   bool operator==(const QRay&) const = default;
+  bool bounded() const { return tMax != kSegEndNone; }
 };
 
 struct QTriangle {

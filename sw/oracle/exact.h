@@ -80,6 +80,7 @@ struct ExactStats {
 class ExactOracle {
  public:
   explicit ExactOracle(const Scene& scene) : scene_(scene) {}
+  explicit ExactOracle(Scene&&) = delete;  // keeps a reference: a temporary would dangle
 
   std::optional<ExactHit> intersect(const Ray& ray, ExactStats* stats = nullptr) const;
   ExactRelation relation(const Ray& ray, uint32_t prim) const;

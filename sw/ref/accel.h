@@ -54,5 +54,6 @@ struct AccelOptions {
 // on impossible options.
 std::unique_ptr<Accel> makeAccel(AccelKind kind, const Scene& scene,
                                  const AccelOptions& options = {});
+std::unique_ptr<Accel> makeAccel(AccelKind, Scene&&, const AccelOptions& = {}) = delete;
 
 }  // namespace lancer

@@ -11,6 +11,7 @@ namespace lancer {
 class BruteForce final : public Accel {
  public:
   explicit BruteForce(const Scene& scene) : scene_(scene) {}
+  explicit BruteForce(Scene&&) = delete;  // keeps a reference: a temporary would dangle
   std::string_view name() const override { return "brute-force"; }
   std::optional<Hit> intersect(const Ray& ray, TraversalStats* stats = nullptr) const override;
   bool intersectP(const Ray& ray) const override;

@@ -64,6 +64,8 @@ class UniformGrid final : public Accel {
  public:
   // Throws InputError unless options.gridResolution is 0 (heuristic) or 1..1024.
   UniformGrid(const Scene& scene, const AccelOptions& options);
+  // The grid keeps a reference to the scene: a temporary would dangle.
+  UniformGrid(Scene&&, const AccelOptions&) = delete;
 
   std::string_view name() const override { return "grid"; }
   std::optional<Hit> intersect(const Ray& ray, TraversalStats* stats = nullptr) const override;

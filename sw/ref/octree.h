@@ -30,6 +30,8 @@ class Octree final : public Accel {
   // Throws InputError unless options.octreeMaxDepth is 0 (default) or
   // 1..kMaxOctreeDepth and options.octreeLeafSize is 0 (default) or positive.
   Octree(const Scene& scene, const AccelOptions& options);
+  // The tree keeps a reference to the scene: a temporary would dangle.
+  Octree(Scene&&, const AccelOptions&) = delete;
 
   std::string_view name() const override { return "octree"; }
   std::optional<Hit> intersect(const Ray& ray, TraversalStats* stats = nullptr) const override;

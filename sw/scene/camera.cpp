@@ -37,6 +37,36 @@ std::vector<Ray> PinholeCamera::generateRays() const {
   return rays;
 }
 
+Ray PinholeCamera::generateCornerRay(int x, int y) const {
+  const float s = float(x) / float(width_);
+  const float t = 1.0f - float(y) / float(height_);
+  return Ray{origin_, glm::normalize(lowerLeft_ + s * horizontal_ + t * vertical_)};
+}
+
+std::vector<Ray> PinholeCamera::generateRays(Sampling sampling) const {
+  if (sampling == Sampling::Centers) return generateRays();
+  std::vector<Ray> rays;
+  rays.reserve(sampleCount(sampling));
+  for (int y = 0; y <= height_; ++y)
+    for (int x = 0; x <= width_; ++x) rays.push_back(generateCornerRay(x, y));
+  return rays;
+}
+
+size_t PinholeCamera::sampleCount(Sampling sampling) const {
+  return sampling == Sampling::Centers ? size_t(width_) * size_t(height_)
+                                       : size_t(width_ + 1) * size_t(height_ + 1);
+}
+
+Sampling parseSampling(std::string_view name) {
+  if (name == "centers") return Sampling::Centers;
+  if (name == "corners") return Sampling::Corners;
+  throw InputError(fmt::format("--sampling {}: expected centers or corners", name));
+}
+
+std::string_view toString(Sampling sampling) {
+  return sampling == Sampling::Centers ? "centers" : "corners";
+}
+
 PinholeCamera frameScene(const Scene& scene, const CameraOptions& options) {
   View view;
   if (scene.view) {

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "ref/ray.h"
@@ -20,6 +21,19 @@ struct CameraOptions {
   int height = 512;
 };
 
+// Where the camera shoots its rays. Centers: one ray through the centre of each
+// pixel, W x H rays, id = y * W + x. Corners: one ray through each pixel
+// corner, (W + 1) x (H + 1) rays, id = y * (W + 1) + x for corner (x, y) with
+// 0 <= x <= W, 0 <= y <= H, (0, 0) the top-left corner of the image; a pixel's
+// colour is the mean of its four corners (the SPD's testing procedure, rule 6).
+// Both span the same field of view: the outermost corners lie on the image's
+// edges, the outermost centres half a pixel inside them.
+enum class Sampling : uint8_t { Centers, Corners };
+
+// Throws InputError naming --sampling unless `name` is "centers" or "corners".
+Sampling parseSampling(std::string_view name);
+std::string_view toString(Sampling sampling);
+
 // A pinhole camera. Ray ids run row-major from the top-left pixel:
 // id = y * width + x, and that id follows the ray through every model.
 class PinholeCamera {
@@ -32,6 +46,11 @@ class PinholeCamera {
   // The ray through the centre of pixel (x, y); direction normalized.
   Ray generateRay(int x, int y) const;
   std::vector<Ray> generateRays() const;
+  // The ray through pixel corner (x, y), 0 <= x <= width, 0 <= y <= height.
+  Ray generateCornerRay(int x, int y) const;
+  // Every sample of `sampling` in id order (see Sampling).
+  std::vector<Ray> generateRays(Sampling sampling) const;
+  size_t sampleCount(Sampling sampling) const;
 
  private:
   View view_;

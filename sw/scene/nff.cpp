@@ -136,6 +136,11 @@ class Builder {
       fallback.name = "default";
       setMaterial(fallback);
     }
+    // A sphere or cone near the edge of float range can put its tessellated
+    // vertices beyond it (found by tests/fuzz/fuzz_nff).
+    if (!allFinite(a) || !allFinite(b) || !allFinite(c)) {
+      lines_.fail("the primitive reaches beyond float range (a tessellated vertex is infinite)");
+    }
     scene_.triangles.push_back({a, b, c});
     scene_.materialOf.push_back(*current_);
     scene_.normals.push_back(n);
@@ -377,7 +382,12 @@ Scene readNff(std::istream& in, const std::string& name, const NffOptions& optio
       m.ior = n[7];
       if (m.kd < 0 || m.ks < 0 || m.shine < 0) lines.fail("Kd, Ks and Shine must be >= 0");
       if (m.transmittance < 0) lines.fail(fmt::format("transmittance T = {} is negative", m.transmittance));
-      if (m.ior <= 0) lines.fail(fmt::format("index of refraction {} must be > 0", m.ior));
+      // The SPD's generators write 0 on opaque surfaces, where it means nothing.
+      if (m.transmittance > 0 && m.ior <= 0) {
+        lines.fail(fmt::format("index of refraction {} must be > 0 on a transmitting surface (T = {})", m.ior,
+                               m.transmittance));
+      }
+      if (m.transmittance == 0 && m.ior <= 0) m.ior = 1.0f;
       build.setMaterial(m);
     } else if (key == "p" || key == "pp") {
       if (tokens->size() != 2) lines.fail(fmt::format("'{}' takes the vertex count", key));
@@ -391,7 +401,9 @@ Scene readNff(std::istream& in, const std::string& name, const NffOptions& optio
         if (stride == 6) {
           const glm::vec3 nrm = vec(n, stride * size_t(i) + 3);
           if (nrm == glm::vec3(0.0f)) lines.fail(fmt::format("patch started at line {}: vertex {} has a zero normal", start, i));
-          normals.push_back(glm::normalize(nrm));
+          // In double: in float the squared length of a tiny or huge normal
+          // under- or overflows, and the normal becomes NaN or zero.
+          normals.push_back(glm::vec3(glm::normalize(glm::dvec3(nrm))));
         }
       }
       build.polygon(points, stride == 6 ? &normals : nullptr, start);

@@ -1,5 +1,6 @@
 #include "scene/rays_file.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -25,10 +26,18 @@ void validateRay(const Ray& ray, size_t index, const std::string& where) {
 std::vector<Ray> readRaysFile(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(fmt::format("{}: cannot open rays file", path));
+  return readRays(in, path);
+}
+
+std::vector<Ray> readRays(std::istream& in, const std::string& path) {
   std::vector<Ray> rays;
   std::string line;
   for (size_t lineNo = 1; std::getline(in, line); ++lineNo) {
     if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    // The parser below stops at a NUL; what follows it would be dropped unread.
+    if (line.find('\0') != std::string::npos) {
+      throw InputError(fmt::format("{}:{}: NUL byte in a ray line (not a text file?)", path, lineNo));
+    }
     const char* cursor = line.c_str();
     float values[6];
     int count = 0;
@@ -64,13 +73,22 @@ std::vector<Ray> readRaysFile(const std::string& path) {
 void writeRaysFile(const std::string& path, const std::vector<Ray>& rays, const std::string& comment) {
   std::ofstream out(path);
   if (!out) throw InputError(fmt::format("{}: cannot write rays file", path));
+  writeRays(out, rays, comment);
+  if (!out) throw InputError(fmt::format("{}: write failed", path));
+}
+
+void writeRays(std::ostream& out, const std::vector<Ray>& rays, const std::string& comment) {
   out << "# lancer rays: ox oy oz dx dy dz (hex floats, exact)\n";
-  if (!comment.empty()) out << "# " << comment << "\n";
+  // Every line of the comment is commented out, so it cannot add rays.
+  for (size_t at = 0; at < comment.size();) {
+    const size_t end = std::min(comment.find('\n', at), comment.size());
+    out << "# " << comment.substr(at, end - at) << "\n";
+    at = end + 1;
+  }
   for (const Ray& r : rays) {
     out << fmt::format("{:a} {:a} {:a} {:a} {:a} {:a}\n", r.origin.x, r.origin.y, r.origin.z, r.dir.x,
                        r.dir.y, r.dir.z);
   }
-  if (!out) throw InputError(fmt::format("{}: write failed", path));
 }
 
 }  // namespace lancer

@@ -1,6 +1,8 @@
 #include "scene/scene.h"
 
 #include <array>
+#include <cctype>
+#include <iterator>
 #include <cmath>
 #include <fstream>
 #include <new>
@@ -13,20 +15,32 @@
 
 #include <algorithm>
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
+#include <assimp/IOStream.hpp>
 #include <assimp/ObjMaterial.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "scene/gltf.h"
 #include "scene/nff.h"
+#include "scene/spd.h"
 
 namespace lancer {
 
 void Scene::computeBounds() {
   bounds = Aabb{};
   for (const Triangle& t : triangles) bounds.extend(t.bounds());
+}
+
+std::vector<uint32_t> Scene::emissiveTriangles() const {
+  std::vector<uint32_t> out;
+  for (uint32_t t = 0; t < triangles.size(); ++t) {
+    if (glm::any(glm::greaterThan(materials[materialOf[t]].emission, glm::vec3(0.0f)))) out.push_back(t);
+  }
+  return out;
 }
 
 namespace {
@@ -82,11 +96,122 @@ void readWhittedTerms(const aiMaterial& mat, const std::string& path, Material& 
   }
 }
 
-Scene loadWithAssimp(const std::string& path) {
+// Assimp 5.2's MTL parser dies of SIGSEGV on some files with NUL bytes (the
+// 8 bytes of tests/fuzz/corpus/mtl/assimp_segv_nul_bytes.mtl, found by
+// fuzz_mtl). No text format has NUL bytes, so the files assimp opens for OBJ
+// and MTL are read through this filter, which refuses such a file (assimp then
+// fails or goes on without it) and remembers it for the error message.
+class TextFilesIOSystem : public Assimp::DefaultIOSystem {
+ public:
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    std::string ext = std::filesystem::path(file).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == ".obj" || ext == ".mtl") {
+      std::ifstream in(file, std::ios::binary);
+      const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      if (bytes.find('\0') != std::string::npos) {
+        refused = file;
+        return nullptr;
+      }
+    }
+    return DefaultIOSystem::Open(file, mode);
+  }
+  std::string refused;  // the last file refused
+};
+
+// Every term of a loaded material finite, the weights >= 0: a NaN, an infinity
+// (1e39 reads as one) or a negative Ks in a file would reach the shader as NaN
+// or negative light (found by tests/fuzz/fuzz_mtl).
+void checkMaterialTerms(const Material& m, const std::string& path) {
+  for (const auto& [term, c] : {std::pair{"diffuse colour (Kd)", m.diffuse}, std::pair{"emission (Ke)", m.emission}}) {
+    if (!allFinite(c)) {
+      throw InputError(fmt::format("{}: material '{}': {} ({}, {}, {}) is not finite", path, m.name, term, c.x, c.y, c.z));
+    }
+  }
+  for (const auto& [term, w] : {std::pair{"specular weight (Ks)", m.ks}, std::pair{"shininess (Ns)", m.shine},
+                                std::pair{"transmittance (1 - d)", m.transmittance}}) {
+    if (!(w >= 0.0f) || !std::isfinite(w)) {
+      throw InputError(fmt::format("{}: material '{}': {} {} must be finite and >= 0", path, m.name, term, w));
+    }
+  }
+}
+
+// A triangle's unit vertex normals from its mesh, each falling back to the
+// geometric normal (zero for a degenerate triangle) where the mesh has none or
+// the file's is zero or not finite.
+ShadingNormals shadingNormals(const Triangle& tri, const aiMesh* mesh, const aiFace& face) {
+  const glm::vec3 cross = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
+  const float area = glm::length(cross);
+  const glm::vec3 geometric = area > 0.0f && std::isfinite(area) ? cross / area : glm::vec3(0.0f);
+  std::array<glm::vec3, 3> n{geometric, geometric, geometric};
+  for (int k = 0; k < 3 && mesh->mNormals; ++k) {
+    const glm::vec3 file = toVec(mesh->mNormals[face.mIndices[k]]);
+    const float length = glm::length(file);
+    if (length > 0.0f && std::isfinite(length)) n[k] = file / length;
+  }
+  return {n[0], n[1], n[2]};
+}
+
+// glTF's metallic-roughness material in Whitted terms (docs/scenes.md, "glTF
+// 2.0"). Whitted tracing has only perfect mirrors and clear refraction, so
+// roughness takes away the mirror: with smoothness s = 1 - roughness and the
+// dielectric's normal-incidence Fresnel reflectance F0 = ((ior-1)/(ior+1))^2
+// (0.04 at glTF's default ior 1.5),
+//   ks = s * (metallic + (1 - metallic) * F0)      metals mirror their all, dielectrics F0
+//   T  = (1 - metallic) * transmission * (1 - F0)  what the surface does not reflect (metals never transmit)
+//   kd = max(0, 1 - ks - T)                        the rest is diffuse, in the base colour
+//   shine = 2 / alpha^2 - 2 with alpha = roughness^2 (the Phong exponent of the
+//           microfacet lobe of that width, Walter et al. 2007), at most kMaxShine
+// Factors outside [0, 1] are errors, as are a negative or non-finite emission
+// (factor times strength) and an ior <= 0 on a transmitting
+// material (on an opaque one it is unused and reads as 1.5). glTF's alpha is
+// coverage, not transmission, and is not read.
+// The core factors come through assimp, the extensions' from our JSON reader.
+void readGltfTerms(const aiMaterial& mat, const GltfExtras::MaterialExtras& extras, const std::string& path,
+                   Material& material) {
+  constexpr float kMaxShine = 10000.0f;
+  float metallic = 1.0f, roughness = 1.0f;  // glTF's defaults
+  mat.Get(AI_MATKEY_METALLIC_FACTOR, metallic);
+  mat.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness);
+  const float transmission = extras.transmission;
+  material.ior = extras.ior;
+  for (const auto& [what, value] : {std::pair{"metallic factor", metallic}, std::pair{"roughness factor", roughness},
+                                    std::pair{"transmission factor", transmission}}) {
+    if (!(value >= 0.0f && value <= 1.0f)) {
+      throw InputError(fmt::format("{}: material '{}': {} {} must be in [0, 1]", path, material.name, what, value));
+    }
+  }
+  if (!allFinite(material.emission) || glm::any(glm::lessThan(material.emission, glm::vec3(0.0f)))) {
+    throw InputError(fmt::format("{}: material '{}': emission ({}, {}, {}) must be finite and >= 0", path, material.name,
+                                 material.emission.r, material.emission.g, material.emission.b));
+  }
+  if (!(material.ior > 0.0f && std::isfinite(material.ior))) {
+    if (transmission > 0.0f) {
+      throw InputError(fmt::format("{}: material '{}': index of refraction {} must be > 0 on a transmitting material",
+                                   path, material.name, material.ior));
+    }
+    material.ior = 1.5f;
+  }
+  const float f0 = (material.ior - 1.0f) * (material.ior - 1.0f) / ((material.ior + 1.0f) * (material.ior + 1.0f));
+  material.ks = (1.0f - roughness) * (metallic + (1.0f - metallic) * f0);
+  material.transmittance = (1.0f - metallic) * transmission * (1.0f - f0);
+  material.kd = std::max(0.0f, 1.0f - material.ks - material.transmittance);
+  const float alpha = roughness * roughness;
+  material.shine = alpha > 0.0f ? std::min(kMaxShine, 2.0f / (alpha * alpha) - 2.0f) : kMaxShine;
+}
+
+Scene loadWithAssimp(const std::string& path, bool isGltf) {
   if (!std::ifstream(path)) throw InputError(fmt::format("{}: cannot open file", path));
+  // glTF: what assimp drops or mangles (lights' names, the camera, emissive
+  // strength) comes from the JSON, read first so its errors name the light,
+  // camera or material rather than assimp's parse.
+  std::optional<GltfExtras> gltf;
+  if (isGltf) gltf = readGltfExtras(path);
   std::error_code sizeError;
   const uint64_t fileBytes = std::filesystem::file_size(path, sizeError);
   Assimp::Importer importer;
+  auto* files = new TextFilesIOSystem;  // owned by the importer
+  importer.SetIOHandler(files);
   // Keep vertices exactly as written (no joining, no normal generation): shared
   // vertices are already shared by index in the formats we read, and any
   // re-computation would risk moving them.
@@ -98,6 +223,9 @@ Scene loadWithAssimp(const std::string& path) {
     ai = importer.ReadFile(path, flags);
   } catch (const std::bad_alloc&) {
     throw InputError(fmt::format("{}: cannot read scene: it declares more data than fits in memory", path));
+  }
+  if (!files->refused.empty()) {
+    throw InputError(fmt::format("{}: cannot read scene: {} has a NUL byte (not a text file)", path, files->refused));
   }
   if (!ai || !ai->mRootNode) {
     throw InputError(fmt::format("{}: cannot read scene: {}", path, importer.GetErrorString()));
@@ -112,10 +240,26 @@ Scene loadWithAssimp(const std::string& path) {
     aiColor3D color;
     if (mat->Get(AI_MATKEY_COLOR_DIFFUSE, color) == AI_SUCCESS) material.diffuse = {color.r, color.g, color.b};
     if (mat->Get(AI_MATKEY_COLOR_EMISSIVE, color) == AI_SUCCESS) material.emission = {color.r, color.g, color.b};
-    readWhittedTerms(*mat, path, material);
+    if (gltf) {
+      // assimp lists the file's materials in order, then its own default.
+      const GltfExtras::MaterialExtras extras = m < gltf->materials.size() ? gltf->materials[m] : GltfExtras::MaterialExtras{};
+      if (m < gltf->materials.size()) material.name = extras.name;
+      material.emission *= extras.emissiveStrength;
+      readGltfTerms(*mat, extras, path, material);
+    } else {
+      readWhittedTerms(*mat, path, material);
+    }
+    checkMaterialTerms(material, path);
     scene.materials.push_back(material);
   }
   if (scene.materials.empty()) scene.materials.push_back(Material{"default"});
+  // Vertex normals (OBJ vn, glTF NORMAL, ...) become shading normals when any
+  // triangle mesh has them; a mesh without them, and a zero or non-finite
+  // normal, take the triangle's geometric normal.
+  bool withNormals = false;
+  for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
+    withNormals |= (ai->mMeshes[m]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) && ai->mMeshes[m]->mNormals;
+  }
   // Triangle order: meshes in aiScene order, faces in order within a mesh.
   for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
     const aiMesh* mesh = ai->mMeshes[m];
@@ -133,9 +277,14 @@ Scene loadWithAssimp(const std::string& path) {
       }
       scene.triangles.push_back(tri);
       scene.materialOf.push_back(material);
+      if (withNormals) scene.normals.push_back(shadingNormals(tri, mesh, face));
     }
   }
   if (scene.triangles.empty()) throw InputError(fmt::format("{}: scene has no triangles", path));
+  if (gltf) {
+    scene.lights = std::move(gltf->lights);
+    scene.view = gltf->view;
+  }
   scene.computeBounds();
   return scene;
 }
@@ -144,14 +293,17 @@ Scene loadWithAssimp(const std::string& path) {
 
 Scene loadScene(const std::string& nameOrPath) {
   if (nameOrPath == kDefaultSceneName || nameOrPath == "cornell") return makeCornellBox();
+  if (nameOrPath.starts_with("builtin:spd-")) return makeSpdScene(nameOrPath.substr(12));
   if (nameOrPath.starts_with("builtin:")) {
-    throw InputError(fmt::format("unknown built-in scene '{}' (available: {})", nameOrPath, kDefaultSceneName));
+    throw InputError(fmt::format("unknown built-in scene '{}' (available: {}, builtin:spd-tetra, builtin:spd-gears)", nameOrPath,
+                                 kDefaultSceneName));
   }
   // NFF by our own reader: assimp's drops Ks, T and the index of refraction.
   std::string extension = std::filesystem::path(nameOrPath).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
   if (extension == ".nff") return loadNff(nameOrPath);
-  return loadWithAssimp(nameOrPath);
+  // glTF through assimp plus our reader of what assimp drops (lights, camera, extensions).
+  return loadWithAssimp(nameOrPath, extension == ".gltf" || extension == ".glb");
 }
 
 Scene subdivide(const Scene& scene, int times) {

@@ -87,6 +87,10 @@ struct Scene {
 
   size_t size() const { return triangles.size(); }
   void computeBounds();
+  // The area lights: ids of the triangles whose material's emission has a
+  // positive component, in id order (the Cornell box's lamp, glTF/MTL emissive
+  // materials). Empty when the scene has none.
+  std::vector<uint32_t> emissiveTriangles() const;
 };
 
 // Names accepted by loadScene() besides files.
@@ -97,7 +101,8 @@ inline constexpr const char* kDefaultSceneName = "builtin:cornell";
 // Throws InputError naming the file on any failure, including a scene with no triangles.
 Scene loadScene(const std::string& nameOrPath);
 
-// The embedded Cornell box: closed walls, two blocks, a ceiling light. Needs no file.
+// The embedded Cornell box: closed walls, a glass block, a mirror block, an area
+// lamp and a point light (docs/scenes.md lists its triangle ids). Needs no file.
 Scene makeCornellBox();
 
 // Splits every triangle into four at its edge midpoints (shared midpoints are

@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "common/rt_trav_unit.h"
+#include "golden/isect.h"
 #include "isect/rt_isect_types.h"
 
 namespace lancer::sc {
@@ -95,6 +96,38 @@ struct rt_trav_fifos {
     visitQ.clear();
     resQ.clear();
     credits = IDX_BUF_DEPTH;
+  }
+};
+
+// A slot's closest-hit record, as rt_trav_shell keeps it: the closest hit so
+// far, and before the first one the segment end as a pseudo hit (the bound the
+// exit test compares with; fx::walkBound). A bounded ray is exit-tested before
+// its first hit; an any-hit ray with a hit is settled (the walk ends without
+// the exit test's arithmetic).
+struct rt_closest_record {
+  bool hasHit = false;
+  bool bounded = false;
+  bool anyHit = false;
+  fx::IsectResult best;
+
+  void start(const fx::QRay& ray) {
+    hasHit = false;
+    bounded = ray.bounded();
+    anyHit = ray.anyHit;
+    best = fx::segmentEndBound(ray);
+  }
+  // rt_closest_hit: does the result replace the record?
+  bool takes(const fx::IsectResult& res) const { return res.hit && (!hasHit || fx::closerResult(res, best)); }
+  void take(const fx::IsectResult& res) {
+    hasHit = true;
+    best = res;
+  }
+  bool wantsCheck() const { return hasHit || bounded; }
+  bool settled() const { return anyHit && hasHit; }
+  // The unit's result record: {ray id, elements visited, tests, hit, the hit's fields (zero without one)}.
+  std::array<fx::u128, 9> resultValues(uint32_t rayId, uint32_t visited, uint64_t tests) const {
+    const fx::IsectResult hit = hasHit ? best : fx::IsectResult{};
+    return {rayId, visited, tests, hasHit ? 1u : 0u, hit.primId, hit.tNum, hit.det, hit.uNum, hit.vNum};
   }
 };
 

@@ -103,7 +103,7 @@ void rt_grid_model::startCell(Slot& s, const fx::GridCell& data) {
 }
 
 void rt_grid_model::cellDone(Slot& s) {
-  if (s.hasHit) {
+  if (s.hit.wantsCheck()) {
     s.state = State::Check;
   } else if (s.queue[size_t(s.head)].last) {
     s.state = State::Done;
@@ -207,7 +207,7 @@ void rt_grid_model::seq() {
     resSlot = int(res.rayId & SLOT_MASK);
     if (resSlot >= N) fail(fmt::format("rt_isect result for slot {}", resSlot));
     const Slot& s = slots_[size_t(resSlot)];
-    resTake = res.hit && (!s.hasHit || fx::closerResult(res, s.best));
+    resTake = s.hit.takes(res);
   }
 
   // The exit test of the granted slot, in its current cell (no stepping axis: the ray ends anyway).
@@ -215,7 +215,7 @@ void rt_grid_model::seq() {
   if (checkIdx >= 0) {
     const Slot& s = slots_[size_t(checkIdx)];
     const CellEntry& e = s.queue[size_t(s.head)];
-    checkStops = e.last || e.dda.nextAxis() < 0 || e.dda.holds(s.best);
+    checkStops = e.last || e.dda.nextAxis() < 0 || s.hit.settled() || e.dda.holds(s.hit.best);
   }
 
   // Records pushed this cycle, from the registers at the start of the cycle.
@@ -236,8 +236,7 @@ void rt_grid_model::seq() {
   res_t doneRec{};
   if (doneGo) {
     const Slot& s = slots_[size_t(doneIdx)];
-    const fx::u128 values[] = {s.rayId, s.cells, s.tests, s.hasHit ? 1u : 0u, s.best.primId,
-                               s.best.tNum, s.best.det, s.best.uNum, s.best.vNum};
+    const auto values = s.hit.resultValues(s.rayId, s.cells, s.tests);
     std::array<uint32_t, size_t(fx::wireWords(rt_grid_unit::RESULT_W))> wire{};
     fx::packFields(fx::kGridResFields, values, wire);
     doneRec = toPort<rt_grid_unit::RESULT_W>(wire);
@@ -275,8 +274,7 @@ void rt_grid_model::seq() {
     s.isectRay = toPort<ISECT_RAY_W>(wire);
     s.head = s.queued = 0;
     s.cells = s.tests = 0;
-    s.hasHit = false;
-    s.best = fx::IsectResult{};
+    s.hit.start(ray);
     s.state = State::Visit;
   }
   if (cellRsp) {
@@ -314,8 +312,7 @@ void rt_grid_model::seq() {
     Slot& s = slots_[size_t(resSlot)];
     ++s.received;
     if (resTake) {
-      s.hasHit = true;
-      s.best = res;
+      s.hit.take(res);
     }
     if (s.received == s.count) cellDone(s);
   }

@@ -87,8 +87,7 @@ class rt_grid_model : public rt_trav_shell<rt_grid_unit> {
     int outstanding = 0;        // cell reads without their response (the newest entries)
     uint32_t cells = 0, tests = 0;
     uint32_t first = 0, count = 0, issued = 0, received = 0;  // the current cell
-    bool hasHit = false;
-    fx::IsectResult best;       // zero until the first hit
+    rt_closest_record hit;
   };
 
   // rt_rr_arb: the lowest requester at or after the pointer, cyclically.

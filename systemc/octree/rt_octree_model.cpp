@@ -157,7 +157,7 @@ void rt_octree_model::setState(int k, State next) {
       if (s.received == s.rec.count) self_.set(k);
       break;
     case State::Check:
-      if (s.hasHit) {
+      if (s.hit.wantsCheck()) {
         checkWant_.set(k);
       } else {
         advWant_.set(k);
@@ -188,8 +188,7 @@ void rt_octree_model::load(int k, const isect_ray_t& port) {
   s.depth = 0;
   s.groupValid = false;
   s.nodes = s.tests = s.issued = s.received = 0;
-  s.hasHit = false;
-  s.best = fx::IsectResult{};
+  s.hit.start(s.ray);
   const fx::OctT enter = std::max({s.t0[0], s.t0[1], s.t0[2]});
   const fx::OctT leave = std::min({s.t1[0], s.t1[1], s.t1[2]});
   setState(k, enter < leave ? State::Enter : State::Done);
@@ -394,10 +393,7 @@ void rt_octree_model::seq() {
     if (k >= N || s.state != State::Fetch || s.received == s.issued) {
       fail(fmt::format("rt_isect result for slot {}, which expects none", k));
     }
-    if (out.res.hit && (!s.hasHit || fx::closerResult(out.res, s.best))) {
-      s.hasHit = true;
-      s.best = out.res;
-    }
+    if (s.hit.takes(out.res)) s.hit.take(out.res);
     if (++s.received == s.rec.count) self_.set(k);  // -> CHECK in the next cycle
   }
   if (idxGo) {
@@ -409,7 +405,7 @@ void rt_octree_model::seq() {
   }
   if (checkIdx >= 0) {
     const Slot& s = slots_[size_t(checkIdx)];
-    if (fx::hitWithin(s.best, s.t1, s.setup)) {
+    if (s.hit.settled() || fx::hitWithin(s.hit.best, s.t1, s.setup)) {
       setState(checkIdx, State::Done);
     } else {
       advance(checkIdx);  // the exit test's own lane
@@ -431,9 +427,7 @@ void rt_octree_model::seq() {
   });
   if (doneGo) {
     const Slot& s = slots_[size_t(doneIdx)];
-    const fx::u128 values[kResValues] = {s.rayId,         s.nodes,       s.tests,
-                                         s.hasHit ? 1u : 0u, s.best.primId, s.best.tNum,
-                                         s.best.det,      s.best.uNum,   s.best.vNum};
+    const auto values = s.hit.resultValues(s.rayId, s.nodes, s.tests);
     std::array<uint32_t, size_t(fx::wireWords(rt_octree_unit::RESULT_W))> wire{};
     fx::packFields(fx::kOctreeResFields, values, wire);
     resHead_ |= q_.resQ.empty();

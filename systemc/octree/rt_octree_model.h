@@ -114,8 +114,7 @@ class rt_octree_model : public rt_trav_shell<rt_octree_unit> {
     std::array<fx::OctreeNode, fx::kOctreeChildren> group{};
     bool groupValid = false;
     uint32_t nodes = 0, tests = 0, issued = 0, received = 0;
-    bool hasHit = false;
-    fx::IsectResult best;  // zero until the first hit
+    rt_closest_record hit;
   };
 
   // rt_rr_arb's pointer: grants the lowest requester at or after it; moves past a used grant.

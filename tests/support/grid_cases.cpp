@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 
+#include <tuple>
+
 #include <fmt/format.h>
 
 #include "driver/quantize.h"
@@ -131,6 +133,23 @@ std::vector<GridCase> gridHardCases() {
       c.rays.push_back(r);
     }
     cases.push_back(std::move(c));
+  }
+  {  // Segment ends and any-hit: a wall on a cell boundary (16^3: boundaries 2^P / 16 apart) and one
+     // off it, walked both ways; then bounded and any-hit variants of random rays over the bunny.
+    const int64_t boundary = (int64_t(1) << fx::kPosBits) / 2;
+    for (const auto& [name, zWall, zOrigin] : {std::tuple{"segment ends, wall on a cell boundary, 16^3", boundary,
+                                                          kPosMax / 16 + 3},
+                                               std::tuple{"segment ends, wall inside a cell, -z, 16^3",
+                                                          kPosMax / 5, kPosMax - 7}}) {
+      QuantizedScene wall = segmentScene(zWall, zOrigin);
+      cases.push_back({name, fx::buildGridImage(wall.triangles, {16, 16, 16}), std::move(wall.rays)});
+    }
+    std::mt19937_64 rng(23);
+    std::vector<QRay> rays;
+    for (uint32_t i = 0; i < 60; ++i) rays.push_back(randomGridRay(rng, i));
+    for (QRay& r : bunnyCamera(8, 8).rays) rays.push_back(r);
+    cases.push_back({"segment variants, bunny 12^3", fx::buildGridImage(bunny.triangles, {12, 12, 12}),
+                     segmentVariants(bunny.triangles, rays, rays.size())});
   }
   {  // Random rays over the bunny; one cell tests every triangle per ray, so fewer rays there.
     std::mt19937_64 rng(2);

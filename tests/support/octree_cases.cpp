@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 #include <stdexcept>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -454,6 +455,30 @@ OctreeCase cornellRandom() {
                   std::move(rays));
 }
 
+// Segment ends and any-hit: a wall on the root's mid-plane and one off every
+// node boundary, walked both ways; bounded and any-hit variants of random and
+// camera rays over the Cornell box.
+std::vector<OctreeCase> segmentEnds() {
+  std::vector<OctreeCase> cases;
+  for (const auto& [name, zWall, zOrigin] : {std::tuple{"segment_wall_mid_plane", kMid, kPosMax / 16 + 3},
+                                             std::tuple{"segment_wall_off_planes_minus_z", kPosMax / 5 + 1,
+                                                        kPosMax - 7}}) {
+    QuantizedScene wall = segmentScene(zWall, zOrigin);
+    cases.push_back(makeCase(name, fx::buildOctreeImage(wall.triangles, depthAtMost(5), 1), std::move(wall.rays)));
+  }
+  std::vector<QTriangle> tris = cornell();
+  std::mt19937_64 rng(29);
+  std::vector<QRay> rays;
+  addRandomRays(rays, rng, 60);
+  for (QRay& r : quantizedCamera(makeCornellBox(), 8, 8).rays) rays.push_back(r);
+  std::vector<QRay> variants = segmentVariants(tris, rays, rays.size());
+  const int depth = fx::defaultOctreeDepth(tris.size());
+  cases.push_back(makeCase("segment_variants_cornell",
+                           fx::buildOctreeImage(std::move(tris), depth, fx::kDefaultOctreeLeafSize),
+                           std::move(variants)));
+  return cases;
+}
+
 }  // namespace
 
 std::vector<OctreeCase> octreeHardCases() {
@@ -476,6 +501,7 @@ std::vector<OctreeCase> octreeHardCases() {
   cases.push_back(empty());
   cases.push_back(tinyComponents());
   cases.push_back(cornellRandom());
+  for (OctreeCase& c : segmentEnds()) cases.push_back(std::move(c));
   return cases;
 }
 

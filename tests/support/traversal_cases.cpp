@@ -56,6 +56,84 @@ std::vector<QTriangle> randomLatticeTriangles(std::mt19937_64& rng, int count, i
   return tris;
 }
 
+SegmentCode segmentCodeOf(const fx::IsectResult& hit) {
+  // 2^F t_num / det without forming 2^F t_num (which may not fit 128 bits).
+  const fx::u128 whole = hit.tNum / hit.det, rest = hit.tNum % hit.det;
+  const fx::u128 scaledRest = rest << fx::kSegFracBits;
+  return {uint64_t((whole << fx::kSegFracBits) + scaledRest / hit.det), scaledRest % hit.det == 0};
+}
+
+std::optional<fx::IsectResult> bruteForceHit(std::span<const QTriangle> triangles, const QRay& ray) {
+  std::optional<fx::IsectResult> best;
+  for (const QTriangle& t : triangles) {
+    const fx::IsectResult r = fx::intersect(ray, t);
+    if (r.hit && (!best || fx::closerResult(r, *best))) best = r;
+  }
+  return best;
+}
+
+std::vector<QRay> segmentVariants(std::span<const QTriangle> triangles, std::span<const QRay> rays, size_t maxRays) {
+  std::vector<QRay> out;
+  const auto add = [&](QRay r, uint64_t tMax, bool anyHit) {
+    r.id = uint32_t(out.size());
+    r.tMax = std::min(tMax, fx::kSegEndNone);
+    r.anyHit = anyHit;
+    out.push_back(r);
+  };
+  for (size_t i = 0; i < std::min(maxRays, rays.size()); ++i) {
+    const QRay& ray = rays[i];
+    const int k = fx::dominantAxis(ray.dir);
+    const int64_t toEdge = ray.dir[k] > 0 ? kPosMax - ray.org[k] : ray.org[k];
+    add(ray, uint64_t(toEdge / 4) << fx::kSegFracBits, false);  // a light inside the lattice
+    add(ray, fx::kSegEndNone, true);                            // a light outside it
+    if (const auto hit = bruteForceHit(triangles, ray)) {
+      const SegmentCode code = segmentCodeOf(*hit);
+      add(ray, code.floor, false);
+      add(ray, code.floor + 1, false);
+      if (code.floor > 0) add(ray, code.floor - 1, false);
+      add(ray, code.floor + 1, true);
+    }
+  }
+  return out;
+}
+
+QuantizedScene segmentScene(int64_t zWall, int64_t zOrigin) {
+  QuantizedScene s;
+  const int64_t lo = kPosMax / 8, hi = kPosMax - kPosMax / 8, mid = (lo + hi) / 2;
+  const int64_t zOccluder = (zWall + zOrigin) / 2, half = kPosMax / 16;
+  s.triangles.push_back({0, {{{lo, lo, zWall}, {hi, lo, zWall}, {hi, hi, zWall}}}});
+  s.triangles.push_back({1, {{{lo, lo, zWall}, {hi, hi, zWall}, {lo, hi, zWall}}}});
+  s.triangles.push_back({2, {{{mid - half, mid - half, zOccluder}, {mid + half, mid - half, zOccluder},
+                              {mid, mid + half, zOccluder}}}});
+  const int64_t sign = zWall > zOrigin ? 1 : -1;
+  const uint64_t toWall = uint64_t(std::llabs(zWall - zOrigin)) << fx::kSegFracBits;
+  const uint64_t toOccluder = uint64_t(std::llabs(zOccluder - zOrigin)) << fx::kSegFracBits;
+  const auto add = [&](int64_t x, int64_t y, int64_t dx, int64_t dy, uint64_t tMax, bool anyHit) {
+    QRay r{uint32_t(s.rays.size()), {x, y, zOrigin}, {dx, dy, sign * kDirMax}};
+    r.tMax = tMax;
+    r.anyHit = anyHit;
+    s.rays.push_back(r);
+  };
+  // Through the occluder's centre and beside it, straight and oblique (|dx|, |dy| < DIR_MAX keeps z dominant).
+  const std::array<std::array<int64_t, 4>, 6> starts{{{mid, mid, 0, 0},
+                                                      {lo + half, lo + half, 0, 0},
+                                                      {mid - 3 * half, mid, kDirMax / 3, 0},
+                                                      {mid, mid - 3 * half, 0, kDirMax / 5},
+                                                      {mid + half, mid + half, -kDirMax / 7, -kDirMax / 9},
+                                                      {hi - half, lo + half, -kDirMax / 11, kDirMax / 13}}};
+  for (const auto& [x, y, dx, dy] : starts) {
+    for (const bool anyHit : {false, true}) {
+      add(x, y, dx, dy, toWall, anyHit);                             // ends exactly at the wall: the hit counts
+      add(x, y, dx, dy, toWall - 1, anyHit);                         // one code short: it does not
+      add(x, y, dx, dy, (toOccluder + toWall) / 2, anyHit);          // a light between occluder and wall
+      add(x, y, dx, dy, toOccluder / 2, anyHit);                     // a light before the occluder
+      add(x, y, dx, dy, toOccluder, anyHit);                         // ends exactly at the occluder's plane
+      add(x, y, dx, dy, fx::kSegEndNone, anyHit);                    // no end
+    }
+  }
+  return s;
+}
+
 TraversalRunOptions roughTraversalOptions(uint64_t seed, int raysInFlight) {
   TraversalRunOptions o;
   o.memLatency = 7;

@@ -6,7 +6,9 @@
 // mismatch reports.
 
 #include <cstdint>
+#include <optional>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -43,6 +45,39 @@ fx::QRay normalizedDirection(fx::QRay ray);
 fx::QRay randomLatticeRay(std::mt19937_64& rng, uint32_t id);
 std::vector<fx::QTriangle> randomLatticeTriangles(std::mt19937_64& rng, int count, int64_t lo, int64_t hi,
                                                   int64_t spread);
+
+// ---- Segment ends and any-hit (shadow rays) ------------------------------------
+// A hit's displacement along the dominant axis in segment-end codes
+// (formats.h): floor(2^F * t_num / det), and whether that is exact.
+struct SegmentCode {
+  uint64_t floor = 0;
+  bool exact = false;
+};
+SegmentCode segmentCodeOf(const fx::IsectResult& hit);
+
+// The closest hit of `ray` over `triangles` by brute force (fx::intersect, so
+// within the ray's segment; fx::closerResult order).
+std::optional<fx::IsectResult> bruteForceHit(std::span<const fx::QTriangle> triangles, const fx::QRay& ray);
+
+// Rays with segment ends and the any-hit flag, from the first `maxRays` of
+// `rays` over `triangles`: per ray with a hit, segments ending at the hit
+// (floor and floor + 1 of its code: the hit counts exactly when the code is
+// exact, and always with floor + 1), one code short of it (the hit is beyond),
+// any-hit unbounded and any-hit ending at the hit; per ray, a segment ending a
+// quarter of the way to the lattice's edge (a light inside the lattice) and an
+// any-hit ray with no end (a light outside it). Ids 0..n-1.
+std::vector<fx::QRay> segmentVariants(std::span<const fx::QTriangle> triangles, std::span<const fx::QRay> rays,
+                                      size_t maxRays);
+
+// A wall and an occluder for exact segment ends: two triangles in the plane
+// z = zWall (ids 0, 1), a small occluder halfway between it and the origins
+// (id 2); rays whose dominant axis is z from z = zOrigin, so every wall hit's
+// displacement is exactly zWall - zOrigin: segments ending exactly at the wall
+// (the hit counts), one code short (it does not), between the occluder and the
+// wall (a light behind an occluder), before the occluder (nothing), any-hit
+// and closest-hit alike, along +z and -z and obliquely. `zWall` on a cell or
+// node boundary of the caller's structure puts the end on it.
+QuantizedScene segmentScene(int64_t zWall, int64_t zOrigin);
 
 // Adverse conditions for a cycle model: memory latency 7 with 0..13 jitter,
 // 30 % output stalls, 20 % input bubbles.

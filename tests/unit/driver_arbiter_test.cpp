@@ -29,7 +29,7 @@ void expectEveryDisagreementSettled(const Scene& scene, int size) {
   const Quantizer quantizer(scene.bounds);
   const Bvh bvh(scene, AccelOptions{});
   GoldenIsectDevice model, golden;
-  const auto job = runIsectJob(scene, rays, quantizer, bvhCandidates(bvh, 2.0f * float(quantizer.unit())), model,
+  const auto job = runIsectJob(scene, quantizeRays(quantizer, rays), quantizer, bvhCandidates(bvh, 2.0f * float(quantizer.unit())), model,
                                golden, JobConfig{});
   const ReferenceComparison cmp = compareWithReference(scene, rays, traceRays(bvh, rays), job, quantizer);
   const ArbiterCounts& a = cmp.arbiter;

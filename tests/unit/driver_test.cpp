@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <algorithm>
 #include <random>
 
@@ -51,6 +52,24 @@ TEST(DriverQuantizer, RejectsCoordinatesOutsideTheFormat) {
   const fx::QTriangle t = q.quantize(Triangle{{0, 0, 0}, {1, 1, 1}, {0, 1, 0}}, 0);
   EXPECT_EQ(t.v[1][0], fx::kPosMax);
   EXPECT_THROW(q.quantize(Triangle{{-0.001f, 0, 0}, {1, 1, 1}, {0, 1, 0}}, 0), InputError);
+}
+
+// Found by tests/fuzz/fuzz_quantize: empty or non-finite bounds gave a NaN
+// lattice origin, from which every ray quantized to a made-up origin.
+TEST(DriverQuantizer, RejectsEmptyOrNonFiniteBounds) {
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  EXPECT_THROW(Quantizer{Aabb{}}, InputError);  // the empty box of a scene without triangles
+  EXPECT_THROW(Quantizer(Aabb{{nan, 0, 0}, {1, 1, 1}}), InputError);  // (box() would drop the NaN)
+  EXPECT_THROW(Quantizer(Aabb{{0, 0, 0}, {1, inf, 1}}), InputError);
+  try {
+    Quantizer{Aabb{}};
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("scene bounds"), std::string::npos) << e.what();
+  }
+  // A point-like scene is fine: it still gets a lattice around the point.
+  const Quantizer point(box({2, 2, 2}, {2, 2, 2}));
+  EXPECT_TRUE(point.quantize(Ray{{2, 2, 0}, {0, 0, 1}}, 0).has_value());
 }
 
 TEST(DriverQuantizer, ClipsRaysAndNormalizesDirections) {
@@ -107,7 +126,7 @@ struct CornellJob {
 TEST(DriverJob, GoldenAgainstItselfIsExactAndMatchesTheReference) {
   CornellJob c;
   GoldenIsectDevice model, golden;
-  const auto job = runIsectJob(c.scene, c.rays, c.quantizer, bvhCandidates(c.bvh, 2.0f * float(c.quantizer.unit())),
+  const auto job = runIsectJob(c.scene, quantizeRays(c.quantizer, c.rays), c.quantizer, bvhCandidates(c.bvh, 2.0f * float(c.quantizer.unit())),
                                model, golden, JobConfig{});
   EXPECT_EQ(job.mismatchedRays, 0u);
   EXPECT_FALSE(job.firstMismatch.has_value());
@@ -125,7 +144,7 @@ TEST(DriverJob, ReportsTheFirstMismatchAsAReproducer) {
   const uint32_t bad = 16 * 32 + 16;  // the centre pixel hits the back wall
   FaultyDevice model(bad);
   GoldenIsectDevice golden;
-  const auto job = runIsectJob(c.scene, c.rays, c.quantizer, bvhCandidates(c.bvh, 2.0f * float(c.quantizer.unit())),
+  const auto job = runIsectJob(c.scene, quantizeRays(c.quantizer, c.rays), c.quantizer, bvhCandidates(c.bvh, 2.0f * float(c.quantizer.unit())),
                                model, golden, JobConfig{});
   EXPECT_EQ(job.mismatchedRays, 1u);
   ASSERT_TRUE(job.firstMismatch.has_value());

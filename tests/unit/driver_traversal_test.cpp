@@ -99,11 +99,11 @@ TEST(DriverTraversalJob, AWrongVisitSequenceIsReportedWithBothSequences) {
     if (accel == "grid") {
       DropLastVisit<fx::GridImage, GoldenGridDevice> model(victim);
       GoldenGridDevice golden;
-      job = runTraversalJob(buildGridImageFor(c.scene, c.quantizer, {}), c.rays, c.quantizer, model, golden, {});
+      job = runTraversalJob(buildGridImageFor(c.scene, c.quantizer, {}), quantizeRays(c.quantizer, c.rays), model, golden, {});
     } else {
       DropLastVisit<fx::OctreeImage, GoldenOctreeDevice> model(victim);
       GoldenOctreeDevice golden;
-      job = runTraversalJob(buildOctreeImageFor(c.scene, c.quantizer, {}), c.rays, c.quantizer, model, golden, {});
+      job = runTraversalJob(buildOctreeImageFor(c.scene, c.quantizer, {}), quantizeRays(c.quantizer, c.rays), model, golden, {});
     }
     EXPECT_EQ(job.mismatchedRays, 1u);
     ASSERT_TRUE(job.firstMismatch.has_value());

@@ -175,7 +175,7 @@ constexpr std::array<const char*, kCategories> kCategoryNames = {"camera", "vert
 glm::vec3 randomUnit(std::mt19937& rng) {
   std::normal_distribution<float> n(0.0f, 1.0f);
   for (;;) {
-    const glm::vec3 v(n(rng), n(rng), n(rng));
+    const glm::vec3 v = test::drawVec3([&] { return n(rng); });
     if (glm::length(v) > 1e-3f) return glm::normalize(v);
   }
 }
@@ -184,7 +184,8 @@ using test::randomIn;  // random_points.h
 
 glm::vec3 randomOutside(const Aabb& b, std::mt19937& rng) {
   std::uniform_real_distribution<float> u(1.2f, 3.0f);
-  return b.center() + randomUnit(rng) * (0.5f * glm::length(b.diagonal()) * u(rng));
+  const float scale = u(rng);  // drawn first, as GCC ordered the operands (random_points.h)
+  return b.center() + randomUnit(rng) * (0.5f * glm::length(b.diagonal()) * scale);
 }
 
 // True if the ray nudged sideways by 1e-5 of its length, four ways, gets the
@@ -241,7 +242,8 @@ std::vector<Sample> makeSamples(const Scene& scene, const Accel& reference, cons
     if (glm::length(cross) == 0.0f) continue;  // a degenerate triangle has no side to look from
     const glm::vec3 n = glm::normalize(cross) * (coin(rng) ? 1.0f : -1.0f);
     auto facing = [&](const glm::vec3& p) {
-      return p + distance(rng) * radius * glm::normalize(n + 0.5f * randomUnit(rng));
+      const glm::vec3 tilt = randomUnit(rng);  // drawn first, as GCC ordered the operands (random_points.h)
+      return p + distance(rng) * radius * glm::normalize(n + 0.5f * tilt);
     };
     const glm::vec3 ov = facing(a), oe = facing(e);
     // Those that still graze a silhouette (open boundaries, folds) join the
@@ -258,7 +260,7 @@ std::vector<Sample> makeSamples(const Scene& scene, const Accel& reference, cons
     for (const int category : {kAxis, kAxisVertex}) {
       glm::vec3 origin = category == kAxisVertex ? a : randomIn(b, rng);
       origin[axis] = negative ? b.hi[axis] + 0.25f * b.diagonal()[axis] : b.lo[axis] - 0.25f * b.diagonal()[axis];
-      glm::vec3 d(coin(rng) ? 0.0f : -0.0f, coin(rng) ? 0.0f : -0.0f, coin(rng) ? 0.0f : -0.0f);
+      glm::vec3 d = test::drawVec3([&] { return coin(rng) ? 0.0f : -0.0f; });
       d[axis] = negative ? -1.0f : 1.0f;
       samples.push_back({category, Ray{origin, d}});
     }

@@ -150,7 +150,8 @@ TEST(Grid, TrianglesOnVoxelBoundaries) {
 }
 
 TEST(Grid, VisitsOnlyTheVoxelsOnTheRay) {
-  const UniformGrid grid(fromTriangles(pins()), gridOptions(10));
+  const Scene scene = fromTriangles(pins());
+  const UniformGrid grid(scene, gridOptions(10));
   const float centre = voxelPlane(grid, 1, 3) + 1.0f;  // inside voxel row 3
   TraversalStats stats;
   // Along x through a row of voxels: exactly the ten voxels of that row.

@@ -196,7 +196,9 @@ TEST(Nff, ConesAndCylindersAreOpenTubesFacingOut) {
 TEST(Nff, ErrorsNameTheFileAndLine) {
   EXPECT_NE(errorOf("b 0 0 0\nq 1 2 3\n").find("test.nff:2: unknown NFF entity 'q'"), std::string::npos);
   EXPECT_NE(errorOf("f 1 1 1 1 0 0 0\n").find("test.nff:1: 'f' takes 8 numbers, this line has 7"), std::string::npos);
-  EXPECT_NE(errorOf("f 1 1 1 1 0 0 0 0\n").find("test.nff:1: index of refraction 0 must be > 0"), std::string::npos);
+  EXPECT_NE(errorOf("f 1 1 1 1 0 0 0.5 0\n").find("test.nff:1: index of refraction 0 must be > 0 on a transmitting"),
+            std::string::npos);
+  EXPECT_NE(errorOf("f 1 1 1 1 0 0 0.5 -1.5\n").find("test.nff:1: index of refraction -1.5"), std::string::npos);
   EXPECT_NE(errorOf("f 1 1 1 1 0 0 -0.5 1\n").find("test.nff:1: transmittance T = -0.5 is negative"), std::string::npos);
   EXPECT_NE(errorOf("p 3\n0 0 0\n1 0 0\n").find("polygon started at line 1 is truncated"), std::string::npos);
   EXPECT_NE(errorOf("p 3\n0 0 0\n1 x 0\n0 1 0\n").find("test.nff:3: expected a finite number, got 'x'"),
@@ -209,6 +211,29 @@ TEST(Nff, ErrorsNameTheFileAndLine) {
   EXPECT_NE(errorOf("c\n0 0 0 1\n0 0 0 1\n").find("base and apex coincide"), std::string::npos);
   EXPECT_NE(errorOf("l 1 2 3\n").find("the scene has no triangles"), std::string::npos);
   EXPECT_NE(errorOf("v\nfrom 0 0 0\nat 0 0 0\n").find("'from' and 'at' coincide"), std::string::npos);
+}
+
+// Found by tests/fuzz/fuzz_nff: a sphere or cone near the edge of float range
+// was tessellated into infinite vertices, and the shading normals of a patch
+// with tiny (or huge) normals were normalized in float into NaN (or zero).
+TEST(Nff, GeometryBeyondFloatRangeIsAnErrorAndNormalsStayFinite) {
+  EXPECT_NE(errorOf("s 3e38 0 0 3e38\n").find("test.nff:1: the primitive reaches beyond float range"),
+            std::string::npos);
+  EXPECT_NE(errorOf("c\n3e38 0 0 3e38\n3e38 1 0 3e38\n").find("beyond float range"), std::string::npos);
+  const Scene patch = parse("pp 3\n0 0 0 1e-30 0 0\n1 0 0 0 1e-30 0\n0 1 0 3e38 3e38 3e38\n");
+  ASSERT_EQ(patch.normals.size(), 1u);
+  EXPECT_EQ(patch.normals[0].n0, glm::vec3(1, 0, 0));
+  EXPECT_EQ(patch.normals[0].n1, glm::vec3(0, 1, 0));
+  EXPECT_NEAR(patch.normals[0].n2.x, 1.0f / std::sqrt(3.0f), 1e-6f);
+}
+
+// The SPD's generators write an index of refraction of 0 on opaque surfaces.
+TEST(Nff, OpaqueSurfacesMayGiveNoIndexOfRefraction) {
+  const Scene s = parse("f 1 0 0 1 0 0 0 0\np 3\n0 0 0\n1 0 0\n0 1 0\n");
+  ASSERT_EQ(s.size(), 1u);
+  const Material& m = s.materials[s.materialOf[0]];
+  EXPECT_EQ(m.transmittance, 0.0f);
+  EXPECT_EQ(m.ior, 1.0f);
 }
 
 TEST(Nff, LoadSceneReadsNffFiles) {

@@ -183,7 +183,8 @@ TEST(Octree, TrianglesOnSplitPlanes) {
 
 TEST(Octree, VisitsOnlyTheChildrenOnTheRay) {
   // One split: the root and eight empty leaves (the specks sit in two corners).
-  const Octree tree(fromTriangles(pins()), octreeOptions(1, 1));
+  const Scene scene = fromTriangles(pins());
+  const Octree tree(scene, octreeOptions(1, 1));
   ASSERT_EQ(tree.nodeCount(), 9u);
   const float lowMid = 25.0f, highMid = 75.0f;
   TraversalStats stats;

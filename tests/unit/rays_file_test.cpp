@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 
 #include "common/error.h"
 #include "scene/rays_file.h"
@@ -65,6 +66,21 @@ TEST(RaysFile, BadLinesNameFileAndLine) {
   expectError("1 2 3 0 0 0\n", "zero direction");
   expectError("1 2 3 0 -0.0 0\n", "zero direction");
   EXPECT_THROW(readRaysFile("/nonexistent/rays.txt"), InputError);
+  // A NUL byte ended the parse of its line and the rest was dropped unread.
+  expectError(std::string("0 0 0 0 0 1\0 9 9\n", 17), ":1: NUL byte");
+}
+
+TEST(RaysFile, StreamsAndMultiLineCommentsRoundTrip) {
+  // Each line of a comment is commented out: none of it may read back as a ray.
+  const std::vector<Ray> rays{{{1, 2, 3}, {0, 0, 1}}};
+  std::stringstream text;
+  writeRays(text, rays, "first line\n0 0 0 1 1 1");
+  const auto back = readRays(text, "stream");
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_EQ(back[0].origin, rays[0].origin);
+  // A NUL inside a comment is part of the comment.
+  std::istringstream commented(std::string("1 2 3 0 0 1 # \0\n", 16));
+  EXPECT_EQ(readRays(commented, "stream").size(), 1u);
 }
 
 }  // namespace

@@ -1,7 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <numbers>
+
+#include <nlohmann/json.hpp>
 
 #include "common/error.h"
 #include "scene/scene.h"
@@ -18,6 +23,47 @@ TEST(Scene, CornellBoxIsEmbeddedAndFramed) {
   EXPECT_FLOAT_EQ(scene.bounds.lo.x, 0.0f);
   EXPECT_FLOAT_EQ(scene.bounds.hi.x, 556.0f);
   EXPECT_FLOAT_EQ(scene.bounds.hi.y, 548.8f);
+}
+
+// The effects of the default scene, by the triangle ids docs/scenes.md lists:
+// the lamp (10, 11) is its area light, the short block (12-21) glass, the tall
+// block (22-31) a mirror, and a point light hangs under the lamp.
+TEST(Scene, CornellBoxHasAMirrorAGlassBlockAndBothKindsOfLight) {
+  const Scene scene = makeCornellBox();
+  EXPECT_EQ(scene.emissiveTriangles(), (std::vector<uint32_t>{10, 11}));
+  for (uint32_t t = 12; t < 32; ++t) {
+    const Material& m = scene.materials[scene.materialOf[t]];
+    if (t < 22) {
+      EXPECT_EQ(m.name, "glass") << "triangle " << t;
+      EXPECT_FLOAT_EQ(m.transmittance, 0.9f);
+      EXPECT_FLOAT_EQ(m.ior, 1.5f);
+    } else {
+      EXPECT_EQ(m.name, "mirror") << "triangle " << t;
+      EXPECT_FLOAT_EQ(m.ks, 0.8f);
+      EXPECT_FLOAT_EQ(m.transmittance, 0.0f);
+    }
+  }
+  for (uint32_t t = 0; t < 10; ++t) {
+    const Material& m = scene.materials[scene.materialOf[t]];
+    EXPECT_EQ(m.ks + m.transmittance, 0.0f) << "walls are diffuse: triangle " << t;
+  }
+  ASSERT_EQ(scene.lights.size(), 1u);
+  const Light& point = scene.lights[0];
+  EXPECT_EQ(point.kind, Light::Kind::Point);
+  // Under the lamp's centre, below the lamp, inside the box.
+  EXPECT_EQ(point.position, glm::vec3(278.0f, 538.8f, 279.5f));
+  EXPECT_LT(point.position.y, scene.triangles[10].v0.y);
+  EXPECT_TRUE(glm::all(glm::lessThan(scene.bounds.lo, point.position)) && glm::all(glm::lessThan(point.position, scene.bounds.hi)));
+  // The glass block is closed above the floor with faces wound outwards, so a
+  // ray's side of a face tells entering from leaving: every face's normal points
+  // away from the block's centre.
+  glm::vec3 centre(0.0f);
+  for (uint32_t t = 12; t < 22; ++t) centre += (scene.triangles[t].v0 + scene.triangles[t].v1 + scene.triangles[t].v2) / 30.0f;
+  for (uint32_t t = 12; t < 22; ++t) {
+    const Triangle& tri = scene.triangles[t];
+    const glm::vec3 normal = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
+    EXPECT_GT(glm::dot(normal, (tri.v0 + tri.v1 + tri.v2) / 3.0f - centre), 0.0f) << "triangle " << t;
+  }
 }
 
 TEST(Scene, LoadsBunnyAndWuson) {
@@ -74,6 +120,346 @@ TEST(Scene, ReadsTheWhittedTermsOfMtlMaterials) {
   }
   std::filesystem::remove(dir / "lancer_whitted.mtl");
   std::filesystem::remove(dir / "lancer_whitted.obj");
+}
+
+// Found by tests/fuzz/fuzz_mtl: NaN, infinite and negative MTL terms were
+// loaded as they stood. Each is now an error naming the file and material.
+TEST(Scene, NonFiniteOrNegativeMtlTermsAreErrors) {
+  const auto dir = std::filesystem::temp_directory_path();
+  std::ofstream(dir / "lancer_bad_terms.obj") << "mtllib lancer_bad_terms.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                                 "usemtl m\nf 1 2 3\n";
+  for (const auto& [terms, needle] : {std::pair{"Ks -5 -5 -5\nillum 3", "specular weight (Ks) -5"},
+                                      std::pair{"Ks nan 0 0\nillum 3", "specular weight (Ks) nan"},
+                                      std::pair{"Ns 1e39", "shininess (Ns) inf"},
+                                      std::pair{"d nan", "transmittance (1 - d) nan"},
+                                      std::pair{"Kd inf 0 0", "diffuse colour (Kd) (inf, 0, 0) is not finite"},
+                                      std::pair{"Ke 1e39 1 1", "emission (Ke) (inf, 1, 1) is not finite"}}) {
+    std::ofstream(dir / "lancer_bad_terms.mtl") << "newmtl m\n" << terms << "\n";
+    try {
+      loadScene((dir / "lancer_bad_terms.obj").string());
+      ADD_FAILURE() << "expected an error for " << terms;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("lancer_bad_terms.obj: material 'm': " + std::string(needle)),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  std::filesystem::remove(dir / "lancer_bad_terms.mtl");
+  std::filesystem::remove(dir / "lancer_bad_terms.obj");
+}
+
+// Found by tests/fuzz/fuzz_mtl: these 8 bytes as an MTL file crash assimp 5.2
+// (SIGSEGV in its MTL parser). OBJ and MTL files with a NUL byte are refused.
+TEST(Scene, ObjOrMtlWithANulByteIsAnErrorNotACrash) {
+  const auto dir = std::filesystem::temp_directory_path();
+  std::ofstream(dir / "lancer_nul.obj") << "mtllib lancer_nul.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n";
+  std::ofstream(dir / "lancer_nul.mtl", std::ios::binary) << std::string("\x01\0a\0< 1<", 8);
+  try {
+    loadScene((dir / "lancer_nul.obj").string());
+    ADD_FAILURE() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("lancer_nul.mtl has a NUL byte"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(dir / "lancer_nul.mtl");
+  std::filesystem::remove(dir / "lancer_nul.obj");
+}
+
+// ---- glTF 2.0 ------------------------------------------------------------------------
+
+// One triangle (0,0,0) (1,0,0) (0,1,0) as a data-URI buffer, the geometry every
+// glTF test shares; the tests vary the lights, materials, cameras and nodes.
+nlohmann::json gltfWithOneTriangle() {
+  return nlohmann::json::parse(R"({
+    "asset": {"version": "2.0"},
+    "scene": 0,
+    "scenes": [{"nodes": [0]}],
+    "nodes": [{"name": "triangle", "mesh": 0}],
+    "materials": [{"name": "plain"}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
+    "buffers": [{"byteLength": 36,
+                 "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+    "bufferViews": [{"buffer": 0, "byteLength": 36}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                   "min": [0, 0, 0], "max": [1, 1, 0]}]
+  })");
+}
+
+// The test's own file name (CTest runs the tests in parallel): lancer_<test>.gltf.
+std::string gltfName(const char* extension = ".gltf") {
+  return std::string("lancer_") + ::testing::UnitTest::GetInstance()->current_test_info()->name() + extension;
+}
+
+std::filesystem::path writeGltf(const nlohmann::json& gltf) {
+  const auto path = std::filesystem::temp_directory_path() / gltfName();
+  std::ofstream(path) << gltf.dump(2);
+  return path;
+}
+
+// The message of the InputError loading `path` throws (the test fails if none).
+std::string loadError(const std::filesystem::path& path) {
+  try {
+    loadScene(path.string());
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << path << ": expected an InputError";
+  return "";
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// A scene with each kind of KHR_lights_punctual light, placed by nested nodes.
+nlohmann::json gltfWithLights() {
+  nlohmann::json gltf = gltfWithOneTriangle();
+  gltf["extensionsUsed"] = {"KHR_lights_punctual"};
+  gltf["extensions"]["KHR_lights_punctual"]["lights"] = nlohmann::json::parse(R"([
+    {"name": "bulb", "type": "point", "color": [1, 0.5, 0.25], "intensity": 2},
+    {"name": "spotty", "type": "spot", "intensity": 3, "spot": {"innerConeAngle": 0.25, "outerConeAngle": 0.5}},
+    {"type": "directional", "intensity": 4}
+  ])");
+  // Node 2 turns the spot (which shines along its local -z) straight down; the
+  // sun hangs under a translated and rotated parent and shines along world -x.
+  for (const char* node : {
+           R"({"name": "bulb node", "translation": [1, 2, 3], "extensions": {"KHR_lights_punctual": {"light": 0}}})",
+           R"({"name": "spot node", "translation": [0, 5, 0], "rotation": [-0.70710678, 0, 0, 0.70710678],
+               "extensions": {"KHR_lights_punctual": {"light": 1}}})",
+           R"({"name": "parent", "translation": [10, 0, 0], "rotation": [0, 0.70710678, 0, 0.70710678], "children": [4]})",
+           R"({"name": "sun node", "extensions": {"KHR_lights_punctual": {"light": 2}}})"}) {
+    gltf["nodes"].push_back(nlohmann::json::parse(node));
+  }
+  gltf["scenes"][0]["nodes"] = {0, 1, 2, 3};
+  return gltf;
+}
+
+void expectNear(const glm::vec3& got, const glm::vec3& want, const char* what) {
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(got[i], want[i], 1e-5f) << what << " component " << i;
+}
+
+TEST(Gltf, PunctualLightsTakeTheirNodesWorldTransforms) {
+  const Scene scene = loadScene(writeGltf(gltfWithLights()).string());
+  ASSERT_EQ(scene.lights.size(), 3u);
+  const Light& bulb = scene.lights[0];
+  EXPECT_EQ(bulb.kind, Light::Kind::Point);
+  EXPECT_EQ(bulb.name, "bulb");
+  expectNear(bulb.position, {1, 2, 3}, "bulb position");
+  expectNear(bulb.color, {2, 1, 0.5f}, "bulb colour times intensity");
+  const Light& spot = scene.lights[1];
+  EXPECT_EQ(spot.kind, Light::Kind::Spot);
+  EXPECT_EQ(spot.name, "spotty");
+  expectNear(spot.position, {0, 5, 0}, "spot position");
+  expectNear(spot.direction, {0, -1, 0}, "spot direction");
+  expectNear(spot.color, glm::vec3(3), "spot colour (white by default)");
+  EXPECT_FLOAT_EQ(spot.innerConeCos, std::cos(0.25f));
+  EXPECT_FLOAT_EQ(spot.outerConeCos, std::cos(0.5f));
+  const Light& sun = scene.lights[2];
+  EXPECT_EQ(sun.kind, Light::Kind::Directional);
+  EXPECT_EQ(sun.name, "light 2");  // unnamed: its index
+  expectNear(sun.direction, {-1, 0, 0}, "sun direction");
+  expectNear(sun.position, {10, 0, 0}, "sun position (unused)");
+  expectNear(sun.color, glm::vec3(4), "sun colour");
+  // The default spot cone is pi/4 outside, 0 inside.
+  nlohmann::json gltf = gltfWithLights();
+  gltf["extensions"]["KHR_lights_punctual"]["lights"][1]["spot"] = nlohmann::json::object();
+  const Scene defaults = loadScene(writeGltf(gltf).string());
+  EXPECT_FLOAT_EQ(defaults.lights[1].innerConeCos, 1.0f);
+  EXPECT_FLOAT_EQ(defaults.lights[1].outerConeCos, std::cos(std::numbers::pi_v<float> / 4));
+}
+
+TEST(Gltf, TheFirstPerspectiveCameraIsTheView) {
+  nlohmann::json gltf = gltfWithOneTriangle();
+  gltf["cameras"] = nlohmann::json::parse(R"([
+    {"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}},
+    {"name": "eye", "type": "perspective", "perspective": {"yfov": 0.5, "aspectRatio": 1.5, "znear": 0.1}}
+  ])");
+  // The orthographic camera comes first in node order and is skipped; the
+  // perspective one sits under a parent that lifts it and turns it to look along -x.
+  gltf["nodes"].push_back({{"camera", 0}});
+  gltf["nodes"].push_back({{"translation", {0, 1, 0}}, {"children", {3}}});
+  gltf["nodes"].push_back({{"translation", {5, 0, 0}}, {"rotation", {0, 0.70710678, 0, 0.70710678}}, {"camera", 1}});
+  gltf["scenes"][0]["nodes"] = {0, 1, 2};
+  const Scene scene = loadScene(writeGltf(gltf).string());
+  ASSERT_TRUE(scene.view.has_value());
+  expectNear(scene.view->eye, {5, 1, 0}, "eye");
+  expectNear(scene.view->target, {4, 1, 0}, "target: one unit along the camera's -z");
+  expectNear(scene.view->up, {0, 1, 0}, "up");
+  EXPECT_NEAR(scene.view->fovYDegrees, 0.5f * 180.0f / std::numbers::pi_v<float>, 1e-4f);
+  // Without a camera there is no view (the camera frames the scene itself).
+  EXPECT_FALSE(loadScene(writeGltf(gltfWithOneTriangle()).string()).view.has_value());
+}
+
+// Each mapped material term against docs/scenes.md's formulas. The file does not
+// list its extensions in "extensionsUsed" (assimp would then skip them): they are read anyway.
+TEST(Gltf, MetallicRoughnessTransmissionIorAndEmissionMapOntoWhittedTerms) {
+  nlohmann::json gltf = gltfWithOneTriangle();
+  gltf["materials"] = nlohmann::json::parse(R"([
+    {"name": "glass", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.8, 0.7, 1], "metallicFactor": 0, "roughnessFactor": 0},
+     "extensions": {"KHR_materials_transmission": {"transmissionFactor": 0.5}, "KHR_materials_ior": {"ior": 1.7}}},
+    {"name": "brushed", "pbrMetallicRoughness": {"metallicFactor": 0.25, "roughnessFactor": 0.5}},
+    {"name": "lamp", "emissiveFactor": [0.1, 0.2, 0.3], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 5}}},
+    {"name": "defaults"}
+  ])");
+  for (int m = 1; m < 4; ++m) {
+    gltf["meshes"][0]["primitives"].push_back({{"attributes", {{"POSITION", 0}}}, {"material", m}});
+  }
+  const Scene scene = loadScene(writeGltf(gltf).string());
+  ASSERT_EQ(scene.size(), 4u);
+  // assimp orders the merged meshes by material: find each triangle by its material.
+  auto material = [&](const std::string& name) {
+    for (uint32_t t = 0; t < scene.size(); ++t) {
+      if (scene.materials[scene.materialOf[t]].name == name) return std::pair{t, scene.materials[scene.materialOf[t]]};
+    }
+    ADD_FAILURE() << "no triangle of material " << name;
+    return std::pair{UINT32_MAX, Material{}};
+  };
+  const Material glass = material("glass").second;
+  EXPECT_EQ(glass.name, "glass");
+  expectNear(glass.diffuse, {0.9f, 0.8f, 0.7f}, "base colour");
+  const float f0 = (0.7f / 2.7f) * (0.7f / 2.7f);
+  EXPECT_FLOAT_EQ(glass.ior, 1.7f);
+  EXPECT_FLOAT_EQ(glass.ks, f0);
+  EXPECT_FLOAT_EQ(glass.transmittance, 0.5f * (1 - f0));
+  EXPECT_FLOAT_EQ(glass.kd, 1 - f0 - 0.5f * (1 - f0));
+  EXPECT_FLOAT_EQ(glass.shine, 10000.0f);  // a perfectly smooth surface: the cap
+  const Material brushed = material("brushed").second;
+  EXPECT_FLOAT_EQ(brushed.ior, 1.5f);  // glTF's default
+  EXPECT_FLOAT_EQ(brushed.ks, 0.5f * (0.25f + 0.75f * 0.04f));
+  EXPECT_FLOAT_EQ(brushed.transmittance, 0.0f);
+  EXPECT_FLOAT_EQ(brushed.kd, 1 - brushed.ks);
+  EXPECT_FLOAT_EQ(brushed.shine, 2.0f / (0.25f * 0.25f) - 2.0f);
+  const auto [lampTriangle, lamp] = material("lamp");
+  expectNear(lamp.emission, {0.5f, 1.0f, 1.5f}, "emissive factor times strength");
+  const Material defaults = material("defaults").second;  // glTF's defaults: a rough metal, diffuse in Whitted terms
+  EXPECT_FLOAT_EQ(defaults.ks, 0.0f);
+  EXPECT_FLOAT_EQ(defaults.kd, 1.0f);
+  EXPECT_EQ(defaults.emission, glm::vec3(0.0f));
+  EXPECT_EQ(scene.emissiveTriangles(), std::vector<uint32_t>{lampTriangle});
+}
+
+// The same file as a binary container: the JSON chunk, then the buffer as the BIN chunk.
+TEST(Gltf, ReadsTheBinaryContainer) {
+  nlohmann::json gltf = gltfWithLights();
+  gltf["buffers"][0].erase("uri");
+  std::string json = gltf.dump();
+  json.resize((json.size() + 3) / 4 * 4, ' ');
+  const float vertices[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  std::string bin(reinterpret_cast<const char*>(vertices), sizeof vertices);
+  auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  const std::string glb = "glTF" + u32(2) + u32(uint32_t(12 + 8 + json.size() + 8 + bin.size())) + u32(uint32_t(json.size())) +
+                          "JSON" + json + u32(uint32_t(bin.size())) + "BIN" + std::string(1, '\0') + bin;
+  const auto path = std::filesystem::temp_directory_path() / gltfName(".glb");
+  std::ofstream(path, std::ios::binary) << glb;
+  const Scene scene = loadScene(path.string());
+  EXPECT_EQ(scene.size(), 1u);
+  ASSERT_EQ(scene.lights.size(), 3u);
+  EXPECT_EQ(scene.lights[1].name, "spotty");
+  // A container cut short names the file.
+  std::ofstream(path, std::ios::binary) << glb.substr(0, 40);
+  EXPECT_TRUE(contains(loadError(path), gltfName(".glb") + ": truncated glTF binary container")) << loadError(path);
+}
+
+TEST(Gltf, BadLightsMaterialsAndJsonAreErrorsNamingThem) {
+  const std::string file = gltfName();
+  // An index of refraction <= 0 on a transmitting material.
+  for (const double ior : {0.0, -1.0}) {
+    nlohmann::json gltf = gltfWithOneTriangle();
+    gltf["materials"][0]["extensions"] = {{"KHR_materials_transmission", {{"transmissionFactor", 1}}},
+                                          {"KHR_materials_ior", {{"ior", ior}}}};
+    const std::string error = loadError(writeGltf(gltf));
+    EXPECT_TRUE(contains(error, file + ": material 'plain': index of refraction")) << error;
+    EXPECT_TRUE(contains(error, "must be > 0 on a transmitting material")) << error;
+  }
+  // A light whose world position is not a number: its parent's x scale
+  // overflows float, and infinity times the child's zero x is NaN.
+  {
+    nlohmann::json gltf = gltfWithLights();
+    gltf["nodes"].push_back({{"name", "huge"}, {"scale", {1e39, 1, 1}}, {"children", {6}}});
+    gltf["nodes"].push_back({{"translation", {0, 1, 0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    gltf["scenes"][0]["nodes"].push_back(5);
+    const std::string error = loadError(writeGltf(gltf));
+    EXPECT_TRUE(contains(error, file + ": light 'bulb' on node 6: its world position (")) << error;
+    EXPECT_TRUE(contains(error, "nan")) << error;
+  }
+  // A malformed JSON text names the file and where the parse stopped.
+  {
+    const auto path = std::filesystem::temp_directory_path() / file;
+    std::ofstream(path) << R"({"asset": {"version": "2.0"}, "nodes": [)";
+    const std::string error = loadError(path);
+    EXPECT_TRUE(contains(error, file + ": malformed glTF JSON")) << error;
+  }
+  // Light definitions and references that cannot be.
+  auto lightError = [&](const std::function<void(nlohmann::json&)>& edit) {
+    nlohmann::json gltf = gltfWithLights();
+    edit(gltf);
+    return loadError(writeGltf(gltf));
+  };
+  auto lights = [](nlohmann::json& g) -> nlohmann::json& { return g["extensions"]["KHR_lights_punctual"]["lights"]; };
+  std::string error = lightError([&](nlohmann::json& g) { lights(g)[0]["type"] = "area"; });
+  EXPECT_TRUE(contains(error, file + ": light 'bulb': type 'area' is not point, spot or directional")) << error;
+  error = lightError([&](nlohmann::json& g) { lights(g)[0]["intensity"] = -1; });
+  EXPECT_TRUE(contains(error, "light 'bulb': intensity -1 must be a finite number >= 0")) << error;
+  error = lightError([&](nlohmann::json& g) { lights(g)[0]["intensity"] = "bright"; });
+  EXPECT_TRUE(contains(error, "light 'bulb': 'intensity' must be a number")) << error;
+  error = lightError([&](nlohmann::json& g) { lights(g)[1].erase("spot"); });
+  EXPECT_TRUE(contains(error, "light 'spotty': a spot light needs 'spot'")) << error;
+  error = lightError([&](nlohmann::json& g) { lights(g)[1]["spot"]["innerConeAngle"] = 0.75; });
+  EXPECT_TRUE(contains(error, "light 'spotty': cone angles inner 0.75 and outer 0.5")) << error;
+  error = lightError([&](nlohmann::json& g) { g["nodes"][1]["extensions"]["KHR_lights_punctual"]["light"] = 7; });
+  EXPECT_TRUE(contains(error, "node 1 'bulb node': 'light' must name one of the file's 3 lights")) << error;
+  error = lightError([&](nlohmann::json& g) { g["nodes"][4]["children"] = {3}; });
+  EXPECT_TRUE(contains(error, "node 3 'parent' is reached twice")) << error;
+  // Material factors out of range, a camera without a field of view.
+  nlohmann::json gltf = gltfWithOneTriangle();
+  gltf["materials"][0]["pbrMetallicRoughness"] = {{"roughnessFactor", 2}};
+  error = loadError(writeGltf(gltf));
+  EXPECT_TRUE(contains(error, "material 'plain': roughness factor 2 must be in [0, 1]")) << error;
+  gltf = gltfWithOneTriangle();
+  gltf["materials"][0]["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", -2}};
+  error = loadError(writeGltf(gltf));
+  EXPECT_TRUE(contains(error, "material 'plain': emissive strength -2 must be a finite number >= 0")) << error;
+  gltf = gltfWithOneTriangle();
+  gltf["materials"][0]["emissiveFactor"] = {1, -0.5, 0};
+  error = loadError(writeGltf(gltf));
+  EXPECT_TRUE(contains(error, "material 'plain': emission (1, -0.5, 0) must be finite and >= 0")) << error;
+  gltf = gltfWithOneTriangle();
+  gltf["cameras"] = {{{"name", "eye"}, {"type", "perspective"}, {"perspective", {{"yfov", 0}}}}};
+  error = loadError(writeGltf(gltf));
+  EXPECT_TRUE(contains(error, "camera 'eye': yfov 0 must be in (0, pi) radians")) << error;
+}
+
+// Vertex normals become unit shading normals; a face without them (or with a
+// zero one) takes its geometric normal; a file without any leaves them empty.
+TEST(Scene, VertexNormalsAreShadingNormals) {
+  const auto path = std::filesystem::temp_directory_path() / "lancer_normals.obj";
+  std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 2\nvn 0 3 4\nvn 0 0 0\n"
+                         "f 1//1 2//2 3//3\nf 1 3 2\n";
+  const Scene scene = loadScene(path.string());
+  ASSERT_EQ(scene.size(), 2u);
+  ASSERT_EQ(scene.normals.size(), 2u);
+  EXPECT_EQ(scene.normals[0].n0, glm::vec3(0, 0, 1));
+  expectNear(scene.normals[0].n1, {0, 0.6f, 0.8f}, "normalised");
+  EXPECT_EQ(scene.normals[0].n2, glm::vec3(0, 0, 1));  // zero in the file: the geometric normal
+  EXPECT_EQ(scene.normals[1].n0, glm::vec3(0, 0, -1));  // none: the geometric normal (wound the other way)
+  EXPECT_EQ(scene.normals[1].n2, glm::vec3(0, 0, -1));
+  std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  EXPECT_TRUE(loadScene(path.string()).normals.empty());
+  std::filesystem::remove(path);
+}
+
+// MTL's Ke makes an OBJ material emissive, an area light.
+TEST(Scene, MtlKeIsAnAreaLight) {
+  const auto dir = std::filesystem::temp_directory_path();
+  std::ofstream(dir / "lancer_lamp.mtl") << "newmtl lamp\nKd 1 1 1\nKe 2 3 4\nnewmtl wall\nKd 0.5 0.5 0.5\n";
+  std::ofstream(dir / "lancer_lamp.obj") << "mtllib lancer_lamp.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                            "usemtl wall\nf 1 2 3\nusemtl lamp\nf 1 2 3\nusemtl wall\nf 1 2 3\n";
+  const Scene scene = loadScene((dir / "lancer_lamp.obj").string());
+  ASSERT_EQ(scene.size(), 3u);
+  const std::vector<uint32_t> lamps = scene.emissiveTriangles();
+  ASSERT_EQ(lamps.size(), 1u);
+  EXPECT_EQ(scene.materials[scene.materialOf[lamps[0]]].name, "lamp");
+  EXPECT_EQ(scene.materials[scene.materialOf[lamps[0]]].emission, glm::vec3(2, 3, 4));
+  EXPECT_TRUE(scene.lights.empty());
+  std::filesystem::remove(dir / "lancer_lamp.mtl");
+  std::filesystem::remove(dir / "lancer_lamp.obj");
 }
 
 TEST(Scene, BadFilesAreClearErrors) {

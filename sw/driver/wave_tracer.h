@@ -1,0 +1,94 @@
+#pragma once
+
+// The hardware side of an effects run (docs/effects.md, "On the hardware"):
+// every wave of the Whitted loop goes through a hardware path on a model, class
+// by class, and is compared with the golden model bit for bit, as a primary-ray
+// job is. Secondary rays start on the lattice, at the hardware's own hit of
+// their parent ray (exact: o + t_num / (DIR_MAX det) d), moved off the surface
+// they leave along its lattice normal (docs/number-formats.md, "Secondary
+// origins").
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "driver/job.h"
+#include "effects/whitted.h"
+
+namespace lancer {
+
+// The offset of a secondary origin along the unit normal of the triangle it
+// leaves, in lattice units: above the worst rounding of the origin to the
+// lattice (sqrt(3) / 2 across the plane), so the origin lies strictly on the
+// side it leaves to (docs/number-formats.md).
+inline constexpr double kSecondaryOffsetUnits = 1.0;
+
+// A shadow ray's segment ends this many lattice units (along the ray) before
+// its light: the lattice ray deviates from the float one by up to about 2.3
+// units across the lattice (docs/number-formats.md), so a segment ending
+// exactly on an area light's triangle would be blocked by the lamp itself.
+inline constexpr double kSegmentEndMarginUnits = 4.0;
+
+// What the hardware did for one class of rays over a run.
+struct ClassHardwareStats {
+  uint64_t rays = 0;          // rays of the class
+  uint64_t traced = 0;        // of which entered the lattice and went through the model
+  uint64_t hits = 0;
+  uint64_t intersectionTests = 0;
+  uint64_t steps = 0;         // cells or nodes entered
+  uint64_t memoryReads = 0;
+  uint64_t cycles = 0;
+  uint64_t mismatches = 0;
+  uint64_t closestHitSteps = 0;  // any-hit rays: steps of the same rays as closest-hit (golden model)
+  uint64_t closestHitTests = 0;
+  double modelSeconds = 0, goldenSeconds = 0;
+};
+
+// The first wave ray on which the model and the golden model disagree.
+struct WaveMismatch {
+  int generation = 0;
+  RayClass cls = RayClass::Primary;
+  uint32_t index = 0;  // in its wave
+  std::string details;
+};
+
+class HardwareWaveTracer final : public WaveTracer {
+ public:
+  // The path is set up once (image, model); `scene` and `quantizer` must outlive the tracer.
+  HardwareWaveTracer(const std::string& accel, const Scene& scene, const Quantizer& quantizer, const JobConfig& config,
+                     double offsetUnits = kSecondaryOffsetUnits);
+
+  void trace(int generation, std::span<const WaveRay> rays, std::vector<std::optional<Hit>>& hits) override;
+
+  const ClassHardwareStats& stats(RayClass cls) const { return stats_[size_t(cls)]; }
+  uint64_t mismatches() const;
+  const std::optional<WaveMismatch>& firstMismatch() const { return firstMismatch_; }
+  // Secondary rays whose offset origin fell outside the lattice cube (they leave
+  // the scene through its boundary): not traced, answered as misses.
+  uint64_t originsOutside() const { return originsOutside_; }
+  bool cycleAccurate() const { return cycleAccurate_; }
+  double offsetUnits() const { return offset_; }
+  // The lattice ray of each ray of the last wave (nullopt: not traced).
+  const QuantizedRays& lastWave() const { return wave_; }
+
+ private:
+  std::optional<QuantizedRay> latticeRay(const WaveRay& ray, uint32_t index) const;
+
+  const Scene& scene_;
+  const Quantizer& quantizer_;
+  std::unique_ptr<HardwarePath> path_;
+  std::unique_ptr<HardwarePath> golden_;  // closest-hit steps of any-hit rays
+  double offset_;
+  std::vector<glm::dvec3> normals_;  // unit geometric normal of every quantized triangle, lattice space
+  std::array<ClassHardwareStats, kRayClassCount> stats_{};
+  std::optional<WaveMismatch> firstMismatch_;
+  uint64_t originsOutside_ = 0;
+  bool cycleAccurate_ = true;
+  // The previous wave: its lattice rays and the hardware's hits, which the next wave's origins come from.
+  QuantizedRays wave_;
+  std::vector<std::optional<fx::IsectResult>> waveHits_;
+};
+
+}  // namespace lancer

@@ -1,0 +1,335 @@
+#include "effects/whitted.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+
+namespace lancer {
+
+float WhittedShading::lightIntensity(size_t lights) {
+  // The SPD's suggestion; with no light at all the ambient term keeps one light's share.
+  const double n = double(lights ? lights : 1);
+  return float(std::sqrt(n) / (2.0 * n));
+}
+
+namespace {
+
+uint64_t splitmix64(uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+// Two uniform numbers in [0, 1) from a key: the stratified jitter of one area-light sample.
+glm::vec2 jitter(uint64_t key) {
+  const uint64_t h = splitmix64(key);
+  return {float(h >> 40) * 0x1.0p-24f, float((h >> 16) & 0xFFFFFF) * 0x1.0p-24f};
+}
+
+struct Emitter {
+  uint32_t prim;
+  glm::vec3 normal;  // unit geometric normal: the side it emits on
+  float area;
+  glm::vec3 emission;
+};
+
+class Loop {
+ public:
+  Loop(const Scene& scene, const EffectsPlan& plan, WhittedResult& result)
+      : scene_(scene), plan_(plan), out_(result) {
+    for (uint32_t t = 0; t < scene.size(); ++t) {
+      const Material& m = scene.materials[scene.materialOf[t]];
+      if (m.emission == glm::vec3(0.0f)) continue;
+      const Triangle& tri = scene.triangles[t];
+      const glm::vec3 c = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
+      const float twice = glm::length(c);
+      if (twice == 0.0f) continue;  // a degenerate emitter has no area to sample
+      emitters_.push_back({t, c / twice, 0.5f * twice, m.emission});
+    }
+    intensity_ = WhittedShading::lightIntensity(scene.lights.size() + emitters_.size());
+  }
+
+  // Spawns into `next` what the hit of ray `k` of the current wave calls for, and adds its local colour.
+  void shade(const WaveRay& r, const Hit& h, uint32_t k, std::vector<WaveRay>& next);
+
+ private:
+  glm::vec3 phong(const Material& m, const glm::vec3& n, const glm::vec3& toLight, const glm::vec3& toEye,
+                  float cosine) const {
+    glm::vec3 c = m.kd * m.diffuse * cosine;
+    if (m.ks > 0.0f) {  // SPD rule 4: highlights on surfaces with a reflective component
+      const glm::vec3 mirror = glm::reflect(-toLight, n);
+      const float rv = std::max(0.0f, glm::dot(mirror, toEye));
+      c += glm::vec3(m.ks * std::pow(rv, m.shine));
+    }
+    return c;
+  }
+
+  const Scene& scene_;
+  const EffectsPlan& plan_;
+  WhittedResult& out_;
+  std::vector<Emitter> emitters_;
+  float intensity_ = 0.5f;
+};
+
+void Loop::shade(const WaveRay& r, const Hit& h, uint32_t k, std::vector<WaveRay>& next) {
+  const Triangle& tri = scene_.triangles[h.prim];
+  const Material& m = scene_.materials[scene_.materialOf[h.prim]];
+  const float w0 = 1.0f - h.u - h.v;
+  // The point from the barycentrics: on the triangle's plane to float rounding, whatever t's error.
+  const glm::vec3 p = w0 * tri.v0 + h.u * tri.v1 + h.v * tri.v2;
+  const glm::vec3 d = glm::normalize(r.ray.dir);
+  const glm::vec3 cross = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
+  const float crossLength = glm::length(cross);
+  const glm::vec3 ng = crossLength > 0.0f ? cross / crossLength : -d;
+  const bool front = glm::dot(d, ng) < 0.0f;
+  glm::vec3 ns = ng;
+  if (!scene_.normals.empty()) {
+    const ShadingNormals& sn = scene_.normals[h.prim];
+    const glm::vec3 n = w0 * sn.n0 + h.u * sn.n1 + h.v * sn.n2;
+    if (glm::length(n) > 0.0f) ns = glm::normalize(n);
+  }
+  // Both normals turned to the side the ray arrives on. An opaque triangle hit
+  // from behind is shaded as if two-sided (docs/effects.md): SPD rule 2 allows
+  // one-sided opaque primitives, and in its closed scenes no eye ray meets a back.
+  const glm::vec3 n = front ? ns : -ns;
+  const bool transmitter = m.transmittance > 0.0f;
+  if (!front && !transmitter) ++out_.opaqueBackHits;
+  const glm::vec3 toEye = -d;
+  const auto sideOf = [&](const glm::vec3& dir) -> int8_t {
+    const float s = glm::dot(dir, ng);
+    return s > 0.0f ? 1 : s < 0.0f ? -1 : (front ? 1 : -1);
+  };
+
+  // Local terms: ambient for every object (as the SPD suggests), and emission seen from the front.
+  glm::vec3 local = intensity_ * m.kd * m.diffuse;
+  if (front) local += m.emission;
+  out_.samples[r.sample] += r.weight * local;
+
+  const bool shadows = plan_.has(RayClass::Shadow);
+  const auto light = [&](const glm::vec3& contribution, const glm::vec3& dir, float tMax) {
+    if (!shadows) {  // --effects without shadow: the light reaches every surface facing it
+      out_.samples[r.sample] += r.weight * contribution;
+      return;
+    }
+    WaveRay s;
+    s.ray = Ray{p, dir, tMax};
+    s.cls = RayClass::Shadow;
+    s.anyHit = true;
+    s.depth = r.depth + 1;
+    s.sample = r.sample;
+    s.weight = r.weight * contribution;
+    s.parent = k;
+    s.originPrim = h.prim;
+    s.side = sideOf(dir);
+    next.push_back(s);
+    ++out_.shadowRays;
+  };
+
+  // Point, spot and directional lights: one shadow ray each, none when the
+  // shading normal faces away from the light (SPD rule 10, transmitters too).
+  for (const Light& l : scene_.lights) {
+    glm::vec3 dir;
+    float dist = kInfinity;
+    if (l.kind == Light::Kind::Directional) {
+      dir = -glm::normalize(l.direction);
+    } else {
+      const glm::vec3 toLight = l.position - p;
+      dist = glm::length(toLight);
+      if (!(dist > 0.0f)) continue;
+      dir = toLight / dist;
+    }
+    const float cosine = glm::dot(n, dir);
+    if (!(cosine > 0.0f)) continue;
+    float cone = 1.0f;
+    if (l.kind == Light::Kind::Spot) {
+      const float c = glm::dot(-dir, glm::normalize(l.direction));
+      if (c <= l.outerConeCos) continue;  // outside the cone no light arrives: no ray
+      cone = l.innerConeCos > l.outerConeCos
+                 ? std::clamp((c - l.outerConeCos) / (l.innerConeCos - l.outerConeCos), 0.0f, 1.0f)
+                 : 1.0f;
+    }
+    light(intensity_ * cone * l.color * phong(m, n, dir, toEye, cosine), dir, dist);
+  }
+
+  // Area lights: --light-samples rays per emissive triangle, stratified over
+  // it and jittered by a hash of (sample, wave index, emitter, stratum).
+  const int samples = plan_.lightSamples;
+  const int cols = int(std::ceil(std::sqrt(double(samples))));
+  const int rows = (samples + cols - 1) / cols;
+  for (const Emitter& e : emitters_) {
+    if (e.prim == h.prim) continue;  // a lamp does not light itself
+    const Triangle& et = scene_.triangles[e.prim];
+    for (int i = 0; i < samples; ++i) {
+      const uint64_t key = splitmix64((uint64_t(r.sample) << 32) ^ k) ^ (uint64_t(e.prim) << 20) ^ uint64_t(i);
+      const glm::vec2 xi = jitter(key);
+      const float a = (float(i % cols) + xi.x) / float(cols), b = (float(i / cols) + xi.y) / float(rows);
+      const float ra = std::sqrt(a);  // uniform on the triangle
+      const glm::vec3 q = (1.0f - ra) * et.v0 + ra * (1.0f - b) * et.v1 + ra * b * et.v2;
+      const glm::vec3 toLight = q - p;
+      const float dist = glm::length(toLight);
+      if (!(dist > 0.0f)) continue;
+      const glm::vec3 dir = toLight / dist;
+      const float cosine = glm::dot(n, dir);
+      const float cosEmitter = -glm::dot(e.normal, dir);
+      if (!(cosine > 0.0f) || !(cosEmitter > 0.0f)) continue;  // facing away, or behind the lamp
+      const float solid = cosEmitter * e.area / (dist * dist * float(samples));
+      // Stop just short of the lamp so its own triangle does not count as a blocker.
+      light(intensity_ * solid * e.emission * phong(m, n, dir, toEye, cosine), dir, dist * (1.0f - 1e-4f));
+    }
+  }
+
+  // Secondary rays (SPD rules 7 to 9): none from a ray already at the depth limit.
+  if (int(r.depth) >= plan_.maxDepth) return;
+  const auto spawn = [&](RayClass cls, const glm::vec3& dir, const glm::vec3& weight) {
+    WaveRay s;
+    s.ray = Ray{p, glm::normalize(dir), kInfinity};
+    s.cls = cls;
+    s.depth = r.depth + 1;
+    s.sample = r.sample;
+    s.weight = r.weight * weight;
+    s.parent = k;
+    s.originPrim = h.prim;
+    s.side = sideOf(s.ray.dir);
+    next.push_back(s);
+  };
+  const float cosIn = glm::dot(toEye, n);
+  bool totalInternal = false;
+  if (transmitter && plan_.has(RayClass::Refraction)) {
+    // Snell's law: entering through the front, leaving through the back.
+    const float eta = front ? 1.0f / m.ior : m.ior;
+    const float k2 = 1.0f - eta * eta * (1.0f - cosIn * cosIn);
+    ++out_.refractRays;  // the SPD counts total internal reflections among refractions
+    if (k2 < 0.0f) {
+      totalInternal = true;
+      ++out_.totalInternalReflections;
+    } else {
+      spawn(RayClass::Refraction, eta * d + (eta * cosIn - std::sqrt(k2)) * n, glm::vec3(m.transmittance));
+      ++out_.refractionsTraced;
+    }
+  }
+  if ((m.ks > 0.0f || transmitter) && plan_.has(RayClass::Reflection)) {
+    // Every reflective surface and every transmitter reflects (rule 8); under
+    // total internal reflection the transmitted share is reflected too.
+    spawn(RayClass::Reflection, d + 2.0f * cosIn * n, glm::vec3(m.ks + (totalInternal ? m.transmittance : 0.0f)));
+    ++out_.reflectRays;
+  }
+}
+
+}  // namespace
+
+WhittedResult traceWhitted(const Scene& scene, const EffectsPlan& plan, std::span<const Ray> cameraSamples,
+                           WaveTracer& tracer, const WaveProgress& progress) {
+  // Every hit may spawn a shadow ray per light and per area-light sample: refuse
+  // a run whose waves could outgrow memory rather than fail in the middle of it.
+  constexpr uint64_t kMaxWaveRays = uint64_t(1) << 28;
+  const uint64_t perHit = scene.lights.size() + uint64_t(plan.emissiveTriangles) * uint64_t(plan.lightSamples);
+  if (plan.has(RayClass::Shadow) && perHit > kMaxWaveRays / std::max<uint64_t>(cameraSamples.size(), 1)) {
+    throw InputError(fmt::format(
+        "{} camera samples x {} shadow rays a hit ({} lights, {} emissive triangles x --light-samples {}) could "
+        "make a wave of more than {} rays: lower --light-samples or the resolution, or leave shadows out with --effects",
+        cameraSamples.size(), perHit, scene.lights.size(), plan.emissiveTriangles, plan.lightSamples, kMaxWaveRays));
+  }
+  WhittedResult out;
+  out.samples.assign(cameraSamples.size(), glm::vec3(0.0f));
+  std::vector<WaveRay> wave(cameraSamples.size());
+  for (size_t s = 0; s < cameraSamples.size(); ++s) {
+    const Ray& ray = cameraSamples[s];
+    if (!allFinite(ray.origin) || !allFinite(ray.dir)) {
+      throw InputError(fmt::format("camera ray {}: NaN or infinite origin or direction", s));
+    }
+    if (ray.dir == glm::vec3(0.0f)) throw InputError(fmt::format("camera ray {}: zero direction", s));
+    wave[s].ray = Ray{ray.origin, ray.dir, kInfinity};
+    wave[s].sample = uint32_t(s);
+  }
+  Loop loop(scene, plan, out);
+  std::vector<std::optional<Hit>> hits;
+  std::vector<WaveRay> next;
+  for (int generation = 0; !wave.empty(); ++generation) {
+    hits.assign(wave.size(), std::nullopt);
+    tracer.trace(generation, wave, hits);
+    if (hits.size() != wave.size()) {
+      throw std::logic_error(fmt::format("wave tracer answered {} of the {} rays of generation {}", hits.size(),
+                                         wave.size(), generation));
+    }
+    out.waveRays.push_back(wave.size());
+    next.clear();
+    for (uint32_t k = 0; k < wave.size(); ++k) {
+      const WaveRay& r = wave[k];
+      const std::optional<Hit>& h = hits[k];
+      auto& counts = out.classes[size_t(r.cls)];
+      ++counts.rays;
+      if (!h) {
+        if (r.cls == RayClass::Shadow) {
+          out.samples[r.sample] += r.weight;  // the light is visible
+        } else {
+          out.samples[r.sample] += r.weight * scene.background;
+        }
+        continue;
+      }
+      ++counts.hits;
+      if (h->prim >= scene.size()) {
+        throw std::logic_error(fmt::format("wave tracer: ray {} of generation {} hit triangle {} of {}", k,
+                                           generation, h->prim, scene.size()));
+      }
+      if (r.cls != RayClass::Primary && h->prim == r.originPrim) ++out.selfHits;
+      if (r.cls == RayClass::Shadow) {
+        ++out.shadowRaysBlocked;
+        continue;
+      }
+      if (r.cls == RayClass::Primary) ++out.eyeHitRays;
+      loop.shade(r, *h, k, next);
+    }
+    if (progress) progress(generation, wave.size());
+    wave.swap(next);
+  }
+  return out;
+}
+
+Image samplesToImage(std::span<const glm::vec3> samples, int width, int height, Sampling sampling) {
+  const size_t expected = sampling == Sampling::Centers ? size_t(width) * size_t(height)
+                                                        : size_t(width + 1) * size_t(height + 1);
+  if (samples.size() != expected) {
+    throw std::logic_error(fmt::format("{} samples for a {}x{} image sampled at {}", samples.size(), width, height,
+                                       toString(sampling)));
+  }
+  Image image(width, height);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      glm::vec3 c;
+      if (sampling == Sampling::Centers) {
+        c = samples[size_t(y) * size_t(width) + size_t(x)];
+      } else {
+        const size_t row = size_t(width) + 1;
+        const size_t at = size_t(y) * row + size_t(x);
+        c = 0.25f * (samples[at] + samples[at + 1] + samples[at + row] + samples[at + row + 1]);
+      }
+      image.set(size_t(y) * size_t(width) + size_t(x), c.r, c.g, c.b);
+    }
+  }
+  return image;
+}
+
+nlohmann::json WhittedResult::toJson() const {
+  nlohmann::json cls = nlohmann::json::object();
+  for (int c = 0; c < kRayClassCount; ++c) {
+    cls[std::string(toString(RayClass(c)))] = {{"rays", classes[c].rays}, {"hits", classes[c].hits}};
+  }
+  return {{"classes", cls},
+          {"eye_hit_rays", eyeHitRays},
+          {"reflect_rays", reflectRays},
+          {"refract_rays", refractRays},
+          {"refraction_rays_traced", refractionsTraced},
+          {"total_internal_reflections", totalInternalReflections},
+          {"shadow_rays", shadowRays},
+          {"shadow_rays_blocked", shadowRaysBlocked},
+          {"self_hits", selfHits},
+          {"opaque_back_hits", opaqueBackHits},
+          {"wave_rays", waveRays}};
+}
+
+}  // namespace lancer
