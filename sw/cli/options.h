@@ -101,6 +101,7 @@ void addTraceCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addRunCommand(CLI::App& app);
 void addSpdCommand(CLI::App& app);
+void addSweepCommand(CLI::App& app);  // sweep, sweep-job, sweep-merge, crack-rays
 
 }  // namespace lancer::cli
 

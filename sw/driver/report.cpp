@@ -92,6 +92,7 @@ nlohmann::json toJson(const ReferenceComparison& cmp) {
       {"reference_disagreements", cmp.disagreements},
       {"reference_hit_miss_differs", cmp.hitMissDiffers},
       {"reference_prim_differs", cmp.primDiffers},
+      {"reference_compared", cmp.compared},
       {"t_error_max_lattice_units", cmp.maxTError},
       {"t_error_mean_lattice_units", cmp.meanTError},
       {"arbiter",

@@ -56,7 +56,8 @@ Tolerance latticeTolerance(const QuantizedRay& ray, const Quantizer& quantizer, 
                            const Triangle& tri);
 
 // The comparison's report keys: reference_disagreements,
-// reference_hit_miss_differs, reference_prim_differs, t_error_max_lattice_units,
+// reference_hit_miss_differs, reference_prim_differs, reference_compared (rays both hit on the same
+// triangle: the t errors' count), t_error_max_lattice_units,
 // t_error_mean_lattice_units and arbiter {judged, reference {correct, tie,
 // rounding, wrong}, hardware {correct, tie, within_bound, beyond_bound}}.
 nlohmann::json toJson(const ReferenceComparison& cmp);

@@ -1,0 +1,202 @@
+#include "sweep/spec.h"
+
+#include <algorithm>
+#include <charconv>
+#include <filesystem>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "common/error.h"
+
+namespace lancer::sweep {
+
+namespace {
+
+int parseBits(const std::string& text, const std::string& all, const std::string& where) {
+  int value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || text.empty()) {
+    throw InputError(fmt::format("{}: width '{}' is not P/D with integer bits", where, all));
+  }
+  if (value < 4 || value > 24) {
+    throw InputError(fmt::format("{}: width {}: {} bits lies outside what the formats admit (4..24)", where, all,
+                                 value));
+  }
+  return value;
+}
+
+std::string replaceAll(std::string s, const std::string& from, const std::string& to) {
+  for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) s.replace(at, from.size(), to);
+  return s;
+}
+
+}  // namespace
+
+std::string Width::name() const { return fmt::format("{}/{}", pos, dir); }
+std::string Width::tag() const { return fmt::format("{}-{}", pos, dir); }
+
+Width parseWidth(const std::string& text, const std::string& where) {
+  const size_t slash = text.find('/');
+  if (slash == std::string::npos) {
+    const int bits = parseBits(text, text, where);
+    return {bits, bits};
+  }
+  return {parseBits(text.substr(0, slash), text, where), parseBits(text.substr(slash + 1), text, where)};
+}
+
+const std::vector<std::string>& sweepUnits() {
+  static const std::vector<std::string> units{"isect", "grid", "octree"};
+  return units;
+}
+
+std::string accelOf(const std::string& unit) { return unit == "isect" ? "bvh" : unit; }
+std::string synthTopOf(const std::string& unit) { return "rt_" + unit; }
+
+void Spec::validate() const {
+  if (widths.empty()) throw InputError("--widths: no width to sweep");
+  if (scenes.empty()) throw InputError("--scenes: no scene to sweep");
+  for (const std::string& u : units) {
+    if (std::find(sweepUnits().begin(), sweepUnits().end(), u) == sweepUnits().end()) {
+      throw InputError(fmt::format("--units: unknown unit '{}' (available: {})", u, fmt::join(sweepUnits(), ", ")));
+    }
+  }
+  if (units.empty()) throw InputError("--units: no unit to sweep");
+  for (const std::string& u : synthUnits) {
+    if (std::find(units.begin(), units.end(), u) == units.end()) {
+      throw InputError(fmt::format("--synth-units: '{}' is not one of the sweep's units", u));
+    }
+  }
+  for (const std::string& m : models) {
+    if (m != "golden" && m != "systemc" && m != "rtl" && m != "rtl-systemc") {
+      throw InputError(fmt::format("--models: unknown model '{}' (golden, systemc, rtl, rtl-systemc)", m));
+    }
+  }
+  if (models.empty()) throw InputError("--models: no model to run");
+  if (image < 1) throw InputError(fmt::format("--image {}: must be at least 1", image));
+  if (chunks < 1 || chunks > image * image) {
+    throw InputError(fmt::format("--chunks {}: must lie in 1..{} (the camera rays)", chunks, image * image));
+  }
+  if (crackRays < 0) throw InputError(fmt::format("--crack-rays {}: must not be negative", crackRays));
+  if (!(clockMhz > 0)) throw InputError(fmt::format("--clock-mhz {}: must be positive", clockMhz));
+  if (buildJobs < 1) throw InputError(fmt::format("--build-jobs {}: must be at least 1", buildJobs));
+  std::vector<Width> sorted = widths;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+    throw InputError("--widths: a width is listed twice");
+  }
+  for (const auto& [name, dir] : trees) {
+    const Width w = parseWidth(name, "--tree");
+    if (std::find(widths.begin(), widths.end(), w) == widths.end()) {
+      throw InputError(fmt::format("--tree {}={}: width {} is not in --widths", name, dir, name));
+    }
+  }
+}
+
+std::string Spec::treeOf(const Width& w) const {
+  for (const auto& [name, dir] : trees) {
+    if (parseWidth(name, "--tree") == w) return dir;
+  }
+  return replaceAll(replaceAll(treePattern, "{pos}", std::to_string(w.pos)), "{dir}", std::to_string(w.dir));
+}
+
+nlohmann::json Spec::toJson() const {
+  std::vector<std::string> ws;
+  for (const Width& w : widths) ws.push_back(w.name());
+  return {{"widths", ws},           {"scenes", scenes},         {"units", units},
+          {"models", models},       {"image", image},           {"chunks", chunks},
+          {"crack_rays", crackRays}, {"seed", seed},             {"grid_res", gridRes},
+          {"mem_latency", memLatency}, {"clock_mhz", clockMhz}, {"synth", synth}, {"synth_units", synthUnits},
+          {"source", source},       {"tree_pattern", treePattern}, {"trees", trees},
+          {"cmake_args", cmakeArgs}, {"build_jobs", buildJobs}};
+}
+
+Spec Spec::fromJson(const nlohmann::json& j, const std::string& where) {
+  Spec s;
+  if (!j.is_object()) throw InputError(fmt::format("{}: a sweep spec is a JSON object", where));
+  static const std::vector<std::string> known{"widths", "scenes", "units", "models", "image", "chunks",
+                                              "crack_rays", "seed", "grid_res", "mem_latency", "clock_mhz",
+                                              "synth", "synth_units", "source", "tree_pattern", "trees", "cmake_args",
+                                              "build_jobs"};
+  for (const auto& [key, value] : j.items()) {
+    if (std::find(known.begin(), known.end(), key) == known.end()) {
+      throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, key, fmt::join(known, ", ")));
+    }
+  }
+  try {
+    for (const std::string& w : j.value("widths", std::vector<std::string>{})) s.widths.push_back(parseWidth(w, where));
+    s.scenes = j.value("scenes", s.scenes);
+    s.units = j.value("units", s.units);
+    s.models = j.value("models", s.models);
+    s.image = j.value("image", s.image);
+    s.chunks = j.value("chunks", s.chunks);
+    s.crackRays = j.value("crack_rays", s.crackRays);
+    s.seed = j.value("seed", s.seed);
+    s.gridRes = j.value("grid_res", s.gridRes);
+    s.memLatency = j.value("mem_latency", s.memLatency);
+    s.clockMhz = j.value("clock_mhz", s.clockMhz);
+    s.synth = j.value("synth", s.synth);
+    s.synthUnits = j.value("synth_units", s.synthUnits);
+    s.source = j.value("source", s.source);
+    s.treePattern = j.value("tree_pattern", s.treePattern);
+    s.trees = j.value("trees", s.trees);
+    s.cmakeArgs = j.value("cmake_args", s.cmakeArgs);
+    s.buildJobs = j.value("build_jobs", s.buildJobs);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: {}", where, e.what()));
+  }
+  return s;
+}
+
+nlohmann::json Job::toJson() const {
+  return {{"key", key}, {"width", width.name()}, {"unit", unit}, {"model", model},
+          {"scene", scene}, {"set", set}, {"chunk", chunk}};
+}
+
+Job Job::fromJson(const nlohmann::json& j) {
+  Job job;
+  job.key = j.at("key").get<std::string>();
+  job.width = parseWidth(j.at("width").get<std::string>(), "plan");
+  job.unit = j.at("unit").get<std::string>();
+  job.model = j.at("model").get<std::string>();
+  job.scene = j.at("scene").get<int>();
+  job.set = j.at("set").get<std::string>();
+  job.chunk = j.at("chunk").get<int>();
+  return job;
+}
+
+std::string Job::describe(const Spec& spec) const {
+  const std::string rays = set == "cracks" ? "crack rays" : fmt::format("camera chunk {} of {}", chunk + 1, spec.chunks);
+  return fmt::format("job {} (width {}, unit {}, model {}, scene {}, {})", key, width.name(), unit, model,
+                     spec.scenes[size_t(scene)], rays);
+}
+
+std::string sceneTag(const Spec& spec, int i) {
+  std::string stem = std::filesystem::path(spec.scenes[size_t(i)]).stem().string();
+  const size_t colon = stem.find(':');
+  if (colon != std::string::npos) stem = stem.substr(colon + 1);
+  for (char& c : stem) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+  }
+  return fmt::format("s{}-{}", i, stem);
+}
+
+std::vector<Job> makePlan(const Spec& spec) {
+  std::vector<Job> jobs;
+  for (const Width& w : spec.widths) {
+    for (const std::string& unit : spec.units) {
+      for (const std::string& model : spec.models) {
+        for (int s = 0; s < int(spec.scenes.size()); ++s) {
+          const std::string base = fmt::format("w{}.{}.{}.s{}", w.tag(), unit, model, s);
+          for (int c = 0; c < spec.chunks; ++c) {
+            jobs.push_back({fmt::format("{}.c{}of{}", base, c, spec.chunks), w, unit, model, s, "camera", c});
+          }
+          if (spec.crackRays > 0) jobs.push_back({base + ".cracks", w, unit, model, s, "cracks", 0});
+        }
+      }
+    }
+  }
+  return jobs;
+}
+
+}  // namespace lancer::sweep

@@ -1,0 +1,80 @@
+#pragma once
+
+// What a sweep measures (the spec) and the jobs it breaks into (the plan).
+// A spec comes from the command line or a JSON file (docs/accuracy.md, "Spec
+// file"); the plan is written to <out>/plan.json, and every executor (local
+// threads, Slurm array tasks) runs jobs from that file, so they run the same
+// commands and write the same results.
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace lancer::sweep {
+
+struct Width {
+  int pos = 16;
+  int dir = 16;
+  std::string name() const;  // "16/16"
+  std::string tag() const;   // "16-16", for paths
+  auto operator<=>(const Width&) const = default;
+};
+
+// "P/D" (or "P" for P/P); throws InputError naming `where` unless both lie in 4..24.
+Width parseWidth(const std::string& text, const std::string& where);
+
+// The units a sweep can measure, and the `lancer run --accel` and Yosys top of each.
+const std::vector<std::string>& sweepUnits();
+std::string accelOf(const std::string& unit);
+std::string synthTopOf(const std::string& unit);
+
+struct Spec {
+  std::vector<Width> widths;
+  std::vector<std::string> scenes;
+  std::vector<std::string> units{"isect"};
+  std::vector<std::string> models{"golden", "rtl"};
+  int image = 128;          // camera rays: image x image, auto-framed
+  int chunks = 1;           // camera rays split into this many jobs per scene
+  int crackRays = 1024;     // per width and scene (0: none)
+  uint64_t seed = 1;
+  int gridRes = 0;          // 0: the unit's heuristic
+  int memLatency = 20;
+  double clockMhz = 500;    // the clock for simulated rates when not synthesized
+  bool synth = false;
+  std::vector<std::string> synthUnits;  // the units synthesized (empty: every unit of the sweep)
+  std::string source;       // the Lancer source tree the width trees are configured from
+  std::string treePattern;  // a tree's path, {pos} and {dir} replaced
+  std::map<std::string, std::string> trees;  // width name -> an existing tree to use
+  std::vector<std::string> cmakeArgs;        // extra configure arguments of new trees
+  int buildJobs = 2;
+
+  // Throws InputError naming the option for an empty or invalid field.
+  void validate() const;
+  std::string treeOf(const Width& w) const;
+  nlohmann::json toJson() const;
+  static Spec fromJson(const nlohmann::json& j, const std::string& where);
+};
+
+// One job: one width, unit, model and scene, on one ray set (a chunk of the
+// camera rays, or the width's crack rays).
+struct Job {
+  std::string key;  // unique, a file name: w10-10.isect.golden.s0.c0of2
+  Width width;
+  std::string unit, model;
+  int scene = 0;    // index into spec.scenes
+  std::string set;  // "camera" or "cracks"
+  int chunk = 0;
+  nlohmann::json toJson() const;
+  static Job fromJson(const nlohmann::json& j);
+  std::string describe(const Spec& spec) const;  // for messages: width, unit, model, scene, rays
+};
+
+std::vector<Job> makePlan(const Spec& spec);
+
+// The short name of scene i (its file's stem), unique within the spec.
+std::string sceneTag(const Spec& spec, int i);
+
+}  // namespace lancer::sweep
