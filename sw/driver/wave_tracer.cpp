@@ -11,7 +11,7 @@ namespace lancer {
 
 HardwareWaveTracer::HardwareWaveTracer(const std::string& accel, const Scene& scene, const Quantizer& quantizer,
                                        const JobConfig& config, double offsetUnits)
-    : scene_(scene), quantizer_(quantizer), path_(makeHardwarePath(accel, scene, quantizer, config)),
+    : quantizer_(quantizer), path_(makeHardwarePath(accel, scene, quantizer, config)),
       offset_(offsetUnits) {
   JobConfig golden = config;
   golden.model = "golden";
@@ -46,9 +46,8 @@ std::optional<QuantizedRay> HardwareWaveTracer::latticeRay(const WaveRay& ray, u
     point += double(ray.side) * offset_ * normals_[hit.primId];
     Ray shortened = ray.ray;
     if (std::isfinite(shortened.tMax)) {  // stop short of the light (an emitter's own triangle)
-      const double perT = glm::length(quantizer_.toLattice(glm::dvec3(ray.ray.dir)) -
-                                      quantizer_.toLattice(glm::dvec3(0.0)));
-      shortened.tMax = float(std::max(0.0, double(shortened.tMax) - kSegmentEndMarginUnits / perT));
+      const double latticeUnitsPerT = glm::length(glm::dvec3(ray.ray.dir)) / quantizer_.unit();
+      shortened.tMax = float(std::max(0.0, double(shortened.tMax) - kSegmentEndMarginUnits / latticeUnitsPerT));
     }
     q = quantizer_.quantizeFrom(point, shortened, index);
   }

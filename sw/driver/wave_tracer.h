@@ -70,13 +70,10 @@ class HardwareWaveTracer final : public WaveTracer {
   uint64_t originsOutside() const { return originsOutside_; }
   bool cycleAccurate() const { return cycleAccurate_; }
   double offsetUnits() const { return offset_; }
-  // The lattice ray of each ray of the last wave (nullopt: not traced).
-  const QuantizedRays& lastWave() const { return wave_; }
 
  private:
   std::optional<QuantizedRay> latticeRay(const WaveRay& ray, uint32_t index) const;
 
-  const Scene& scene_;
   const Quantizer& quantizer_;
   std::unique_ptr<HardwarePath> path_;
   std::unique_ptr<HardwarePath> golden_;  // closest-hit steps of any-hit rays

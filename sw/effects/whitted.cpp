@@ -110,22 +110,28 @@ void Loop::shade(const WaveRay& r, const Hit& h, uint32_t k, std::vector<WaveRay
   if (front) local += m.emission;
   out_.samples[r.sample] += r.weight * local;
 
+  // A ray spawned from this hit, with what every child of it shares.
+  const auto child = [&](RayClass cls, const Ray& ray, const glm::vec3& weight) {
+    WaveRay s;
+    s.ray = ray;
+    s.cls = cls;
+    s.depth = r.depth + 1;
+    s.sample = r.sample;
+    s.weight = r.weight * weight;
+    s.parent = k;
+    s.originPrim = h.prim;
+    s.side = sideOf(ray.dir);
+    return s;
+  };
+
   const bool shadows = plan_.has(RayClass::Shadow);
   const auto light = [&](const glm::vec3& contribution, const glm::vec3& dir, float tMax) {
     if (!shadows) {  // --effects without shadow: the light reaches every surface facing it
       out_.samples[r.sample] += r.weight * contribution;
       return;
     }
-    WaveRay s;
-    s.ray = Ray{p, dir, tMax};
-    s.cls = RayClass::Shadow;
+    WaveRay s = child(RayClass::Shadow, Ray{p, dir, tMax}, contribution);
     s.anyHit = true;
-    s.depth = r.depth + 1;
-    s.sample = r.sample;
-    s.weight = r.weight * contribution;
-    s.parent = k;
-    s.originPrim = h.prim;
-    s.side = sideOf(dir);
     next.push_back(s);
     ++out_.shadowRays;
   };
@@ -186,16 +192,7 @@ void Loop::shade(const WaveRay& r, const Hit& h, uint32_t k, std::vector<WaveRay
   // Secondary rays (SPD rules 7 to 9): none from a ray already at the depth limit.
   if (int(r.depth) >= plan_.maxDepth) return;
   const auto spawn = [&](RayClass cls, const glm::vec3& dir, const glm::vec3& weight) {
-    WaveRay s;
-    s.ray = Ray{p, glm::normalize(dir), kInfinity};
-    s.cls = cls;
-    s.depth = r.depth + 1;
-    s.sample = r.sample;
-    s.weight = r.weight * weight;
-    s.parent = k;
-    s.originPrim = h.prim;
-    s.side = sideOf(s.ray.dir);
-    next.push_back(s);
+    next.push_back(child(cls, Ray{p, glm::normalize(dir), kInfinity}, weight));
   };
   const float cosIn = glm::dot(toEye, n);
   bool totalInternal = false;
