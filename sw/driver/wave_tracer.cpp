@@ -13,9 +13,12 @@ HardwareWaveTracer::HardwareWaveTracer(const std::string& accel, const Scene& sc
                                        const JobConfig& config, double offsetUnits)
     : quantizer_(quantizer), path_(makeHardwarePath(accel, scene, quantizer, config)),
       offset_(offsetUnits) {
-  JobConfig golden = config;
-  golden.model = "golden";
-  golden_ = makeHardwarePath(accel, scene, quantizer, golden);
+  // The bvh path streams every candidate either way: any-hit saves it nothing to measure.
+  if (accel != "bvh") {
+    JobConfig golden = config;
+    golden.model = "golden";
+    golden_ = makeHardwarePath(accel, scene, quantizer, golden);
+  }
   for (const fx::QTriangle& t : quantizer.quantize(scene)) {
     glm::dvec3 v[3];
     for (int k = 0; k < 3; ++k) v[k] = glm::dvec3(double(t.v[k][0]), double(t.v[k][1]), double(t.v[k][2]));
@@ -100,7 +103,7 @@ void HardwareWaveTracer::trace(int generation, std::span<const WaveRay> rays, st
       waveHits[members[k]] = job.hits[k];
       s.hits += job.hits[k].has_value();
     }
-    if (anyHitRays) {  // what the same rays would have cost as closest-hit rays
+    if (anyHitRays && golden_) {  // what the same rays would have cost as closest-hit rays
       for (auto& r : batch) {
         if (r) r->q.anyHit = false;
       }

@@ -41,7 +41,7 @@ struct ClassHardwareStats {
   uint64_t memoryReads = 0;
   uint64_t cycles = 0;
   uint64_t mismatches = 0;
-  uint64_t closestHitSteps = 0;  // any-hit rays: steps of the same rays as closest-hit (golden model)
+  uint64_t closestHitSteps = 0;  // any-hit rays: steps of the same rays as closest-hit (golden model; grid, octree)
   uint64_t closestHitTests = 0;
   double modelSeconds = 0, goldenSeconds = 0;
 };
@@ -76,7 +76,7 @@ class HardwareWaveTracer final : public WaveTracer {
 
   const Quantizer& quantizer_;
   std::unique_ptr<HardwarePath> path_;
-  std::unique_ptr<HardwarePath> golden_;  // closest-hit steps of any-hit rays
+  std::unique_ptr<HardwarePath> golden_;  // closest-hit steps of any-hit rays (traversal units only)
   double offset_;
   std::vector<glm::dvec3> normals_;  // unit geometric normal of every quantized triangle, lattice space
   std::array<ClassHardwareStats, kRayClassCount> stats_{};
