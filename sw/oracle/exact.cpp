@@ -321,8 +321,45 @@ namespace {
 
 // The crossing of `rel` lies within the tolerance of the triangle's boundary:
 // an error of `edge` across the ray moves the crossing by edge / cos in the plane.
-bool marginal(const ExactRelation& rel, const Tolerance& tolerance) {
-  return !rel.parallel && std::fabs(rel.boundaryDistance) * rel.cosine <= tolerance.edge;
+// The distance between the ray (a half-line) and the segment [a, b], in double
+// (closest points of two segments, Ericson's "Real-Time Collision Detection"
+// 5.1.9, the ray cut off beyond the segment's farthest point).
+double rayToSegment(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec3& a, const glm::dvec3& b) {
+  const double reach = 2.0 * (std::max(glm::length(a - o), glm::length(b - o)) + glm::length(b - a)) / glm::length(d);
+  const glm::dvec3 d1 = d * reach, d2 = b - a, r = o - a;
+  const double aa = glm::dot(d1, d1), ee = glm::dot(d2, d2), f = glm::dot(d2, r);
+  double s = 0.0, t = 0.0;
+  if (ee <= 0.0) {
+    s = std::clamp(-glm::dot(d1, r) / aa, 0.0, 1.0);
+  } else {
+    const double c = glm::dot(d1, r), bb = glm::dot(d1, d2), denom = aa * ee - bb * bb;
+    s = denom > 0.0 ? std::clamp((bb * f - c * ee) / denom, 0.0, 1.0) : 0.0;
+    t = (bb * s + f) / ee;
+    if (t < 0.0) {
+      t = 0.0;
+      s = std::clamp(-c / aa, 0.0, 1.0);
+    } else if (t > 1.0) {
+      t = 1.0;
+      s = std::clamp((bb - c) / aa, 0.0, 1.0);
+    }
+  }
+  return glm::length((o + s * d1) - (a + t * d2));
+}
+
+// The distance between the ray and the triangle's boundary (its three edges).
+double rayToBoundary(const Ray& ray, const Triangle& tri) {
+  const glm::dvec3 o(ray.origin), d(ray.dir), v0(tri.v0), v1(tri.v1), v2(tri.v2);
+  return std::min({rayToSegment(o, d, v0, v1), rayToSegment(o, d, v1, v2), rayToSegment(o, d, v2, v0)});
+}
+
+// Whether a move of the ray or the triangle within the tolerance can take the
+// crossing across the triangle's boundary: the crossing lies within
+// edge / cos of it in the plane, or the ray passes within `edge` of an edge in
+// space. The second decides for slivers and needles, whose plane a move of a
+// vertex within the tolerance can turn far: their crossing point says little.
+bool marginal(const ExactRelation& rel, const Tolerance& tolerance, const Ray& ray, const Triangle& tri) {
+  if (!rel.parallel && std::fabs(rel.boundaryDistance) * rel.cosine <= tolerance.edge) return true;
+  return rayToBoundary(ray, tri) <= tolerance.edge;
 }
 
 // Two t within the tolerance of each other, for a crossing at `cosine`.
@@ -353,8 +390,13 @@ Judgement judge(const ExactOracle& oracle, const Ray& ray, const std::optional<H
     if (nearT(answer->t, truth->t, tol(tris[truth->prim]), truthRel->cosine)) return {Verdict::Correct, "same triangle"};
     return {Verdict::Wrong, "the right triangle at a t beyond the tolerance"};
   }
+  // The true hit within the tolerance of the ray's origin (a ray leaving a
+  // surface): a tracer whose rounded origin lies on the far side of the plane
+  // rightly goes on to whatever lies beyond.
+  const bool truthAtOrigin = truth && nearT(truth->t, 0.0, tol(tris[truth->prim]), truthRel->cosine);
   if (!answer) {
-    if (marginal(*truthRel, tol(tris[truth->prim]))) return {Verdict::Rounding, "missed a hit within the tolerance of an edge"};
+    if (marginal(*truthRel, tol(tris[truth->prim]), ray, tris[truth->prim])) return {Verdict::Rounding, "missed a hit within the tolerance of an edge"};
+    if (truthAtOrigin) return {Verdict::Rounding, "missed a hit within the tolerance of the ray's origin"};
     return {Verdict::Wrong, "missed a hit away from any edge"};
   }
   const ExactRelation given = oracle.relation(ray, answer->prim);
@@ -365,22 +407,25 @@ Judgement judge(const ExactOracle& oracle, const Ray& ray, const std::optional<H
       given.boundaryDistance * given.cosine >= -givenTol.edge) {
     return {Verdict::Rounding, "a hit within the tolerance of the ray's origin"};
   }
-  const bool givenPlausible = given.hit || marginal(given, givenTol);
+  const bool givenPlausible = given.hit || marginal(given, givenTol, ray, tris[answer->prim]);
   if (!truth) {
     if (givenPlausible) return {Verdict::Rounding, "hit a triangle the ray passes within the tolerance of"};
     return {Verdict::Wrong, "hit where the ray misses everything"};
   }
   // Another triangle than the truth's.
   if (given.hit && *given.t == *truthRel->t) return {Verdict::Tie, "another triangle at the same t"};
-  if (givenPlausible && given.t) {
-    const double givenT = given.t->toDouble();
+  if (truthAtOrigin) return {Verdict::Rounding, "passed a hit within the tolerance of the ray's origin"};
+  if (givenPlausible) {
+    // A triangle degenerate in the scene's floats has no plane and no exact t;
+    // the tracer's own t stands in (it could only hit it as rounded).
+    const double givenT = given.t ? given.t->toDouble() : double(answer->t);
     if (nearT(givenT, truth->t, givenTol, given.cosine)) {
       return {Verdict::Rounding, "another triangle within the tolerance of the same t"};
     }
     // A triangle the ray passes within the tolerance of, nearer than the
     // truth: a tracer that rounds it to a hit rightly reports it.
     if (givenT < truth->t) return {Verdict::Rounding, "a nearer triangle the ray passes within the tolerance of"};
-    if (marginal(*truthRel, tol(tris[truth->prim]))) {
+    if (marginal(*truthRel, tol(tris[truth->prim]), ray, tris[truth->prim])) {
       return {Verdict::Rounding, "missed a nearer hit within the tolerance of an edge"};
     }
   }

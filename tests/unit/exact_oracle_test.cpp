@@ -196,6 +196,44 @@ TEST(ExactOracle, JudgeNamesEachClass) {
   EXPECT_EQ(judge(oracle, grazing, std::nullopt, oracle.intersect(grazing)).verdict, Verdict::Rounding);
 }
 
+// A ray leaving a surface: its origin lies a hair in front of the square, so
+// the exact truth is the square at t = 1e-7; a tracer whose rounded origin fell
+// behind it rightly goes on to the floor. Rounding when the origin is within
+// the tolerance of the plane, an error when it is not.
+TEST(ExactOracle, JudgePassingAHitAtTheOriginIsRoundingWithinTheTolerance) {
+  Scene scene = square();
+  scene.triangles.push_back({{-1, -1, -1}, {2, -1, -1}, {2, 2, -1}});  // a floor behind it, id 2
+  scene.computeBounds();
+  const ExactOracle oracle(scene);
+  const Ray leaving = rayOf({0.75f, 0.25f, 1e-7f}, {0, 0, -1});
+  const auto truth = oracle.intersect(leaving);
+  ASSERT_TRUE(truth);
+  EXPECT_EQ(truth->prim, 0u);
+  const auto tolerance = [](double edge) {
+    return ToleranceOf([edge](const Triangle&) { return Tolerance{edge, edge, 0.0}; });
+  };
+  const Judgement within = judge(oracle, leaving, Hit{2, 1}, truth, tolerance(1e-6));
+  EXPECT_EQ(within.verdict, Verdict::Rounding) << within.reason;
+  EXPECT_EQ(judge(oracle, leaving, std::nullopt, truth, tolerance(1e-6)).verdict, Verdict::Rounding);
+  EXPECT_EQ(judge(oracle, leaving, Hit{2, 1}, truth, tolerance(1e-9)).verdict, Verdict::Wrong);
+}
+
+// A triangle degenerate in the floats (collinear vertices) has no plane and no
+// exact t, but a tracer that rounded its vertices apart may hit it: plausible
+// when the ray passes within the tolerance of it, wrong when it passes far off.
+TEST(ExactOracle, JudgeAHitOnADegenerateTriangleByItsDistanceFromTheRay) {
+  Scene scene = square();
+  scene.triangles.push_back({{0.25f, 0.5f, 0}, {0.75f, 0.5f, 0}, {0.5f, 0.5f, 0}});  // a segment, id 2
+  scene.computeBounds();
+  const ExactOracle oracle(scene);
+  const auto tolerance = ToleranceOf([](const Triangle&) { return Tolerance{1e-5, 1e-5, 0.0}; });
+  const Ray near = rayOf({0.5f, 0.5f + 1e-6f, 1}, {0, 0, -1});
+  const Judgement j = judge(oracle, near, Hit{2, 1}, oracle.intersect(near), tolerance);
+  EXPECT_EQ(j.verdict, Verdict::Rounding) << j.reason;
+  const Ray far = rayOf({0.5f, 0.6f, 1}, {0, 0, -1});
+  EXPECT_EQ(judge(oracle, far, Hit{2, 1}, oracle.intersect(far), tolerance).verdict, Verdict::Wrong);
+}
+
 // The two rays of issue #15, each settled by an independent exact computation
 // (rationals over the floats' exact values) before this oracle existed.
 TEST(ExactOracle, SettlesTheIssueRaysOnAnOpenCadMesh) {
