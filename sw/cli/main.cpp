@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   lancer::cli::addRunCommand(app);
   lancer::cli::addSpdCommand(app);
   lancer::cli::addSweepCommand(app);
+  lancer::cli::addStressCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -102,6 +102,7 @@ void addBenchCommand(CLI::App& app);
 void addRunCommand(CLI::App& app);
 void addSpdCommand(CLI::App& app);
 void addSweepCommand(CLI::App& app);  // sweep, sweep-job, sweep-merge, crack-rays
+void addStressCommand(CLI::App& app);
 
 }  // namespace lancer::cli
 

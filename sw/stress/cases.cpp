@@ -1,0 +1,359 @@
+#include "stress/cases.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <random>
+#include <utility>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "common/error.h"
+#include "driver/quantize.h"
+#include "golden/formats.h"
+#include "sweep/cracks.h"
+
+namespace lancer::stress {
+
+namespace {
+
+// Random draws in a fixed order: every draw is its own statement, so the
+// values do not depend on the compiler's order of evaluating arguments.
+class Draw {
+ public:
+  explicit Draw(uint64_t seed) : rng_(seed) {}
+  float uniform(float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(rng_); }
+  int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); }
+  bool coin() { return integer(0, 1) == 1; }
+  glm::vec3 point(float lo, float hi) {
+    const float x = uniform(lo, hi);
+    const float y = uniform(lo, hi);
+    const float z = uniform(lo, hi);
+    return {x, y, z};
+  }
+  glm::vec3 unit() {
+    for (;;) {
+      const glm::vec3 p = point(-1.0f, 1.0f);
+      const float len = glm::length(p);
+      if (len > 0.1f && len <= 1.0f) return p / len;
+    }
+  }
+  // Log-uniform in [lo, hi].
+  double logUniform(double lo, double hi) {
+    const double e = std::uniform_real_distribution<double>(std::log(lo), std::log(hi))(rng_);
+    return std::exp(e);
+  }
+  // Barycentric point of a triangle, inside it.
+  glm::vec3 inside(const Triangle& t) {
+    float u = uniform(0.0f, 1.0f);
+    float v = uniform(0.0f, 1.0f);
+    if (u + v > 1.0f) {
+      u = 1.0f - u;
+      v = 1.0f - v;
+    }
+    return t.v0 + u * (t.v1 - t.v0) + v * (t.v2 - t.v0);
+  }
+  // A point on one of the triangle's edges.
+  glm::vec3 onEdge(const Triangle& t) {
+    const glm::vec3 corners[3] = {t.v0, t.v1, t.v2};
+    const int e = integer(0, 2);
+    const float s = uniform(0.0f, 1.0f);
+    return corners[e] + s * (corners[(e + 1) % 3] - corners[e]);
+  }
+  std::mt19937_64& engine() { return rng_; }
+
+ private:
+  std::mt19937_64 rng_;
+};
+
+Scene makeScene(std::string name, std::vector<Triangle> triangles) {
+  Scene s;
+  s.name = std::move(name);
+  s.triangles = std::move(triangles);
+  s.materials.push_back(Material{.name = "stress"});
+  s.materialOf.assign(s.triangles.size(), 0);
+  s.computeBounds();
+  return s;
+}
+
+// Random triangles with vertices within `size` of random centres in [-1, 1]^3.
+std::vector<Triangle> randomTriangles(Draw& draw, int count, float minSize, float maxSize) {
+  std::vector<Triangle> out;
+  for (int i = 0; i < count; ++i) {
+    const glm::vec3 c = draw.point(-0.8f, 0.8f);
+    const float size = draw.uniform(minSize, maxSize);
+    const glm::vec3 a = c + size * draw.unit();
+    const glm::vec3 b = c + size * draw.unit();
+    const glm::vec3 d = c + size * draw.unit();
+    out.push_back({a, b, d});
+  }
+  return out;
+}
+
+// A ray from a random point around the scene through `target`.
+Ray aimedAt(Draw& draw, const glm::vec3& target, float distance) {
+  const glm::vec3 from = target + distance * draw.unit();
+  return {from, target - from, kInfinity};
+}
+
+// ---- closed-mesh --------------------------------------------------------------
+
+// A unit icosphere: an icosahedron with every triangle split `levels` times,
+// new vertices pushed onto the sphere. Vertices are shared by index, so every
+// copy of a vertex is bit-identical and the mesh is closed.
+std::vector<Triangle> icosphere(int levels) {
+  const float g = (1.0f + std::sqrt(5.0f)) / 2.0f;
+  std::vector<glm::vec3> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                              {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  for (glm::vec3& p : v) p = glm::normalize(p);
+  std::vector<std::array<uint32_t, 3>> faces = {
+      {0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+      {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
+    const auto midpoint = [&](uint32_t a, uint32_t b) {
+      const auto key = std::minmax(a, b);
+      const auto [it, fresh] = midpoints.try_emplace(key, uint32_t(v.size()));
+      if (fresh) v.push_back(glm::normalize(v[a] + v[b]));
+      return it->second;
+    };
+    std::vector<std::array<uint32_t, 3>> next;
+    for (const auto& f : faces) {
+      const uint32_t ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
+      next.push_back({f[0], ab, ca});
+      next.push_back({f[1], bc, ab});
+      next.push_back({f[2], ca, bc});
+      next.push_back({ab, bc, ca});
+    }
+    faces = std::move(next);
+  }
+  std::vector<Triangle> out;
+  for (const auto& f : faces) out.push_back({v[f[0]], v[f[1]], v[f[2]]});
+  return out;
+}
+
+StressCase closedMesh(size_t rays, uint64_t seed) {
+  StressCase c{.name = "closed-mesh",
+               .description = "closed icosphere, rays at its shared vertices and edges (lattice-exact and float)"};
+  c.scene = makeScene("stress:closed-mesh", icosphere(3));
+  const Quantizer quantizer(c.scene.bounds);
+  const sweep::CrackRays cracks = sweep::makeCrackRays(c.scene, quantizer, rays / 2, seed);
+  c.rays = cracks.rays;
+  c.latticeRejected = cracks.rejected;
+  Draw draw(seed);
+  while (c.rays.size() < rays) {
+    const Triangle& t = c.scene.triangles[size_t(draw.integer(0, int(c.scene.size()) - 1))];
+    const glm::vec3 target = draw.coin() ? t.v0 : 0.5f * (t.v0 + t.v1);
+    // From outside, within about 30 degrees of the inward normal: the ray crosses
+    // the surface transversally and goes on through the interior.
+    const glm::vec3 from = target * 3.0f + 0.8f * draw.unit();
+    c.rays.push_back({from, target - from, kInfinity});
+  }
+  c.mustHit = c.rays.size();
+  return c;
+}
+
+// ---- axis-planes ----------------------------------------------------------------
+
+StressCase axisPlanes(size_t rays, uint64_t seed) {
+  StressCase c{.name = "axis-planes",
+               .description = "axis-parallel rays (+0/-0), rays in cell and node boundary planes, along their edges, "
+                              "through their corners"};
+  Draw draw(seed);
+  c.scene = makeScene("stress:axis-planes", randomTriangles(draw, 200, 0.05f, 0.35f));
+  // 16 cells a side: cell boundaries at multiples of 2^(P-4), which are the
+  // boundaries of the octree's nodes of depth 4 as well.
+  constexpr int kCells = 16;
+  c.accel.gridResolution = kCells;
+  const Quantizer quantizer(c.scene.bounds);
+  const int64_t cell = (int64_t(1) << fx::kPosBits) / kCells;
+
+  // Axis-parallel float rays from anywhere in the bounds, the other components +0 or -0.
+  const Aabb& b = c.scene.bounds;
+  while (c.rays.size() < rays / 3) {
+    const int axis = draw.integer(0, 2);
+    glm::vec3 dir(draw.coin() ? 0.0f : -0.0f, draw.coin() ? 0.0f : -0.0f, draw.coin() ? 0.0f : -0.0f);
+    dir[axis] = draw.coin() ? 1.0f : -1.0f;
+    glm::vec3 from = b.lo + draw.point(0.0f, 1.0f) * b.diagonal();
+    from[axis] = dir[axis] > 0 ? b.lo[axis] - 0.5f : b.hi[axis] + 0.5f;
+    c.rays.push_back({from, dir, kInfinity});
+  }
+  // Lattice-exact rays: `snapped` coordinates of the origin on boundaries, the
+  // direction 0 on the axes it must stay in (in a plane, along an edge) or +-1
+  // on every axis from a corner (through the corners of every cell it crosses).
+  while (c.rays.size() < rays) {
+    const int kind = draw.integer(0, 2);  // 0: in a plane, 1: along an edge, 2: corner to corner
+    std::array<int64_t, 3> org{};
+    std::array<int, 3> d{};
+    for (int a = 0; a < 3; ++a) org[size_t(a)] = draw.integer(0, int(fx::kPosMax));
+    const int free = draw.integer(0, 2);
+    for (int a = 0; a < 3; ++a) {
+      const bool snap = kind == 2 || (kind == 0 ? a == free : a != free);
+      if (snap) org[size_t(a)] = int64_t(draw.integer(0, kCells - 1)) * cell;
+      const bool still = kind != 2 && snap;
+      d[size_t(a)] = still ? 0 : (draw.coin() ? 1 : -1);
+    }
+    glm::dvec3 scenePoint = quantizer.latticeOrigin();
+    for (int a = 0; a < 3; ++a) scenePoint[a] += double(org[size_t(a)]) * quantizer.unit();
+    const Ray ray{glm::vec3(scenePoint), glm::vec3(float(d[0]), float(d[1]), float(d[2])), kInfinity};
+    const std::optional<QuantizedRay> q = quantizer.quantize(ray, 0);
+    bool exact = q && q->q.org == org;
+    for (int a = 0; exact && a < 3; ++a) exact = q->q.dir[size_t(a)] == d[size_t(a)] * fx::kDirMax;
+    if (!exact) {
+      ++c.latticeRejected;
+      if (c.latticeRejected > 100 * rays) throw InputError("stress case axis-planes: the lattice rejects every ray");
+      continue;
+    }
+    c.rays.push_back(ray);
+  }
+  return c;
+}
+
+// ---- grazing ----------------------------------------------------------------------
+
+StressCase grazing(size_t rays, uint64_t seed) {
+  StressCase c{.name = "grazing", .description = "rays 1e-2 to 1e-7 rad from a triangle's plane, at its inside and edges"};
+  Draw draw(seed);
+  c.scene = makeScene("stress:grazing", randomTriangles(draw, 60, 0.3f, 0.7f));
+  while (c.rays.size() < rays) {
+    const Triangle& t = c.scene.triangles[size_t(draw.integer(0, int(c.scene.size()) - 1))];
+    const glm::vec3 n = glm::normalize(glm::cross(t.v1 - t.v0, t.v2 - t.v0));
+    const glm::vec3 target = draw.coin() ? draw.inside(t) : draw.onEdge(t);
+    // An in-plane direction, tilted out of the plane by a tiny angle.
+    glm::vec3 along = glm::cross(n, draw.unit());
+    if (glm::length(along) < 1e-3f) continue;
+    along = glm::normalize(along);
+    const float angle = float(draw.logUniform(1e-7, 1e-2)) * (draw.coin() ? 1.0f : -1.0f);
+    const glm::vec3 from = target - 1.5f * (along + angle * n);
+    c.rays.push_back({from, target - from, kInfinity});
+  }
+  return c;
+}
+
+// ---- degenerate -------------------------------------------------------------------
+
+StressCase degenerate(size_t rays, uint64_t seed) {
+  StressCase c{.name = "degenerate", .description = "zero-area, needle and sliver triangles among ordinary ones"};
+  Draw draw(seed);
+  std::vector<Triangle> tris = randomTriangles(draw, 40, 0.1f, 0.4f);
+  const size_t odd = tris.size();
+  for (int i = 0; i < 30; ++i) {
+    const glm::vec3 a = draw.point(-0.8f, 0.8f);
+    const glm::vec3 dir = 0.5f * draw.unit();
+    const glm::vec3 side = glm::normalize(glm::cross(dir, draw.unit()));
+    const float tiny = float(draw.logUniform(1e-7, 1e-4));
+    tris.push_back({a, a + dir, a + 0.375f * dir});              // collinear: zero area
+    tris.push_back({a, a, a + dir});                             // a repeated vertex
+    tris.push_back({a, a + tiny * side, a + dir});               // needle: one edge tiny
+    tris.push_back({a, a + dir, a + 0.5f * dir + tiny * side});  // sliver: tiny height
+  }
+  c.scene = makeScene("stress:degenerate", std::move(tris));
+  while (c.rays.size() < rays) {
+    const size_t i = size_t(draw.integer(int(odd), int(c.scene.size()) - 1));
+    const Triangle& t = c.scene.triangles[draw.integer(0, 3) == 0 ? size_t(draw.integer(0, int(odd) - 1)) : i];
+    const glm::vec3 target = draw.coin() ? (t.v0 + t.v1 + t.v2) / 3.0f : (draw.coin() ? t.v1 : draw.onEdge(t));
+    c.rays.push_back(aimedAt(draw, target, 2.0f));
+  }
+  return c;
+}
+
+// ---- coincident -------------------------------------------------------------------
+
+StressCase coincident(size_t rays, uint64_t seed) {
+  StressCase c{.name = "coincident",
+               .description = "duplicated triangles (same, rotated, reversed order) and overlapping coplanar ones"};
+  Draw draw(seed);
+  const std::vector<Triangle> base = randomTriangles(draw, 30, 0.2f, 0.5f);
+  std::vector<Triangle> tris;
+  for (const Triangle& t : base) {
+    tris.push_back(t);
+    tris.push_back({t.v1, t.v2, t.v0});  // the same triangle, rotated
+    tris.push_back({t.v0, t.v2, t.v1});  // reversed
+    tris.push_back(t);                   // an exact copy, later id
+    // Coplanar and overlapping (up to rounding): a corner at an edge's midpoint.
+    tris.push_back({0.5f * (t.v0 + t.v1), t.v1, t.v2 + 0.5f * (t.v1 - t.v0)});
+  }
+  c.scene = makeScene("stress:coincident", std::move(tris));
+  while (c.rays.size() < rays) {
+    const Triangle& t = base[size_t(draw.integer(0, int(base.size()) - 1))];
+    c.rays.push_back(aimedAt(draw, draw.integer(0, 3) ? draw.inside(t) : draw.onEdge(t), 2.0f));
+  }
+  return c;
+}
+
+// ---- origin-on-surface ----------------------------------------------------------
+
+StressCase originOnSurface(size_t rays, uint64_t seed) {
+  StressCase c{.name = "origin-on-surface",
+               .description = "rays from a vertex or a point of a triangle: away, into it, along it"};
+  Draw draw(seed);
+  c.scene = makeScene("stress:origin-on-surface", randomTriangles(draw, 80, 0.2f, 0.5f));
+  while (c.rays.size() < rays) {
+    const Triangle& t = c.scene.triangles[size_t(draw.integer(0, int(c.scene.size()) - 1))];
+    const glm::vec3 from = draw.integer(0, 2) == 0 ? t.v2 : draw.inside(t);
+    const glm::vec3 n = glm::cross(t.v1 - t.v0, t.v2 - t.v0);
+    glm::vec3 dir = draw.unit();
+    if (draw.integer(0, 3) == 0) dir = glm::cross(n, dir);  // in the plane
+    if (glm::length(dir) == 0.0f) continue;
+    c.rays.push_back({from, dir, kInfinity});
+  }
+  return c;
+}
+
+// ---- tiny-components ------------------------------------------------------------
+
+StressCase tinyComponents(size_t rays, uint64_t seed) {
+  StressCase c{.name = "tiny-components", .description = "direction components 1e-7 .. 1e-45 (subnormal), +0, -0 beside 1"};
+  Draw draw(seed);
+  c.scene = makeScene("stress:tiny-components", randomTriangles(draw, 120, 0.1f, 0.4f));
+  constexpr std::array<float, 7> kTiny = {0.0f, -0.0f, 1e-7f, 1e-20f, 1e-30f, 1e-38f, 1.4e-45f};
+  const Aabb& b = c.scene.bounds;
+  while (c.rays.size() < rays) {
+    const Triangle& t = c.scene.triangles[size_t(draw.integer(0, int(c.scene.size()) - 1))];
+    const int axis = draw.integer(0, 2);
+    glm::vec3 dir;
+    for (int a = 0; a < 3; ++a) {
+      const float tiny = kTiny[size_t(draw.integer(0, int(kTiny.size()) - 1))];
+      dir[a] = draw.coin() ? tiny : -tiny;
+    }
+    dir[axis] = draw.coin() ? 1.0f : -1.0f;
+    // Through a point of the triangle along the near-axis direction.
+    glm::vec3 from = draw.inside(t);
+    from[axis] = dir[axis] > 0 ? b.lo[axis] - 0.25f : b.hi[axis] + 0.25f;
+    c.rays.push_back({from, dir, kInfinity});
+  }
+  return c;
+}
+
+using Maker = std::function<StressCase(size_t, uint64_t)>;
+const std::vector<std::pair<std::string, Maker>>& makers() {
+  static const std::vector<std::pair<std::string, Maker>> all = {
+      {"closed-mesh", closedMesh},   {"axis-planes", axisPlanes}, {"grazing", grazing},
+      {"degenerate", degenerate},    {"coincident", coincident},  {"origin-on-surface", originOnSurface},
+      {"tiny-components", tinyComponents}};
+  return all;
+}
+
+}  // namespace
+
+const std::vector<std::string>& caseNames() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const auto& [name, make] : makers()) out.push_back(name);
+    return out;
+  }();
+  return names;
+}
+
+StressCase makeCase(const std::string& name, size_t rays, uint64_t seed) {
+  for (const auto& [known, make] : makers()) {
+    if (known == name) return make(std::max<size_t>(rays, 8), seed);
+  }
+  throw InputError(fmt::format("unknown stress case '{}' (available: {})", name, fmt::join(caseNames(), ", ")));
+}
+
+}  // namespace lancer::stress

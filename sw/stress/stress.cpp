@@ -1,0 +1,256 @@
+#include "stress/stress.h"
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "common/error.h"
+#include "driver/job.h"
+#include "driver/report.h"
+#include "oracle/exact.h"
+
+namespace lancer::stress {
+
+namespace {
+
+constexpr std::array<const char*, 4> kVerdictKeys = {"correct", "tie", "within_bound", "beyond_bound"};
+
+nlohmann::json optionalJson(const std::optional<uint32_t>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
+
+double share(uint64_t part, uint64_t whole) { return whole ? 100.0 * double(part) / double(whole) : 0.0; }
+
+// The hardware's answers of one path and model on the base placement, for the invariance check.
+struct BaseAnswers {
+  std::vector<std::optional<QuantizedRay>> rays;
+  std::vector<std::optional<fx::IsectResult>> hits;
+};
+
+bool sameQuantizedRay(const std::optional<QuantizedRay>& a, const std::optional<QuantizedRay>& b) {
+  return a.has_value() == b.has_value() && (!a || a->q == b->q);
+}
+
+// Whether ray i's answer differs from the base placement's: every bit of the
+// lattice ray and of the hit record when the lattice is the same, the hit and
+// its triangle otherwise.
+bool differsFromBase(const JobResult& job, const BaseAnswers& base, size_t i, bool latticeExact) {
+  if (latticeExact) return !sameQuantizedRay(job.rays[i], base.rays[i]) || job.hits[i] != base.hits[i];
+  const auto& a = job.hits[i];
+  const auto& b = base.hits[i];
+  return a.has_value() != b.has_value() || (a && a->primId != b->primId);
+}
+
+std::string describeHit(const std::optional<Hit>& hit) {
+  return hit ? fmt::format("triangle {} at t {:.9g}", hit->prim, hit->t) : "miss";
+}
+
+std::string describeBeyond(const Ray& ray, const Judgement& judgement, const std::optional<Hit>& hardware,
+                           const std::optional<ExactHit>& truth) {
+  return fmt::format("{}: ray origin ({:a}, {:a}, {:a}) dir ({:a}, {:a}, {:a}); hardware {}, exact {}",
+                     judgement.reason, ray.origin.x, ray.origin.y, ray.origin.z, ray.dir.x, ray.dir.y, ray.dir.z,
+                     describeHit(hardware),
+                     truth ? fmt::format("triangle {} at t {:.9g}{}", truth->prim, truth->t,
+                                         truth->onBoundary ? " (on its boundary)" : "")
+                           : "miss");
+}
+
+}  // namespace
+
+bool StressRow::failed(bool warned) const {
+  return mismatches || verdicts[3] || (latticeExact && baseDiffers) || (cracks && !warned);
+}
+
+nlohmann::json StressRow::toJson() const {
+  nlohmann::json v;
+  for (size_t k = 0; k < kVerdictKeys.size(); ++k) v[kVerdictKeys[k]] = verdicts[k];
+  return {{"case", caseName},
+          {"variant", variant},
+          {"unit", unit},
+          {"model", model},
+          {"rays", rays},
+          {"rays_in_lattice", inLattice},
+          {"hits", hits},
+          {"mismatches", mismatches},
+          {"differs_from_exact", differs},
+          {"differs_from_exact_percent", share(differs, rays)},
+          {"verdicts", v},
+          {"must_hit", mustHit},
+          {"cracks", cracks},
+          {"lattice_exact", latticeExact},
+          {"differs_from_base", baseDiffers},
+          {"first_beyond_bound", optionalJson(firstBeyond)},
+          {"first_beyond_bound_details", firstBeyondDetails},
+          {"first_crack", optionalJson(firstCrack)},
+          {"first_differs_from_base", optionalJson(firstBaseDiffers)},
+          {"host_seconds", hostSeconds}};
+}
+
+nlohmann::json PlacementInfo::toJson() const {
+  return {{"case", caseName}, {"variant", variant}, {"rays", rays}, {"triangles", triangles},
+          {"lattice_rays_rejected", latticeRejected}, {"lattice", fit.toJson()}};
+}
+
+uint64_t StressResult::failures() const {
+  uint64_t n = 0;
+  for (const StressRow& r : rows) {
+    const auto p = std::find_if(placements.begin(), placements.end(), [&](const PlacementInfo& i) {
+      return i.caseName == r.caseName && i.variant == r.variant;
+    });
+    n += r.failed(p != placements.end() && !p->fit.warning.empty());
+  }
+  return n;
+}
+
+nlohmann::json StressResult::toJson() const {
+  nlohmann::json p = nlohmann::json::array(), r = nlohmann::json::array();
+  for (const PlacementInfo& i : placements) p.push_back(i.toJson());
+  for (const StressRow& row : rows) r.push_back(row.toJson());
+  return {{"pos_bits", fx::kPosBits}, {"dir_bits", fx::kDirBits}, {"placements", p}, {"rows", r},
+          {"failures", failures()}};
+}
+
+StressResult runStress(const StressOptions& options, const StressProgress& progress) {
+  const std::vector<std::string> cases = options.cases.empty() ? caseNames() : options.cases;
+  const std::vector<std::string> units = options.units.empty() ? hardwareAccels() : options.units;
+  for (const std::string& u : units) {
+    const auto all = hardwareAccels();
+    if (std::find(all.begin(), all.end(), u) == all.end()) {
+      throw InputError(fmt::format("--units {}: no such hardware path (available: {})", u, fmt::join(all, ", ")));
+    }
+    for (const std::string& m : options.models) {
+      const auto have = modelsFor(u);
+      if (std::find(have.begin(), have.end(), m) == have.end()) {
+        throw InputError(fmt::format("--models {}: the {} path has no such model in this build (available: {})", m, u,
+                                     fmt::join(have, ", ")));
+      }
+    }
+  }
+  const std::vector<Variant> variants = makeVariants(options.scales, options.translations, options.stretches);
+  StressResult result;
+  const size_t total = cases.size() * variants.size();
+  size_t index = 0;
+  for (const std::string& name : cases) {
+    const StressCase base = makeCase(name, options.rays, options.seed);
+    std::map<std::string, BaseAnswers> baseAnswers;  // by unit/model
+    for (const Variant& variant : variants) {
+      const StressCase placed = place(base, variant);
+      const Quantizer quantizer(placed.scene.bounds);
+      PlacementInfo info{name, variant.name(), placed.rays.size(), placed.scene.size(), placed.latticeRejected,
+                         latticeFit(placed.scene, quantizer)};
+      if (progress) progress(info, index++, total);
+      result.placements.push_back(info);
+
+      const ExactOracle oracle(placed.scene);
+      std::vector<std::optional<ExactHit>> truth(placed.rays.size());
+      for (size_t i = 0; i < placed.rays.size(); ++i) truth[i] = oracle.intersect(placed.rays[i]);
+      const QuantizedRays qrays = quantizeRays(quantizer, placed.rays);
+      JobConfig config;
+      config.accel = placed.accel;
+
+      for (const std::string& unit : units) {
+        const std::vector<std::string> models = options.models.empty() ? modelsFor(unit) : options.models;
+        for (const std::string& model : models) {
+          const auto start = std::chrono::steady_clock::now();
+          config.model = model;
+          const JobResult job = makeHardwarePath(unit, placed.scene, quantizer, config)->run(qrays);
+          StressRow row{.caseName = name, .variant = variant.name(), .unit = unit, .model = model};
+          row.rays = placed.rays.size();
+          row.mismatches = job.mismatchedRays;
+          row.latticeExact = variant.latticeExact();
+          row.mustHit = placed.mustHit;
+          const std::string key = unit + "/" + model;
+          const bool isBase = variant.kind == Variant::Kind::Base;
+          if (isBase) baseAnswers[key] = {job.rays, job.hits};
+          const BaseAnswers& baseOf = baseAnswers.at(key);
+          for (size_t i = 0; i < placed.rays.size(); ++i) {
+            const Ray& ray = placed.rays[i];
+            row.inLattice += job.rays[i].has_value();
+            const std::optional<Hit> hw = sceneHit(job, i);
+            row.hits += hw.has_value();
+            const std::optional<ExactHit>& t = truth[i];
+            if (hw.has_value() != t.has_value() || (hw && hw->prim != t->prim)) ++row.differs;
+            ToleranceOf lattice;
+            if (job.rays[i]) {
+              lattice = [&](const Triangle& tri) { return latticeTolerance(*job.rays[i], quantizer, ray, tri); };
+            }
+            const Judgement judgement = judge(oracle, ray, hw, t, lattice);
+            ++row.verdicts[size_t(judgement.verdict)];
+            if (judgement.verdict == Verdict::Wrong && !row.firstBeyond) {
+              row.firstBeyond = uint32_t(i);
+              row.firstBeyondDetails = describeBeyond(ray, judgement, hw, t);
+            }
+            if (i < placed.mustHit && !hw) {
+              ++row.cracks;
+              if (!row.firstCrack) row.firstCrack = uint32_t(i);
+            }
+            if (!isBase && differsFromBase(job, baseOf, i, variant.latticeExact())) {
+              ++row.baseDiffers;
+              if (!row.firstBaseDiffers) row.firstBaseDiffers = uint32_t(i);
+            }
+          }
+          row.hostSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          result.rows.push_back(std::move(row));
+        }
+      }
+    }
+  }
+  return result;
+}
+
+namespace {
+
+// Rows folded by a key: sums, and the worst share of differences.
+struct Folded {
+  uint64_t rays = 0, mismatches = 0, differs = 0, ties = 0, within = 0, beyond = 0, cracks = 0, baseDiffers = 0;
+  double worstDiffersPercent = 0;
+  void add(const StressRow& r) {
+    rays += r.rays;
+    mismatches += r.mismatches;
+    differs += r.differs;
+    ties += r.verdicts[1];
+    within += r.verdicts[2];
+    beyond += r.verdicts[3];
+    cracks += r.cracks;
+    baseDiffers += r.baseDiffers;
+    worstDiffersPercent = std::max(worstDiffersPercent, share(r.differs, r.rays));
+  }
+};
+
+}  // namespace
+
+std::string placementTable(const StressResult& result) {
+  std::string out = fmt::format("{:<18} {:<16} {:>8} {:>8} {:>9} {:>8} {:>8} {:>7} {:>7} {:>9}\n", "case", "placement",
+                                "rays", "mismatch", "differ %", "tie", "bound", "beyond", "cracks", "vs base");
+  for (const PlacementInfo& p : result.placements) {
+    Folded f;
+    for (const StressRow& r : result.rows) {
+      if (r.caseName == p.caseName && r.variant == p.variant) f.add(r);
+    }
+    out += fmt::format("{:<18} {:<16} {:>8} {:>8} {:>9.3f} {:>8} {:>8} {:>7} {:>7} {:>9}{}\n", p.caseName, p.variant,
+                       f.rays, f.mismatches, f.worstDiffersPercent, f.ties, f.within, f.beyond, f.cracks, f.baseDiffers,
+                       p.fit.warning.empty() ? "" : "  (!)");
+  }
+  return out;
+}
+
+std::string modelTable(const StressResult& result) {
+  std::vector<std::string> keys;
+  std::map<std::string, Folded> folded;
+  for (const StressRow& r : result.rows) {
+    const std::string key = fmt::format("{:<18} {:<7} {:<12}", r.caseName, r.unit, r.model);
+    if (!folded.count(key)) keys.push_back(key);
+    folded[key].add(r);
+  }
+  std::string out = fmt::format("{:<18} {:<7} {:<12} {:>8} {:>8} {:>9} {:>8} {:>7}\n", "case", "unit", "model", "rays",
+                                "mismatch", "differ %", "bound", "beyond");
+  for (const std::string& key : keys) {
+    const Folded& f = folded[key];
+    out += fmt::format("{} {:>8} {:>8} {:>9.3f} {:>8} {:>7}\n", key, f.rays, f.mismatches, share(f.differs, f.rays),
+                       f.within, f.beyond);
+  }
+  return out;
+}
+
+}  // namespace lancer::stress
