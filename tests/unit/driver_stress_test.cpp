@@ -73,7 +73,7 @@ TEST(Stress, PowerOfTwoScalesAreExact) {
   EXPECT_FALSE((Variant{Variant::Kind::Translate, 10}.latticeExact()));
 }
 
-TEST(Stress, PlacementsBeyondFloatRangeAreRefusedByName) {
+TEST(Stress, PlacementsBeyondFloatRangeAndNaNRaysAreRefusedByName) {
   const StressCase base = makeCase("closed-mesh", 20, 1);
   try {
     place(base, {Variant::Kind::Scale, -140});
@@ -86,6 +86,14 @@ TEST(Stress, PlacementsBeyondFloatRangeAreRefusedByName) {
     FAIL() << "a translation of 1e39 overflows float";
   } catch (const InputError& e) {
     EXPECT_NE(std::strstr(e.what(), "beyond float range"), nullptr) << e.what();
+  }
+  StressCase broken = makeCase("grazing", 20, 1);
+  broken.rays[3].dir.y = std::nanf("");
+  try {
+    place(broken, {Variant::Kind::Base, 0});
+    FAIL() << "a NaN ray must be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::strstr(e.what(), "stress case grazing, base: ray 3: NaN"), nullptr) << e.what();
   }
   EXPECT_THROW(makeVariants({200}, {}, {}), InputError);
   EXPECT_THROW(makeVariants({}, {-1}, {}), InputError);
