@@ -99,6 +99,18 @@ StressCase place(const StressCase& base, const Variant& v) {
     validateRay(r, i, where);
   }
   out.scene.computeBounds();
+  // A hit's t is a float: a ray whose t across the scene leaves float range
+  // would come back at t = inf (a huge scene, a tiny direction).
+  const Aabb& b = out.scene.bounds;
+  for (size_t i = 0; i < out.rays.size(); ++i) {
+    const glm::dvec3 o(out.rays[i].origin);
+    const glm::dvec3 farthest = glm::max(glm::abs(glm::dvec3(b.lo) - o), glm::abs(glm::dvec3(b.hi) - o));
+    const double tFar = glm::length(farthest) / glm::length(glm::dvec3(out.rays[i].dir));
+    if (!(tFar <= double(std::numeric_limits<float>::max()))) {
+      throw InputError(fmt::format("{}: ray {} reaches the far side of the scene at t = {:.3g}, beyond float range",
+                                   where, i, tFar));
+    }
+  }
   out.scene.name = fmt::format("{} ({})", base.scene.name, v.name());
   return out;
 }

@@ -36,7 +36,8 @@ std::vector<Variant> makeVariants(const std::vector<int>& scaleExponents, const 
 
 // `base` placed by `v`. Throws InputError naming the case, the variant and the
 // vertex or ray when a coordinate leaves float range (overflows, or a non-zero
-// one becomes zero or subnormal) or a ray is not valid.
+// one becomes zero or subnormal), a ray is not valid, or a ray's t across the
+// scene leaves float range (a hit's t is a float).
 StressCase place(const StressCase& base, const Variant& v);
 
 // How well one uniform lattice holds a placed scene: the shortest extent of the
