@@ -72,6 +72,7 @@ std::vector<std::string> forwarded(const StressArgs& a, const CLI::App& cmd) {
 }
 
 void printResult(const nlohmann::json& width, const stress::StressResult& r) {
+  fmt::print("\ncases:\n{}", stress::caseLegend(r));
   fmt::print("\nwidth {}/{}: per case and placement (every unit and model; differ %: the worst of them)\n{}",
              width["pos_bits"].get<int>(), width["dir_bits"].get<int>(), stress::placementTable(r));
   fmt::print("\nwidth {}/{}: per case, unit and model (every placement)\n{}", width["pos_bits"].get<int>(),
@@ -98,16 +99,24 @@ void printResult(const nlohmann::json& width, const stress::StressResult& r) {
 stress::StressResult fromJson(const nlohmann::json& j) {
   stress::StressResult r;
   for (const auto& p : j.at("placements")) {
-    stress::PlacementInfo info{p.at("case"), p.at("variant"), p.at("rays"), p.at("triangles"),
-                               p.at("lattice_rays_rejected")};
+    stress::PlacementInfo info;
+    info.caseName = p.at("case");
+    info.variant = p.at("variant");
+    info.description = p.at("description");
+    info.rays = p.at("rays");
+    info.triangles = p.at("triangles");
+    info.latticeRejected = p.at("lattice_rays_rejected");
     info.fit.shortestExtentUnits = p.at("lattice").at("shortest_extent_lattice_units");
     info.fit.floatSpacingUnits = p.at("lattice").at("float_spacing_lattice_units");
     info.fit.warning = p.at("lattice").value("warning", "");
     r.placements.push_back(info);
   }
   for (const auto& row : j.at("rows")) {
-    stress::StressRow s{.caseName = row.at("case"), .variant = row.at("variant"), .unit = row.at("unit"),
-                        .model = row.at("model")};
+    stress::StressRow s;
+    s.caseName = row.at("case");
+    s.variant = row.at("variant");
+    s.unit = row.at("unit");
+    s.model = row.at("model");
     s.rays = row.at("rays");
     s.inLattice = row.at("rays_in_lattice");
     s.hits = row.at("hits");

@@ -69,6 +69,13 @@ class Draw {
   std::mt19937_64 rng_;
 };
 
+StressCase named(std::string name, std::string description) {
+  StressCase c;
+  c.name = std::move(name);
+  c.description = std::move(description);
+  return c;
+}
+
 Scene makeScene(std::string name, std::vector<Triangle> triangles) {
   Scene s;
   s.name = std::move(name);
@@ -137,8 +144,7 @@ std::vector<Triangle> icosphere(int levels) {
 }
 
 StressCase closedMesh(size_t rays, uint64_t seed) {
-  StressCase c{.name = "closed-mesh",
-               .description = "closed icosphere, rays at its shared vertices and edges (lattice-exact and float)"};
+  StressCase c = named("closed-mesh", "closed icosphere, rays at its shared vertices and edges (lattice-exact and float)");
   c.scene = makeScene("stress:closed-mesh", icosphere(3));
   const Quantizer quantizer(c.scene.bounds);
   const sweep::CrackRays cracks = sweep::makeCrackRays(c.scene, quantizer, rays / 2, seed);
@@ -160,9 +166,8 @@ StressCase closedMesh(size_t rays, uint64_t seed) {
 // ---- axis-planes ----------------------------------------------------------------
 
 StressCase axisPlanes(size_t rays, uint64_t seed) {
-  StressCase c{.name = "axis-planes",
-               .description = "axis-parallel rays (+0/-0), rays in cell and node boundary planes, along their edges, "
-                              "through their corners"};
+  StressCase c = named("axis-planes", "axis-parallel rays (+0/-0), rays in cell and node boundary planes, along their edges, "
+                              "through their corners");
   Draw draw(seed);
   c.scene = makeScene("stress:axis-planes", randomTriangles(draw, 200, 0.05f, 0.35f));
   // 16 cells a side: cell boundaries at multiples of 2^(P-4), which are the
@@ -216,7 +221,7 @@ StressCase axisPlanes(size_t rays, uint64_t seed) {
 // ---- grazing ----------------------------------------------------------------------
 
 StressCase grazing(size_t rays, uint64_t seed) {
-  StressCase c{.name = "grazing", .description = "rays 1e-2 to 1e-7 rad from a triangle's plane, at its inside and edges"};
+  StressCase c = named("grazing", "rays 1e-2 to 1e-7 rad from a triangle's plane, at its inside and edges");
   Draw draw(seed);
   c.scene = makeScene("stress:grazing", randomTriangles(draw, 60, 0.3f, 0.7f));
   while (c.rays.size() < rays) {
@@ -237,7 +242,7 @@ StressCase grazing(size_t rays, uint64_t seed) {
 // ---- degenerate -------------------------------------------------------------------
 
 StressCase degenerate(size_t rays, uint64_t seed) {
-  StressCase c{.name = "degenerate", .description = "zero-area, needle and sliver triangles among ordinary ones"};
+  StressCase c = named("degenerate", "zero-area, needle and sliver triangles among ordinary ones");
   Draw draw(seed);
   std::vector<Triangle> tris = randomTriangles(draw, 40, 0.1f, 0.4f);
   const size_t odd = tris.size();
@@ -264,8 +269,7 @@ StressCase degenerate(size_t rays, uint64_t seed) {
 // ---- coincident -------------------------------------------------------------------
 
 StressCase coincident(size_t rays, uint64_t seed) {
-  StressCase c{.name = "coincident",
-               .description = "duplicated triangles (same, rotated, reversed order) and overlapping coplanar ones"};
+  StressCase c = named("coincident", "duplicated triangles (same, rotated, reversed order) and overlapping coplanar ones");
   Draw draw(seed);
   const std::vector<Triangle> base = randomTriangles(draw, 30, 0.2f, 0.5f);
   std::vector<Triangle> tris;
@@ -288,8 +292,7 @@ StressCase coincident(size_t rays, uint64_t seed) {
 // ---- origin-on-surface ----------------------------------------------------------
 
 StressCase originOnSurface(size_t rays, uint64_t seed) {
-  StressCase c{.name = "origin-on-surface",
-               .description = "rays from a vertex or a point of a triangle: away, into it, along it"};
+  StressCase c = named("origin-on-surface", "rays from a vertex or a point of a triangle: away, into it, along it");
   Draw draw(seed);
   c.scene = makeScene("stress:origin-on-surface", randomTriangles(draw, 80, 0.2f, 0.5f));
   while (c.rays.size() < rays) {
@@ -307,7 +310,7 @@ StressCase originOnSurface(size_t rays, uint64_t seed) {
 // ---- tiny-components ------------------------------------------------------------
 
 StressCase tinyComponents(size_t rays, uint64_t seed) {
-  StressCase c{.name = "tiny-components", .description = "direction components 1e-7 .. 1e-45 (subnormal), +0, -0 beside 1"};
+  StressCase c = named("tiny-components", "direction components 1e-7 .. 1e-45 (subnormal), +0, -0 beside 1");
   Draw draw(seed);
   c.scene = makeScene("stress:tiny-components", randomTriangles(draw, 120, 0.1f, 0.4f));
   constexpr std::array<float, 7> kTiny = {0.0f, -0.0f, 1e-7f, 1e-20f, 1e-30f, 1e-38f, 1.4e-45f};

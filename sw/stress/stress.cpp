@@ -88,7 +88,7 @@ nlohmann::json StressRow::toJson() const {
 }
 
 nlohmann::json PlacementInfo::toJson() const {
-  return {{"case", caseName}, {"variant", variant}, {"rays", rays}, {"triangles", triangles},
+  return {{"case", caseName}, {"variant", variant}, {"description", description}, {"rays", rays}, {"triangles", triangles},
           {"lattice_rays_rejected", latticeRejected}, {"lattice", fit.toJson()}};
 }
 
@@ -137,8 +137,14 @@ StressResult runStress(const StressOptions& options, const StressProgress& progr
     for (const Variant& variant : variants) {
       const StressCase placed = place(base, variant);
       const Quantizer quantizer(placed.scene.bounds);
-      PlacementInfo info{name, variant.name(), placed.rays.size(), placed.scene.size(), placed.latticeRejected,
-                         latticeFit(placed.scene, quantizer)};
+      PlacementInfo info;
+      info.caseName = name;
+      info.variant = variant.name();
+      info.description = placed.description;
+      info.rays = placed.rays.size();
+      info.triangles = placed.scene.size();
+      info.latticeRejected = placed.latticeRejected;
+      info.fit = latticeFit(placed.scene, quantizer);
       if (progress) progress(info, index++, total);
       result.placements.push_back(info);
 
@@ -155,7 +161,11 @@ StressResult runStress(const StressOptions& options, const StressProgress& progr
           const auto start = std::chrono::steady_clock::now();
           config.model = model;
           const JobResult job = makeHardwarePath(unit, placed.scene, quantizer, config)->run(qrays);
-          StressRow row{.caseName = name, .variant = variant.name(), .unit = unit, .model = model};
+          StressRow row;
+          row.caseName = name;
+          row.variant = variant.name();
+          row.unit = unit;
+          row.model = model;
           row.rays = placed.rays.size();
           row.mismatches = job.mismatchedRays;
           row.latticeExact = variant.latticeExact();
@@ -231,6 +241,16 @@ std::string placementTable(const StressResult& result) {
     out += fmt::format("{:<18} {:<16} {:>8} {:>8} {:>9.3f} {:>8} {:>8} {:>7} {:>7} {:>9}{}\n", p.caseName, p.variant,
                        f.rays, f.mismatches, f.worstDiffersPercent, f.ties, f.within, f.beyond, f.cracks, f.baseDiffers,
                        p.fit.warning.empty() ? "" : "  (!)");
+  }
+  return out;
+}
+
+std::string caseLegend(const StressResult& result) {
+  std::string out;
+  for (const PlacementInfo& p : result.placements) {
+    if (p.variant == "base") {
+      out += fmt::format("  {:<18} {} ({} triangles, {} rays)\n", p.caseName, p.description, p.triangles, p.rays);
+    }
   }
   return out;
 }

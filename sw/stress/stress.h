@@ -58,7 +58,7 @@ struct StressRow {
 
 // One case in one placement: what it is, and how its lattice holds it.
 struct PlacementInfo {
-  std::string caseName, variant;
+  std::string caseName, variant, description;
   uint64_t rays = 0, triangles = 0, latticeRejected = 0;
   LatticeFit fit;
   nlohmann::json toJson() const;
@@ -80,6 +80,7 @@ StressResult runStress(const StressOptions& options, const StressProgress& progr
 // The tables of docs/stability.md: per case and placement (every unit and
 // model folded in), and per case and model (every placement folded in).
 std::string placementTable(const StressResult& result);
+std::string caseLegend(const StressResult& result);  // a line a case: its name and what it is
 std::string modelTable(const StressResult& result);
 
 }  // namespace lancer::stress
