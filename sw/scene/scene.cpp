@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <new>
+#include <string_view>
 #include <tuple>
 #include <map>
 #include <utility>
@@ -96,11 +97,37 @@ void readWhittedTerms(const aiMaterial& mat, const std::string& path, Material& 
   }
 }
 
-// Assimp 5.2's MTL parser dies of SIGSEGV on some files with NUL bytes (the
-// 8 bytes of tests/fuzz/corpus/mtl/assimp_segv_nul_bytes.mtl, found by
-// fuzz_mtl). No text format has NUL bytes, so the files assimp opens for OBJ
-// and MTL are read through this filter, which refuses such a file (assimp then
-// fails or goes on without it) and remembers it for the error message.
+// The line (from 1) of an MTL file's first statement before its first
+// newmtl, or 0 if there is none. Blank lines and comments are not statements;
+// lines end where assimp's parser ends them (\n, \r, \f); a UTF-8 byte-order
+// mark, which assimp drops, is skipped.
+size_t statementBeforeFirstNewmtl(std::string_view text) {
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
+  size_t lineNo = 1;
+  for (size_t begin = 0; begin <= text.size();) {
+    const size_t end = std::min(text.find_first_of("\n\r\f", begin), text.size());
+    std::string_view line = text.substr(begin, end - begin);
+    line.remove_prefix(std::min(line.find_first_not_of(" \t"), line.size()));
+    if (line.starts_with("newmtl")) return 0;
+    if (!line.empty() && line[0] != '#') return lineNo;
+    if (end < text.size() && text[end] == '\n') ++lineNo;
+    begin = end + 1;
+  }
+  return 0;
+}
+
+// Assimp 5.2's MTL parser (Debian's 5.2.5) dies of SIGSEGV on two kinds of
+// file, both found by fuzz_mtl, so the files assimp opens for OBJ and MTL are
+// read through this filter, which refuses them (assimp then fails or goes on
+// without the file) and remembers why for the error message:
+//  * a NUL byte (tests/fuzz/corpus/mtl/assimp_segv_nul_bytes.mtl); no text
+//    format has one;
+//  * in an MTL file, a statement before the first newmtl: assimp has no
+//    current material yet (a null pointer), and an anisotropy statement `a` or
+//    a texture map (map_*, bump, disp, norm) writes through it
+//    (corpus/mtl/assimp_segv_statement_before_newmtl.mtl; upstream assimp
+//    added the checks after 5.2, pull request 5119 for `a`). Such a statement
+//    has no material to apply to in any reader.
 class TextFilesIOSystem : public Assimp::DefaultIOSystem {
  public:
   Assimp::IOStream* Open(const char* file, const char* mode) override {
@@ -110,13 +137,19 @@ class TextFilesIOSystem : public Assimp::DefaultIOSystem {
       std::ifstream in(file, std::ios::binary);
       const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
       if (bytes.find('\0') != std::string::npos) {
-        refused = file;
+        refusal = fmt::format("{} has a NUL byte (not a text file)", file);
         return nullptr;
+      }
+      if (ext == ".mtl") {
+        if (const size_t line = statementBeforeFirstNewmtl(bytes)) {
+          refusal = fmt::format("{}:{}: a statement before the first newmtl (no material to apply it to)", file, line);
+          return nullptr;
+        }
       }
     }
     return DefaultIOSystem::Open(file, mode);
   }
-  std::string refused;  // the last file refused
+  std::string refusal;  // why the last file refused was refused, naming it
 };
 
 // Every term of a loaded material finite, the weights >= 0: a NaN, an infinity
@@ -224,9 +257,7 @@ Scene loadWithAssimp(const std::string& path, bool isGltf) {
   } catch (const std::bad_alloc&) {
     throw InputError(fmt::format("{}: cannot read scene: it declares more data than fits in memory", path));
   }
-  if (!files->refused.empty()) {
-    throw InputError(fmt::format("{}: cannot read scene: {} has a NUL byte (not a text file)", path, files->refused));
-  }
+  if (!files->refusal.empty()) throw InputError(fmt::format("{}: cannot read scene: {}", path, files->refusal));
   if (!ai || !ai->mRootNode) {
     throw InputError(fmt::format("{}: cannot read scene: {}", path, importer.GetErrorString()));
   }

@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <random>
 
+#include "golden/isect.h"
+
 namespace lancer::rtltest {
 
 namespace {
@@ -445,6 +447,38 @@ std::vector<CaseGroup> hardCases(uint64_t seed) {
         dir[axis] = (v >> 3) & 1 ? lead : -lead;
         g.pairs.push_back(pair(rayId++, org, dir, uint32_t(v), t[0], t[1], t[2]));
       }
+    }
+    groups.push_back(std::move(g));
+  }
+
+  {  // Segment ends (t_max) and the any-hit flag. Each hit of random pairs again
+     // with its segment ending at the hit's code, floor(2^F t_num / det) (the hit
+     // counts iff that is exact), one code past it (it counts), one short of it
+     // (it does not), at 0 and at the largest bounded end; each miss with a
+     // random end. any_hit on every other pair: the pipeline tests it the same.
+    CaseGroup g{"segment_ends", {}};
+    bool anyHit = false;
+    const auto add = [&](IsectRequest r, uint64_t tMax) {
+      r.ray.id = rayId++;
+      r.ray.tMax = std::min(tMax, fx::kSegEndNone);
+      r.ray.anyHit = anyHit = !anyHit;
+      g.pairs.push_back(r);
+    };
+    for (const IsectRequest& r : randomPairs(600, seed + 3)) {
+      const fx::IsectResult hit = fx::intersect(r.ray, r.tri);
+      if (!hit.hit) {
+        add(r, uint64_t(rng.uniform(0, int64_t(fx::kSegEndNone) - 1)));
+        continue;
+      }
+      const fx::u128 whole = hit.tNum / hit.det, rest = hit.tNum % hit.det;
+      const uint64_t code = whole > (fx::kSegEndNone >> fx::kSegFracBits)
+                                ? fx::kSegEndNone
+                                : uint64_t((whole << fx::kSegFracBits) + (rest << fx::kSegFracBits) / hit.det);
+      add(r, code);
+      add(r, code + 1);
+      if (code > 0) add(r, code - 1);
+      add(r, 0);
+      add(r, fx::kSegEndNone - 1);
     }
     groups.push_back(std::move(g));
   }

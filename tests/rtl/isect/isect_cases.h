@@ -49,7 +49,8 @@ struct CaseGroup {
 // ties between triangles (shared edges, coincident copies); the largest and
 // smallest coordinates (0, kPosMax) and directions (+-kDirMax, and the unused
 // code -kDirMax-1), including the combinations that maximize every
-// intermediate of the pipeline.
+// intermediate of the pipeline; segment ends at, past and short of a hit, with
+// and without the any-hit flag.
 std::vector<CaseGroup> hardCases(uint64_t seed);
 
 // All of the above in one stream (what the Icarus bench replays).
