@@ -73,7 +73,7 @@ std::vector<std::string> forwarded(const StressArgs& a, const CLI::App& cmd) {
 
 void printResult(const nlohmann::json& width, const stress::StressResult& r) {
   fmt::print("\ncases:\n{}", stress::caseLegend(r));
-  fmt::print("\nwidth {}/{}: per case and placement (every unit and model; differ %: the worst of them)\n{}",
+  fmt::print("\nwidth {}/{}: per case and placement (every unit and model; differ %, hit/miss %: the worst of them)\n{}",
              width["pos_bits"].get<int>(), width["dir_bits"].get<int>(), stress::placementTable(r));
   fmt::print("\nwidth {}/{}: per case, unit and model (every placement)\n{}", width["pos_bits"].get<int>(),
              width["dir_bits"].get<int>(), stress::modelTable(r));
@@ -122,6 +122,7 @@ stress::StressResult fromJson(const nlohmann::json& j) {
     s.hits = row.at("hits");
     s.mismatches = row.at("mismatches");
     s.differs = row.at("differs_from_exact");
+    s.hitMissDiffers = row.at("hit_miss_differs_from_exact");
     const auto& v = row.at("verdicts");
     s.verdicts = {v.at("correct"), v.at("tie"), v.at("within_bound"), v.at("beyond_bound")};
     s.mustHit = row.at("must_hit");

@@ -75,6 +75,7 @@ nlohmann::json StressRow::toJson() const {
           {"mismatches", mismatches},
           {"differs_from_exact", differs},
           {"differs_from_exact_percent", share(differs, rays)},
+          {"hit_miss_differs_from_exact", hitMissDiffers},
           {"verdicts", v},
           {"must_hit", mustHit},
           {"cracks", cracks},
@@ -181,6 +182,7 @@ StressResult runStress(const StressOptions& options, const StressProgress& progr
             row.hits += hw.has_value();
             const std::optional<ExactHit>& t = truth[i];
             if (hw.has_value() != t.has_value() || (hw && hw->prim != t->prim)) ++row.differs;
+            if (hw.has_value() != t.has_value()) ++row.hitMissDiffers;
             ToleranceOf lattice;
             if (job.rays[i]) {
               lattice = [&](const Triangle& tri) { return latticeTolerance(*job.rays[i], quantizer, ray, tri); };
@@ -214,7 +216,7 @@ namespace {
 // Rows folded by a key: sums, and the worst share of differences.
 struct Folded {
   uint64_t rays = 0, mismatches = 0, differs = 0, ties = 0, within = 0, beyond = 0, cracks = 0, baseDiffers = 0;
-  double worstDiffersPercent = 0;
+  double worstDiffersPercent = 0, worstHitMissPercent = 0;
   void add(const StressRow& r) {
     rays += r.rays;
     mismatches += r.mismatches;
@@ -225,22 +227,24 @@ struct Folded {
     cracks += r.cracks;
     baseDiffers += r.baseDiffers;
     worstDiffersPercent = std::max(worstDiffersPercent, share(r.differs, r.rays));
+    worstHitMissPercent = std::max(worstHitMissPercent, share(r.hitMissDiffers, r.rays));
   }
 };
 
 }  // namespace
 
 std::string placementTable(const StressResult& result) {
-  std::string out = fmt::format("{:<18} {:<16} {:>8} {:>8} {:>9} {:>8} {:>8} {:>7} {:>7} {:>9}\n", "case", "placement",
-                                "rays", "mismatch", "differ %", "tie", "bound", "beyond", "cracks", "vs base");
+  std::string out = fmt::format("{:<18} {:<16} {:>8} {:>8} {:>9} {:>10} {:>8} {:>8} {:>7} {:>7} {:>9}\n", "case",
+                                "placement", "rays", "mismatch", "differ %", "hit/miss %", "tie", "bound", "beyond",
+                                "cracks", "vs base");
   for (const PlacementInfo& p : result.placements) {
     Folded f;
     for (const StressRow& r : result.rows) {
       if (r.caseName == p.caseName && r.variant == p.variant) f.add(r);
     }
-    out += fmt::format("{:<18} {:<16} {:>8} {:>8} {:>9.3f} {:>8} {:>8} {:>7} {:>7} {:>9}{}\n", p.caseName, p.variant,
-                       f.rays, f.mismatches, f.worstDiffersPercent, f.ties, f.within, f.beyond, f.cracks, f.baseDiffers,
-                       p.fit.warning.empty() ? "" : "  (!)");
+    out += fmt::format("{:<18} {:<16} {:>8} {:>8} {:>9.3f} {:>10.3f} {:>8} {:>8} {:>7} {:>7} {:>9}{}\n", p.caseName,
+                       p.variant, f.rays, f.mismatches, f.worstDiffersPercent, f.worstHitMissPercent, f.ties, f.within,
+                       f.beyond, f.cracks, f.baseDiffers, p.fit.warning.empty() ? "" : "  (!)");
   }
   return out;
 }

@@ -41,6 +41,7 @@ struct StressRow {
   uint64_t rays = 0, inLattice = 0, hits = 0;
   uint64_t mismatches = 0;         // vs the golden model, bit for bit
   uint64_t differs = 0;            // hit/miss or triangle differs from the exact truth
+  uint64_t hitMissDiffers = 0;     // of those, hit where the truth misses or the reverse
   std::array<uint64_t, 4> verdicts{};  // Verdict: correct, tie, within the bound, beyond it
   uint64_t mustHit = 0, cracks = 0;    // rays that must hit, and those that missed
   uint64_t baseDiffers = 0;        // rays whose answer differs from the base placement's (all fields
