@@ -362,9 +362,15 @@ bool marginal(const ExactRelation& rel, const Tolerance& tolerance, const Ray& r
   return rayToBoundary(ray, tri) <= tolerance.edge;
 }
 
+// How far a crossing's t may move when its plane moves within the tolerance:
+// further the more the ray grazes the plane (a small `cosine`).
+double tSlack(const Tolerance& tolerance, double cosine, double t) {
+  return tolerance.t / std::max(cosine, 1e-300) + tolerance.tRelative * std::fabs(t);
+}
+
 // Two t within the tolerance of each other, for a crossing at `cosine`.
 bool nearT(double a, double b, const Tolerance& tolerance, double cosine) {
-  return std::fabs(a - b) <= tolerance.t / std::max(cosine, 1e-300) + tolerance.tRelative * std::fabs(b);
+  return std::fabs(a - b) <= tSlack(tolerance, cosine, b);
 }
 
 }  // namespace
@@ -419,7 +425,11 @@ Judgement judge(const ExactOracle& oracle, const Ray& ray, const std::optional<H
     // A triangle degenerate in the scene's floats has no plane and no exact t;
     // the tracer's own t stands in (it could only hit it as rounded).
     const double givenT = given.t ? given.t->toDouble() : double(answer->t);
-    if (nearT(givenT, truth->t, givenTol, given.cosine)) {
+    // Either crossing may move: the answered one with its triangle's slack,
+    // the true one with its own (large where the ray grazes its plane).
+    const double slack = tSlack(givenTol, given.cosine, givenT) +
+                         tSlack(tol(tris[truth->prim]), truthRel->cosine, truth->t);
+    if (std::fabs(givenT - truth->t) <= slack) {
       return {Verdict::Rounding, "another triangle within the tolerance of the same t"};
     }
     // A triangle the ray passes within the tolerance of, nearer than the

@@ -218,6 +218,27 @@ TEST(ExactOracle, JudgePassingAHitAtTheOriginIsRoundingWithinTheTolerance) {
   EXPECT_EQ(judge(oracle, leaving, Hit{2, 1}, truth, tolerance(1e-9)).verdict, Verdict::Wrong);
 }
 
+// A ray grazing the floor (cos 0.1) meets it at t = 10; a wall it passes just
+// beside stands at t = 10.5. A tracer within the tolerance may see the wall
+// first: the floor's crossing moves by edge / cos along the ray, ten times the
+// wall's. Both crossings' slack counts, so this is rounding at edge 0.1 (the
+// floor's slack alone covers it) and an error at edge 0.02.
+TEST(ExactOracle, JudgeAllowsForTheSlackOfAGrazingTrueCrossing) {
+  const Scene scene = sceneOf({{{-10, 0, -10}, {10, 0, -10}, {0, 0, 10}},
+                               {{-1, -0.04f, 0.5f}, {1, -0.04f, 0.5f}, {0, 1, 0.5f}}});
+  const ExactOracle oracle(scene);
+  const Ray grazing = rayOf({0, 1, -10}, {0, -0.1f, 1});
+  const auto truth = oracle.intersect(grazing);
+  ASSERT_TRUE(truth);
+  ASSERT_EQ(truth->prim, 0u);
+  const auto tolerance = [](double edge) {
+    return ToleranceOf([edge](const Triangle&) { return Tolerance{edge, edge, 0.0}; });
+  };
+  const Judgement j = judge(oracle, grazing, Hit{1, 10.5f}, truth, tolerance(0.1));
+  EXPECT_EQ(j.verdict, Verdict::Rounding) << j.reason;
+  EXPECT_EQ(judge(oracle, grazing, Hit{1, 10.5f}, truth, tolerance(0.02)).verdict, Verdict::Wrong);
+}
+
 // A triangle degenerate in the floats (collinear vertices) has no plane and no
 // exact t, but a tracer that rounded its vertices apart may hit it: plausible
 // when the ray passes within the tolerance of it, wrong when it passes far off.
