@@ -19,6 +19,13 @@ struct CameraOptions {
   std::optional<float> fovYDegrees;
   int width = 512;
   int height = 512;
+  // Auto-framed at width x height.
+  static CameraOptions sized(int width, int height) {
+    CameraOptions o;
+    o.width = width;
+    o.height = height;
+    return o;
+  }
 };
 
 // Where the camera shoots its rays. Centers: one ray through the centre of each

@@ -117,7 +117,7 @@ class FaultyDevice final : public IsectDevice {
 
 struct CornellJob {
   Scene scene = makeCornellBox();
-  PinholeCamera camera = frameScene(scene, CameraOptions{.width = 32, .height = 32});
+  PinholeCamera camera = frameScene(scene, CameraOptions::sized(32, 32));
   std::vector<Ray> rays = camera.generateRays();
   Quantizer quantizer{scene.bounds};
   Bvh bvh{scene, AccelOptions{}};

@@ -18,7 +18,7 @@ namespace {
 
 struct CornellRays {
   Scene scene = makeCornellBox();
-  std::vector<Ray> rays = frameScene(scene, CameraOptions{.width = 24, .height = 24}).generateRays();
+  std::vector<Ray> rays = frameScene(scene, CameraOptions::sized(24, 24)).generateRays();
   Quantizer quantizer{scene.bounds};
 };
 

@@ -69,7 +69,9 @@ TEST(GoldenGrid, AxisParallelRaysStepOnOneAxisOnly) {
       for (uint32_t id : trace.visits) {
         const std::array<int, 3> c{int(id % 8), int(id / 8 % 8), int(id / 64)};
         for (int k = 0; k < 3; ++k) {
-          if (k != axis) EXPECT_EQ(c[k], int((mid * 8) >> kPosBits));
+          if (k != axis) {
+            EXPECT_EQ(c[k], int((mid * 8) >> kPosBits));
+          }
         }
       }
     }
