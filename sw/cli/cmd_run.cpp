@@ -226,6 +226,10 @@ void run(const Args& args) {
     throw InputError(fmt::format("--model {}: the {} path has no such model (available: {})", args.job.model,
                                  args.accel, fmt::join(models, ", ")));
   }
+  if (!args.job.dualNarrowBits.empty() && args.accel != "bvh") {
+    throw InputError(fmt::format("--dual-precision models the intersection pipeline's front end: it needs --accel bvh, "
+                                 "not {}", args.accel));
+  }
   const Scene scene = args.scene.load();
   const EffectsPlan plan = planEffects(scene, args.effects.options());
   const Sampling sampling = args.effects.parsedSampling();
@@ -379,6 +383,11 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--image", args->image, "PNG drawn from the model's own hits");
   cmd->add_option("--hits", args->hits, "CSV of the model's hits, with the raw fixed-point fields in hex");
   cmd->add_option("--wave", args->job.stream.wavePath, "FST waveform of the RTL (rtl model only; slow)");
+  cmd->add_option("--dual-precision", args->job.dualNarrowBits,
+                  "bvh path: model a narrow front end at these widths (e.g. 8,10,12) and report the share of tests "
+                  "it escalates to full width (docs/accuracy.md)")
+      ->delimiter(',')
+      ->check(CLI::Range(2, 24));
   args->effects.add(*cmd);
   cmd->add_option("--repro", args->repro, "Where a mismatch's reproducer rays file goes")->capture_default_str();
   cmd->callback([args] { run(*args); });

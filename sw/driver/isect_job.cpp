@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "driver/report.h"
+#include "golden/dual.h"
 #include "golden/isect.h"
 
 namespace lancer {
@@ -57,6 +58,10 @@ JobResult runIsectJob(const Scene& scene, std::span<const std::optional<Quantize
   std::vector<fx::IsectResult> modelOut, goldenOut;
   std::vector<uint32_t> found;
   std::vector<bool> rayMismatched;
+  // Dual precision: per narrow width, the tests its narrow unit rejects, and
+  // any it rejected that hit at full width (a broken proof: never, or a bug).
+  std::vector<uint64_t> rejected(config.dualNarrowBits.size()), unsound(config.dualNarrowBits.size());
+  uint64_t goldenHits = 0;
   for (size_t begin = 0; begin < rays.size(); begin += config.raysPerBatch) {
     const size_t end = std::min(rays.size(), begin + config.raysPerBatch);
     requests.clear();
@@ -79,6 +84,16 @@ JobResult runIsectJob(const Scene& scene, std::span<const std::optional<Quantize
     start = std::chrono::steady_clock::now();
     golden.run(requests, goldenOut, {});
     job.goldenSeconds += secondsSince(start);
+    for (size_t w = 0; w < config.dualNarrowBits.size(); ++w) {
+      for (size_t k = 0; k < requests.size() && k < goldenOut.size(); ++k) {
+        if (!fx::narrowRejects(requests[k].ray, requests[k].tri, config.dualNarrowBits[w])) continue;
+        ++rejected[w];
+        unsound[w] += goldenOut[k].hit;
+      }
+    }
+    if (!config.dualNarrowBits.empty()) {
+      for (const fx::IsectResult& r : goldenOut) goldenHits += r.hit;
+    }
     job.cycles += stats.cycles;
     job.cycleAccurate = stats.cycleAccurate;
     inputStalls += stats.inputStalls;
@@ -112,6 +127,16 @@ JobResult runIsectJob(const Scene& scene, std::span<const std::optional<Quantize
     if (onProgress) onProgress(end - begin);
   }
   job.addCounter("input_stall_cycles", "input stall cycles", double(inputStalls));
+  const double tests = double(std::max<uint64_t>(job.intersectionTests, 1));
+  if (!config.dualNarrowBits.empty()) {
+    job.addCounter("dual_hit_share", "dual: hits of tests", double(goldenHits) / tests);
+  }
+  for (size_t w = 0; w < config.dualNarrowBits.size(); ++w) {
+    const int n = config.dualNarrowBits[w];
+    job.addCounter(fmt::format("dual_escalated_n{}", n), fmt::format("dual: {}-bit escalates", n),
+                   double(job.intersectionTests - rejected[w]) / tests);
+    job.addCounter(fmt::format("dual_unsound_n{}", n), fmt::format("dual: {}-bit unsound", n), double(unsound[w]));
+  }
   return job;
 }
 

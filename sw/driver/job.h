@@ -60,6 +60,9 @@ struct JobConfig {
   int memLatencyJitter = 0;  // and its random extra per request
   int raysInFlight = 0;      // ray slots; 0 = all the unit was built with
   size_t raysPerBatch = 4096;
+  // The bvh path: narrow widths at which to model a dual-precision front end
+  // (golden/dual.h), reported as the share of tests escalated to full width.
+  std::vector<int> dualNarrowBits;
 };
 
 using ProgressFn = std::function<void(size_t raysDone)>;
