@@ -213,7 +213,6 @@ void runStressCommand(StressArgs a, const CLI::App& cmd) {
   }
   nlohmann::json report = {{"command", "stress"}, {"rays_per_case", a.options.rays}, {"seed", a.options.seed},
                            {"widths", perWidth},  {"failures", failures}};
-  if (widths.size() == 1) report.update(perWidth[0]);
   writeReport(a.report, report);
   fmt::print("\nstress: {} widths, {} failed rows\n", widths.size(), failures);
   if (failures) throw CheckFailed(fmt::format("{} stress rows failed (listed above)", failures));
