@@ -162,7 +162,12 @@ nlohmann::json runOtherWidth(const StressArgs& a, const CLI::App& cmd, const swe
     throw InputError(fmt::format("width {}: lancer stress in {} failed (exit {}): {}", w.name(), tree.dir, status,
                                  sweep::errorLine(log)));
   }
-  return j;
+  if (!j.contains("widths") || !j["widths"].is_array() || j["widths"].size() != 1 ||
+      !j["widths"][0].contains("placements")) {
+    throw InputError(fmt::format("width {}: {} is not a one-width stress report (is {} older than this lancer?)",
+                                 w.name(), report, tree.dir));
+  }
+  return j["widths"][0];
 }
 
 void runStressCommand(StressArgs a, const CLI::App& cmd) {
