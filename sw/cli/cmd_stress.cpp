@@ -95,53 +95,6 @@ void printResult(const nlohmann::json& width, const stress::StressResult& r) {
   }
 }
 
-// Rebuilds a StressResult from a width's JSON (for its tables).
-stress::StressResult fromJson(const nlohmann::json& j) {
-  stress::StressResult r;
-  for (const auto& p : j.at("placements")) {
-    stress::PlacementInfo info;
-    info.caseName = p.at("case");
-    info.variant = p.at("variant");
-    info.description = p.at("description");
-    info.rays = p.at("rays");
-    info.triangles = p.at("triangles");
-    info.latticeRejected = p.at("lattice_rays_rejected");
-    info.fit.shortestExtentUnits = p.at("lattice").at("shortest_extent_lattice_units");
-    info.fit.floatSpacingUnits = p.at("lattice").at("float_spacing_lattice_units");
-    info.fit.warning = p.at("lattice").value("warning", "");
-    r.placements.push_back(info);
-  }
-  for (const auto& row : j.at("rows")) {
-    stress::StressRow s;
-    s.caseName = row.at("case");
-    s.variant = row.at("variant");
-    s.unit = row.at("unit");
-    s.model = row.at("model");
-    s.rays = row.at("rays");
-    s.inLattice = row.at("rays_in_lattice");
-    s.hits = row.at("hits");
-    s.mismatches = row.at("mismatches");
-    s.differs = row.at("differs_from_exact");
-    s.hitMissDiffers = row.at("hit_miss_differs_from_exact");
-    const auto& v = row.at("verdicts");
-    s.verdicts = {v.at("correct"), v.at("tie"), v.at("within_bound"), v.at("beyond_bound")};
-    s.mustHit = row.at("must_hit");
-    s.cracks = row.at("cracks");
-    s.latticeExact = row.at("lattice_exact");
-    s.baseDiffers = row.at("differs_from_base");
-    const auto first = [&](const char* key) -> std::optional<uint32_t> {
-      return row.at(key).is_null() ? std::nullopt : std::optional<uint32_t>(row.at(key).get<uint32_t>());
-    };
-    s.firstBeyond = first("first_beyond_bound");
-    s.firstBeyondDetails = row.at("first_beyond_bound_details");
-    s.firstCrack = first("first_crack");
-    s.firstBaseDiffers = first("first_differs_from_base");
-    s.hostSeconds = row.at("host_seconds");
-    r.rows.push_back(std::move(s));
-  }
-  return r;
-}
-
 // Runs `lancer stress` of another width's tree; returns its result JSON.
 nlohmann::json runOtherWidth(const StressArgs& a, const CLI::App& cmd, const sweep::Width& w) {
   const sweep::TreeResult tree = sweep::buildTree(a.spec, w, a.work);
@@ -213,7 +166,7 @@ void runStressCommand(StressArgs a, const CLI::App& cmd) {
       j = runOtherWidth(a, cmd, w);
     }
     failures += j.at("failures").get<uint64_t>();
-    printResult(j, fromJson(j));
+    printResult(j, stress::StressResult::fromJson(j));
     perWidth.push_back(j);
   }
   nlohmann::json report = {{"command", "stress"}, {"rays_per_case", a.options.rays}, {"seed", a.options.seed},

@@ -93,6 +93,56 @@ nlohmann::json PlacementInfo::toJson() const {
           {"lattice_rays_rejected", latticeRejected}, {"lattice", fit.toJson()}};
 }
 
+PlacementInfo PlacementInfo::fromJson(const nlohmann::json& p) {
+  PlacementInfo info;
+  info.caseName = p.at("case");
+  info.variant = p.at("variant");
+  info.description = p.at("description");
+  info.rays = p.at("rays");
+  info.triangles = p.at("triangles");
+  info.latticeRejected = p.at("lattice_rays_rejected");
+  info.fit.shortestExtentUnits = p.at("lattice").at("shortest_extent_lattice_units");
+  info.fit.floatSpacingUnits = p.at("lattice").at("float_spacing_lattice_units");
+  info.fit.warning = p.at("lattice").value("warning", "");
+  return info;
+}
+
+StressRow StressRow::fromJson(const nlohmann::json& row) {
+  StressRow s;
+  s.caseName = row.at("case");
+  s.variant = row.at("variant");
+  s.unit = row.at("unit");
+  s.model = row.at("model");
+  s.rays = row.at("rays");
+  s.inLattice = row.at("rays_in_lattice");
+  s.hits = row.at("hits");
+  s.mismatches = row.at("mismatches");
+  s.differs = row.at("differs_from_exact");
+  s.hitMissDiffers = row.at("hit_miss_differs_from_exact");
+  const auto& v = row.at("verdicts");
+  s.verdicts = {v.at("correct"), v.at("tie"), v.at("within_bound"), v.at("beyond_bound")};
+  s.mustHit = row.at("must_hit");
+  s.cracks = row.at("cracks");
+  s.latticeExact = row.at("lattice_exact");
+  s.baseDiffers = row.at("differs_from_base");
+  const auto first = [&](const char* key) -> std::optional<uint32_t> {
+    return row.at(key).is_null() ? std::nullopt : std::optional<uint32_t>(row.at(key).get<uint32_t>());
+  };
+  s.firstBeyond = first("first_beyond_bound");
+  s.firstBeyondDetails = row.at("first_beyond_bound_details");
+  s.firstCrack = first("first_crack");
+  s.firstBaseDiffers = first("first_differs_from_base");
+  s.hostSeconds = row.at("host_seconds");
+  return s;
+}
+
+StressResult StressResult::fromJson(const nlohmann::json& j) {
+  StressResult r;
+  for (const auto& p : j.at("placements")) r.placements.push_back(PlacementInfo::fromJson(p));
+  for (const auto& row : j.at("rows")) r.rows.push_back(StressRow::fromJson(row));
+  return r;
+}
+
 uint64_t StressResult::failures() const {
   uint64_t n = 0;
   for (const StressRow& r : rows) {

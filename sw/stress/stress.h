@@ -55,6 +55,7 @@ struct StressRow {
   // the lattice holds the shape, a power-of-two scale that changed an answer.
   bool failed(bool warned) const;
   nlohmann::json toJson() const;
+  static StressRow fromJson(const nlohmann::json& j);
 };
 
 // One case in one placement: what it is, and how its lattice holds it.
@@ -63,6 +64,7 @@ struct PlacementInfo {
   uint64_t rays = 0, triangles = 0, latticeRejected = 0;
   LatticeFit fit;
   nlohmann::json toJson() const;
+  static PlacementInfo fromJson(const nlohmann::json& j);
 };
 
 struct StressResult {
@@ -70,6 +72,9 @@ struct StressResult {
   std::vector<StressRow> rows;
   uint64_t failures() const;
   nlohmann::json toJson() const;
+  // The result back from toJson() (another width's report); throws nlohmann's
+  // exceptions for a missing key.
+  static StressResult fromJson(const nlohmann::json& j);
 };
 
 // Progress: called before each case placement is run.

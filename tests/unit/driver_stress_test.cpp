@@ -142,6 +142,11 @@ TEST(Stress, ShortRunPassesOnTheGoldenModels) {
   EXPECT_EQ(j["pos_bits"], fx::kPosBits);
   EXPECT_EQ(j["rows"].size(), r.rows.size());
   EXPECT_NE(placementTable(r).find("scale 2^-60"), std::string::npos);
+  // Another width's report comes back through JSON: the same tables and verdict.
+  const StressResult back = StressResult::fromJson(j);
+  EXPECT_EQ(placementTable(back), placementTable(r));
+  EXPECT_EQ(modelTable(back), modelTable(r));
+  EXPECT_EQ(back.toJson(), j);
 }
 
 TEST(Stress, UnknownUnitsAndModelsAreRefused) {
