@@ -28,6 +28,10 @@ class Draw {
   float uniform(float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(rng_); }
   int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng_); }
   bool coin() { return integer(0, 1) == 1; }
+  template <class T>
+  const T& pick(const std::vector<T>& items) {
+    return items[size_t(integer(0, int(items.size()) - 1))];
+  }
   glm::vec3 point(float lo, float hi) {
     const float x = uniform(lo, hi);
     const float y = uniform(lo, hi);
@@ -152,7 +156,7 @@ StressCase closedMesh(size_t rays, uint64_t seed) {
   c.latticeRejected = cracks.rejected;
   Draw draw(seed);
   while (c.rays.size() < rays) {
-    const Triangle& t = c.scene.triangles[size_t(draw.integer(0, int(c.scene.size()) - 1))];
+    const Triangle& t = draw.pick(c.scene.triangles);
     const glm::vec3 target = draw.coin() ? t.v0 : 0.5f * (t.v0 + t.v1);
     // From outside, within about 30 degrees of the inward normal: the ray crosses
     // the surface transversally and goes on through the interior.
@@ -225,7 +229,7 @@ StressCase grazing(size_t rays, uint64_t seed) {
   Draw draw(seed);
   c.scene = makeScene("stress:grazing", randomTriangles(draw, 60, 0.3f, 0.7f));
   while (c.rays.size() < rays) {
-    const Triangle& t = c.scene.triangles[size_t(draw.integer(0, int(c.scene.size()) - 1))];
+    const Triangle& t = draw.pick(c.scene.triangles);
     const glm::vec3 n = glm::normalize(glm::cross(t.v1 - t.v0, t.v2 - t.v0));
     const glm::vec3 target = draw.coin() ? draw.inside(t) : draw.onEdge(t);
     // An in-plane direction, tilted out of the plane by a tiny angle.
@@ -283,7 +287,7 @@ StressCase coincident(size_t rays, uint64_t seed) {
   }
   c.scene = makeScene("stress:coincident", std::move(tris));
   while (c.rays.size() < rays) {
-    const Triangle& t = base[size_t(draw.integer(0, int(base.size()) - 1))];
+    const Triangle& t = draw.pick(base);
     c.rays.push_back(aimedAt(draw, draw.integer(0, 3) ? draw.inside(t) : draw.onEdge(t), 2.0f));
   }
   return c;
@@ -296,7 +300,7 @@ StressCase originOnSurface(size_t rays, uint64_t seed) {
   Draw draw(seed);
   c.scene = makeScene("stress:origin-on-surface", randomTriangles(draw, 80, 0.2f, 0.5f));
   while (c.rays.size() < rays) {
-    const Triangle& t = c.scene.triangles[size_t(draw.integer(0, int(c.scene.size()) - 1))];
+    const Triangle& t = draw.pick(c.scene.triangles);
     const glm::vec3 from = draw.integer(0, 2) == 0 ? t.v2 : draw.inside(t);
     const glm::vec3 n = glm::cross(t.v1 - t.v0, t.v2 - t.v0);
     glm::vec3 dir = draw.unit();
@@ -316,7 +320,7 @@ StressCase tinyComponents(size_t rays, uint64_t seed) {
   constexpr std::array<float, 7> kTiny = {0.0f, -0.0f, 1e-7f, 1e-20f, 1e-30f, 1e-38f, 1.4e-45f};
   const Aabb& b = c.scene.bounds;
   while (c.rays.size() < rays) {
-    const Triangle& t = c.scene.triangles[size_t(draw.integer(0, int(c.scene.size()) - 1))];
+    const Triangle& t = draw.pick(c.scene.triangles);
     const int axis = draw.integer(0, 2);
     glm::vec3 dir;
     for (int a = 0; a < 3; ++a) {
