@@ -337,6 +337,40 @@ Scene loadScene(const std::string& nameOrPath) {
   return loadWithAssimp(nameOrPath, extension == ".gltf" || extension == ".glb");
 }
 
+Scene makeIcosphere(int levels) {
+  const float g = (1.0f + std::sqrt(5.0f)) / 2.0f;
+  std::vector<glm::vec3> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                              {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  for (glm::vec3& p : v) p = glm::normalize(p);
+  std::vector<std::array<uint32_t, 3>> faces = {
+      {0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+      {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int level = 0; level < levels; ++level) {
+    // Each edge's midpoint is made once, so both faces sharing it use the same bits.
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
+    const auto midpoint = [&](uint32_t a, uint32_t b) {
+      const auto key = std::minmax(a, b);
+      const auto [it, fresh] = midpoints.try_emplace(key, uint32_t(v.size()));
+      if (fresh) v.push_back(glm::normalize(v[a] + v[b]));
+      return it->second;
+    };
+    std::vector<std::array<uint32_t, 3>> next;
+    for (const auto& f : faces) {
+      const uint32_t ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
+      next.insert(next.end(), {{f[0], ab, ca}, {f[1], bc, ab}, {f[2], ca, bc}, {ab, bc, ca}});
+    }
+    faces = std::move(next);
+  }
+  Scene scene;
+  scene.name = "icosphere";
+  for (const auto& f : faces) scene.triangles.push_back({v[f[0]], v[f[1]], v[f[2]]});
+  scene.materials.push_back(Material{});
+  scene.materialOf.assign(scene.size(), 0);
+  scene.computeBounds();
+  return scene;
+}
+
 Scene subdivide(const Scene& scene, int times) {
   Scene out = scene;
   for (int i = 0; i < times; ++i) {

@@ -105,6 +105,12 @@ Scene loadScene(const std::string& nameOrPath);
 // lamp and a point light (docs/scenes.md lists its triangle ids). Needs no file.
 Scene makeCornellBox();
 
+// A closed unit sphere: an icosahedron whose triangles are split in four
+// `levels` times, the new vertices pushed onto the sphere (20 * 4^levels
+// triangles). Vertices are shared by index, so every copy of one is
+// bit-identical and the mesh is watertight.
+Scene makeIcosphere(int levels);
+
 // Splits every triangle into four at its edge midpoints (shared midpoints are
 // bit-identical, so the mesh stays watertight). Used to build large test meshes.
 Scene subdivide(const Scene& scene, int times);

@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <functional>
-#include <map>
 #include <random>
 #include <utility>
 
@@ -112,44 +111,9 @@ Ray aimedAt(Draw& draw, const glm::vec3& target, float distance) {
 
 // ---- closed-mesh --------------------------------------------------------------
 
-// A unit icosphere: an icosahedron with every triangle split `levels` times,
-// new vertices pushed onto the sphere. Vertices are shared by index, so every
-// copy of a vertex is bit-identical and the mesh is closed.
-std::vector<Triangle> icosphere(int levels) {
-  const float g = (1.0f + std::sqrt(5.0f)) / 2.0f;
-  std::vector<glm::vec3> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                              {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-  for (glm::vec3& p : v) p = glm::normalize(p);
-  std::vector<std::array<uint32_t, 3>> faces = {
-      {0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-      {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  for (int level = 0; level < levels; ++level) {
-    std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
-    const auto midpoint = [&](uint32_t a, uint32_t b) {
-      const auto key = std::minmax(a, b);
-      const auto [it, fresh] = midpoints.try_emplace(key, uint32_t(v.size()));
-      if (fresh) v.push_back(glm::normalize(v[a] + v[b]));
-      return it->second;
-    };
-    std::vector<std::array<uint32_t, 3>> next;
-    for (const auto& f : faces) {
-      const uint32_t ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
-      next.push_back({f[0], ab, ca});
-      next.push_back({f[1], bc, ab});
-      next.push_back({f[2], ca, bc});
-      next.push_back({ab, bc, ca});
-    }
-    faces = std::move(next);
-  }
-  std::vector<Triangle> out;
-  for (const auto& f : faces) out.push_back({v[f[0]], v[f[1]], v[f[2]]});
-  return out;
-}
-
 StressCase closedMesh(size_t rays, uint64_t seed) {
   StressCase c = named("closed-mesh", "closed icosphere, rays at its shared vertices and edges (lattice-exact and float)");
-  c.scene = makeScene("stress:closed-mesh", icosphere(3));
+  c.scene = makeScene("stress:closed-mesh", makeIcosphere(3).triangles);
   const Quantizer quantizer(c.scene.bounds);
   const sweep::CrackRays cracks = sweep::makeCrackRays(c.scene, quantizer, rays / 2, seed);
   c.rays = cracks.rays;
