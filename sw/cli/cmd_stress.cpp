@@ -142,13 +142,8 @@ void runStressCommand(StressArgs a, const CLI::App& cmd) {
   std::vector<sweep::Width> widths;
   for (const std::string& w : a.widths) widths.push_back(sweep::parseWidth(w, "--widths"));
   if (widths.empty()) widths.push_back(own);
-  for (const std::string& t : a.trees) {
-    const size_t eq = t.find('=');
-    if (eq == std::string::npos) throw InputError(fmt::format("--tree {}: expected WIDTH=DIR, e.g. 10/10=build-narrow", t));
-    a.spec.trees[sweep::parseWidth(t.substr(0, eq), "--tree").name()] = t.substr(eq + 1);
-  }
-  a.spec.source = std::filesystem::absolute(a.spec.source.empty() ? LANCER_SOURCE_DIR : a.spec.source).lexically_normal().string();
-  if (a.spec.treePattern.empty()) a.spec.treePattern = a.spec.source + "/build-sweep/{pos}-{dir}";
+  for (const std::string& t : a.trees) a.spec.addTree(t);
+  a.spec.resolvePaths();
   if (widths.size() > 1 || widths[0] != own) std::filesystem::create_directories(a.work);
 
   nlohmann::json perWidth = nlohmann::json::array();

@@ -68,16 +68,8 @@ sweep::Spec resolveSpec(const SweepArgs& a, const CLI::App& cmd) {
   if (given("--tree-pattern")) s.treePattern = a.spec.treePattern;
   if (given("--build-jobs")) s.buildJobs = a.spec.buildJobs;
   if (given("--cmake-arg")) s.cmakeArgs = a.cmakeArgs;
-  for (const std::string& t : a.trees) {
-    const size_t eq = t.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == t.size()) {
-      throw InputError(fmt::format("--tree {}: expected WIDTH=DIR, e.g. 10/10=build-narrow", t));
-    }
-    s.trees[sweep::parseWidth(t.substr(0, eq), "--tree").name()] = t.substr(eq + 1);
-  }
-  if (s.source.empty()) s.source = LANCER_SOURCE_DIR;
-  s.source = std::filesystem::absolute(s.source).lexically_normal().string();
-  if (s.treePattern.empty()) s.treePattern = s.source + "/build-sweep/{pos}-{dir}";
+  for (const std::string& t : a.trees) s.addTree(t);
+  s.resolvePaths();
   return s;
 }
 

@@ -93,6 +93,20 @@ void Spec::validate() const {
   }
 }
 
+void Spec::addTree(const std::string& widthEqualsDir) {
+  const size_t eq = widthEqualsDir.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == widthEqualsDir.size()) {
+    throw InputError(fmt::format("--tree {}: expected WIDTH=DIR, e.g. 10/10=build-narrow", widthEqualsDir));
+  }
+  trees[parseWidth(widthEqualsDir.substr(0, eq), "--tree").name()] = widthEqualsDir.substr(eq + 1);
+}
+
+void Spec::resolvePaths() {
+  if (source.empty()) source = LANCER_SOURCE_DIR;
+  source = std::filesystem::absolute(source).lexically_normal().string();
+  if (treePattern.empty()) treePattern = source + "/build-sweep/{pos}-{dir}";
+}
+
 std::string Spec::treeOf(const Width& w) const {
   for (const auto& [name, dir] : trees) {
     if (parseWidth(name, "--tree") == w) return dir;

@@ -54,6 +54,11 @@ struct Spec {
   // Throws InputError naming the option for an empty or invalid field.
   void validate() const;
   std::string treeOf(const Width& w) const;
+  // --tree WIDTH=DIR; throws InputError naming it when it is not that.
+  void addTree(const std::string& widthEqualsDir);
+  // The source tree made absolute (this build's source when empty), and the
+  // tree pattern <source>/build-sweep/{pos}-{dir} when none was given.
+  void resolvePaths();
   nlohmann::json toJson() const;
   static Spec fromJson(const nlohmann::json& j, const std::string& where);
 };
