@@ -84,15 +84,13 @@ JobResult runIsectJob(const Scene& scene, std::span<const std::optional<Quantize
     start = std::chrono::steady_clock::now();
     golden.run(requests, goldenOut, {});
     job.goldenSeconds += secondsSince(start);
-    for (size_t w = 0; w < config.dualNarrowBits.size(); ++w) {
-      for (size_t k = 0; k < requests.size() && k < goldenOut.size(); ++k) {
+    for (size_t k = 0; !config.dualNarrowBits.empty() && k < requests.size() && k < goldenOut.size(); ++k) {
+      goldenHits += goldenOut[k].hit;
+      for (size_t w = 0; w < config.dualNarrowBits.size(); ++w) {
         if (!fx::narrowRejects(requests[k].ray, requests[k].tri, config.dualNarrowBits[w])) continue;
         ++rejected[w];
         unsound[w] += goldenOut[k].hit;
       }
-    }
-    if (!config.dualNarrowBits.empty()) {
-      for (const fx::IsectResult& r : goldenOut) goldenHits += r.hit;
     }
     job.cycles += stats.cycles;
     job.cycleAccurate = stats.cycleAccurate;

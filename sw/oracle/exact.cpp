@@ -319,8 +319,6 @@ std::string_view toString(Verdict verdict) {
 
 namespace {
 
-// The crossing of `rel` lies within the tolerance of the triangle's boundary:
-// an error of `edge` across the ray moves the crossing by edge / cos in the plane.
 // The distance between the ray (a half-line) and the segment [a, b], in double
 // (closest points of two segments, Ericson's "Real-Time Collision Detection"
 // 5.1.9, the ray cut off beyond the segment's farthest point).
@@ -354,7 +352,8 @@ double rayToBoundary(const Ray& ray, const Triangle& tri) {
 
 // Whether a move of the ray or the triangle within the tolerance can take the
 // crossing across the triangle's boundary: the crossing lies within
-// edge / cos of it in the plane, or the ray passes within `edge` of an edge in
+// edge / cos of it in the plane (an error of `edge` across the ray moves the
+// crossing by edge / cos there), or the ray passes within `edge` of an edge in
 // space. The second decides for slivers and needles, whose plane a move of a
 // vertex within the tolerance can turn far: their crossing point says little.
 bool marginal(const ExactRelation& rel, const Tolerance& tolerance, const Ray& ray, const Triangle& tri) {

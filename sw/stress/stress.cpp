@@ -143,15 +143,14 @@ StressResult StressResult::fromJson(const nlohmann::json& j) {
   return r;
 }
 
+bool StressResult::warned(const StressRow& row) const {
+  return std::any_of(placements.begin(), placements.end(), [&](const PlacementInfo& p) {
+    return p.caseName == row.caseName && p.variant == row.variant && !p.fit.warning.empty();
+  });
+}
+
 uint64_t StressResult::failures() const {
-  uint64_t n = 0;
-  for (const StressRow& r : rows) {
-    const auto p = std::find_if(placements.begin(), placements.end(), [&](const PlacementInfo& i) {
-      return i.caseName == r.caseName && i.variant == r.variant;
-    });
-    n += r.failed(p != placements.end() && !p->fit.warning.empty());
-  }
-  return n;
+  return uint64_t(std::count_if(rows.begin(), rows.end(), [&](const StressRow& r) { return failed(r); }));
 }
 
 nlohmann::json StressResult::toJson() const {
@@ -164,9 +163,9 @@ nlohmann::json StressResult::toJson() const {
 
 StressResult runStress(const StressOptions& options, const StressProgress& progress) {
   const std::vector<std::string> cases = options.cases.empty() ? caseNames() : options.cases;
-  const std::vector<std::string> units = options.units.empty() ? hardwareAccels() : options.units;
+  const std::vector<std::string> all = hardwareAccels();
+  const std::vector<std::string> units = options.units.empty() ? all : options.units;
   for (const std::string& u : units) {
-    const auto all = hardwareAccels();
     if (std::find(all.begin(), all.end(), u) == all.end()) {
       throw InputError(fmt::format("--units {}: no such hardware path (available: {})", u, fmt::join(all, ", ")));
     }

@@ -70,6 +70,9 @@ struct PlacementInfo {
 struct StressResult {
   std::vector<PlacementInfo> placements;
   std::vector<StressRow> rows;
+  // Whether the row's placement carries a lattice warning, and whether the row fails.
+  bool warned(const StressRow& row) const;
+  bool failed(const StressRow& row) const { return row.failed(warned(row)); }
   uint64_t failures() const;
   nlohmann::json toJson() const;
   // The result back from toJson() (another width's report); throws nlohmann's
