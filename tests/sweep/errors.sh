@@ -5,16 +5,7 @@
 set -uo pipefail
 lancer=$1; tree=$2; width=$3; work=$4
 rm -rf "$work"; mkdir -p "$work"
-fails=0
-check() {  # check NAME EXPECTED-STATUS PATTERN -- command...
-  local name=$1 want=$2 pattern=$3; shift 4
-  "$@" >"$work/$name.out" 2>&1; local rc=$?
-  if [ "$rc" != "$want" ] || ! grep -qE -- "$pattern" "$work/$name.out"; then
-    echo "FAIL $name: exit $rc (want $want), output lacks /$pattern/:"; tail -20 "$work/$name.out"; fails=$((fails + 1))
-  else
-    echo "ok   $name"
-  fi
-}
+source "$(dirname "$0")/check.sh"
 base=(--tree "$width=$tree" --image 12 --crack-rays 48 --models golden --no-plots -j 2)
 
 check unknown-unit 1 "unknown unit 'bogus'" -- "$lancer" sweep --widths "$width" "${base[@]}" --scenes builtin:cornell --units isect,bogus --out "$work/a"
