@@ -1,6 +1,7 @@
 # Sourced by the sweep test scripts: check NAME EXPECTED-STATUS PATTERN -- command...
 # runs the command into $work/NAME.out and counts a failure in $fails unless it
-# exits EXPECTED-STATUS with PATTERN (an extended regex) in its output.
+# exits EXPECTED-STATUS with PATTERN (an extended regex) in its output;
+# fail WHAT counts one more; finish WHAT exits 1 if any failed.
 fails=0
 check() {
   local name=$1 want=$2 pattern=$3; shift 4
@@ -12,3 +13,7 @@ check() {
   fi
 }
 fail() { echo "FAIL $*"; fails=$((fails + 1)); }
+finish() {
+  [ "$fails" = 0 ] || { echo "$fails checks failed"; exit 1; }
+  echo "all $1 checks passed"
+}

@@ -19,9 +19,9 @@ check tree-mismatch 4 "width 9/9: tree .* is configured for $width, not 9/9" -- 
 # A scene that does not load: its jobs fail naming it, the other scene's results are kept.
 check bad-scene 4 "scene $work/missing.obj does not load" -- \
   "$lancer" sweep --widths "$width" "${base[@]}" --scenes "builtin:cornell,$work/missing.obj" --chunks 2 --out "$work/s"
-grep -q "builtin:cornell" "$work/s/sweep.csv" || { echo "FAIL bad-scene: the good scene's rows are gone"; fails=$((fails + 1)); }
+grep -q "builtin:cornell" "$work/s/sweep.csv" || fail "bad-scene: the good scene's rows are gone"
 grep -q "job w${width/\//-}.isect.golden.s1.c0of2 (width $width, unit isect, model golden, scene $work/missing.obj" \
-  "$work/bad-scene.out" || { echo "FAIL bad-scene: no error naming the job"; fails=$((fails + 1)); }
+  "$work/bad-scene.out" || fail "bad-scene: no error naming the job"
 
 # Resume: the good scene's jobs are kept; a removed result is the only job rerun.
 check resume-all 0 "3 jobs planned, 3 with results, 0 to run" -- \
@@ -30,7 +30,7 @@ rm "$work/s/jobs/w${width/\//-}.isect.golden.s0.c1of2.json"
 check resume-one 0 "3 jobs planned, 2 with results, 1 to run" -- \
   "$lancer" sweep --widths "$width" "${base[@]}" --scenes builtin:cornell --chunks 2 --out "$work/s"
 # Cracks: every ray aimed exactly at a shared edge or vertex hits (column "cracks" is 0).
-python3 - "$work/s/sweep.csv" <<'PY' || fails=$((fails + 1))
+python3 - "$work/s/sweep.csv" <<'PY' || fail "cracks: the crack rows do not hold"
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 assert rows, "no rows"
@@ -45,10 +45,9 @@ PY
 check bad-build 4 "width 6/6: configuring .* failed \\(exit 1\\): LANCER_MEM_ADDR_BITS must lie in 10..30" -- \
   "$lancer" sweep --widths "$width,6/6" "${base[@]}" --scenes builtin:cornell --tree-pattern "$work/tree-{pos}-{dir}" \
   --cmake-arg=-DLANCER_MEM_ADDR_BITS=5 --out "$work/b"
-grep -q "^$width," "$work/b/sweep.csv" || { echo "FAIL bad-build: the good width's rows are gone"; fails=$((fails + 1)); }
+grep -q "^$width," "$work/b/sweep.csv" || fail "bad-build: the good width's rows are gone"
 
 # A spec file with an unknown key.
 echo '{"widths": ["8/8"], "scenes": ["builtin:cornell"], "colour": 1}' >"$work/spec.json"
 check spec-key 1 "spec.json: unknown key 'colour'" -- "$lancer" sweep --spec "$work/spec.json" --out "$work/a"
-[ "$fails" = 0 ] || { echo "$fails checks failed"; exit 1; }
-echo "all sweep error checks passed"
+finish "sweep error"
