@@ -20,8 +20,12 @@ Quantizer::Quantizer(const Aabb& bounds) {
   const glm::dvec3 lo(bounds.lo), hi(bounds.hi);
   double side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
   if (!(side > 0.0) || !std::isfinite(side)) side = 1.0;  // a point-like scene still gets a lattice
-  lo_ = 0.5 * (lo + hi) - glm::dvec3(0.5 * side);
-  scale_ = double(fx::kPosMax) / side;
+  // The bounds fill the lattice but for a margin on every side, so the scene's
+  // own faces lie strictly inside the cube (see kLatticeMarginUnits). Every
+  // step is a product or quotient of the bounds, so scaling the scene by a
+  // power of two scales lo_ and 1 / scale_ by the same power exactly.
+  scale_ = double(fx::kPosMax - 2 * kLatticeMarginUnits) / side;
+  lo_ = 0.5 * (lo + hi) - glm::dvec3(0.5 * double(fx::kPosMax) / scale_);
 }
 
 fx::QTriangle Quantizer::quantize(const Triangle& tri, uint32_t id) const {

@@ -16,11 +16,22 @@ struct QuantizedRay {
   double tScale = 1;  // scene t per unit of lattice t: t_scene = tEnter + tScale * t_lattice
 };
 
+// Lattice units left empty between the scene's bounds and each face of the
+// lattice cube. A ray from outside enters the hardware at a point on a face of
+// the cube; were that face also a face of the scene's box, a triangle lying on
+// it would pass through the ray's origin, at t = 0, which the pipeline's t > 0
+// excludes: a closed object seen from outside would show its inside. With the
+// margin every entry point lies outside the scene's box, where no triangle
+// passes. Two units, not one, so that a secondary origin (a hit on the box
+// moved one unit off the surface, then rounded) stays inside the cube.
+inline constexpr int64_t kLatticeMarginUnits = 2;
+
 // The driver's boundary into the hardware's fixed-point space (docs/number-formats.md):
 // the scene's bounding cube (centred on its bounds, side = the longest extent)
-// maps onto the lattice [0, kPosMax]^3 by one uniform scale, rounding to nearest.
-// Rays are clipped to the cube first, so an origin outside the scene becomes the
-// entry point; the direction is scaled so its dominant component is +-kDirMax.
+// maps onto the lattice [m, kPosMax - m]^3 (m = kLatticeMarginUnits) by one
+// uniform scale, rounding to nearest. Rays are clipped to the lattice cube
+// [0, kPosMax]^3 first, so an origin outside becomes the entry point; the
+// direction is scaled so its dominant component is +-kDirMax.
 class Quantizer {
  public:
   // Throws InputError if the bounds are empty or not finite.

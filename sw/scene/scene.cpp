@@ -324,9 +324,10 @@ Scene loadWithAssimp(const std::string& path, bool isGltf) {
 
 Scene loadScene(const std::string& nameOrPath) {
   if (nameOrPath == kDefaultSceneName || nameOrPath == "cornell") return makeCornellBox();
+  if (nameOrPath == "builtin:cube") return makeCube();
   if (nameOrPath.starts_with("builtin:spd-")) return makeSpdScene(nameOrPath.substr(12));
   if (nameOrPath.starts_with("builtin:")) {
-    throw InputError(fmt::format("unknown built-in scene '{}' (available: {}, builtin:spd-tetra, builtin:spd-gears)", nameOrPath,
+    throw InputError(fmt::format("unknown built-in scene '{}' (available: {}, builtin:cube, builtin:spd-tetra, builtin:spd-gears)", nameOrPath,
                                  kDefaultSceneName));
   }
   // NFF by our own reader: assimp's drops Ks, T and the index of refraction.

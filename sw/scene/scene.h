@@ -105,6 +105,15 @@ Scene loadScene(const std::string& nameOrPath);
 // lamp and a point light (docs/scenes.md lists its triangle ids). Needs no file.
 Scene makeCornellBox();
 
+// The 12 triangles of the closed box [lo, hi], wound outwards (counter-clockwise
+// seen from outside); the 8 corners are shared bit-identically.
+std::vector<Triangle> boxTriangles(const glm::vec3& lo, const glm::vec3& hi);
+
+// The built-in `builtin:cube`: the unit cube, each face its own colour, a point
+// light, and a view from outside onto three faces. Every face lies on the
+// scene's bounding box (docs/scenes.md).
+Scene makeCube();
+
 // A closed unit sphere: an icosahedron whose triangles are split in four
 // `levels` times, the new vertices pushed onto the sphere (20 * 4^levels
 // triangles). Vertices are shared by index, so every copy of one is

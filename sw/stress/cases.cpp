@@ -131,6 +131,69 @@ StressCase closedMesh(size_t rays, uint64_t seed) {
   return c;
 }
 
+// ---- closed-box -----------------------------------------------------------------
+
+// A point on the surface of the box [-1, 1]^3 where `onFaces` axes are pinned
+// to a face (1: inside a face, 2: on an edge, 3: a corner), the others inside.
+glm::vec3 onBoxSurface(Draw& draw, int onFaces) {
+  glm::vec3 p = draw.point(-0.95f, 0.95f);
+  const int skip = draw.integer(0, 2);  // for an edge: the one free axis; for a face: the pinned one
+  for (int a = 0; a < 3; ++a) {
+    const bool pinned = onFaces == 3 || (onFaces == 2 ? a != skip : a == skip);
+    if (pinned) p[a] = draw.coin() ? 1.0f : -1.0f;
+  }
+  return p;
+}
+
+// A ray from outside through `target` on the box's surface, entering it: every
+// pinned axis of the target inward by at least 0.3, so the target lies inside
+// the box's silhouette and the ray crosses the closed surface transversally.
+Ray enteringAt(Draw& draw, const glm::vec3& target) {
+  glm::vec3 dir;
+  for (int a = 0; a < 3; ++a) {
+    const float magnitude = draw.uniform(0.3f, 1.0f);
+    dir[a] = std::fabs(target[a]) == 1.0f ? -target[a] * magnitude : draw.uniform(-1.0f, 1.0f);
+  }
+  const float distance = draw.uniform(0.5f, 4.0f);
+  return {target - distance * dir, dir, kInfinity};
+}
+
+StressCase closedBox(size_t rays, uint64_t seed) {
+  StressCase c = named("closed-box", "a closed box whose faces are the scene's bounds, with two walls across it; "
+                                     "rays from outside through every face, edge, corner and wall seam");
+  Draw draw(seed);
+  std::vector<Triangle> triangles = boxTriangles(glm::vec3(-1.0f), glm::vec3(1.0f));
+  // Two walls dividing the box into rooms, their edges on its faces.
+  const auto wall = [&](int axis, float at) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    std::array<glm::vec3, 4> q;
+    for (int k = 0; k < 4; ++k) {
+      q[size_t(k)][axis] = at;
+      q[size_t(k)][u] = (k == 1 || k == 2) ? 1.0f : -1.0f;
+      q[size_t(k)][v] = k >= 2 ? 1.0f : -1.0f;
+    }
+    triangles.push_back({q[0], q[1], q[2]});
+    triangles.push_back({q[0], q[2], q[3]});
+  };
+  wall(0, 0.25f);
+  wall(2, -0.5f);
+  c.scene = makeScene("stress:closed-box", std::move(triangles));
+  while (c.rays.size() < rays) {
+    const int kind = draw.integer(0, 3);  // 0 face, 1 edge, 2 corner, 3 where a wall meets a face
+    glm::vec3 target = onBoxSurface(draw, kind == 3 ? 1 : kind + 1);
+    if (kind == 3) {
+      // On a face that a wall meets, along the seam.
+      const bool xWall = draw.coin();
+      const int wallAxis = xWall ? 0 : 2;
+      if (std::fabs(target[wallAxis]) == 1.0f) continue;
+      target[wallAxis] = xWall ? 0.25f : -0.5f;
+    }
+    c.rays.push_back(enteringAt(draw, target));
+  }
+  c.mustHit = c.rays.size();
+  return c;
+}
+
 // ---- axis-planes ----------------------------------------------------------------
 
 StressCase axisPlanes(size_t rays, uint64_t seed) {
@@ -303,7 +366,7 @@ StressCase tinyComponents(size_t rays, uint64_t seed) {
 using Maker = std::function<StressCase(size_t, uint64_t)>;
 const std::vector<std::pair<std::string, Maker>>& makers() {
   static const std::vector<std::pair<std::string, Maker>> all = {
-      {"closed-mesh", closedMesh},   {"axis-planes", axisPlanes}, {"grazing", grazing},
+      {"closed-mesh", closedMesh},   {"closed-box", closedBox},   {"axis-planes", axisPlanes}, {"grazing", grazing},
       {"degenerate", degenerate},    {"coincident", coincident},  {"origin-on-surface", originOnSurface},
       {"tiny-components", tinyComponents}};
   return all;

@@ -8,6 +8,10 @@
 //   closed-mesh        a closed icosphere; rays aimed exactly (on the lattice) at
 //                      its shared vertices and edge points, and float rays aimed
 //                      at vertices and edge midpoints: every one must hit
+//   closed-box         a closed box whose faces lie on the scene's bounds, with
+//                      two walls across it (rooms): rays from outside entering
+//                      through its faces, edges, corners and wall seams: every
+//                      one must hit
 //   axis-planes        axis-parallel rays with +0 / -0 components, and rays lying
 //                      in the cell and node boundary planes of a 16^3 grid and a
 //                      depth-4 octree, along their edges and through their corners

@@ -16,6 +16,9 @@
 //            from random outside points, axis-parallel or along a diagonal
 //   vertex   rays aimed exactly at mesh vertices (shared by the closed meshes' triangles)
 //   edge     rays aimed at points on triangle edges (midpoints, quarter points, random)
+//   outside  rays from outside entering the scene's bounds through a face, an edge or
+//            a corner of the box, every face it is on crossed inward (where a closed
+//            object's faces lie on the bounds, each is seen from outside)
 //
 // Usage: regress_rays SCENE SUBDIVIDE GENERATOR COUNT SEED OUT.rays
 #include <algorithm>
@@ -28,6 +31,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "common/error.h"
 #include "driver/quantize.h"
@@ -40,7 +44,7 @@ namespace {
 
 using namespace lancer;
 
-constexpr std::array<const char*, 6> kGenerators = {"camera", "random", "axis", "corner", "vertex", "edge"};
+constexpr std::array<const char*, 7> kGenerators = {"camera", "random", "axis", "corner", "vertex", "edge", "outside"};
 
 class Generator {
  public:
@@ -68,6 +72,8 @@ class Generator {
         r = corner();
       } else if (kind == "vertex") {
         r = toward(vertex());
+      } else if (kind == "outside") {
+        r = entering();
       } else {
         r = toward(edgePoint());
       }
@@ -176,6 +182,20 @@ class Generator {
     const float s = pick(4) == 3 ? uniform(0.0f, 1.0f) : kFixed[size_t(pick(3))];
     return v[size_t(k)] + s * (v[size_t((k + 1) % 3)] - v[size_t(k)]);
   }
+  // Through a point of the bounds' surface (on 1, 2 or 3 of its faces: a face, an
+  // edge, a corner), crossing each of those faces inward.
+  Ray entering() {
+    const int faces = 1 + pick(3), free = pick(3);
+    glm::vec3 target = inside(), dir;
+    for (int a = 0; a < 3; ++a) {
+      const bool pinned = faces == 3 || (faces == 2 ? a != free : a == free);
+      if (pinned) target[a] = coin() ? hi_[a] : lo_[a];
+      const float inward = target[a] == hi_[a] ? -1.0f : 1.0f;
+      dir[a] = pinned ? inward * uniform(0.2f, 1.0f) : uniform(-1.0f, 1.0f);
+    }
+    return {target - dir * (extent_ * uniform(0.1f, 2.0f)), dir, kInfinity};
+  }
+
   // From a random outside point (or, one time in four, axis-parallel) at `p`.
   Ray toward(const glm::vec3& p) {
     Ray r;
@@ -223,7 +243,7 @@ class Generator {
 int main(int argc, char** argv) {
   if (argc != 7) {
     std::fprintf(stderr, "usage: regress_rays SCENE SUBDIVIDE GENERATOR COUNT SEED OUT.rays\n"
-                         "  GENERATOR: camera, random, axis, corner, vertex, edge\n");
+                         "  GENERATOR: camera, random, axis, corner, vertex, edge, outside\n");
     return 2;
   }
   try {
@@ -238,7 +258,7 @@ int main(int argc, char** argv) {
     const uint64_t count = number("COUNT", argv[4]);
     const uint64_t seed = number("SEED", argv[5]);
     if (std::find(kGenerators.begin(), kGenerators.end(), kind) == kGenerators.end()) {
-      throw InputError(fmt::format("GENERATOR '{}' is not one of camera, random, axis, corner, vertex, edge", kind));
+      throw InputError(fmt::format("GENERATOR '{}' is not one of {}", kind, fmt::join(kGenerators, ", ")));
     }
     if (subdivideTimes > 6) throw InputError(fmt::format("SUBDIVIDE {} is out of range 0..6", subdivideTimes));
     if (count == 0 || count > 100000000) throw InputError(fmt::format("COUNT {} is out of range 1..1e8", count));

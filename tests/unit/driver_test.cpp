@@ -33,25 +33,27 @@ TEST(DriverQuantizer, MapsTheBoundingCubeOntoTheLattice) {
   const Quantizer q(box({-1, -2, -3}, {1, 2, 3}));  // longest axis z: 6 units
   const fx::QTriangle t = q.quantize(Triangle{{0, 0, -3}, {0, 0, 3}, {1, 2, 0}}, 9);
   EXPECT_EQ(t.id, 9u);
-  EXPECT_EQ(t.v[0][2], 0);
-  EXPECT_EQ(t.v[1][2], fx::kPosMax);
+  // The bounds fill the lattice but for its margin on either side.
+  EXPECT_EQ(t.v[0][2], kLatticeMarginUnits);
+  EXPECT_EQ(t.v[1][2], fx::kPosMax - kLatticeMarginUnits);
   EXPECT_EQ(t.v[0][0], std::llrint(0.5 * fx::kPosMax));  // the cube is centred on the bounds
-  EXPECT_NEAR(q.unit(), 6.0 / fx::kPosMax, 1e-12);
+  EXPECT_NEAR(q.unit(), 6.0 / double(fx::kPosMax - 2 * kLatticeMarginUnits), 1e-12);
 }
 
 TEST(DriverQuantizer, RejectsCoordinatesOutsideTheFormat) {
   const Quantizer q(box({0, 0, 0}, {1, 1, 1}));
-  const float justOutside = 1.0f + 2.0f / float(fx::kPosMax);
+  // Beyond the lattice's margin, by a unit.
+  const float justOutside = 1.0f + float(kLatticeMarginUnits + 1) * float(q.unit());
   try {
     q.quantize(Triangle{{0, 0, 0}, {justOutside, 0, 0}, {0, 1, 0}}, 4);
     FAIL() << "expected an out-of-range error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("triangle 4 vertex 1"), std::string::npos) << e.what();
   }
-  // The extremes themselves are fine and land on 0 and kPosMax.
+  // The bounds themselves are fine and land inside the margin.
   const fx::QTriangle t = q.quantize(Triangle{{0, 0, 0}, {1, 1, 1}, {0, 1, 0}}, 0);
-  EXPECT_EQ(t.v[1][0], fx::kPosMax);
-  EXPECT_THROW(q.quantize(Triangle{{-0.001f, 0, 0}, {1, 1, 1}, {0, 1, 0}}, 0), InputError);
+  EXPECT_EQ(t.v[1][0], fx::kPosMax - kLatticeMarginUnits);
+  EXPECT_THROW(q.quantize(Triangle{{-0.01f, 0, 0}, {1, 1, 1}, {0, 1, 0}}, 0), InputError);
 }
 
 // Found by tests/fuzz/fuzz_quantize: empty or non-finite bounds gave a NaN
@@ -81,7 +83,8 @@ TEST(DriverQuantizer, ClipsRaysAndNormalizesDirections) {
   EXPECT_EQ(r->q.dir[0], 0);
   EXPECT_EQ(r->q.dir[1], 0);
   EXPECT_EQ(r->q.org[2], fx::kPosMax);
-  EXPECT_DOUBLE_EQ(r->tEnter, 1.0);  // 2 units at |d| = 2
+  // 2 units at |d| = 2 to the scene's face, less the margin beyond it.
+  EXPECT_NEAR(r->tEnter, 1.0 - double(kLatticeMarginUnits) * q.unit() / 2.0, 1e-12);
   // A ray that misses the cube, and one that points away from it.
   EXPECT_FALSE(q.quantize(Ray{{2, 2, 2}, {1, 0, 0}}, 0).has_value());
   EXPECT_FALSE(q.quantize(Ray{{0.5f, 0.5f, 2}, {0, 0, 1}}, 0).has_value());
