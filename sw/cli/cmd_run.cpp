@@ -13,6 +13,7 @@
 #include "cli/options.h"
 #include "common/error.h"
 #include "common/progress.h"
+#include "driver/candidates.h"
 #include "driver/job.h"
 #include "driver/report.h"
 #include "driver/wave_tracer.h"
@@ -117,6 +118,15 @@ void printReferenceComparison(const ReferenceComparison& cmp) {
   }
 }
 
+// An answer beyond the hardware's documented bound is wrong, as a mismatch is:
+// the run fails (after its report is written).
+void failBeyondBound(uint64_t beyond, std::string_view what) {
+  if (beyond) {
+    throw CheckFailed(fmt::format("the exact arbiter puts the hardware's answer beyond its lattice bound on {} {}",
+                                  beyond, what));
+  }
+}
+
 // The SPD counts of a Whitted run, keyed as in the report.
 std::vector<std::pair<const char*, uint64_t>> spdCounts(const WhittedResult& r) {
   return {{"eye_hit_rays", r.eyeHitRays},   {"reflect_rays", r.reflectRays},
@@ -132,11 +142,11 @@ void runEffects(const Args& args, const Scene& scene, const EffectsPlan& plan, c
   const Sampling sampling = args.effects.parsedSampling();
   const PinholeCamera camera = frameScene(scene, args.source.camera.resolve());
   const std::vector<Ray> eye = camera.generateRays(sampling);
-  HardwareWaveTracer tracer(args.accel, scene, quantizer, args.job);
+  const Bvh reference(scene, AccelOptions{});
+  HardwareWaveTracer tracer(args.accel, scene, quantizer, args.job, &reference);
   const WhittedResult hw = traceWhitted(scene, plan, eye, tracer, [&](int generation, size_t n) {
     fmt::print("  wave {}: {} rays on {} {}\n", generation, n, args.accel, args.job.model);
   });
-  const Bvh reference(scene, AccelOptions{});
   RefWaveTracer refTracer(scene, reference);
   const WhittedResult ref = traceWhitted(scene, plan, eye, refTracer);
   const double hostSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - hostStart).count();
@@ -167,7 +177,21 @@ void runEffects(const Args& args, const Scene& scene, const EffectsPlan& plan, c
       classes[std::string(toString(cls))]["closest_hit_steps"] = s.closestHitSteps;
       classes[std::string(toString(cls))]["closest_hit_tests"] = s.closestHitTests;
     }
+    classes[std::string(toString(cls))].update(toJson(tracer.comparison(cls)));
   }
+  // Each class against the float reference on the very rays the hardware traced.
+  fmt::print("  {:<11} {:>9} {:>9} {:>9}   {:<34} {}\n", "class", "vs ref", "hit/miss", "triangle",
+             "arbiter: reference correct/tie/rnd/wrong", "hardware correct/tie/bound/beyond");
+  for (int c = 0; c < kRayClassCount; ++c) {
+    const RayClass cls = RayClass(c);
+    if (!plan.has(cls)) continue;
+    const ReferenceComparison& cmp = tracer.comparison(cls);
+    const ArbiterCounts& a = cmp.arbiter;
+    fmt::print("  {:<11} {:>9} {:>9} {:>9}   {:<34} {}\n", toString(cls), cmp.disagreements, cmp.hitMissDiffers,
+               cmp.primDiffers, fmt::format("{}/{}/{}/{}", a.reference[0], a.reference[1], a.reference[2], a.reference[3]),
+               fmt::format("{}/{}/{}/{}", a.hardware[0], a.hardware[1], a.hardware[2], a.hardware[3]));
+  }
+  if (const auto& b = tracer.firstBeyond()) fmt::print("  first ray beyond the hardware's bound: {}", b->details);
   if (!tracer.cycleAccurate()) fmt::print("  (golden model: no cycle timing)\n");
   const ClassHardwareStats& shadow = tracer.stats(RayClass::Shadow);
   if (shadow.rays && args.accel != "bvh") {
@@ -179,6 +203,10 @@ void runEffects(const Args& args, const Scene& scene, const EffectsPlan& plan, c
   const auto hwCounts = spdCounts(hw), refCounts = spdCounts(ref);
   for (size_t k = 0; k < hwCounts.size(); ++k) {
     fmt::print("  {:<20} {:>10} {:>10}\n", hwCounts[k].first, hwCounts[k].second, refCounts[k].second);
+  }
+  if (tracer.sideFlips()) {
+    fmt::print("  {} secondary origins moved to the other side of their triangle (the lattice ray would have met it again)\n",
+               tracer.sideFlips());
   }
   if (tracer.originsOutside()) {
     fmt::print("  {} secondary rays left the lattice cube at their origin (not traced)\n", tracer.originsOutside());
@@ -200,6 +228,7 @@ void runEffects(const Args& args, const Scene& scene, const EffectsPlan& plan, c
       {"classes", classes},         {"cycles", totalCycles},      {"cycle_accurate", tracer.cycleAccurate()},
       {"clock_hz", clockHz},        {"mismatches", tracer.mismatches()}, {"host_seconds", hostSeconds},
       {"origin_offset_lattice_units", tracer.offsetUnits()}, {"origins_outside_lattice", tracer.originsOutside()},
+      {"secondary_side_flips", tracer.sideFlips()},
       {"wave_rays", hw.waveRays},   {"total_internal_reflections", hw.totalInternalReflections},
       {"refraction_rays_traced", hw.refractionsTraced}};
   for (const auto& [key, value] : hwCounts) report[key] = value;
@@ -211,11 +240,17 @@ void runEffects(const Args& args, const Scene& scene, const EffectsPlan& plan, c
     report["first_mismatch"] = {{"generation", m->generation}, {"class", toString(m->cls)}, {"index", m->index},
                                 {"report", m->details}};
   }
+  report["beyond_bound"] = tracer.beyondBound();
+  if (const auto& b = tracer.firstBeyond()) {
+    report["first_beyond_bound"] = {{"generation", b->generation}, {"class", toString(b->cls)}, {"index", b->index},
+                                    {"report", b->details}};
+  }
   writeReport(args.report, report);
   if (tracer.mismatches()) {
     throw CheckFailed(fmt::format("model {} disagrees with the golden model on {} wave rays", args.job.model,
                                   tracer.mismatches()));
   }
+  failBeyondBound(tracer.beyondBound(), "wave rays");
 }
 
 void run(const Args& args) {
@@ -249,7 +284,8 @@ void run(const Args& args) {
   progress.finish();
 
   const Bvh reference(scene, AccelOptions{});
-  const ReferenceComparison cmp = compareWithReference(scene, rays.rays, traceRays(reference, rays.rays), job, quantizer);
+  const ReferenceComparison cmp = compareWithReference(scene, rays.rays, traceRays(reference, rays.rays), job, quantizer,
+                                                         exactCandidates(reference, scene.bounds));
   const double hostSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - hostStart).count();
   const double clockHz = args.clockMhz * 1e6;
   const double testsPerCycle = job.cycles ? double(job.intersectionTests) / double(job.cycles) : 0.0;
@@ -325,22 +361,31 @@ void run(const Args& args) {
       report[c.key] = c.value;
     }
   }
+  // A reproducer of the first failing ray: a one-ray rays file and the command that replays it.
+  const auto reproduce = [&](uint32_t ray, std::string_view what) {
+    writeRaysFile(args.repro, {rays.rays[ray]}, fmt::format("ray {} of {}: {} reproducer", ray, rays.origin, what));
+    return fmt::format("lancer run --scene {}{} --rays {} --model {} --accel {}{} --stall {} --seed {}", scene.name,
+                       args.scene.subdivide ? fmt::format(" --subdivide {}", args.scene.subdivide) : "", args.repro,
+                       args.job.model, args.accel, unitOptions(args), args.job.stream.outputStallProbability,
+                       args.job.stream.seed);
+  };
   if (job.firstMismatch) {
     const MismatchReport& m = *job.firstMismatch;
-    writeRaysFile(args.repro, {rays.rays[m.rayId]}, fmt::format("ray {} of {}: mismatch reproducer", m.rayId, rays.origin));
-    const std::string replay = fmt::format("lancer run --scene {}{} --rays {} --model {} --accel {}{} --stall {} --seed {}",
-                                           scene.name, args.scene.subdivide ? fmt::format(" --subdivide {}", args.scene.subdivide) : "",
-                                           args.repro, args.job.model, args.accel, unitOptions(args),
-                                           args.job.stream.outputStallProbability, args.job.stream.seed);
-    const std::string text = fmt::format("{}  replay: {}\n", m.details, replay);
+    const std::string text = fmt::format("{}  replay: {}\n", m.details, reproduce(m.rayId, "mismatch"));
     fmt::print(stderr, "{}", text);
     report["first_mismatch"] = {{"ray", m.rayId}, {"report", text}, {"repro_rays", args.repro}};
+  } else if (const auto beyond = cmp.arbiter.firstHardwareBeyond) {
+    const std::string text = fmt::format("ray {}: the hardware's answer is beyond its lattice bound\n  replay: {}\n",
+                                         *beyond, reproduce(*beyond, "beyond-bound"));
+    fmt::print(stderr, "{}", text);
+    report["first_beyond_bound"] = {{"ray", *beyond}, {"report", text}, {"repro_rays", args.repro}};
   }
   writeReport(args.report, report);
   if (job.mismatchedRays) {
     throw CheckFailed(fmt::format("model {} disagrees with the golden model on {} rays", args.job.model,
                                   job.mismatchedRays));
   }
+  failBeyondBound(cmp.arbiter.beyondBound(), "rays");
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "driver/candidates.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace lancer {
 
@@ -48,6 +49,12 @@ CandidateSource bvhCandidates(const Bvh& bvh, float margin) {
       stack[top++] = self + 1;
     }
   };
+}
+
+TriangleCandidates exactCandidates(const Bvh& bvh, const Aabb& sceneBounds) {
+  const glm::vec3 largest = glm::max(glm::abs(sceneBounds.lo), glm::abs(sceneBounds.hi));
+  const float extent = std::max({largest.x, largest.y, largest.z, glm::length(sceneBounds.diagonal())});
+  return bvhCandidates(bvh, std::max(extent * 0x1p-30f, std::numeric_limits<float>::min()));
 }
 
 }  // namespace lancer

@@ -29,13 +29,19 @@ std::string hexTriple(const std::array<int64_t, 3>& v, int width) {
 // excuse it, judged at float rounding.
 void arbitrate(const ExactOracle& oracle, const Ray& ray, uint32_t index, const std::optional<Hit>& reference,
                const std::optional<Hit>& hardware, const std::optional<QuantizedRay>& quantized,
-               const Quantizer& quantizer, ArbiterCounts& counts) {
-  const std::optional<ExactHit> truth = oracle.intersect(ray);
+               const Quantizer& quantizer, bool anyHit, ArbiterCounts& counts) {
   ++counts.judged;
-  const Verdict ref = judge(oracle, ray, reference, truth).verdict;
   ToleranceOf lattice;
   if (quantized) lattice = [&](const Triangle& tri) { return latticeTolerance(*quantized, quantizer, ray, tri); };
-  const Verdict hw = judge(oracle, ray, hardware, truth, lattice).verdict;
+  Verdict ref, hw;
+  if (anyHit) {
+    ref = judgeAnyHit(oracle, ray, reference).verdict;
+    hw = judgeAnyHit(oracle, ray, hardware, lattice).verdict;
+  } else {
+    const std::optional<ExactHit> truth = oracle.intersect(ray);
+    ref = judge(oracle, ray, reference, truth).verdict;
+    hw = judge(oracle, ray, hardware, truth, lattice).verdict;
+  }
   ++counts.reference[size_t(ref)];
   ++counts.hardware[size_t(hw)];
   if (ref == Verdict::Wrong && !counts.firstReferenceWrong) counts.firstReferenceWrong = index;
@@ -67,12 +73,19 @@ std::string differingBits(const fx::Wire& a, const fx::Wire& b, int bits) {
   return out;
 }
 
-std::optional<Hit> sceneHit(const JobResult& job, size_t ray) {
-  if (!job.hits[ray] || !job.rays[ray]) return std::nullopt;
-  const fx::IsectResult& r = *job.hits[ray];
-  const QuantizedRay& q = *job.rays[ray];
-  return Hit{r.primId, float(q.tEnter + q.tScale * fx::tOf(r, q.q)), float(fx::uOf(r)), float(fx::vOf(r))};
+namespace {
+
+// A hardware hit's t in its scene ray's units, in double.
+double sceneT(const QuantizedRay& q, const fx::IsectResult& r) { return q.tEnter + q.tScale * fx::tOf(r, q.q); }
+
+std::optional<Hit> sceneHit(const std::optional<QuantizedRay>& q, const std::optional<fx::IsectResult>& r) {
+  if (!q || !r) return std::nullopt;
+  return Hit{r->primId, float(sceneT(*q, *r)), float(fx::uOf(*r)), float(fx::vOf(*r))};
 }
+
+}  // namespace
+
+std::optional<Hit> sceneHit(const JobResult& job, size_t ray) { return sceneHit(job.rays[ray], job.hits[ray]); }
 
 Tolerance latticeTolerance(const QuantizedRay& ray, const Quantizer& quantizer, const Ray& sceneRay,
                            const Triangle& tri) {
@@ -106,33 +119,64 @@ nlohmann::json toJson(const ReferenceComparison& cmp) {
 
 ReferenceComparison compareWithReference(const Scene& scene, std::span<const Ray> rays,
                                          std::span<const std::optional<Hit>> reference,
-                                         const JobResult& job, const Quantizer& quantizer) {
+                                         const JobResult& job, const Quantizer& quantizer,
+                                         const TriangleCandidates& candidates) {
+  return compareWithReference(scene, rays, reference, job.rays, job.hits, quantizer, /*anyHit=*/false, candidates);
+}
+
+ReferenceComparison compareWithReference(const Scene& scene, std::span<const Ray> rays,
+                                         std::span<const std::optional<Hit>> reference,
+                                         std::span<const std::optional<QuantizedRay>> quantized,
+                                         std::span<const std::optional<fx::IsectResult>> hits,
+                                         const Quantizer& quantizer, bool anyHit,
+                                         const TriangleCandidates& candidates) {
   ReferenceComparison cmp;
-  const ExactOracle oracle(scene);
-  double sum = 0;
+  const ExactOracle oracle(scene, candidates);
   for (size_t i = 0; i < rays.size(); ++i) {
-    const std::optional<Hit> hw = sceneHit(job, i);
+    const std::optional<Hit> hw = sceneHit(quantized[i], hits[i]);
     const std::optional<Hit>& ref = reference[i];
-    if (hw.has_value() != ref.has_value() || (hw && hw->prim != ref->prim)) {
+    const bool primDiffers = !anyHit && hw && ref && hw->prim != ref->prim;
+    if (hw.has_value() != ref.has_value() || primDiffers) {
       ++cmp.disagreements;
-      (hw.has_value() != ref.has_value() ? cmp.hitMissDiffers : cmp.primDiffers) += 1;
+      (primDiffers ? cmp.primDiffers : cmp.hitMissDiffers) += 1;
       if (!cmp.firstDisagreement) cmp.firstDisagreement = uint32_t(i);
-      arbitrate(oracle, rays[i], uint32_t(i), ref, hw, job.rays[i], quantizer, cmp.arbiter);
+      arbitrate(oracle, rays[i], uint32_t(i), ref, hw, quantized[i], quantizer, anyHit, cmp.arbiter);
       continue;
     }
-    if (!hw) continue;
+    if (!hw || anyHit) continue;
     // The reference t of the same triangle in long double, and the hardware's t in
     // double from its exact fraction; the difference as a distance in lattice units.
     const auto exact = intersectTriangleExtended(rays[i], scene.triangles[ref->prim], ref->prim);
     const double tRef = exact ? double(exact->t) : double(ref->t);
-    const double hwT = job.rays[i]->tEnter + job.rays[i]->tScale * fx::tOf(*job.hits[i], job.rays[i]->q);
-    const double error = std::abs(hwT - tRef) * double(glm::length(rays[i].dir)) / quantizer.unit();
+    const double error = std::abs(sceneT(*quantized[i], *hits[i]) - tRef) * double(glm::length(rays[i].dir)) /
+                         quantizer.unit();
     cmp.maxTError = std::max(cmp.maxTError, error);
-    sum += error;
+    cmp.sumTError += error;
     ++cmp.compared;
   }
-  cmp.meanTError = cmp.compared ? sum / double(cmp.compared) : 0.0;
+  cmp.meanTError = cmp.compared ? cmp.sumTError / double(cmp.compared) : 0.0;
   return cmp;
+}
+
+ReferenceComparison& operator+=(ReferenceComparison& into, const ReferenceComparison& more) {
+  into.disagreements += more.disagreements;
+  into.hitMissDiffers += more.hitMissDiffers;
+  into.primDiffers += more.primDiffers;
+  into.compared += more.compared;
+  into.maxTError = std::max(into.maxTError, more.maxTError);
+  into.sumTError += more.sumTError;
+  into.meanTError = into.compared ? into.sumTError / double(into.compared) : 0.0;
+  if (!into.firstDisagreement) into.firstDisagreement = more.firstDisagreement;
+  ArbiterCounts& a = into.arbiter;
+  const ArbiterCounts& b = more.arbiter;
+  a.judged += b.judged;
+  for (size_t k = 0; k < a.reference.size(); ++k) {
+    a.reference[k] += b.reference[k];
+    a.hardware[k] += b.hardware[k];
+  }
+  if (!a.firstHardwareBeyond) a.firstHardwareBeyond = b.firstHardwareBeyond;
+  if (!a.firstReferenceWrong) a.firstReferenceWrong = b.firstReferenceWrong;
+  return into;
 }
 
 }  // namespace lancer

@@ -34,6 +34,8 @@ struct ArbiterCounts {
   std::array<uint64_t, 4> hardware{};    // by Verdict: correct, tie, within its bound, beyond it
   std::optional<uint32_t> firstHardwareBeyond;  // the first ray the hardware got wrong beyond its bound
   std::optional<uint32_t> firstReferenceWrong;
+
+  uint64_t beyondBound() const { return hardware[3]; }
 };
 
 struct ReferenceComparison {
@@ -43,6 +45,7 @@ struct ReferenceComparison {
   uint64_t compared = 0;       // rays where both hit the same triangle
   double maxTError = 0;
   double meanTError = 0;
+  double sumTError = 0;        // of the compared rays (meanTError's numerator)
   std::optional<uint32_t> firstDisagreement;
   ArbiterCounts arbiter;
 };
@@ -62,9 +65,26 @@ Tolerance latticeTolerance(const QuantizedRay& ray, const Quantizer& quantizer, 
 // rounding, wrong}, hardware {correct, tie, within_bound, beyond_bound}}.
 nlohmann::json toJson(const ReferenceComparison& cmp);
 
+// `candidates` (optional) culls the exact arbiter's triangles (exactCandidates()).
 ReferenceComparison compareWithReference(const Scene& scene, std::span<const Ray> rays,
                                          std::span<const std::optional<Hit>> reference,
-                                         const JobResult& job, const Quantizer& quantizer);
+                                         const JobResult& job, const Quantizer& quantizer,
+                                         const TriangleCandidates& candidates = {});
+
+// The same for rays the hardware was asked as `quantized` (t_enter: where each
+// scene ray's t = 0 lies before the lattice origin) and answered with `hits`.
+// Any-hit rays (shadow rays) agree when both are blocked or both clear, and are
+// judged by judgeAnyHit; they have no t error.
+ReferenceComparison compareWithReference(const Scene& scene, std::span<const Ray> rays,
+                                         std::span<const std::optional<Hit>> reference,
+                                         std::span<const std::optional<QuantizedRay>> quantized,
+                                         std::span<const std::optional<fx::IsectResult>> hits,
+                                         const Quantizer& quantizer, bool anyHit,
+                                         const TriangleCandidates& candidates = {});
+
+// Adds another comparison's counts (a later wave of the same class); the first
+// disagreements keep their own ray indices.
+ReferenceComparison& operator+=(ReferenceComparison& into, const ReferenceComparison& more);
 
 // The hardware's closest hit as a scene-space Hit (t in the original ray's units).
 std::optional<Hit> sceneHit(const JobResult& job, size_t ray);

@@ -4,15 +4,17 @@
 
 #include <fmt/format.h>
 
+#include "driver/candidates.h"
 #include "driver/report.h"
 #include "golden/isect.h"
 
 namespace lancer {
 
 HardwareWaveTracer::HardwareWaveTracer(const std::string& accel, const Scene& scene, const Quantizer& quantizer,
-                                       const JobConfig& config, double offsetUnits)
+                                       const JobConfig& config, const Bvh* reference, double offsetUnits)
     : quantizer_(quantizer), path_(makeHardwarePath(accel, scene, quantizer, config)),
-      offset_(offsetUnits) {
+      offset_(offsetUnits), scene_(scene), reference_(reference) {
+  if (reference_) candidates_ = exactCandidates(*reference_, scene.bounds);
   // The bvh path streams every candidate either way: any-hit saves it nothing to measure.
   if (accel != "bvh") {
     JobConfig golden = config;
@@ -28,13 +30,19 @@ HardwareWaveTracer::HardwareWaveTracer(const std::string& accel, const Scene& sc
   }
 }
 
+uint64_t HardwareWaveTracer::beyondBound() const {
+  uint64_t n = 0;
+  for (const ReferenceComparison& c : comparisons_) n += c.arbiter.beyondBound();
+  return n;
+}
+
 uint64_t HardwareWaveTracer::mismatches() const {
   uint64_t n = 0;
   for (const ClassHardwareStats& s : stats_) n += s.mismatches;
   return n;
 }
 
-std::optional<QuantizedRay> HardwareWaveTracer::latticeRay(const WaveRay& ray, uint32_t index) const {
+std::optional<QuantizedRay> HardwareWaveTracer::latticeRay(const WaveRay& ray, uint32_t index) {
   std::optional<QuantizedRay> q;
   if (ray.cls == RayClass::Primary || ray.parent >= wave_.size() || !wave_[ray.parent] || !waveHits_[ray.parent]) {
     q = quantizer_.quantize(ray.ray, index);
@@ -46,13 +54,32 @@ std::optional<QuantizedRay> HardwareWaveTracer::latticeRay(const WaveRay& ray, u
     const double t = fx::tOf(hit, parent);
     glm::dvec3 point;
     for (int a = 0; a < 3; ++a) point[a] = double(parent.org[a]) + t * double(parent.dir[a]);
-    point += double(ray.side) * offset_ * normals_[hit.primId];
     Ray shortened = ray.ray;
     if (std::isfinite(shortened.tMax)) {  // stop short of the light (an emitter's own triangle)
       const double latticeUnitsPerT = glm::length(glm::dvec3(ray.ray.dir)) / quantizer_.unit();
-      shortened.tMax = float(std::max(0.0, double(shortened.tMax) - kSegmentEndMarginUnits / latticeUnitsPerT));
+      // Short of an emitting triangle's plane by the margin across it: along a ray
+      // that meets the plane at a grazing angle that is margin / cos, where the
+      // lattice ray's error across the plane is magnified the same way.
+      double margin = kSegmentEndMarginUnits;
+      if (ray.targetPrim < normals_.size()) {
+        const double cosine = std::abs(glm::dot(glm::normalize(glm::dvec3(ray.ray.dir)), normals_[ray.targetPrim]));
+        margin /= std::max(cosine, kMinEmitterCosine);
+      }
+      shortened.tMax = float(std::max(0.0, double(shortened.tMax) - margin / latticeUnitsPerT));
     }
-    q = quantizer_.quantizeFrom(point, shortened, index);
+    const auto offsetTo = [&](double side) {
+      return quantizer_.quantizeFrom(point + side * offset_ * normals_[hit.primId], shortened, index);
+    };
+    q = offsetTo(double(ray.side));
+    // The side the loop chose is that of the float triangle. Where the lattice
+    // ray meets its own lattice triangle from there (a ray almost in the plane,
+    // or a triangle a few lattice units across whose lattice normal turns far
+    // from its float one), the ray in truth leaves the lattice triangle to its
+    // other side: start it there, and it cannot meet the triangle again.
+    if (q && fx::intersect(q->q, quantizer_.quantize(scene_.triangles[hit.primId], hit.primId)).hit) {
+      q = offsetTo(-double(ray.side));
+      ++sideFlips_;
+    }
   }
   if (q) q->q.anyHit = ray.anyHit;
   return q;
@@ -103,6 +130,7 @@ void HardwareWaveTracer::trace(int generation, std::span<const WaveRay> rays, st
       waveHits[members[k]] = job.hits[k];
       s.hits += job.hits[k].has_value();
     }
+    if (reference_) compare(generation, cls, rays, members, batch, job);
     if (anyHitRays && golden_) {  // what the same rays would have cost as closest-hit rays
       for (auto& r : batch) {
         if (r) r->q.anyHit = false;
@@ -114,6 +142,53 @@ void HardwareWaveTracer::trace(int generation, std::span<const WaveRay> rays, st
   }
   wave_ = std::move(wave);
   waveHits_ = std::move(waveHits);
+}
+
+void HardwareWaveTracer::compare(int generation, RayClass cls, std::span<const WaveRay> rays,
+                                 std::span<const uint32_t> members, const QuantizedRays& batch, const JobResult& job) {
+  // The question the hardware was asked, in scene space: a primary ray as
+  // given; a secondary one from its lattice origin (so t = 0 there), along the
+  // same direction, to its segment's end as coded (formats.h). Rays the hardware
+  // did not trace (a secondary origin outside the lattice) are left out.
+  std::vector<Ray> asked;
+  QuantizedRays quantized;
+  std::vector<std::optional<fx::IsectResult>> answers;
+  std::vector<uint32_t> index;
+  bool anyHit = false;
+  for (size_t k = 0; k < members.size(); ++k) {
+    const WaveRay& ray = rays[members[k]];
+    if (!batch[k] && ray.cls != RayClass::Primary) continue;
+    anyHit = ray.anyHit;
+    Ray question = ray.ray;
+    std::optional<QuantizedRay> q = batch[k];
+    if (ray.cls != RayClass::Primary) {
+      question.origin = glm::vec3(quantizer_.sceneOrigin(q->q));
+      question.tMax = kInfinity;
+      if (q->q.bounded()) {
+        const double along = double(q->q.tMax) / double(uint64_t(1) << fx::kSegFracBits);
+        question.tMax = float(q->tScale * along / double(fx::kDirMax));
+      }
+      q->tEnter = 0.0;
+    }
+    asked.push_back(question);
+    quantized.push_back(q);
+    answers.push_back(job.hits[k]);
+    index.push_back(members[k]);
+  }
+  std::vector<std::optional<Hit>> reference(asked.size());
+  for (size_t k = 0; k < asked.size(); ++k) reference[k] = reference_->intersect(asked[k]);
+  const ReferenceComparison cmp =
+      compareWithReference(scene_, asked, reference, quantized, answers, quantizer_, anyHit, candidates_);
+  if (const auto first = cmp.arbiter.firstHardwareBeyond; first && !firstBeyond_) {
+    const Ray& r = asked[*first];
+    firstBeyond_ = WaveMismatch{
+        generation, cls, index[*first],
+        fmt::format("wave {} ({} ray {} of the wave): the hardware's answer is beyond its lattice bound; the ray as "
+                    "asked: {:a} {:a} {:a} {:a} {:a} {:a} (t max {:a}){}\n",
+                    generation, toString(cls), index[*first], r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y,
+                    r.dir.z, r.tMax, anyHit ? ", any hit" : "")};
+  }
+  comparisons_[size_t(cls)] += cmp;
 }
 
 }  // namespace lancer

@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "driver/job.h"
+#include "driver/report.h"
+#include "ref/bvh.h"
 #include "effects/whitted.h"
 
 namespace lancer {
@@ -29,7 +31,11 @@ inline constexpr double kSecondaryOffsetUnits = 1.0;
 // its light: the lattice ray deviates from the float one by up to about 2.3
 // units across the lattice (docs/number-formats.md), so a segment ending
 // exactly on an area light's triangle would be blocked by the lamp itself.
+// The margin is across the light's plane for an area light (its triangle):
+// along the ray it is 4 / cos of the angle to the plane's normal, for angles up
+// to acos(kMinEmitterCosine) (89.4 degrees; a grazing ray carries almost no light).
 inline constexpr double kSegmentEndMarginUnits = 4.0;
+inline constexpr double kMinEmitterCosine = 0.01;
 
 // What the hardware did for one class of rays over a run.
 struct ClassHardwareStats {
@@ -57,22 +63,38 @@ struct WaveMismatch {
 class HardwareWaveTracer final : public WaveTracer {
  public:
   // The path is set up once (image, model); `scene` and `quantizer` must outlive the tracer.
+  // With a `reference` (which must outlive it too), every wave's rays are also
+  // traced by it, as the hardware was asked them, and each class's disagreements
+  // are settled by the exact arbiter (comparison()).
   HardwareWaveTracer(const std::string& accel, const Scene& scene, const Quantizer& quantizer, const JobConfig& config,
-                     double offsetUnits = kSecondaryOffsetUnits);
+                     const Bvh* reference = nullptr, double offsetUnits = kSecondaryOffsetUnits);
 
   void trace(int generation, std::span<const WaveRay> rays, std::vector<std::optional<Hit>>& hits) override;
 
   const ClassHardwareStats& stats(RayClass cls) const { return stats_[size_t(cls)]; }
+  // The class's rays against the reference on the same rays: a secondary ray as
+  // the hardware traced it (from its lattice origin, to its segment's end).
+  const ReferenceComparison& comparison(RayClass cls) const { return comparisons_[size_t(cls)]; }
+  // Answers beyond the hardware's bound, over every class.
+  uint64_t beyondBound() const;
+  // The first of them: its wave, class and the scene ray asked, as a reproducer.
+  const std::optional<WaveMismatch>& firstBeyond() const { return firstBeyond_; }
   uint64_t mismatches() const;
   const std::optional<WaveMismatch>& firstMismatch() const { return firstMismatch_; }
   // Secondary rays whose offset origin fell outside the lattice cube (they leave
   // the scene through its boundary): not traced, answered as misses.
   uint64_t originsOutside() const { return originsOutside_; }
   bool cycleAccurate() const { return cycleAccurate_; }
+  // Secondary origins moved to the other side of their triangle, where the
+  // lattice ray would have met it again from the loop's side.
+  uint64_t sideFlips() const { return sideFlips_; }
   double offsetUnits() const { return offset_; }
 
  private:
-  std::optional<QuantizedRay> latticeRay(const WaveRay& ray, uint32_t index) const;
+  std::optional<QuantizedRay> latticeRay(const WaveRay& ray, uint32_t index);
+  // Compares one class's job with the reference (members: the class's rays in the wave).
+  void compare(int generation, RayClass cls, std::span<const WaveRay> rays, std::span<const uint32_t> members,
+               const QuantizedRays& batch, const JobResult& job);
 
   const Quantizer& quantizer_;
   std::unique_ptr<HardwarePath> path_;
@@ -80,8 +102,13 @@ class HardwareWaveTracer final : public WaveTracer {
   double offset_;
   std::vector<glm::dvec3> normals_;  // unit geometric normal of every quantized triangle, lattice space
   std::array<ClassHardwareStats, kRayClassCount> stats_{};
-  std::optional<WaveMismatch> firstMismatch_;
+  const Scene& scene_;
+  const Bvh* reference_;
+  TriangleCandidates candidates_;  // the exact arbiter's, from reference_
+  std::array<ReferenceComparison, kRayClassCount> comparisons_{};
+  std::optional<WaveMismatch> firstMismatch_, firstBeyond_;
   uint64_t originsOutside_ = 0;
+  uint64_t sideFlips_ = 0;
   bool cycleAccurate_ = true;
   // The previous wave: its lattice rays and the hardware's hits, which the next wave's origins come from.
   QuantizedRays wave_;

@@ -125,13 +125,15 @@ void Loop::shade(const WaveRay& r, const Hit& h, uint32_t k, std::vector<WaveRay
   };
 
   const bool shadows = plan_.has(RayClass::Shadow);
-  const auto light = [&](const glm::vec3& contribution, const glm::vec3& dir, float tMax) {
+  const auto light = [&](const glm::vec3& contribution, const glm::vec3& dir, float tMax,
+                         uint32_t emitter = UINT32_MAX) {
     if (!shadows) {  // --effects without shadow: the light reaches every surface facing it
       out_.samples[r.sample] += r.weight * contribution;
       return;
     }
     WaveRay s = child(RayClass::Shadow, Ray{p, dir, tMax}, contribution);
     s.anyHit = true;
+    s.targetPrim = emitter;
     next.push_back(s);
     ++out_.shadowRays;
   };
@@ -185,7 +187,7 @@ void Loop::shade(const WaveRay& r, const Hit& h, uint32_t k, std::vector<WaveRay
       if (!(cosine > 0.0f) || !(cosEmitter > 0.0f)) continue;  // facing away, or behind the lamp
       const float solid = cosEmitter * e.area / (dist * dist * float(samples));
       // Stop just short of the lamp so its own triangle does not count as a blocker.
-      light(intensity_ * solid * e.emission * phong(m, n, dir, toEye, cosine), dir, dist * (1.0f - 1e-4f));
+      light(intensity_ * solid * e.emission * phong(m, n, dir, toEye, cosine), dir, dist * (1.0f - 1e-4f), e.prim);
     }
   }
 

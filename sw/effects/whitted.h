@@ -32,6 +32,8 @@ struct WaveRay {
   uint32_t parent = UINT32_MAX;
   uint32_t originPrim = UINT32_MAX;
   int8_t side = 0;
+  // Shadow rays to an area light: the emitting triangle the segment ends on (else UINT32_MAX).
+  uint32_t targetPrim = UINT32_MAX;
 };
 
 // What traces a wave: the float reference (effects/ref_tracer.h) or a model of the hardware.

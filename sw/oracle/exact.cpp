@@ -254,6 +254,19 @@ struct Candidate {
 
 }  // namespace
 
+template <class Visit>
+void ExactOracle::forEachCandidate(const Ray& ray, Visit&& visit) const {
+  if (!candidates_) {
+    for (uint32_t prim = 0; prim < scene_.triangles.size(); ++prim) visit(prim);
+    return;
+  }
+  // Id order: the closest-hit search keeps the lower id on an exact tie.
+  std::vector<uint32_t> prims;
+  candidates_(ray, prims);
+  std::sort(prims.begin(), prims.end());
+  for (uint32_t prim : prims) visit(prim);
+}
+
 ExactRelation ExactOracle::relation(const Ray& ray, uint32_t prim) const {
   checkRay(ray);
   if (prim >= scene_.triangles.size()) {
@@ -272,16 +285,16 @@ std::optional<ExactHit> ExactOracle::intersect(const Ray& ray, ExactStats* stats
     if (!c.exact) c.exact = exactRelation(ray, scene_.triangles[c.prim], /*measure=*/false).t;
     return *c.exact;
   };
-  for (uint32_t prim = 0; prim < scene_.triangles.size(); ++prim) {
+  forEachCandidate(ray, [&](uint32_t prim) {
     ++local.pairs;
     const Triangle& tri = scene_.triangles[prim];
     const FilterOutcome f = filterPair(o, d, ad, ray.tMax, tri);
-    if (f.kind == FilterOutcome::Miss) continue;
+    if (f.kind == FilterOutcome::Miss) return;
     Candidate c{prim, f.t, f.tLow, f.tHigh, false, std::nullopt};
     if (f.kind == FilterOutcome::Unsure) {
       ++local.exactPairs;
       ExactRelation rel = exactRelation(ray, tri, /*measure=*/false);
-      if (!rel.hit) continue;
+      if (!rel.hit) return;
       c.t = c.tLow = c.tHigh = rel.t->toDouble();
       c.onBoundary = rel.onBoundary;
       c.exact = std::move(rel.t);
@@ -295,7 +308,7 @@ std::optional<ExactHit> ExactOracle::intersect(const Ray& ray, ExactStats* stats
       ++local.exactCompares;
       if (compare(exactOf(c), exactOf(*best)) < 0) best = std::move(c);
     }
-  }
+  });
   if (stats) {
     stats->pairs += local.pairs;
     stats->exactPairs += local.exactPairs;
@@ -303,6 +316,24 @@ std::optional<ExactHit> ExactOracle::intersect(const Ray& ray, ExactStats* stats
   }
   if (!best) return std::nullopt;
   return ExactHit{best->prim, exactOf(*best).toDouble(), best->onBoundary};
+}
+
+std::vector<ExactHit> ExactOracle::hitsOnSegment(const Ray& ray) const {
+  checkRay(ray);
+  const Vec3d o = toVec(ray.origin), d = toVec(ray.dir), ad = absVec(d);
+  std::vector<ExactHit> hits;
+  forEachCandidate(ray, [&](uint32_t prim) {
+    const Triangle& tri = scene_.triangles[prim];
+    const FilterOutcome f = filterPair(o, d, ad, ray.tMax, tri);
+    if (f.kind == FilterOutcome::Miss) return;
+    if (f.kind == FilterOutcome::Hit) {
+      hits.push_back({prim, f.t, false});
+      return;
+    }
+    const ExactRelation rel = exactRelation(ray, tri, /*measure=*/false);
+    if (rel.hit) hits.push_back({prim, rel.t->toDouble(), rel.onBoundary});
+  });
+  return hits;
 }
 
 // ---- Judging a tracer's answer -----------------------------------------------------
@@ -372,6 +403,12 @@ bool nearT(double a, double b, const Tolerance& tolerance, double cosine) {
   return std::fabs(a - b) <= tSlack(tolerance, cosine, b);
 }
 
+// A crossing at t within the tolerance of the segment's end: a move of the
+// plane within the tolerance can put it on either side of the end.
+bool nearEnd(const Ray& ray, double t, const Tolerance& tolerance, double cosine) {
+  return std::isfinite(ray.tMax) && nearT(t, double(ray.tMax), tolerance, cosine);
+}
+
 }  // namespace
 
 Tolerance floatRounding(const Ray& ray, const Triangle& tri) {
@@ -439,6 +476,31 @@ Judgement judge(const ExactOracle& oracle, const Ray& ray, const std::optional<H
     }
   }
   return {Verdict::Wrong, given.hit ? "a farther triangle than the closest" : "a triangle the ray misses"};
+}
+
+Judgement judgeAnyHit(const ExactOracle& oracle, const Ray& ray, const std::optional<Hit>& answer,
+                      const ToleranceOf& tolerance) {
+  const auto& tris = oracle.scene().triangles;
+  const ToleranceOf& tol = tolerance ? tolerance : ToleranceOf([&](const Triangle& t) { return floatRounding(ray, t); });
+  const std::vector<ExactHit> blockers = oracle.hitsOnSegment(ray);
+  if (answer.has_value() == !blockers.empty()) return {Verdict::Correct, answer ? "both blocked" : "both clear"};
+  // Whether a crossing of triangle `prim` could go either way under the tolerance.
+  const auto excusable = [&](uint32_t prim) {
+    const ExactRelation rel = oracle.relation(ray, prim);
+    const Tolerance t = tol(tris[prim]);
+    if (marginal(rel, t, ray, tris[prim])) return true;
+    if (!rel.t) return false;
+    const double crossing = rel.t->toDouble();
+    return nearT(crossing, 0.0, t, rel.cosine) || nearEnd(ray, crossing, t, rel.cosine);
+  };
+  if (answer) {
+    if (excusable(answer->prim)) return {Verdict::Rounding, "blocked by a triangle within the tolerance"};
+    return {Verdict::Wrong, "blocked where the segment is clear"};
+  }
+  for (const ExactHit& blocker : blockers) {
+    if (!excusable(blocker.prim)) return {Verdict::Wrong, "clear where a triangle blocks away from any edge or end"};
+  }
+  return {Verdict::Rounding, "every blocker within the tolerance"};
 }
 
 }  // namespace lancer

@@ -20,6 +20,7 @@
 #include <functional>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include <gmpxx.h>
 
@@ -77,17 +78,32 @@ struct ExactStats {
 // exact t in (0, ray.tMax]; exact ties go to the lower triangle id, the
 // rule of closerHit(). Throws InputError for a ray with a NaN or infinite
 // component or a zero direction.
+// A conservative culling of a scene's triangles for one ray: `out` receives at
+// least every triangle the ray meets in exact arithmetic (e.g. from a BVH whose
+// boxes are grown a little), in any order, each once.
+using TriangleCandidates = std::function<void(const Ray& ray, std::vector<uint32_t>& out)>;
+
 class ExactOracle {
  public:
-  explicit ExactOracle(const Scene& scene) : scene_(scene) {}
-  explicit ExactOracle(Scene&&) = delete;  // keeps a reference: a temporary would dangle
+  // Without candidates every query looks at every triangle.
+  explicit ExactOracle(const Scene& scene, TriangleCandidates candidates = {})
+      : scene_(scene), candidates_(std::move(candidates)) {}
+  explicit ExactOracle(Scene&&, TriangleCandidates = {}) = delete;  // keeps a reference: a temporary would dangle
 
   std::optional<ExactHit> intersect(const Ray& ray, ExactStats* stats = nullptr) const;
+  // Every triangle the ray hits in (0, ray.tMax], in id order: what an any-hit
+  // answer must account for.
+  std::vector<ExactHit> hitsOnSegment(const Ray& ray) const;
   ExactRelation relation(const Ray& ray, uint32_t prim) const;
   const Scene& scene() const { return scene_; }
 
  private:
+  // Calls visit(prim) for every triangle the query must look at, in id order.
+  template <class Visit>
+  void forEachCandidate(const Ray& ray, Visit&& visit) const;
+
   const Scene& scene_;
+  TriangleCandidates candidates_;
 };
 
 // The verdict on one tracer's answer for one ray, against the exact truth.
@@ -131,5 +147,13 @@ Tolerance floatRounding(const Ray& ray, const Triangle& tri);
 // sw/driver/report.h).
 Judgement judge(const ExactOracle& oracle, const Ray& ray, const std::optional<Hit>& answer,
                 const std::optional<ExactHit>& truth, const ToleranceOf& tolerance = {});
+
+// Judges an any-hit answer (a shadow ray's: blocked when `answer` holds some hit
+// in (0, ray.tMax], clear when nullopt) against exact arithmetic. Blocked is
+// correct when any triangle truly blocks; a blocker the truth does not have
+// must lie within the tolerance (of an edge, the ray's origin or the segment's
+// end), and so must every true blocker of an answer of clear.
+Judgement judgeAnyHit(const ExactOracle& oracle, const Ray& ray, const std::optional<Hit>& answer,
+                      const ToleranceOf& tolerance = {});
 
 }  // namespace lancer

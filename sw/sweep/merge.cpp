@@ -148,6 +148,14 @@ MergeResult mergeSweep(const std::string& out, FILE* table, bool plots) {
       continue;
     }
     const nlohmann::json result = readJson(jobResultPath(out, job));
+    // An answer beyond the hardware's bound fails the sweep as an error does.
+    const nlohmann::json& run = result.value("run", nlohmann::json::object());
+    if (const uint64_t beyond = run.value("arbiter", nlohmann::json::object())
+                                    .value("hardware", nlohmann::json::object())
+                                    .value("beyond_bound", uint64_t(0))) {
+      errors.push_back(fmt::format("{}: {} answers beyond the hardware's lattice bound (report {}/jobs/{}/run.json)",
+                                   job.describe(spec), beyond, out, job.key));
+    }
     Totals& t = groups[{job.width, job.unit, job.model}][job.scene];
     job.set == "cracks" ? t.addCracks(result) : t.addCamera(result);
   }

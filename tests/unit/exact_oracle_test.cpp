@@ -312,3 +312,52 @@ TEST(ExactOracle, ReferenceIsNeverWrongOnAnOpenCadMesh) {
 
 }  // namespace
 }  // namespace lancer
+
+namespace lancer {
+namespace {
+
+// Any-hit (shadow) answers: blocked or clear, judged by every true blocker.
+TEST(ExactOracle, JudgesAnyHitAnswersByTheirBlockers) {
+  const Scene scene = square();
+  const ExactOracle oracle(scene);
+  const Ray through = rayOf({0.75f, 0.25f, 1.0f}, {0, 0, -1.0f}, 2.0f);  // crosses the square at t = 1
+  const Ray shortOf = rayOf({0.75f, 0.25f, 1.0f}, {0, 0, -1.0f}, 0.5f);  // ends before it
+  const Hit blocker{0, 1.0f, 0.5f, 0.25f};
+  EXPECT_EQ(oracle.hitsOnSegment(through).size(), 1u);
+  EXPECT_TRUE(oracle.hitsOnSegment(shortOf).empty());
+  EXPECT_EQ(judgeAnyHit(oracle, through, blocker).verdict, Verdict::Correct);
+  // Blocked by the other triangle of the square: still blocked, still correct.
+  EXPECT_EQ(judgeAnyHit(oracle, through, Hit{1, 1.0f, 0, 0}).verdict, Verdict::Correct);
+  EXPECT_EQ(judgeAnyHit(oracle, shortOf, std::nullopt).verdict, Verdict::Correct);
+  EXPECT_EQ(judgeAnyHit(oracle, through, std::nullopt).verdict, Verdict::Wrong);
+  EXPECT_EQ(judgeAnyHit(oracle, shortOf, blocker).verdict, Verdict::Wrong);
+  // A segment ending within a tolerance of the plane may go either way.
+  const Ray toThePlane = rayOf({0.75f, 0.25f, 1.0f}, {0, 0, -1.0f}, 1.0f - 1e-3f);
+  const ToleranceOf loose = [](const Triangle&) { return Tolerance{1e-2, 1e-2, 0.0}; };
+  EXPECT_EQ(judgeAnyHit(oracle, toThePlane, blocker, loose).verdict, Verdict::Rounding);
+  EXPECT_EQ(judgeAnyHit(oracle, toThePlane, blocker).verdict, Verdict::Wrong);
+  // So may a ray within the tolerance of the square's edge.
+  const Ray byTheEdge = rayOf({1.0005f, 0.5f, 1.0f}, {0, 0, -1.0f}, 2.0f);
+  EXPECT_EQ(judgeAnyHit(oracle, byTheEdge, Hit{0, 1.0f, 0, 0}, loose).verdict, Verdict::Rounding);
+}
+
+// With a culling of candidates the oracle answers as without one.
+TEST(ExactOracle, CandidatesCullWithoutChangingTheAnswer) {
+  const Scene scene = square();
+  const ExactOracle all(scene);
+  size_t asked = 0;
+  const ExactOracle culled(scene, [&](const Ray&, std::vector<uint32_t>& out) {
+    ++asked;
+    out = {1, 0};  // any order
+  });
+  const Ray diagonal = rayOf({0.5f, 0.5f, 1.0f}, {0, 0, -1.0f});  // on the shared edge: the tie to triangle 0
+  ASSERT_TRUE(culled.intersect(diagonal).has_value());
+  EXPECT_EQ(culled.intersect(diagonal)->prim, all.intersect(diagonal)->prim);
+  EXPECT_EQ(culled.hitsOnSegment(diagonal).size(), 2u);
+  EXPECT_GT(asked, 0u);
+  const ExactOracle none(scene, [](const Ray&, std::vector<uint32_t>& out) { out.clear(); });
+  EXPECT_FALSE(none.intersect(diagonal).has_value());
+}
+
+}  // namespace
+}  // namespace lancer
