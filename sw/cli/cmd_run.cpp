@@ -44,6 +44,7 @@ struct Args {
   int dirBits = fx::kDirBits;
   std::string report, image, hits;
   std::string repro = "lancer-mismatch.rays";
+  int64_t latticeMargin = kLatticeMarginUnits;
 };
 
 void writeHardwareHits(const std::string& path, const JobResult& job) {
@@ -81,6 +82,7 @@ std::string unitOptions(const Args& args) {
   add("--grid-res", job.accel.gridResolution);
   add("--octree-depth", job.accel.octreeMaxDepth);
   add("--octree-leaf", job.accel.octreeLeafSize);
+  if (args.latticeMargin != kLatticeMarginUnits) out += fmt::format(" --lattice-margin {}", args.latticeMargin);
   if (args.accel != "bvh") {
     out += fmt::format(" --mem-latency {}", job.memLatency);
     add("--mem-jitter", job.memLatencyJitter);
@@ -268,7 +270,7 @@ void run(const Args& args) {
   const Scene scene = args.scene.load();
   const EffectsPlan plan = planEffects(scene, args.effects.options());
   const Sampling sampling = args.effects.parsedSampling();
-  const Quantizer quantizer(scene.bounds);
+  const Quantizer quantizer(scene.bounds, args.latticeMargin);
   fmt::print("{}", plan.describe());
   const bool secondary =
       plan.has(RayClass::Shadow) || plan.has(RayClass::Reflection) || plan.has(RayClass::Refraction);
@@ -434,6 +436,10 @@ void addRunCommand(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::Range(2, 24));
   args->effects.add(*cmd);
+  cmd->add_option("--lattice-margin", args->latticeMargin,
+                  "Lattice units between the scene's bounds and the lattice cube's faces (0: the faces coincide, "
+                  "and a closed object seen from outside shows its inside: docs/number-formats.md)")
+      ->capture_default_str();
   cmd->add_option("--repro", args->repro, "Where a mismatch's reproducer rays file goes")->capture_default_str();
   cmd->callback([args] { run(*args); });
 }

@@ -10,7 +10,11 @@
 
 namespace lancer {
 
-Quantizer::Quantizer(const Aabb& bounds) {
+Quantizer::Quantizer(const Aabb& bounds, int64_t marginUnits) {
+  if (marginUnits < 0 || 4 * marginUnits > fx::kPosMax) {
+    throw InputError(fmt::format("lattice margin {} must lie in 0..{} units (a quarter of the {}-bit lattice)",
+                                 marginUnits, fx::kPosMax / 4, fx::kPosBits));
+  }
   // An empty box (no triangles) or a non-finite one has no lattice: every ray
   // would quantize from a NaN origin (found by tests/fuzz/fuzz_quantize).
   if (bounds.empty() || !allFinite(bounds.lo) || !allFinite(bounds.hi)) {
@@ -24,7 +28,7 @@ Quantizer::Quantizer(const Aabb& bounds) {
   // own faces lie strictly inside the cube (see kLatticeMarginUnits). Every
   // step is a product or quotient of the bounds, so scaling the scene by a
   // power of two scales lo_ and 1 / scale_ by the same power exactly.
-  scale_ = double(fx::kPosMax - 2 * kLatticeMarginUnits) / side;
+  scale_ = double(fx::kPosMax - 2 * marginUnits) / side;
   lo_ = 0.5 * (lo + hi) - glm::dvec3(0.5 * double(fx::kPosMax) / scale_);
 }
 

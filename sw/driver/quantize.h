@@ -34,8 +34,10 @@ inline constexpr int64_t kLatticeMarginUnits = 2;
 // direction is scaled so its dominant component is +-kDirMax.
 class Quantizer {
  public:
-  // Throws InputError if the bounds are empty or not finite.
-  explicit Quantizer(const Aabb& sceneBounds);
+  // Throws InputError if the bounds are empty or not finite, or the margin is
+  // negative or leaves less than half the lattice to the scene. A margin of 0
+  // is the lattice before issue #21 (faces of the scene on the lattice's).
+  explicit Quantizer(const Aabb& sceneBounds, int64_t marginUnits = kLatticeMarginUnits);
 
   // Throws InputError if a vertex lies outside the lattice cube by more than half a unit.
   fx::QTriangle quantize(const Triangle& tri, uint32_t id) const;
