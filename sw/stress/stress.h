@@ -43,7 +43,13 @@ struct StressRow {
   uint64_t differs = 0;            // hit/miss or triangle differs from the exact truth
   uint64_t hitMissDiffers = 0;     // of those, hit where the truth misses or the reverse
   std::array<uint64_t, 4> verdicts{};  // Verdict: correct, tie, within the bound, beyond it
-  uint64_t mustHit = 0, cracks = 0;    // rays that must hit, and those that missed
+  uint64_t mustHit = 0;
+  // Rays that must hit and missed although the hardware's own ray, in exact
+  // arithmetic, meets its own lattice mesh: a leak between its triangles.
+  uint64_t cracks = 0;
+  // Rays that must hit and missed because the hardware's ray passes outside its
+  // lattice mesh (a grazing ray the rounding of the direction turns away).
+  uint64_t latticeMisses = 0;
   uint64_t baseDiffers = 0;        // rays whose answer differs from the base placement's (all fields
                                    // of the record for a power-of-two scale; hit/miss or triangle otherwise)
   bool latticeExact = false;
