@@ -15,6 +15,7 @@
 
 #include "common/error.h"
 #include "scene/polygon.h"
+#include "scene/text.h"
 
 namespace lancer {
 
@@ -64,14 +65,12 @@ class Lines {
   bool pushedBack_ = false;
 };
 
+// Correctly rounded (scene/text.h); a number beyond float range is an error,
+// one below it reads as zero.
 float parseNumber(const Lines& lines, const std::string& token) {
-  float value = 0.0f;
-  const char* end = token.data() + token.size();
-  const auto [ptr, ec] = std::from_chars(token.data(), end, value);
-  if (ec != std::errc() || ptr != end || !std::isfinite(value)) {
-    lines.fail(fmt::format("expected a finite number, got '{}'", token));
-  }
-  return value;
+  const std::optional<float> value = parseFloat(token);
+  if (!value || !std::isfinite(*value)) lines.fail(fmt::format("expected a finite number, got '{}'", token));
+  return *value;
 }
 
 int parseCount(const Lines& lines, const std::string& token) {
