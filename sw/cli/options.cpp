@@ -35,6 +35,7 @@ void SceneOptions::add(CLI::App& app) {
 
 Scene SceneOptions::load() const {
   Scene loaded = loadScene(scene);
+  for (const std::string& warning : loaded.warnings) fmt::print(stderr, "warning: {}\n", warning);
   return subdivide ? lancer::subdivide(loaded, subdivide) : loaded;
 }
 

@@ -86,4 +86,24 @@ PolygonTriangles triangulatePolygon(std::span<const glm::vec3> points) {
   return out;
 }
 
+std::array<std::array<uint32_t, 3>, 2> splitQuad(std::span<const glm::vec3, 4> quad) {
+  // A corner is concave when it turns against the quad's Newell normal: the
+  // diagonal from it runs inside the quad, the other one outside.
+  glm::dvec3 newell(0.0);
+  for (uint32_t i = 0; i < 4; ++i) {
+    const glm::dvec3 p(quad[i]), q(quad[(i + 1) % 4]);
+    newell += glm::dvec3((p.y - q.y) * (p.z + q.z), (p.z - q.z) * (p.x + q.x), (p.x - q.x) * (p.y + q.y));
+  }
+  uint32_t k = 0;
+  for (uint32_t i = 0; i < 4; ++i) {
+    const glm::dvec3 in = glm::dvec3(quad[i]) - glm::dvec3(quad[(i + 3) % 4]);
+    const glm::dvec3 out = glm::dvec3(quad[(i + 1) % 4]) - glm::dvec3(quad[i]);
+    if (glm::dot(glm::cross(in, out), newell) < 0.0) {
+      k = i;
+      break;
+    }
+  }
+  return {{{k, (k + 1) % 4, (k + 2) % 4}, {k, (k + 2) % 4, (k + 3) % 4}}};
+}
+
 }  // namespace lancer

@@ -31,4 +31,11 @@ struct PolygonTriangles {
 // contains a zero-area triangle made up by the clipping.
 PolygonTriangles triangulatePolygon(std::span<const glm::vec3> outline);
 
+// A quad (an OBJ or PLY face of four vertices) as two triangles, split along
+// the diagonal from its concave corner if it has one, else from corner 0, as
+// assimp did. Quads of meshes are often not flat, and a twisted one can have
+// no plane in which to clip ears (its outline folds onto itself there), so it
+// is always two triangles, even of no area.
+std::array<std::array<uint32_t, 3>, 2> splitQuad(std::span<const glm::vec3, 4> quad);
+
 }  // namespace lancer

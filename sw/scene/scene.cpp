@@ -2,11 +2,9 @@
 
 #include <array>
 #include <cctype>
-#include <iterator>
 #include <cmath>
 #include <fstream>
 #include <new>
-#include <string_view>
 #include <tuple>
 #include <map>
 #include <utility>
@@ -16,9 +14,7 @@
 
 #include <algorithm>
 
-#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
-#include <assimp/IOStream.hpp>
 #include <assimp/ObjMaterial.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -27,7 +23,9 @@
 #include "common/error.h"
 #include "scene/gltf.h"
 #include "scene/nff.h"
+#include "scene/obj.h"
 #include "scene/spd.h"
+#include "scene/surface.h"
 
 namespace lancer {
 
@@ -72,12 +70,8 @@ class AddressSpaceCap {
   bool active_ = false;
 };
 
-// The Whitted terms of an MTL material (and of any format assimp maps the same
-// way). MTL's illum decides what is traced: illum >= 3 reflects, with Ks's
-// largest component as the weight (illum 2's highlight-only Ks has no mirror);
-// a dissolve d < 1 transmits T = 1 - d; Ni is the index of refraction and Ns
-// the highlight's exponent. Ni <= 0 on a transmitting material is an error;
-// on an opaque one it is unused (exporters write Ni 0 there) and becomes 1.
+// The Whitted terms of a material in assimp's MTL keys, which it fills the same
+// way for the other formats it reads (as readMtl in scene/obj.cpp does for MTL).
 void readWhittedTerms(const aiMaterial& mat, const std::string& path, Material& material) {
   int illum = 2;
   mat.Get(AI_MATKEY_OBJ_ILLUM, illum);
@@ -95,94 +89,6 @@ void readWhittedTerms(const aiMaterial& mat, const std::string& path, Material& 
     }
     material.ior = 1.0f;
   }
-}
-
-// The line (from 1) of an MTL file's first statement before its first
-// newmtl, or 0 if there is none. Blank lines and comments are not statements;
-// lines end where assimp's parser ends them (\n, \r, \f); a UTF-8 byte-order
-// mark, which assimp drops, is skipped.
-size_t statementBeforeFirstNewmtl(std::string_view text) {
-  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
-  size_t lineNo = 1;
-  for (size_t begin = 0; begin <= text.size();) {
-    const size_t end = std::min(text.find_first_of("\n\r\f", begin), text.size());
-    std::string_view line = text.substr(begin, end - begin);
-    line.remove_prefix(std::min(line.find_first_not_of(" \t"), line.size()));
-    if (line.starts_with("newmtl")) return 0;
-    if (!line.empty() && line[0] != '#') return lineNo;
-    if (end < text.size() && text[end] == '\n') ++lineNo;
-    begin = end + 1;
-  }
-  return 0;
-}
-
-// Assimp 5.2's MTL parser (Debian's 5.2.5) dies of SIGSEGV on two kinds of
-// file, both found by fuzz_mtl, so the files assimp opens for OBJ and MTL are
-// read through this filter, which refuses them (assimp then fails or goes on
-// without the file) and remembers why for the error message:
-//  * a NUL byte (tests/fuzz/corpus/mtl/assimp_segv_nul_bytes.mtl); no text
-//    format has one;
-//  * in an MTL file, a statement before the first newmtl: assimp has no
-//    current material yet (a null pointer), and an anisotropy statement `a` or
-//    a texture map (map_*, bump, disp, norm) writes through it
-//    (corpus/mtl/assimp_segv_statement_before_newmtl.mtl; upstream assimp
-//    added the checks after 5.2, pull request 5119 for `a`). Such a statement
-//    has no material to apply to in any reader.
-class TextFilesIOSystem : public Assimp::DefaultIOSystem {
- public:
-  Assimp::IOStream* Open(const char* file, const char* mode) override {
-    std::string ext = std::filesystem::path(file).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (ext == ".obj" || ext == ".mtl") {
-      std::ifstream in(file, std::ios::binary);
-      const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      if (bytes.find('\0') != std::string::npos) {
-        refusal = fmt::format("{} has a NUL byte (not a text file)", file);
-        return nullptr;
-      }
-      if (ext == ".mtl") {
-        if (const size_t line = statementBeforeFirstNewmtl(bytes)) {
-          refusal = fmt::format("{}:{}: a statement before the first newmtl (no material to apply it to)", file, line);
-          return nullptr;
-        }
-      }
-    }
-    return DefaultIOSystem::Open(file, mode);
-  }
-  std::string refusal;  // why the last file refused was refused, naming it
-};
-
-// Every term of a loaded material finite, the weights >= 0: a NaN, an infinity
-// (1e39 reads as one) or a negative Ks in a file would reach the shader as NaN
-// or negative light (found by tests/fuzz/fuzz_mtl).
-void checkMaterialTerms(const Material& m, const std::string& path) {
-  for (const auto& [term, c] : {std::pair{"diffuse colour (Kd)", m.diffuse}, std::pair{"emission (Ke)", m.emission}}) {
-    if (!allFinite(c)) {
-      throw InputError(fmt::format("{}: material '{}': {} ({}, {}, {}) is not finite", path, m.name, term, c.x, c.y, c.z));
-    }
-  }
-  for (const auto& [term, w] : {std::pair{"specular weight (Ks)", m.ks}, std::pair{"shininess (Ns)", m.shine},
-                                std::pair{"transmittance (1 - d)", m.transmittance}}) {
-    if (!(w >= 0.0f) || !std::isfinite(w)) {
-      throw InputError(fmt::format("{}: material '{}': {} {} must be finite and >= 0", path, m.name, term, w));
-    }
-  }
-}
-
-// A triangle's unit vertex normals from its mesh, each falling back to the
-// geometric normal (zero for a degenerate triangle) where the mesh has none or
-// the file's is zero or not finite.
-ShadingNormals shadingNormals(const Triangle& tri, const aiMesh* mesh, const aiFace& face) {
-  const glm::vec3 cross = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
-  const float area = glm::length(cross);
-  const glm::vec3 geometric = area > 0.0f && std::isfinite(area) ? cross / area : glm::vec3(0.0f);
-  std::array<glm::vec3, 3> n{geometric, geometric, geometric};
-  for (int k = 0; k < 3 && mesh->mNormals; ++k) {
-    const glm::vec3 file = toVec(mesh->mNormals[face.mIndices[k]]);
-    const float length = glm::length(file);
-    if (length > 0.0f && std::isfinite(length)) n[k] = file / length;
-  }
-  return {n[0], n[1], n[2]};
 }
 
 // glTF's metallic-roughness material in Whitted terms (docs/scenes.md, "glTF
@@ -243,8 +149,6 @@ Scene loadWithAssimp(const std::string& path, bool isGltf) {
   std::error_code sizeError;
   const uint64_t fileBytes = std::filesystem::file_size(path, sizeError);
   Assimp::Importer importer;
-  auto* files = new TextFilesIOSystem;  // owned by the importer
-  importer.SetIOHandler(files);
   // Keep vertices exactly as written (no joining, no normal generation): shared
   // vertices are already shared by index in the formats we read, and any
   // re-computation would risk moving them.
@@ -257,7 +161,6 @@ Scene loadWithAssimp(const std::string& path, bool isGltf) {
   } catch (const std::bad_alloc&) {
     throw InputError(fmt::format("{}: cannot read scene: it declares more data than fits in memory", path));
   }
-  if (!files->refusal.empty()) throw InputError(fmt::format("{}: cannot read scene: {}", path, files->refusal));
   if (!ai || !ai->mRootNode) {
     throw InputError(fmt::format("{}: cannot read scene: {}", path, importer.GetErrorString()));
   }
@@ -308,7 +211,15 @@ Scene loadWithAssimp(const std::string& path, bool isGltf) {
       }
       scene.triangles.push_back(tri);
       scene.materialOf.push_back(material);
-      if (withNormals) scene.normals.push_back(shadingNormals(tri, mesh, face));
+      if (withNormals) {
+        std::array<glm::vec3, 3> normals{};
+        std::array<const glm::vec3*, 3> file{};
+        for (int k = 0; k < 3 && mesh->mNormals; ++k) {
+          normals[k] = toVec(mesh->mNormals[face.mIndices[k]]);
+          file[k] = &normals[k];
+        }
+        scene.normals.push_back(shadingNormals(tri, file));
+      }
     }
   }
   if (scene.triangles.empty()) throw InputError(fmt::format("{}: scene has no triangles", path));
@@ -330,10 +241,12 @@ Scene loadScene(const std::string& nameOrPath) {
     throw InputError(fmt::format("unknown built-in scene '{}' (available: {}, builtin:cube, builtin:spd-tetra, builtin:spd-gears)", nameOrPath,
                                  kDefaultSceneName));
   }
-  // NFF by our own reader: assimp's drops Ks, T and the index of refraction.
+  // NFF by our own reader: assimp's drops Ks, T and the index of refraction;
+  // OBJ by our own: assimp's does not round numbers correctly (docs/scenes.md).
   std::string extension = std::filesystem::path(nameOrPath).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
   if (extension == ".nff") return loadNff(nameOrPath);
+  if (extension == ".obj") return loadObj(nameOrPath);
   // glTF through assimp plus our reader of what assimp drops (lights, camera, extensions).
   return loadWithAssimp(nameOrPath, extension == ".gltf" || extension == ".glb");
 }

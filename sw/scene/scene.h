@@ -70,8 +70,9 @@ struct Light {
 };
 
 // A triangle scene. Triangle ids ("prim") are indices into `triangles`; their
-// order is stable and documented in docs/scenes.md: meshes in the order assimp
-// lists them after pre-transforming, faces in file order within each mesh.
+// order is stable and documented in docs/scenes.md: an OBJ's faces in file
+// order; for the formats assimp reads, meshes in the order assimp lists them
+// after pre-transforming, faces in file order within each mesh.
 struct Scene {
   std::string name;  // file path, or "builtin:<name>"
   std::vector<Triangle> triangles;
@@ -84,6 +85,9 @@ struct Scene {
   // Empty, or one per triangle (a triangle without its own normals holds its
   // geometric normal three times).
   std::vector<ShadingNormals> normals;
+  // What the loader went on past, one line each naming the file (and line): an
+  // OBJ's missing MTL file, a material no MTL file defines. The CLI prints them.
+  std::vector<std::string> warnings;
 
   size_t size() const { return triangles.size(); }
   void computeBounds();
@@ -96,8 +100,9 @@ struct Scene {
 // Names accepted by loadScene() besides files.
 inline constexpr const char* kDefaultSceneName = "builtin:cornell";
 
-// Loads a file through assimp (OBJ/MTL, PLY, glTF 2.0, STL, ...) with node
-// transforms applied and polygons triangulated, or a built-in scene by name.
+// Loads an OBJ (with its MTL files) or NFF file by Lancer's own reader, another
+// file through assimp (PLY, glTF 2.0, STL, ...) with node transforms applied
+// and polygons triangulated, or a built-in scene by name.
 // Throws InputError naming the file on any failure, including a scene with no triangles.
 Scene loadScene(const std::string& nameOrPath);
 

@@ -140,7 +140,7 @@ TEST(Scene, NonFiniteOrNegativeMtlTermsAreErrors) {
       loadScene((dir / "lancer_bad_terms.obj").string());
       ADD_FAILURE() << "expected an error for " << terms;
     } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("lancer_bad_terms.obj: material 'm': " + std::string(needle)),
+      EXPECT_NE(std::string(e.what()).find("lancer_bad_terms.mtl:1: material 'm': " + std::string(needle)),
                 std::string::npos)
           << e.what();
     }
@@ -149,8 +149,9 @@ TEST(Scene, NonFiniteOrNegativeMtlTermsAreErrors) {
   std::filesystem::remove(dir / "lancer_bad_terms.obj");
 }
 
-// Found by tests/fuzz/fuzz_mtl: these 8 bytes as an MTL file crash assimp 5.2
-// (SIGSEGV in its MTL parser). OBJ and MTL files with a NUL byte are refused.
+// Found by tests/fuzz/fuzz_mtl: these 8 bytes as an MTL file crashed assimp 5.2
+// (SIGSEGV in its MTL parser), which read MTL files before Lancer's own reader.
+// OBJ and MTL files with a NUL byte are refused, naming the line.
 TEST(Scene, ObjOrMtlWithANulByteIsAnErrorNotACrash) {
   const auto dir = std::filesystem::temp_directory_path();
   std::ofstream(dir / "lancer_nul.obj") << "mtllib lancer_nul.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n";
@@ -159,18 +160,18 @@ TEST(Scene, ObjOrMtlWithANulByteIsAnErrorNotACrash) {
     loadScene((dir / "lancer_nul.obj").string());
     ADD_FAILURE() << "expected an error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("lancer_nul.mtl has a NUL byte"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("lancer_nul.mtl:1: a NUL byte"), std::string::npos) << e.what();
   }
   std::filesystem::remove(dir / "lancer_nul.mtl");
   std::filesystem::remove(dir / "lancer_nul.obj");
 }
 
 // Found by fuzz_mtl in a 15-minute run: a statement before the first newmtl
-// makes assimp 5.2 write through its null current material (SIGSEGV) when it
+// made assimp 5.2 write through its null current material (SIGSEGV) when it
 // is an anisotropy `a` (the 9 bytes of the fuzzer's file, line 2) or a texture
-// map. Such files are refused, naming the line; comments and blank lines
-// before newmtl (exporters write them), CRLF line ends and a byte-order mark
-// are fine.
+// map. Such a statement has no material to apply to in any reader: refused,
+// naming the line; comments and blank lines before newmtl (exporters write
+// them), CRLF line ends and a byte-order mark are fine.
 TEST(Scene, MtlStatementBeforeNewmtlIsAnErrorNotACrash) {
   const auto dir = std::filesystem::temp_directory_path();
   std::ofstream(dir / "lancer_pre.obj") << "mtllib lancer_pre.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n";
