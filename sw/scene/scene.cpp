@@ -24,7 +24,9 @@
 #include "scene/gltf.h"
 #include "scene/nff.h"
 #include "scene/obj.h"
+#include "scene/ply.h"
 #include "scene/spd.h"
+#include "scene/stl.h"
 #include "scene/surface.h"
 
 namespace lancer {
@@ -242,11 +244,14 @@ Scene loadScene(const std::string& nameOrPath) {
                                  kDefaultSceneName));
   }
   // NFF by our own reader: assimp's drops Ks, T and the index of refraction;
-  // OBJ by our own: assimp's does not round numbers correctly (docs/scenes.md).
+  // OBJ, PLY and STL by our own: assimp's do not round numbers correctly
+  // (docs/scenes.md).
   std::string extension = std::filesystem::path(nameOrPath).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
   if (extension == ".nff") return loadNff(nameOrPath);
   if (extension == ".obj") return loadObj(nameOrPath);
+  if (extension == ".ply") return loadPly(nameOrPath);
+  if (extension == ".stl") return loadStl(nameOrPath);
   // glTF through assimp plus our reader of what assimp drops (lights, camera, extensions).
   return loadWithAssimp(nameOrPath, extension == ".gltf" || extension == ".glb");
 }

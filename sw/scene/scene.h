@@ -70,9 +70,9 @@ struct Light {
 };
 
 // A triangle scene. Triangle ids ("prim") are indices into `triangles`; their
-// order is stable and documented in docs/scenes.md: an OBJ's faces in file
-// order; for the formats assimp reads, meshes in the order assimp lists them
-// after pre-transforming, faces in file order within each mesh.
+// order is stable and documented in docs/scenes.md: faces in file order (OBJ,
+// PLY, STL, NFF); for the formats assimp reads, meshes in the order assimp
+// lists them after pre-transforming, faces in file order within each mesh.
 struct Scene {
   std::string name;  // file path, or "builtin:<name>"
   std::vector<Triangle> triangles;
@@ -100,9 +100,9 @@ struct Scene {
 // Names accepted by loadScene() besides files.
 inline constexpr const char* kDefaultSceneName = "builtin:cornell";
 
-// Loads an OBJ (with its MTL files) or NFF file by Lancer's own reader, another
-// file through assimp (PLY, glTF 2.0, STL, ...) with node transforms applied
-// and polygons triangulated, or a built-in scene by name.
+// Loads an OBJ (with its MTL files), PLY, STL or NFF file by Lancer's own
+// reader, another file through assimp (glTF 2.0, ...) with node transforms
+// applied and polygons triangulated, or a built-in scene by name.
 // Throws InputError naming the file on any failure, including a scene with no triangles.
 Scene loadScene(const std::string& nameOrPath);
 
