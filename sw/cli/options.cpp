@@ -25,9 +25,7 @@ void addVec3(CLI::App& app, const std::string& name, std::vector<float>& into, c
 }  // namespace
 
 void SceneOptions::add(CLI::App& app) {
-  app.add_option("--scene", scene,
-                 "Scene file (OBJ, PLY, glTF 2.0, ... via assimp) or builtin:cornell")
-      ->capture_default_str();
+  app.add_option("--scene", scene, fmt::format("Scene file: {}", kSceneFormats))->capture_default_str();
   app.add_option("--subdivide", subdivide,
                  "Split every triangle into 4, this many times (large meshes for benchmarks)")
       ->check(CLI::Range(0, 6));
