@@ -25,9 +25,7 @@ void addVec3(CLI::App& app, const std::string& name, std::vector<float>& into, c
 }  // namespace
 
 void SceneOptions::add(CLI::App& app) {
-  app.add_option("--scene", scene,
-                 "Scene file (OBJ, PLY, glTF 2.0, ... via assimp) or builtin:cornell")
-      ->capture_default_str();
+  app.add_option("--scene", scene, fmt::format("Scene file: {}", kSceneFormats))->capture_default_str();
   app.add_option("--subdivide", subdivide,
                  "Split every triangle into 4, this many times (large meshes for benchmarks)")
       ->check(CLI::Range(0, 6));
@@ -35,6 +33,7 @@ void SceneOptions::add(CLI::App& app) {
 
 Scene SceneOptions::load() const {
   Scene loaded = loadScene(scene);
+  for (const std::string& warning : loaded.warnings) fmt::print(stderr, "warning: {}\n", warning);
   return subdivide ? lancer::subdivide(loaded, subdivide) : loaded;
 }
 

@@ -1,13 +1,23 @@
 #include "scene/gltf.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <new>
 #include <numbers>
+#include <optional>
 
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -15,6 +25,8 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
+#include "scene/surface.h"
+#include "scene/text.h"
 
 namespace lancer {
 
@@ -37,6 +49,24 @@ float toFloat(const Json& value) {
   if (std::abs(d) > double(std::numeric_limits<float>::max())) return d > 0 ? kInfinity : -kInfinity;
   return float(d);
 }
+
+// nlohmann reads a number to the double nearest to its text, and a double
+// cast to float rounds a second time: a decimal just off the midpoint of two
+// floats lands on the midpoint as a double, then on the even float, which can
+// be the wrong one. So the DOM is built by nlohmann's own DOM builder with
+// every such double replaced by the float the text rounds to
+// (scene/text.h), which toFloat then returns exactly. (json_sax_dom_parser is
+// in nlohmann's detail namespace; Debian 12 pins 3.11.2.)
+class CorrectlyRoundedDom : public nlohmann::detail::json_sax_dom_parser<Json> {
+ public:
+  using json_sax_dom_parser::json_sax_dom_parser;
+  // Hides the base's: sax_parse calls it on this type, not through a virtual.
+  bool number_float(double value, const std::string& text) {
+    const std::optional<float> nearest = parseFloat(text);
+    if (nearest && std::isfinite(*nearest) && float(value) != *nearest) value = double(*nearest);
+    return json_sax_dom_parser::number_float(value, text);
+  }
+};
 
 uint32_t readU32(const std::string& bytes, size_t at) {
   uint32_t value = 0;
@@ -75,6 +105,7 @@ class Reader {
     readMaterials();
     readLightDefinitions();
     readCameraDefinitions();
+    readMeshes();
     const Json& nodes = array(doc_, "nodes", kTopLevel);
     visited_.assign(nodes.size(), false);
     for (const size_t root : roots(nodes)) walk(nodes, root, glm::mat4(1.0f));
@@ -222,6 +253,16 @@ class Reader {
     }
   }
 
+  // ---- Meshes: how many primitives each has ----
+  void readMeshes() {
+    const Json& meshes = array(doc_, "meshes", kTopLevel);
+    for (size_t m = 0; m < meshes.size(); ++m) {
+      const std::string owner = fmt::format("mesh {}", m);
+      if (!meshes[m].is_object()) fail(owner, "must be an object");
+      out_.primitiveCounts.push_back(array(meshes[m], "primitives", owner).size());
+    }
+  }
+
   // ---- The node graph ----
   // The default scene's root nodes ("scene", else scene 0); a file without
   // scenes: every node no other node lists as a child.
@@ -294,6 +335,9 @@ class Reader {
         out_.lights.push_back(light);
       }
     }
+    if (node.contains("mesh")) {
+      out_.meshInstances.push_back({index(node, "mesh", out_.primitiveCounts.size(), owner, "meshes"), world, owner});
+    }
     if (node.contains("camera")) {
       const size_t c = index(node, "camera", cameraFov_.size(), owner, "cameras");
       if (cameraFov_[c] && !out_.view) {
@@ -325,17 +369,205 @@ class Reader {
   GltfExtras out_;
 };
 
+// ---- The scene: assimp's meshes at the JSON's nodes ------------------------------------
+
+glm::vec3 toVec(const aiVector3D& v) { return {v.x, v.y, v.z}; }
+
+// Caps the address space while assimp parses, so a file that declares absurd
+// counts (assimp's invalid/OutOfMemory.off claims trillions of vertices) fails
+// with bad_alloc instead of being killed by the kernel. Restored on scope exit.
+class AddressSpaceCap {
+ public:
+  explicit AddressSpaceCap(uint64_t fileBytes) {
+    if (getrlimit(RLIMIT_AS, &saved_) != 0) return;
+    long pages = 0, pageSize = sysconf(_SC_PAGESIZE);
+    if (std::ifstream statm("/proc/self/statm"); !(statm >> pages)) return;
+    // Generous: assimp's in-memory scene is a few hundred bytes per input byte at worst.
+    const uint64_t budget = std::max<uint64_t>(uint64_t(4) << 30, fileBytes * 256);
+    rlimit capped = saved_;
+    capped.rlim_cur = std::min<uint64_t>(saved_.rlim_cur, uint64_t(pages) * uint64_t(pageSize) + budget);
+    active_ = setrlimit(RLIMIT_AS, &capped) == 0;
+  }
+  ~AddressSpaceCap() {
+    if (active_) setrlimit(RLIMIT_AS, &saved_);
+  }
+
+ private:
+  rlimit saved_{};
+  bool active_ = false;
+};
+
+// glTF's metallic-roughness material in Whitted terms (docs/scenes.md, "glTF
+// 2.0"). Whitted tracing has only perfect mirrors and clear refraction, so
+// roughness takes away the mirror: with smoothness s = 1 - roughness and the
+// dielectric's normal-incidence Fresnel reflectance F0 = ((ior-1)/(ior+1))^2
+// (0.04 at glTF's default ior 1.5),
+//   ks = s * (metallic + (1 - metallic) * F0)      metals mirror their all, dielectrics F0
+//   T  = (1 - metallic) * transmission * (1 - F0)  what the surface does not reflect (metals never transmit)
+//   kd = max(0, 1 - ks - T)                        the rest is diffuse, in the base colour
+//   shine = 2 / alpha^2 - 2 with alpha = roughness^2 (the Phong exponent of the
+//           microfacet lobe of that width, Walter et al. 2007), at most kMaxShine
+// Factors outside [0, 1] are errors, as are a negative or non-finite emission
+// (factor times strength) and an ior <= 0 on a transmitting
+// material (on an opaque one it is unused and reads as 1.5). glTF's alpha is
+// coverage, not transmission, and is not read.
+// The core factors come through assimp, the extensions' from our JSON reader.
+void readGltfTerms(const aiMaterial& mat, const GltfExtras::MaterialExtras& extras, const std::string& path,
+                   Material& material) {
+  constexpr float kMaxShine = 10000.0f;
+  float metallic = 1.0f, roughness = 1.0f;  // glTF's defaults
+  mat.Get(AI_MATKEY_METALLIC_FACTOR, metallic);
+  mat.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness);
+  const float transmission = extras.transmission;
+  material.ior = extras.ior;
+  for (const auto& [what, value] : {std::pair{"metallic factor", metallic}, std::pair{"roughness factor", roughness},
+                                    std::pair{"transmission factor", transmission}}) {
+    if (!(value >= 0.0f && value <= 1.0f)) {
+      throw InputError(fmt::format("{}: material '{}': {} {} must be in [0, 1]", path, material.name, what, value));
+    }
+  }
+  if (!allFinite(material.emission) || glm::any(glm::lessThan(material.emission, glm::vec3(0.0f)))) {
+    throw InputError(fmt::format("{}: material '{}': emission ({}, {}, {}) must be finite and >= 0", path, material.name,
+                                 material.emission.r, material.emission.g, material.emission.b));
+  }
+  if (!(material.ior > 0.0f && std::isfinite(material.ior))) {
+    if (transmission > 0.0f) {
+      throw InputError(fmt::format("{}: material '{}': index of refraction {} must be > 0 on a transmitting material",
+                                   path, material.name, material.ior));
+    }
+    material.ior = 1.5f;
+  }
+  const float f0 = (material.ior - 1.0f) * (material.ior - 1.0f) / ((material.ior + 1.0f) * (material.ior + 1.0f));
+  material.ks = (1.0f - roughness) * (metallic + (1.0f - metallic) * f0);
+  material.transmittance = (1.0f - metallic) * transmission * (1.0f - f0);
+  material.kd = std::max(0.0f, 1.0f - material.ks - material.transmittance);
+  const float alpha = roughness * roughness;
+  material.shine = alpha > 0.0f ? std::min(kMaxShine, 2.0f / (alpha * alpha) - 2.0f) : kMaxShine;
+}
+
 }  // namespace
 
 GltfExtras readGltfExtras(const std::string& path) {
   Json doc;
   try {
-    doc = Json::parse(jsonText(path));
+    CorrectlyRoundedDom dom(doc);
+    Json::sax_parse(jsonText(path), &dom);
   } catch (const Json::parse_error& e) {
     throw InputError(fmt::format("{}: malformed glTF JSON: {}", path, e.what()));
   }
   if (!doc.is_object()) throw InputError(fmt::format("{}: malformed glTF: the JSON is not an object", path));
   return Reader(path, std::move(doc)).read();
+}
+
+Scene loadGltf(const std::string& path) {
+  // Read first, so that its errors name the light, camera, node or material
+  // rather than assimp's parse.
+  GltfExtras gltf = readGltfExtras(path);
+  std::error_code sizeError;
+  const uint64_t fileBytes = std::filesystem::file_size(path, sizeError);
+  Assimp::Importer importer;
+  // The meshes in their own frames, exactly as the buffers hold them (no
+  // joining, no generated normals; no aiProcess_PreTransformVertices: the
+  // nodes are placed below from the JSON).
+  const aiScene* ai = nullptr;
+  try {
+    AddressSpaceCap cap(sizeError ? 0 : fileBytes);
+    ai = importer.ReadFile(path, aiProcess_Triangulate);
+  } catch (const std::bad_alloc&) {
+    throw InputError(fmt::format("{}: cannot read scene: it declares more data than fits in memory", path));
+  }
+  if (!ai || !ai->mRootNode) {
+    throw InputError(fmt::format("{}: cannot read scene: {}", path, importer.GetErrorString()));
+  }
+  // assimp makes one aiMesh of each primitive, mesh after mesh.
+  std::vector<size_t> firstMesh;
+  size_t primitives = 0;
+  for (const size_t count : gltf.primitiveCounts) {
+    firstMesh.push_back(primitives);
+    primitives += count;
+  }
+  if (ai->mNumMeshes != primitives) {
+    throw InputError(fmt::format("{}: cannot read scene: assimp read {} meshes of the file's {} primitives", path,
+                                 ai->mNumMeshes, primitives));
+  }
+  Scene scene;
+  scene.name = path;
+  for (unsigned m = 0; m < ai->mNumMaterials; ++m) {
+    const aiMaterial* mat = ai->mMaterials[m];
+    Material material;
+    aiString name;
+    if (mat->Get(AI_MATKEY_NAME, name) == AI_SUCCESS) material.name = name.C_Str();
+    aiColor3D color;
+    if (mat->Get(AI_MATKEY_COLOR_DIFFUSE, color) == AI_SUCCESS) material.diffuse = {color.r, color.g, color.b};
+    if (mat->Get(AI_MATKEY_COLOR_EMISSIVE, color) == AI_SUCCESS) material.emission = {color.r, color.g, color.b};
+    // assimp lists the file's materials in order, then its own default.
+    const GltfExtras::MaterialExtras extras =
+        m < gltf.materials.size() ? gltf.materials[m] : GltfExtras::MaterialExtras{};
+    if (m < gltf.materials.size()) material.name = extras.name;
+    material.emission *= extras.emissiveStrength;
+    readGltfTerms(*mat, extras, path, material);
+    checkMaterialTerms(material, path);
+    scene.materials.push_back(material);
+  }
+  if (scene.materials.empty()) scene.materials.push_back(Material{"default"});
+  // A primitive of triangles, lines or points, and its triangles (points and
+  // lines are not traced).
+  const auto meshOf = [&](const GltfExtras::MeshInstance& instance, size_t p) -> const aiMesh* {
+    const aiMesh* mesh = ai->mMeshes[firstMesh[instance.mesh] + p];
+    return mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE ? mesh : nullptr;
+  };
+  // Vertex normals (NORMAL) become shading normals when any placed triangle
+  // mesh has them; a mesh without them, and a zero or non-finite normal, take
+  // the triangle's geometric normal.
+  bool withNormals = false;
+  for (const GltfExtras::MeshInstance& instance : gltf.meshInstances) {
+    for (size_t p = 0; p < gltf.primitiveCounts[instance.mesh]; ++p) {
+      const aiMesh* mesh = meshOf(instance, p);
+      withNormals |= mesh && mesh->mNormals;
+    }
+  }
+  // Triangle order: nodes in walk order, a mesh's primitives in order, faces in order.
+  for (const GltfExtras::MeshInstance& instance : gltf.meshInstances) {
+    // The identity leaves the buffer's floats as they are; any other transform
+    // is applied in float, so a scene scaled by a power of two (vertices and
+    // translations) is placed at exactly that multiple.
+    const bool identity = instance.world == glm::mat4(1.0f);
+    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(instance.world)));
+    const auto place = [&](const aiVector3D& v) {
+      return identity ? toVec(v) : glm::vec3(instance.world * glm::vec4(toVec(v), 1.0f));
+    };
+    for (size_t p = 0; p < gltf.primitiveCounts[instance.mesh]; ++p) {
+      const aiMesh* mesh = meshOf(instance, p);
+      if (!mesh) continue;
+      const uint32_t material = mesh->mMaterialIndex < scene.materials.size() ? mesh->mMaterialIndex : 0;
+      for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+        const aiFace& face = mesh->mFaces[f];
+        if (face.mNumIndices != 3) continue;  // a point or line among the triangles
+        const Triangle tri{place(mesh->mVertices[face.mIndices[0]]), place(mesh->mVertices[face.mIndices[1]]),
+                           place(mesh->mVertices[face.mIndices[2]])};
+        if (!allFinite(tri.v0) || !allFinite(tri.v1) || !allFinite(tri.v2)) {
+          throw InputError(fmt::format("{}: {}: mesh {} primitive {} face {} has a non-finite vertex", path,
+                                       instance.node, instance.mesh, p, f));
+        }
+        scene.triangles.push_back(tri);
+        scene.materialOf.push_back(material);
+        if (!withNormals) continue;
+        std::array<glm::vec3, 3> normals{};
+        std::array<const glm::vec3*, 3> file{};
+        for (int k = 0; k < 3 && mesh->mNormals; ++k) {
+          normals[k] = toVec(mesh->mNormals[face.mIndices[k]]);
+          if (!identity) normals[k] = normalMatrix * normals[k];
+          file[k] = &normals[k];
+        }
+        scene.normals.push_back(shadingNormals(tri, file));
+      }
+    }
+  }
+  if (scene.triangles.empty()) throw InputError(fmt::format("{}: scene has no triangles", path));
+  scene.lights = std::move(gltf.lights);
+  scene.view = gltf.view;
+  scene.computeBounds();
+  return scene;
 }
 
 }  // namespace lancer

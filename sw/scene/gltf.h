@@ -8,11 +8,21 @@
 
 namespace lancer {
 
+// Reads a glTF 2.0 file (.gltf, or a .glb container; docs/scenes.md, "glTF
+// 2.0"): assimp reads the meshes' buffers (binary floats, exact) and the core
+// material factors; Lancer reads the JSON itself for what assimp 5.2 drops or
+// mangles, and places every mesh at its node's world transform. The JSON's
+// numbers are read correctly rounded to float. Throws InputError naming the
+// file (readGltfExtras' errors, assimp's, a non-finite vertex, material terms
+// out of range, "scene has no triangles").
+Scene loadGltf(const std::string& path);
+
 // What Lancer reads from a glTF 2.0 file's JSON itself, because assimp 5.2
-// drops or mangles it (docs/scenes.md, "glTF 2.0"): the punctual lights with
-// their names and their nodes' world transforms, the scene's camera, and the
-// per-material factors assimp does not keep. assimp still reads the geometry
-// and the material factors it keeps (loadScene merges the two).
+// drops or mangles it: the punctual lights with their names and their nodes'
+// world transforms, the scene's camera, the per-material factors assimp does
+// not keep, and the nodes' transforms (assimp reads their numbers through
+// double, a second rounding, and takes a world transform within 0.01 of the
+// identity for the identity).
 struct GltfExtras {
   // KHR_lights_punctual: one Light per node that carries a light, in the
   // depth-first order of the default scene's nodes.
@@ -29,6 +39,17 @@ struct GltfExtras {
     float ior = 1.5f;               // KHR_materials_ior (glTF's default: 1.5)
   };
   std::vector<MaterialExtras> materials;
+  // The nodes that carry a mesh, in the same walk order, each with its world
+  // transform: Lancer places the meshes itself (loadGltf).
+  struct MeshInstance {
+    size_t mesh = 0;         // index into the file's meshes
+    glm::mat4 world{1.0f};   // its parents' transforms times its own, in float
+    std::string node;        // "node 3 'name'", for messages
+  };
+  std::vector<MeshInstance> meshInstances;
+  // Per mesh of the file, how many primitives it has (assimp makes one aiMesh
+  // of each, in order).
+  std::vector<size_t> primitiveCounts;
 };
 
 // Reads the JSON of a .gltf file, or the JSON chunk of a .glb container.

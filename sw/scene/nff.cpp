@@ -14,6 +14,8 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "scene/polygon.h"
+#include "scene/text.h"
 
 namespace lancer {
 
@@ -63,14 +65,12 @@ class Lines {
   bool pushedBack_ = false;
 };
 
+// Correctly rounded (scene/text.h); a number beyond float range is an error,
+// one below it reads as zero.
 float parseNumber(const Lines& lines, const std::string& token) {
-  float value = 0.0f;
-  const char* end = token.data() + token.size();
-  const auto [ptr, ec] = std::from_chars(token.data(), end, value);
-  if (ec != std::errc() || ptr != end || !std::isfinite(value)) {
-    lines.fail(fmt::format("expected a finite number, got '{}'", token));
-  }
-  return value;
+  const std::optional<float> value = parseFloat(token);
+  if (!value || !std::isfinite(*value)) lines.fail(fmt::format("expected a finite number, got '{}'", token));
+  return *value;
 }
 
 int parseCount(const Lines& lines, const std::string& token) {
@@ -157,73 +157,16 @@ class Builder {
   std::optional<uint32_t> current_;
 };
 
-// Ear clipping in the polygon's plane, projected along its dominant normal
-// axis (Newell's normal: robust for concave and nearly degenerate outlines).
-// A vertex is an ear when its corner turns the polygon's way and no other
-// remaining vertex lies in the corner's triangle (edges included); collinear
-// and repeated vertices are dropped without a triangle. Triangles keep the
-// polygon's winding. O(n^3) at worst, fine for the SPD's 144-vertex gears.
+// Ear clipping in the polygon's plane (scene/polygon.h); triangles keep the
+// polygon's winding, a "p" polygon's normals are its plane's.
 void Builder::polygon(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>* normals, int start) {
-  glm::dvec3 newell(0.0);
-  for (size_t i = 0; i < points.size(); ++i) {
-    const glm::dvec3 p(points[i]), q(points[(i + 1) % points.size()]);
-    newell += glm::dvec3((p.y - q.y) * (p.z + q.z), (p.z - q.z) * (p.x + q.x), (p.x - q.x) * (p.y + q.y));
+  const PolygonTriangles cut = triangulatePolygon(points);
+  if (cut.fault != PolygonFault::None) {
+    lines_.fail(fmt::format("polygon started at line {} {}", start, describe(cut.fault)));
   }
-  if (glm::length(newell) == 0.0) {
-    lines_.fail(fmt::format("polygon started at line {} has no area (its vertices on a line, or its halves cancel)", start));
-  }
-  const glm::dvec3 a = glm::abs(newell);
-  const int drop = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
-  const int ux = (drop + 1) % 3, uy = (drop + 2) % 3;
-  // In the (ux, uy) plane the polygon turns positive iff newell[drop] > 0.
-  const double orientation = newell[drop] > 0 ? 1.0 : -1.0;
-  const auto at = [&](size_t i) { return glm::dvec2(points[i][ux], points[i][uy]); };
-  const auto cross = [](glm::dvec2 o, glm::dvec2 p, glm::dvec2 q) {
-    return (p.x - o.x) * (q.y - o.y) - (p.y - o.y) * (q.x - o.x);
-  };
-  const glm::vec3 flat = glm::vec3(glm::normalize(newell));
-  const auto normalOf = [&](size_t i) { return normals ? (*normals)[i] : flat; };
-
-  std::vector<size_t> ring(points.size());
-  for (size_t i = 0; i < ring.size(); ++i) ring[i] = i;
-  size_t stall = 0, i = 0;
-  while (ring.size() > 3) {
-    const size_t n = ring.size();
-    const size_t ip = ring[(i + n - 1) % n], ic = ring[i % n], in = ring[(i + 1) % n];
-    const double turn = orientation * cross(at(ip), at(ic), at(in));
-    bool ear = false;
-    if (turn == 0.0) {
-      // Collinear or repeated: the vertex adds no area.
-      ring.erase(ring.begin() + long(i % n));
-      stall = 0;
-      continue;
-    }
-    if (turn > 0.0) {
-      ear = true;
-      for (size_t k = 0; k < n && ear; ++k) {
-        const size_t j = ring[k];
-        if (j == ip || j == ic || j == in || points[j] == points[ip] || points[j] == points[ic] ||
-            points[j] == points[in]) {
-          continue;
-        }
-        const glm::dvec2 p = at(j);
-        ear = !(orientation * cross(at(ip), at(ic), p) >= 0 && orientation * cross(at(ic), at(in), p) >= 0 &&
-                orientation * cross(at(in), at(ip), p) >= 0);
-      }
-    }
-    if (ear) {
-      triangle(points[ip], points[ic], points[in], {normalOf(ip), normalOf(ic), normalOf(in)});
-      ring.erase(ring.begin() + long(i % n));
-      stall = 0;
-      continue;
-    }
-    ++i;
-    if (++stall > n) {
-      lines_.fail(fmt::format("polygon started at line {} cannot be triangulated (it crosses itself)", start));
-    }
-  }
-  if (ring.size() == 3 && cross(at(ring[0]), at(ring[1]), at(ring[2])) != 0.0) {
-    triangle(points[ring[0]], points[ring[1]], points[ring[2]], {normalOf(ring[0]), normalOf(ring[1]), normalOf(ring[2])});
+  const auto normalOf = [&](uint32_t i) { return normals ? (*normals)[i] : cut.normal; };
+  for (const auto& [a, b, c] : cut.triangles) {
+    triangle(points[a], points[b], points[c], {normalOf(a), normalOf(b), normalOf(c)});
   }
 }
 

@@ -1,33 +1,24 @@
 #include "scene/scene.h"
 
+#include <algorithm>
 #include <array>
-#include <cctype>
-#include <iterator>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
-#include <new>
-#include <string_view>
-#include <tuple>
 #include <map>
+#include <tuple>
 #include <utility>
 
-#include <sys/resource.h>
-#include <unistd.h>
-
-#include <algorithm>
-
-#include <assimp/DefaultIOSystem.h>
-#include <assimp/Importer.hpp>
-#include <assimp/IOStream.hpp>
-#include <assimp/ObjMaterial.h>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 #include <fmt/format.h>
 
 #include "common/error.h"
 #include "scene/gltf.h"
 #include "scene/nff.h"
+#include "scene/obj.h"
+#include "scene/ply.h"
 #include "scene/spd.h"
+#include "scene/stl.h"
+#include "scene/text.h"
 
 namespace lancer {
 
@@ -44,284 +35,6 @@ std::vector<uint32_t> Scene::emissiveTriangles() const {
   return out;
 }
 
-namespace {
-
-glm::vec3 toVec(const aiVector3D& v) { return {v.x, v.y, v.z}; }
-
-// Caps the address space while assimp parses, so a file that declares absurd
-// counts (assimp's invalid/OutOfMemory.off claims trillions of vertices) fails
-// with bad_alloc instead of being killed by the kernel. Restored on scope exit.
-class AddressSpaceCap {
- public:
-  explicit AddressSpaceCap(uint64_t fileBytes) {
-    if (getrlimit(RLIMIT_AS, &saved_) != 0) return;
-    long pages = 0, pageSize = sysconf(_SC_PAGESIZE);
-    if (std::ifstream statm("/proc/self/statm"); !(statm >> pages)) return;
-    // Generous: assimp's in-memory scene is a few hundred bytes per input byte at worst.
-    const uint64_t budget = std::max<uint64_t>(uint64_t(4) << 30, fileBytes * 256);
-    rlimit capped = saved_;
-    capped.rlim_cur = std::min<uint64_t>(saved_.rlim_cur, uint64_t(pages) * uint64_t(pageSize) + budget);
-    active_ = setrlimit(RLIMIT_AS, &capped) == 0;
-  }
-  ~AddressSpaceCap() {
-    if (active_) setrlimit(RLIMIT_AS, &saved_);
-  }
-
- private:
-  rlimit saved_{};
-  bool active_ = false;
-};
-
-// The Whitted terms of an MTL material (and of any format assimp maps the same
-// way). MTL's illum decides what is traced: illum >= 3 reflects, with Ks's
-// largest component as the weight (illum 2's highlight-only Ks has no mirror);
-// a dissolve d < 1 transmits T = 1 - d; Ni is the index of refraction and Ns
-// the highlight's exponent. Ni <= 0 on a transmitting material is an error;
-// on an opaque one it is unused (exporters write Ni 0 there) and becomes 1.
-void readWhittedTerms(const aiMaterial& mat, const std::string& path, Material& material) {
-  int illum = 2;
-  mat.Get(AI_MATKEY_OBJ_ILLUM, illum);
-  aiColor3D specular(0.0f, 0.0f, 0.0f);
-  mat.Get(AI_MATKEY_COLOR_SPECULAR, specular);
-  if (illum >= 3) material.ks = std::max({specular.r, specular.g, specular.b});
-  float value = 0.0f;
-  if (mat.Get(AI_MATKEY_SHININESS, value) == AI_SUCCESS) material.shine = std::max(value, 0.0f);
-  if (mat.Get(AI_MATKEY_OPACITY, value) == AI_SUCCESS) material.transmittance = std::clamp(1.0f - value, 0.0f, 1.0f);
-  if (mat.Get(AI_MATKEY_REFRACTI, value) == AI_SUCCESS) material.ior = value;
-  if (material.ior <= 0.0f || !std::isfinite(material.ior)) {
-    if (material.transmittance > 0.0f) {
-      throw InputError(fmt::format("{}: material '{}': index of refraction {} must be > 0 on a transmitting material",
-                                   path, material.name, material.ior));
-    }
-    material.ior = 1.0f;
-  }
-}
-
-// The line (from 1) of an MTL file's first statement before its first
-// newmtl, or 0 if there is none. Blank lines and comments are not statements;
-// lines end where assimp's parser ends them (\n, \r, \f); a UTF-8 byte-order
-// mark, which assimp drops, is skipped.
-size_t statementBeforeFirstNewmtl(std::string_view text) {
-  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
-  size_t lineNo = 1;
-  for (size_t begin = 0; begin <= text.size();) {
-    const size_t end = std::min(text.find_first_of("\n\r\f", begin), text.size());
-    std::string_view line = text.substr(begin, end - begin);
-    line.remove_prefix(std::min(line.find_first_not_of(" \t"), line.size()));
-    if (line.starts_with("newmtl")) return 0;
-    if (!line.empty() && line[0] != '#') return lineNo;
-    if (end < text.size() && text[end] == '\n') ++lineNo;
-    begin = end + 1;
-  }
-  return 0;
-}
-
-// Assimp 5.2's MTL parser (Debian's 5.2.5) dies of SIGSEGV on two kinds of
-// file, both found by fuzz_mtl, so the files assimp opens for OBJ and MTL are
-// read through this filter, which refuses them (assimp then fails or goes on
-// without the file) and remembers why for the error message:
-//  * a NUL byte (tests/fuzz/corpus/mtl/assimp_segv_nul_bytes.mtl); no text
-//    format has one;
-//  * in an MTL file, a statement before the first newmtl: assimp has no
-//    current material yet (a null pointer), and an anisotropy statement `a` or
-//    a texture map (map_*, bump, disp, norm) writes through it
-//    (corpus/mtl/assimp_segv_statement_before_newmtl.mtl; upstream assimp
-//    added the checks after 5.2, pull request 5119 for `a`). Such a statement
-//    has no material to apply to in any reader.
-class TextFilesIOSystem : public Assimp::DefaultIOSystem {
- public:
-  Assimp::IOStream* Open(const char* file, const char* mode) override {
-    std::string ext = std::filesystem::path(file).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (ext == ".obj" || ext == ".mtl") {
-      std::ifstream in(file, std::ios::binary);
-      const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      if (bytes.find('\0') != std::string::npos) {
-        refusal = fmt::format("{} has a NUL byte (not a text file)", file);
-        return nullptr;
-      }
-      if (ext == ".mtl") {
-        if (const size_t line = statementBeforeFirstNewmtl(bytes)) {
-          refusal = fmt::format("{}:{}: a statement before the first newmtl (no material to apply it to)", file, line);
-          return nullptr;
-        }
-      }
-    }
-    return DefaultIOSystem::Open(file, mode);
-  }
-  std::string refusal;  // why the last file refused was refused, naming it
-};
-
-// Every term of a loaded material finite, the weights >= 0: a NaN, an infinity
-// (1e39 reads as one) or a negative Ks in a file would reach the shader as NaN
-// or negative light (found by tests/fuzz/fuzz_mtl).
-void checkMaterialTerms(const Material& m, const std::string& path) {
-  for (const auto& [term, c] : {std::pair{"diffuse colour (Kd)", m.diffuse}, std::pair{"emission (Ke)", m.emission}}) {
-    if (!allFinite(c)) {
-      throw InputError(fmt::format("{}: material '{}': {} ({}, {}, {}) is not finite", path, m.name, term, c.x, c.y, c.z));
-    }
-  }
-  for (const auto& [term, w] : {std::pair{"specular weight (Ks)", m.ks}, std::pair{"shininess (Ns)", m.shine},
-                                std::pair{"transmittance (1 - d)", m.transmittance}}) {
-    if (!(w >= 0.0f) || !std::isfinite(w)) {
-      throw InputError(fmt::format("{}: material '{}': {} {} must be finite and >= 0", path, m.name, term, w));
-    }
-  }
-}
-
-// A triangle's unit vertex normals from its mesh, each falling back to the
-// geometric normal (zero for a degenerate triangle) where the mesh has none or
-// the file's is zero or not finite.
-ShadingNormals shadingNormals(const Triangle& tri, const aiMesh* mesh, const aiFace& face) {
-  const glm::vec3 cross = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
-  const float area = glm::length(cross);
-  const glm::vec3 geometric = area > 0.0f && std::isfinite(area) ? cross / area : glm::vec3(0.0f);
-  std::array<glm::vec3, 3> n{geometric, geometric, geometric};
-  for (int k = 0; k < 3 && mesh->mNormals; ++k) {
-    const glm::vec3 file = toVec(mesh->mNormals[face.mIndices[k]]);
-    const float length = glm::length(file);
-    if (length > 0.0f && std::isfinite(length)) n[k] = file / length;
-  }
-  return {n[0], n[1], n[2]};
-}
-
-// glTF's metallic-roughness material in Whitted terms (docs/scenes.md, "glTF
-// 2.0"). Whitted tracing has only perfect mirrors and clear refraction, so
-// roughness takes away the mirror: with smoothness s = 1 - roughness and the
-// dielectric's normal-incidence Fresnel reflectance F0 = ((ior-1)/(ior+1))^2
-// (0.04 at glTF's default ior 1.5),
-//   ks = s * (metallic + (1 - metallic) * F0)      metals mirror their all, dielectrics F0
-//   T  = (1 - metallic) * transmission * (1 - F0)  what the surface does not reflect (metals never transmit)
-//   kd = max(0, 1 - ks - T)                        the rest is diffuse, in the base colour
-//   shine = 2 / alpha^2 - 2 with alpha = roughness^2 (the Phong exponent of the
-//           microfacet lobe of that width, Walter et al. 2007), at most kMaxShine
-// Factors outside [0, 1] are errors, as are a negative or non-finite emission
-// (factor times strength) and an ior <= 0 on a transmitting
-// material (on an opaque one it is unused and reads as 1.5). glTF's alpha is
-// coverage, not transmission, and is not read.
-// The core factors come through assimp, the extensions' from our JSON reader.
-void readGltfTerms(const aiMaterial& mat, const GltfExtras::MaterialExtras& extras, const std::string& path,
-                   Material& material) {
-  constexpr float kMaxShine = 10000.0f;
-  float metallic = 1.0f, roughness = 1.0f;  // glTF's defaults
-  mat.Get(AI_MATKEY_METALLIC_FACTOR, metallic);
-  mat.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness);
-  const float transmission = extras.transmission;
-  material.ior = extras.ior;
-  for (const auto& [what, value] : {std::pair{"metallic factor", metallic}, std::pair{"roughness factor", roughness},
-                                    std::pair{"transmission factor", transmission}}) {
-    if (!(value >= 0.0f && value <= 1.0f)) {
-      throw InputError(fmt::format("{}: material '{}': {} {} must be in [0, 1]", path, material.name, what, value));
-    }
-  }
-  if (!allFinite(material.emission) || glm::any(glm::lessThan(material.emission, glm::vec3(0.0f)))) {
-    throw InputError(fmt::format("{}: material '{}': emission ({}, {}, {}) must be finite and >= 0", path, material.name,
-                                 material.emission.r, material.emission.g, material.emission.b));
-  }
-  if (!(material.ior > 0.0f && std::isfinite(material.ior))) {
-    if (transmission > 0.0f) {
-      throw InputError(fmt::format("{}: material '{}': index of refraction {} must be > 0 on a transmitting material",
-                                   path, material.name, material.ior));
-    }
-    material.ior = 1.5f;
-  }
-  const float f0 = (material.ior - 1.0f) * (material.ior - 1.0f) / ((material.ior + 1.0f) * (material.ior + 1.0f));
-  material.ks = (1.0f - roughness) * (metallic + (1.0f - metallic) * f0);
-  material.transmittance = (1.0f - metallic) * transmission * (1.0f - f0);
-  material.kd = std::max(0.0f, 1.0f - material.ks - material.transmittance);
-  const float alpha = roughness * roughness;
-  material.shine = alpha > 0.0f ? std::min(kMaxShine, 2.0f / (alpha * alpha) - 2.0f) : kMaxShine;
-}
-
-Scene loadWithAssimp(const std::string& path, bool isGltf) {
-  if (!std::ifstream(path)) throw InputError(fmt::format("{}: cannot open file", path));
-  // glTF: what assimp drops or mangles (lights' names, the camera, emissive
-  // strength) comes from the JSON, read first so its errors name the light,
-  // camera or material rather than assimp's parse.
-  std::optional<GltfExtras> gltf;
-  if (isGltf) gltf = readGltfExtras(path);
-  std::error_code sizeError;
-  const uint64_t fileBytes = std::filesystem::file_size(path, sizeError);
-  Assimp::Importer importer;
-  auto* files = new TextFilesIOSystem;  // owned by the importer
-  importer.SetIOHandler(files);
-  // Keep vertices exactly as written (no joining, no normal generation): shared
-  // vertices are already shared by index in the formats we read, and any
-  // re-computation would risk moving them.
-  const unsigned flags = aiProcess_Triangulate | aiProcess_PreTransformVertices |
-                         aiProcess_SortByPType;
-  const aiScene* ai = nullptr;
-  try {
-    AddressSpaceCap cap(sizeError ? 0 : fileBytes);
-    ai = importer.ReadFile(path, flags);
-  } catch (const std::bad_alloc&) {
-    throw InputError(fmt::format("{}: cannot read scene: it declares more data than fits in memory", path));
-  }
-  if (!files->refusal.empty()) throw InputError(fmt::format("{}: cannot read scene: {}", path, files->refusal));
-  if (!ai || !ai->mRootNode) {
-    throw InputError(fmt::format("{}: cannot read scene: {}", path, importer.GetErrorString()));
-  }
-  Scene scene;
-  scene.name = path;
-  for (unsigned m = 0; m < ai->mNumMaterials; ++m) {
-    const aiMaterial* mat = ai->mMaterials[m];
-    Material material;
-    aiString name;
-    if (mat->Get(AI_MATKEY_NAME, name) == AI_SUCCESS) material.name = name.C_Str();
-    aiColor3D color;
-    if (mat->Get(AI_MATKEY_COLOR_DIFFUSE, color) == AI_SUCCESS) material.diffuse = {color.r, color.g, color.b};
-    if (mat->Get(AI_MATKEY_COLOR_EMISSIVE, color) == AI_SUCCESS) material.emission = {color.r, color.g, color.b};
-    if (gltf) {
-      // assimp lists the file's materials in order, then its own default.
-      const GltfExtras::MaterialExtras extras = m < gltf->materials.size() ? gltf->materials[m] : GltfExtras::MaterialExtras{};
-      if (m < gltf->materials.size()) material.name = extras.name;
-      material.emission *= extras.emissiveStrength;
-      readGltfTerms(*mat, extras, path, material);
-    } else {
-      readWhittedTerms(*mat, path, material);
-    }
-    checkMaterialTerms(material, path);
-    scene.materials.push_back(material);
-  }
-  if (scene.materials.empty()) scene.materials.push_back(Material{"default"});
-  // Vertex normals (OBJ vn, glTF NORMAL, ...) become shading normals when any
-  // triangle mesh has them; a mesh without them, and a zero or non-finite
-  // normal, take the triangle's geometric normal.
-  bool withNormals = false;
-  for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
-    withNormals |= (ai->mMeshes[m]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) && ai->mMeshes[m]->mNormals;
-  }
-  // Triangle order: meshes in aiScene order, faces in order within a mesh.
-  for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
-    const aiMesh* mesh = ai->mMeshes[m];
-    if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
-    const uint32_t material = mesh->mMaterialIndex < scene.materials.size() ? mesh->mMaterialIndex : 0;
-    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-      const aiFace& face = mesh->mFaces[f];
-      if (face.mNumIndices != 3) continue;  // points and lines left by SortByPType
-      Triangle tri{toVec(mesh->mVertices[face.mIndices[0]]), toVec(mesh->mVertices[face.mIndices[1]]),
-                   toVec(mesh->mVertices[face.mIndices[2]])};
-      for (const glm::vec3& v : {tri.v0, tri.v1, tri.v2}) {
-        if (!allFinite(v)) {
-          throw InputError(fmt::format("{}: mesh {} face {} has a non-finite vertex", path, m, f));
-        }
-      }
-      scene.triangles.push_back(tri);
-      scene.materialOf.push_back(material);
-      if (withNormals) scene.normals.push_back(shadingNormals(tri, mesh, face));
-    }
-  }
-  if (scene.triangles.empty()) throw InputError(fmt::format("{}: scene has no triangles", path));
-  if (gltf) {
-    scene.lights = std::move(gltf->lights);
-    scene.view = gltf->view;
-  }
-  scene.computeBounds();
-  return scene;
-}
-
-}  // namespace
-
 Scene loadScene(const std::string& nameOrPath) {
   if (nameOrPath == kDefaultSceneName || nameOrPath == "cornell") return makeCornellBox();
   if (nameOrPath == "builtin:cube") return makeCube();
@@ -330,12 +43,17 @@ Scene loadScene(const std::string& nameOrPath) {
     throw InputError(fmt::format("unknown built-in scene '{}' (available: {}, builtin:cube, builtin:spd-tetra, builtin:spd-gears)", nameOrPath,
                                  kDefaultSceneName));
   }
-  // NFF by our own reader: assimp's drops Ks, T and the index of refraction.
-  std::string extension = std::filesystem::path(nameOrPath).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  // Every format by a reader of Lancer's own, whose numbers are correctly
+  // rounded (docs/scenes.md, "Numbers"); glTF's binary buffers through assimp.
+  const std::string extension = lowercase(std::filesystem::path(nameOrPath).extension().string());
+  if (extension == ".obj") return loadObj(nameOrPath);
+  if (extension == ".ply") return loadPly(nameOrPath);
+  if (extension == ".stl") return loadStl(nameOrPath);
   if (extension == ".nff") return loadNff(nameOrPath);
-  // glTF through assimp plus our reader of what assimp drops (lights, camera, extensions).
-  return loadWithAssimp(nameOrPath, extension == ".gltf" || extension == ".glb");
+  if (extension == ".gltf" || extension == ".glb") return loadGltf(nameOrPath);
+  throw InputError(fmt::format("{}: {} is not a scene format Lancer reads: {} (convert the scene to one of them)",
+                               nameOrPath, extension.empty() ? "a file without an extension" : "'" + extension + "'",
+                               kSceneFormats));
 }
 
 Scene makeIcosphere(int levels) {

@@ -70,8 +70,9 @@ struct Light {
 };
 
 // A triangle scene. Triangle ids ("prim") are indices into `triangles`; their
-// order is stable and documented in docs/scenes.md: meshes in the order assimp
-// lists them after pre-transforming, faces in file order within each mesh.
+// order is stable and documented in docs/scenes.md: faces in file order (OBJ,
+// PLY, STL, NFF), a polygon's triangles in its ear-clipping order; glTF's
+// meshes in the order of their nodes.
 struct Scene {
   std::string name;  // file path, or "builtin:<name>"
   std::vector<Triangle> triangles;
@@ -84,6 +85,9 @@ struct Scene {
   // Empty, or one per triangle (a triangle without its own normals holds its
   // geometric normal three times).
   std::vector<ShadingNormals> normals;
+  // What the loader went on past, one line each naming the file (and line): an
+  // OBJ's missing MTL file, a material no MTL file defines. The CLI prints them.
+  std::vector<std::string> warnings;
 
   size_t size() const { return triangles.size(); }
   void computeBounds();
@@ -95,10 +99,16 @@ struct Scene {
 
 // Names accepted by loadScene() besides files.
 inline constexpr const char* kDefaultSceneName = "builtin:cornell";
+// What loadScene() reads, for messages and help.
+inline constexpr const char* kSceneFormats =
+    "OBJ (.obj, with its .mtl), PLY (.ply), STL (.stl), glTF 2.0 (.gltf, .glb), NFF (.nff), or builtin:cornell, "
+    "builtin:cube, builtin:spd-tetra, builtin:spd-gears";
 
-// Loads a file through assimp (OBJ/MTL, PLY, glTF 2.0, STL, ...) with node
-// transforms applied and polygons triangulated, or a built-in scene by name.
-// Throws InputError naming the file on any failure, including a scene with no triangles.
+// Loads a scene file by its extension (kSceneFormats; docs/scenes.md), each
+// format by Lancer's own reader with correctly rounded numbers, polygons
+// triangulated and glTF's nodes placed, or a built-in scene by name. Throws
+// InputError naming the file (and line) on any failure, including an
+// extension it does not read and a scene with no triangles.
 Scene loadScene(const std::string& nameOrPath);
 
 // The embedded Cornell box: closed walls, a glass block, a mirror block, an area

@@ -1,7 +1,8 @@
 #pragma once
 
-// Properties every scene a loader accepts must have (fuzz_nff, fuzz_mtl): the
-// tracers, the camera and the quantizer rely on them without checking.
+// Properties every scene a loader accepts must have (fuzz_nff, fuzz_obj,
+// fuzz_ply; fuzz_mtl checks its materials): the tracers, the camera and the
+// quantizer rely on them without checking.
 
 #include <cmath>
 
