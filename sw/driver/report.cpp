@@ -96,7 +96,9 @@ Tolerance latticeTolerance(const QuantizedRay& ray, const Quantizer& quantizer, 
   const double halfDiagonal = std::sqrt(3.0) / 2.0;
   const double units = 2 * halfDiagonal + r * std::sqrt(2.0) / double((int64_t(1) << fx::kDirBits) - 2);
   const double edge = units * quantizer.unit();
-  return {edge, edge / glm::length(glm::dvec3(sceneRay.dir)), 0.0};
+  // The answer's t comes back as a float: from far away (t large against the
+  // lattice) its last bit outweighs the lattice's error.
+  return {edge, edge / glm::length(glm::dvec3(sceneRay.dir)), kHitTRounding};
 }
 
 nlohmann::json toJson(const ReferenceComparison& cmp) {

@@ -54,7 +54,10 @@ struct ReferenceComparison {
 // (docs/number-formats.md, "What the rounding costs"): its ray lies within
 // sqrt(3)/2 + r sqrt(2) / (2^D - 2) lattice units of the true one at distance r
 // from its origin, and each vertex within sqrt(3)/2; r is taken as the
-// farthest vertex, so the bound is conservative.
+// farthest vertex, so the bound is conservative. The t reported is a float,
+// so t may also be off by its rounding (kHitTRounding, relative).
+// The relative rounding of a hit's t reported as a float (Hit::t): one ulp.
+inline constexpr double kHitTRounding = 0x1p-23;
 Tolerance latticeTolerance(const QuantizedRay& ray, const Quantizer& quantizer, const Ray& sceneRay,
                            const Triangle& tri);
 

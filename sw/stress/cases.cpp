@@ -4,6 +4,9 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <map>
+#include <string>
+#include <tuple>
 #include <random>
 #include <utility>
 
@@ -13,6 +16,7 @@
 #include "common/error.h"
 #include "driver/quantize.h"
 #include "golden/formats.h"
+#include "scene/obj.h"
 #include "sweep/cracks.h"
 
 namespace lancer::stress {
@@ -363,12 +367,71 @@ StressCase tinyComponents(size_t rays, uint64_t seed) {
   return c;
 }
 
+// ---- obj-text -------------------------------------------------------------------
+
+// The OBJ text of a mesh whose vertices are `vertices` times 2^exponent, each
+// written with 17 significant digits: the double, not a float.
+std::string objText(const std::vector<glm::dvec3>& vertices, const std::vector<std::array<uint32_t, 3>>& faces,
+                    int exponent) {
+  std::string text = "# lancer stress case obj-text\n";
+  for (const glm::dvec3& v : vertices) {
+    text += fmt::format("v {:.17g} {:.17g} {:.17g}\n", std::ldexp(v.x, exponent), std::ldexp(v.y, exponent),
+                        std::ldexp(v.z, exponent));
+  }
+  for (const auto& f : faces) text += fmt::format("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
+  return text;
+}
+
+StressCase objTextCase(size_t rays, uint64_t seed) {
+  StressCase c = named("obj-text", "a closed mesh read from OBJ text of full-precision decimals, scaled as text; "
+                                   "rays from 1000x its size away, directions of any length");
+  Draw draw(seed);
+  // An icosphere with its vertices moved off the floats, in double: each
+  // coordinate a decimal that no float is.
+  const Scene sphere = makeIcosphere(2);
+  std::vector<glm::dvec3> vertices;
+  std::map<std::tuple<float, float, float>, uint32_t> index;
+  std::vector<std::array<uint32_t, 3>> faces;
+  for (const Triangle& t : sphere.triangles) {
+    std::array<uint32_t, 3> f{};
+    int k = 0;
+    for (const glm::vec3& v : {t.v0, t.v1, t.v2}) {
+      const auto [it, fresh] = index.try_emplace({v.x, v.y, v.z}, uint32_t(vertices.size()));
+      if (fresh) {
+        const double jitter = 1.0 + 1e-3 * double(draw.uniform(-1.0f, 1.0f));
+        vertices.push_back(glm::dvec3(v) * (3.1377567211166024 * jitter));
+      }
+      f[size_t(k++)] = it->second;
+    }
+    faces.push_back(f);
+  }
+  c.readScaled = [vertices, faces](int exponent) {
+    Scene s = readObj(objText(vertices, faces, exponent), fmt::format("stress:obj-text 2^{}", exponent), ".");
+    s.name = "stress:obj-text";
+    return s;
+  };
+  c.scene = c.readScaled(0);
+  // From 1000 times the mesh's size away, aimed within about 30 degrees of the
+  // inward normal at a vertex or inside a face: every ray crosses the closed mesh.
+  const float size = glm::length(c.scene.bounds.diagonal());
+  while (c.rays.size() < rays) {
+    const Triangle& t = draw.pick(c.scene.triangles);
+    const glm::vec3 target = draw.coin() ? t.v0 : draw.inside(t);
+    const glm::vec3 outward = glm::normalize(target) + 0.5f * draw.unit();
+    const glm::vec3 from = target + 1000.0f * size * glm::normalize(outward);
+    const float length = float(draw.logUniform(1e-3, 1e3));
+    c.rays.push_back({from, length * glm::normalize(target - from), kInfinity});
+  }
+  c.mustHit = c.rays.size();
+  return c;
+}
+
 using Maker = std::function<StressCase(size_t, uint64_t)>;
 const std::vector<std::pair<std::string, Maker>>& makers() {
   static const std::vector<std::pair<std::string, Maker>> all = {
       {"closed-mesh", closedMesh},   {"closed-box", closedBox},   {"axis-planes", axisPlanes}, {"grazing", grazing},
       {"degenerate", degenerate},    {"coincident", coincident},  {"origin-on-surface", originOnSurface},
-      {"tiny-components", tinyComponents}};
+      {"obj-text", objTextCase},     {"tiny-components", tinyComponents}};
   return all;
 }
 

@@ -23,11 +23,17 @@
 //                      order) and overlapping coplanar ones: the tie rule
 //   origin-on-surface  rays starting on a triangle (at a vertex, inside), away
 //                      from it, into it and along it
+//   obj-text           a closed mesh read from OBJ text written with full-precision
+//                      decimals (the nearest floats are not what is written);
+//                      a power-of-two placement reads the text scaled by 2^k, so
+//                      its bit-identical answers prove the reader rounds correctly;
+//                      rays from far off with directions of any length
 //   tiny-components    directions with components of 1e-7 .. 1e-45 (subnormal),
 //                      +0 and -0 beside 1
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -46,6 +52,10 @@ struct StressCase {
   // tracer hits every one, and a miss is a crack.
   size_t mustHit = 0;
   AccelOptions accel;       // the structures the rays are built against (e.g. a 16^3 grid)
+  // A scene read from text: the scene as the text scaled by 2^k reads (the
+  // reader's rounding is then under test, not float scaling). Empty: scaling
+  // multiplies the floats.
+  std::function<Scene(int exponent)> readScaled;
   uint64_t latticeRejected = 0;  // lattice-exact rays the quantizer did not reproduce (dropped)
 };
 

@@ -32,7 +32,7 @@ for w in widths:
     if variants != {"base", "scale 2^-60", "scale 2^60", "translate 1000x", "stretch 10000:1"}:
         fail(f"placements {variants}")
     if not two_widths:
-        if len(cases) != 8:
+        if len(cases) != 9:
             fail(f"cases {cases}")
         models = {(r["unit"], r["model"]) for r in rows}
         for unit in ("bvh", "grid", "octree"):
