@@ -4,6 +4,7 @@
 
 #include "cli/options.h"
 #include "common/progress.h"
+#include "oracle/make_accel.h"
 #include "ref/benchmark.h"
 
 namespace lancer::cli {

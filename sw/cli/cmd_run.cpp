@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <algorithm>
+#include <map>
 #include <memory>
 #include <numeric>
 
@@ -36,7 +37,7 @@ constexpr double kDefaultClockMhz = 500.0;
 struct Args {
   SceneOptions scene;
   RaySource source;
-  std::string accel = "bvh";
+  fx::UnitKind accel = fx::UnitKind::Isect;
   JobConfig job;
   EffectsArgs effects;
   double clockMhz = kDefaultClockMhz;
@@ -83,7 +84,7 @@ std::string unitOptions(const Args& args) {
   add("--octree-depth", job.accel.octreeMaxDepth);
   add("--octree-leaf", job.accel.octreeLeafSize);
   if (args.latticeMargin != kLatticeMarginUnits) out += fmt::format(" --lattice-margin {}", args.latticeMargin);
-  if (args.accel != "bvh") {
+  if (args.accel != fx::UnitKind::Isect) {
     out += fmt::format(" --mem-latency {}", job.memLatency);
     add("--mem-jitter", job.memLatencyJitter);
     add("--rays-in-flight", job.raysInFlight);
@@ -104,8 +105,7 @@ void checkFormats(const Args& args) {
   }
 }
 
-// The figures of one primary-ray job against the float reference (the plain
-// run, and the primary wave of an effects run).
+// The figures of one job against the float reference (the plain run).
 void printReferenceComparison(const ReferenceComparison& cmp) {
   fmt::print("  vs float reference  {} rays differ ({} hit/miss, {} triangle); t error max {:.3f}, mean {:.4f} lattice units\n",
              cmp.disagreements, cmp.hitMissDiffers, cmp.primDiffers, cmp.maxTError, cmp.meanTError);
@@ -129,12 +129,168 @@ void failBeyondBound(uint64_t beyond, std::string_view what) {
   }
 }
 
+void failMismatches(const Args& args, uint64_t mismatches, std::string_view what) {
+  if (mismatches) {
+    throw CheckFailed(
+        fmt::format("model {} disagrees with the golden model on {} {}", args.job.model, mismatches, what));
+  }
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// What every report of lancer run starts with: the command, the scene, the path and model, the formats.
+nlohmann::json reportHeader(const Args& args, const Scene& scene) {
+  return {{"command", "run"},         {"scene", scene.name},          {"triangles", scene.size()},
+          {"accel", toString(args.accel)}, {"model", args.job.model}, {"pos_bits", fx::kPosBits},
+          {"dir_bits", fx::kDirBits}};
+}
+
 // The SPD counts of a Whitted run, keyed as in the report.
 std::vector<std::pair<const char*, uint64_t>> spdCounts(const WhittedResult& r) {
   return {{"eye_hit_rays", r.eyeHitRays},   {"reflect_rays", r.reflectRays},
           {"refract_rays", r.refractRays},  {"shadow_rays", r.shadowRays},
           {"shadow_rays_blocked", r.shadowRaysBlocked}, {"self_hits", r.selfHits}};
 }
+
+// Every figure of an effects run: the summary and the report are both written from it.
+struct EffectsFigures {
+  const Args& args;
+  const Scene& scene;
+  const EffectsPlan& plan;
+  Sampling sampling;
+  const PinholeCamera& camera;
+  size_t eyeRays;
+  const HardwareWaveTracer& tracer;
+  const WhittedResult& hw;   // the loop on the hardware's hits
+  const WhittedResult& ref;  // the same loop on the float reference
+  double hostSeconds;
+
+  double clockHz() const { return args.clockMhz * 1e6; }
+  uint64_t cycles() const {
+    uint64_t total = 0;
+    for (int c = 0; c < kRayClassCount; ++c) total += tracer.stats(RayClass(c)).cycles;
+    return total;
+  }
+  uint64_t waveRays() const { return std::accumulate(hw.waveRays.begin(), hw.waveRays.end(), uint64_t(0)); }
+
+  void print() const {
+    fmt::print("run: {} ({} triangles), {} {} samples {}x{}, model {}, accel {}, formats pos {} / dir {} bits\n",
+               scene.name, scene.size(), eyeRays, toString(sampling), camera.width(), camera.height(),
+               args.job.model, toString(args.accel), fx::kPosBits, fx::kDirBits);
+    printClasses();
+    printComparisons();
+    printAnyHitSaving();
+    printCounts();
+    fmt::print("  host                {:.2f} s in all; simulated {:.1f} us at {:g} MHz for {} cycles\n", hostSeconds,
+               double(cycles()) / clockHz() * 1e6, args.clockMhz, cycles());
+    fmt::print("  bit-exact vs golden {} rays in {} waves, {} mismatches\n", waveRays(), hw.waveRays.size(),
+               tracer.mismatches());
+  }
+
+  // What the hardware did per ray class.
+  void printClasses() const {
+    fmt::print("  {:<11} {:>9} {:>9} {:>11} {:>10} {:>11} {:>11} {:>10}\n", "class", "rays", "hits", "tests",
+               "steps", "cycles", "sim us", "mismatch");
+    for (const RayClass cls : planned()) {
+      const ClassHardwareStats& s = tracer.stats(cls);
+      fmt::print("  {:<11} {:>9} {:>9} {:>11} {:>10} {:>11} {:>11.1f} {:>10}\n", toString(cls), s.rays, s.hits,
+                 s.intersectionTests, s.steps, s.cycles, double(s.cycles) / clockHz() * 1e6, s.mismatches);
+    }
+  }
+
+  // Each class against the float reference on the very rays the hardware traced.
+  void printComparisons() const {
+    fmt::print("  {:<11} {:>9} {:>9} {:>9}   {:<34} {}\n", "class", "vs ref", "hit/miss", "triangle",
+               "arbiter: reference correct/tie/rnd/wrong", "hardware correct/tie/bound/beyond");
+    for (const RayClass cls : planned()) {
+      const ReferenceComparison& cmp = tracer.comparison(cls);
+      const ArbiterCounts& a = cmp.arbiter;
+      fmt::print("  {:<11} {:>9} {:>9} {:>9}   {:<34} {}\n", toString(cls), cmp.disagreements, cmp.hitMissDiffers,
+                 cmp.primDiffers,
+                 fmt::format("{}/{}/{}/{}", a.reference[0], a.reference[1], a.reference[2], a.reference[3]),
+                 fmt::format("{}/{}/{}/{}", a.hardware[0], a.hardware[1], a.hardware[2], a.hardware[3]));
+    }
+    if (const auto& b = tracer.firstBeyond()) fmt::print("  first ray beyond the hardware's bound: {}", b->details);
+    if (!tracer.cycleAccurate()) fmt::print("  (golden model: no cycle timing)\n");
+  }
+
+  // What the shadow rays saved by stopping at their first hit (traversal units).
+  void printAnyHitSaving() const {
+    const ClassHardwareStats& shadow = tracer.stats(RayClass::Shadow);
+    if (!shadow.rays || args.accel == fx::UnitKind::Isect) return;
+    fmt::print("  any-hit saving      shadow rays took {} steps and {} tests; as closest-hit rays {} and {} ({:.1f}% "
+               "fewer steps)\n",
+               shadow.steps, shadow.intersectionTests, shadow.closestHitSteps, shadow.closestHitTests,
+               shadow.closestHitSteps ? 100.0 * (1.0 - double(shadow.steps) / double(shadow.closestHitSteps)) : 0.0);
+  }
+
+  // The SPD counts beside the float reference's, and the secondary origins' fixes.
+  void printCounts() const {
+    fmt::print("  {:<20} {:>10} {:>10}\n", "SPD count", "hardware", "float ref");
+    const auto hwCounts = spdCounts(hw), refCounts = spdCounts(ref);
+    for (size_t k = 0; k < hwCounts.size(); ++k) {
+      fmt::print("  {:<20} {:>10} {:>10}\n", hwCounts[k].first, hwCounts[k].second, refCounts[k].second);
+    }
+    if (tracer.sideFlips()) {
+      fmt::print("  {} secondary origins moved to the other side of their triangle (the lattice ray would have met "
+                 "it again)\n",
+                 tracer.sideFlips());
+    }
+    if (tracer.originsOutside()) {
+      fmt::print("  {} secondary rays left the lattice cube at their origin (not traced)\n", tracer.originsOutside());
+    }
+  }
+
+  nlohmann::json toJson() const {
+    nlohmann::json classes;
+    for (const RayClass cls : planned()) {
+      nlohmann::json& c = classes[std::string(toString(cls))] = tracer.stats(cls).toJson(clockHz());
+      c.update(lancer::toJson(tracer.comparison(cls)));
+    }
+    nlohmann::json report = reportHeader(args, scene);
+    report.update({{"sampling", toString(sampling)},
+                   {"width", camera.width()},
+                   {"height", camera.height()},
+                   {"eye_rays", eyeRays},
+                   {"plan", plan.toJson()},
+                   {"classes", classes},
+                   {"cycles", cycles()},
+                   {"cycle_accurate", tracer.cycleAccurate()},
+                   {"clock_hz", clockHz()},
+                   {"mismatches", tracer.mismatches()},
+                   {"host_seconds", hostSeconds},
+                   {"origin_offset_lattice_units", tracer.offsetUnits()},
+                   {"origins_outside_lattice", tracer.originsOutside()},
+                   {"secondary_side_flips", tracer.sideFlips()},
+                   {"wave_rays", hw.waveRays},
+                   {"total_internal_reflections", hw.totalInternalReflections},
+                   {"refraction_rays_traced", hw.refractionsTraced},
+                   {"beyond_bound", tracer.beyondBound()}});
+    for (const auto& [key, value] : spdCounts(hw)) report[key] = value;
+    nlohmann::json refJson;
+    for (const auto& [key, value] : spdCounts(ref)) refJson[key] = value;
+    report["float_reference"] = refJson;
+    if (const auto& m = tracer.firstMismatch()) {
+      report["first_mismatch"] = {{"generation", m->generation}, {"class", toString(m->cls)}, {"index", m->index},
+                                  {"report", m->details}};
+    }
+    if (const auto& b = tracer.firstBeyond()) {
+      report["first_beyond_bound"] = {{"generation", b->generation}, {"class", toString(b->cls)},
+                                      {"index", b->index}, {"report", b->details}};
+    }
+    return report;
+  }
+
+  std::vector<RayClass> planned() const {
+    std::vector<RayClass> classes;
+    for (int c = 0; c < kRayClassCount; ++c) {
+      if (plan.has(RayClass(c))) classes.push_back(RayClass(c));
+    }
+    return classes;
+  }
+};
 
 // An effects run (docs/effects.md): the Whitted loop's waves through the
 // hardware, every wave checked against the golden model bit for bit, and the
@@ -147,180 +303,109 @@ void runEffects(const Args& args, const Scene& scene, const EffectsPlan& plan, c
   const Bvh reference(scene, AccelOptions{});
   HardwareWaveTracer tracer(args.accel, scene, quantizer, args.job, &reference);
   const WhittedResult hw = traceWhitted(scene, plan, eye, tracer, [&](int generation, size_t n) {
-    fmt::print("  wave {}: {} rays on {} {}\n", generation, n, args.accel, args.job.model);
+    fmt::print("  wave {}: {} rays on {} {}\n", generation, n, toString(args.accel), args.job.model);
   });
   RefWaveTracer refTracer(scene, reference);
   const WhittedResult ref = traceWhitted(scene, plan, eye, refTracer);
-  const double hostSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - hostStart).count();
-  const double clockHz = args.clockMhz * 1e6;
-
-  fmt::print("run: {} ({} triangles), {} {} samples {}x{}, model {}, accel {}, formats pos {} / dir {} bits\n",
-             scene.name, scene.size(), eye.size(), toString(sampling), camera.width(), camera.height(),
-             args.job.model, args.accel, fx::kPosBits, fx::kDirBits);
-  fmt::print("  {:<11} {:>9} {:>9} {:>11} {:>10} {:>11} {:>11} {:>10}\n", "class", "rays", "hits", "tests", "steps",
-             "cycles", "sim us", "mismatch");
-  nlohmann::json classes;
-  uint64_t totalCycles = 0;
-  for (int c = 0; c < kRayClassCount; ++c) {
-    const RayClass cls = RayClass(c);
-    const ClassHardwareStats& s = tracer.stats(cls);
-    totalCycles += s.cycles;
-    if (!plan.has(cls)) continue;
-    const double simSeconds = double(s.cycles) / clockHz;
-    fmt::print("  {:<11} {:>9} {:>9} {:>11} {:>10} {:>11} {:>11.1f} {:>10}\n", toString(cls), s.rays, s.hits,
-               s.intersectionTests, s.steps, s.cycles, simSeconds * 1e6, s.mismatches);
-    classes[std::string(toString(cls))] = {
-        {"rays", s.rays},         {"rays_in_lattice", s.traced},  {"hits", s.hits},
-        {"intersection_tests", s.intersectionTests}, {"steps", s.steps}, {"memory_reads", s.memoryReads},
-        {"cycles", s.cycles},     {"simulated_seconds", simSeconds}, {"mismatches", s.mismatches},
-        {"host_seconds", s.modelSeconds + s.goldenSeconds}, {"model_seconds", s.modelSeconds},
-        {"golden_seconds", s.goldenSeconds}};
-    if (s.closestHitSteps || s.closestHitTests) {
-      classes[std::string(toString(cls))]["closest_hit_steps"] = s.closestHitSteps;
-      classes[std::string(toString(cls))]["closest_hit_tests"] = s.closestHitTests;
-    }
-    classes[std::string(toString(cls))].update(toJson(tracer.comparison(cls)));
-  }
-  // Each class against the float reference on the very rays the hardware traced.
-  fmt::print("  {:<11} {:>9} {:>9} {:>9}   {:<34} {}\n", "class", "vs ref", "hit/miss", "triangle",
-             "arbiter: reference correct/tie/rnd/wrong", "hardware correct/tie/bound/beyond");
-  for (int c = 0; c < kRayClassCount; ++c) {
-    const RayClass cls = RayClass(c);
-    if (!plan.has(cls)) continue;
-    const ReferenceComparison& cmp = tracer.comparison(cls);
-    const ArbiterCounts& a = cmp.arbiter;
-    fmt::print("  {:<11} {:>9} {:>9} {:>9}   {:<34} {}\n", toString(cls), cmp.disagreements, cmp.hitMissDiffers,
-               cmp.primDiffers, fmt::format("{}/{}/{}/{}", a.reference[0], a.reference[1], a.reference[2], a.reference[3]),
-               fmt::format("{}/{}/{}/{}", a.hardware[0], a.hardware[1], a.hardware[2], a.hardware[3]));
-  }
-  if (const auto& b = tracer.firstBeyond()) fmt::print("  first ray beyond the hardware's bound: {}", b->details);
-  if (!tracer.cycleAccurate()) fmt::print("  (golden model: no cycle timing)\n");
-  const ClassHardwareStats& shadow = tracer.stats(RayClass::Shadow);
-  if (shadow.rays && args.accel != "bvh") {
-    fmt::print("  any-hit saving      shadow rays took {} steps and {} tests; as closest-hit rays {} and {} ({:.1f}% fewer steps)\n",
-               shadow.steps, shadow.intersectionTests, shadow.closestHitSteps, shadow.closestHitTests,
-               shadow.closestHitSteps ? 100.0 * (1.0 - double(shadow.steps) / double(shadow.closestHitSteps)) : 0.0);
-  }
-  fmt::print("  {:<20} {:>10} {:>10}\n", "SPD count", "hardware", "float ref");
-  const auto hwCounts = spdCounts(hw), refCounts = spdCounts(ref);
-  for (size_t k = 0; k < hwCounts.size(); ++k) {
-    fmt::print("  {:<20} {:>10} {:>10}\n", hwCounts[k].first, hwCounts[k].second, refCounts[k].second);
-  }
-  if (tracer.sideFlips()) {
-    fmt::print("  {} secondary origins moved to the other side of their triangle (the lattice ray would have met it again)\n",
-               tracer.sideFlips());
-  }
-  if (tracer.originsOutside()) {
-    fmt::print("  {} secondary rays left the lattice cube at their origin (not traced)\n", tracer.originsOutside());
-  }
-  fmt::print("  host                {:.2f} s in all; simulated {:.1f} us at {:g} MHz for {} cycles\n", hostSeconds,
-             double(totalCycles) / clockHz * 1e6, args.clockMhz, totalCycles);
-  fmt::print("  bit-exact vs golden {} rays in {} waves, {} mismatches\n", std::accumulate(hw.waveRays.begin(), hw.waveRays.end(), uint64_t(0)),
-             hw.waveRays.size(), tracer.mismatches());
-
+  const EffectsFigures figures{args, scene, plan, sampling, camera, eye.size(), tracer, hw, ref,
+                               secondsSince(hostStart)};
+  figures.print();
   if (!args.image.empty()) {
     writePng(samplesToImage(hw.samples, camera.width(), camera.height(), sampling), args.image);
     fmt::print("  image               {} (shaded from the model's hits)\n", args.image);
   }
-  nlohmann::json report = {
-      {"command", "run"},           {"scene", scene.name},        {"triangles", scene.size()},
-      {"accel", args.accel},        {"model", args.job.model},    {"pos_bits", fx::kPosBits},
-      {"dir_bits", fx::kDirBits},   {"sampling", toString(sampling)}, {"width", camera.width()},
-      {"height", camera.height()},  {"eye_rays", eye.size()},     {"plan", plan.toJson()},
-      {"classes", classes},         {"cycles", totalCycles},      {"cycle_accurate", tracer.cycleAccurate()},
-      {"clock_hz", clockHz},        {"mismatches", tracer.mismatches()}, {"host_seconds", hostSeconds},
-      {"origin_offset_lattice_units", tracer.offsetUnits()}, {"origins_outside_lattice", tracer.originsOutside()},
-      {"secondary_side_flips", tracer.sideFlips()},
-      {"wave_rays", hw.waveRays},   {"total_internal_reflections", hw.totalInternalReflections},
-      {"refraction_rays_traced", hw.refractionsTraced}};
-  for (const auto& [key, value] : hwCounts) report[key] = value;
-  nlohmann::json refJson;
-  for (const auto& [key, value] : refCounts) refJson[key] = value;
-  report["float_reference"] = refJson;
-  if (const auto& m = tracer.firstMismatch()) {
-    fmt::print(stderr, "{}", m->details);
-    report["first_mismatch"] = {{"generation", m->generation}, {"class", toString(m->cls)}, {"index", m->index},
-                                {"report", m->details}};
-  }
-  report["beyond_bound"] = tracer.beyondBound();
-  if (const auto& b = tracer.firstBeyond()) {
-    report["first_beyond_bound"] = {{"generation", b->generation}, {"class", toString(b->cls)}, {"index", b->index},
-                                    {"report", b->details}};
-  }
-  writeReport(args.report, report);
-  if (tracer.mismatches()) {
-    throw CheckFailed(fmt::format("model {} disagrees with the golden model on {} wave rays", args.job.model,
-                                  tracer.mismatches()));
-  }
+  if (const auto& m = tracer.firstMismatch()) fmt::print(stderr, "{}", m->details);
+  writeReport(args.report, figures.toJson());
+  failMismatches(args, tracer.mismatches(), "wave rays");
   failBeyondBound(tracer.beyondBound(), "wave rays");
 }
 
-void run(const Args& args) {
+// Every figure of a plain run (one job over camera or file rays): the summary
+// and the report are both written from it.
+struct RunFigures {
+  const Args& args;
+  const Scene& scene;
+  const Rays& rays;
+  const JobResult& job;
+  const ReferenceComparison& cmp;
+  double hostSeconds;
+
+  double clockHz() const { return args.clockMhz * 1e6; }
+  double simulatedSeconds() const { return double(job.cycles) / clockHz(); }
+  double testsPerCycle() const { return job.cycles ? double(job.intersectionTests) / double(job.cycles) : 0.0; }
+  double testsPerSecond() const { return job.cycles ? double(job.intersectionTests) / simulatedSeconds() : 0.0; }
+  double raysPerSecond() const { return job.cycles ? double(rays.rays.size()) / simulatedSeconds() : 0.0; }
+  size_t inLattice() const { return size_t(std::count_if(job.rays.begin(), job.rays.end(), [](auto& r) { return r.has_value(); })); }
+  size_t hits() const { return size_t(std::count_if(job.hits.begin(), job.hits.end(), [](auto& h) { return h.has_value(); })); }
+
+  void print() const {
+    fmt::print("run: {} ({} triangles), {} rays from {}, model {}, accel {}, formats pos {} / dir {} bits\n",
+               scene.name, scene.size(), rays.rays.size(), rays.origin, args.job.model, toString(args.accel),
+               fx::kPosBits, fx::kDirBits);
+    if (job.cycleAccurate) {
+      fmt::print("  intersection tests  {} in {} cycles ({:.4f} tests/cycle)\n", job.intersectionTests, job.cycles,
+                 testsPerCycle());
+      fmt::print("  simulated rate      {:.1f} M intersections/s, {:.2f} M rays/s at {:g} MHz ({:.1f}x the AR250's "
+                 "80 M/s)\n",
+                 testsPerSecond() / 1e6, raysPerSecond() / 1e6, args.clockMhz, testsPerSecond() / 80e6);
+    } else {
+      fmt::print("  intersection tests  {} (golden model: no cycle timing{})\n", job.intersectionTests,
+                 job.cycles ? fmt::format(", ideal pipeline {} cycles", job.cycles) : "");
+    }
+    for (const JobCounter& c : job.counters) {
+      fmt::print("  {:<19} {}\n", c.label,
+                 isWhole(c.value) ? fmt::format("{}", int64_t(c.value)) : fmt::format("{:.4g}", c.value));
+    }
+    fmt::print("  host                {:.2f} s in all, {:.2f} s in the model ({:.0f} rays/s), {:.2f} s in golden\n",
+               hostSeconds, job.modelSeconds, job.modelSeconds > 0 ? double(inLattice()) / job.modelSeconds : 0.0,
+               job.goldenSeconds);
+    fmt::print("  bit-exact vs golden {} rays ({} entered the lattice, {} hit), {} mismatches\n", rays.rays.size(),
+               inLattice(), hits(), job.mismatchedRays);
+    printReferenceComparison(cmp);
+  }
+
+  nlohmann::json toJson() const {
+    nlohmann::json report = reportHeader(args, scene);
+    report.update({{"rays", rays.rays.size()},
+                   {"rays_in_lattice", inLattice()},
+                   {"rays_hit", hits()},
+                   {"mismatches", job.mismatchedRays},
+                   {"cycles", job.cycles},
+                   {"cycle_accurate", job.cycleAccurate},
+                   {"intersection_tests", job.intersectionTests},
+                   {"tests_per_cycle", testsPerCycle()},
+                   {"clock_hz", clockHz()},
+                   {"intersections_per_second", testsPerSecond()},
+                   {"rays_per_second", raysPerSecond()},
+                   {"host_seconds", hostSeconds},
+                   {"model_seconds", job.modelSeconds},
+                   {"golden_seconds", job.goldenSeconds},
+                   {"output_stall_probability", args.job.stream.outputStallProbability},
+                   {"seed", args.job.stream.seed}});
+    report.update(lancer::toJson(cmp));
+    for (const JobCounter& c : job.counters) {
+      report[c.key] = isWhole(c.value) ? nlohmann::json(int64_t(c.value)) : nlohmann::json(c.value);
+    }
+    return report;
+  }
+};
+
+// InputError for a run the options make impossible, before any work.
+void checkRunOptions(const Args& args) {
   checkFormats(args);
-  const auto hostStart = std::chrono::steady_clock::now();
   const std::vector<std::string> models = modelsFor(args.accel);
   if (std::find(models.begin(), models.end(), args.job.model) == models.end()) {
     throw InputError(fmt::format("--model {}: the {} path has no such model (available: {})", args.job.model,
-                                 args.accel, fmt::join(models, ", ")));
+                                 toString(args.accel), fmt::join(models, ", ")));
   }
-  if (!args.job.dualNarrowBits.empty() && args.accel != "bvh") {
+  if (!args.job.dualNarrowBits.empty() && args.accel != fx::UnitKind::Isect) {
     throw InputError(fmt::format("--dual-precision models the intersection pipeline's front end: it needs --accel bvh, "
-                                 "not {}", args.accel));
+                                 "not {}", toString(args.accel)));
   }
-  const Scene scene = args.scene.load();
-  const EffectsPlan plan = planEffects(scene, args.effects.options());
-  const Sampling sampling = args.effects.parsedSampling();
-  const Quantizer quantizer(scene.bounds, args.latticeMargin);
-  fmt::print("{}", plan.describe());
-  const bool secondary =
-      plan.has(RayClass::Shadow) || plan.has(RayClass::Reflection) || plan.has(RayClass::Refraction);
-  if (args.source.fromCamera() && (secondary || sampling == Sampling::Corners)) {
-    runEffects(args, scene, plan, quantizer, hostStart);
-    return;
-  }
-  if (secondary) fmt::print("  (rays from {}: primary rays only; effects need camera rays)\n", args.source.raysFile);
-  const Rays rays = loadRays(args.source, scene);
+}
 
-  Progress progress(fmt::format("run {} {}", args.accel, args.job.model), rays.rays.size());
-  const JobResult job = runJob(args.accel, scene, rays.rays, quantizer, args.job, [&](size_t n) { progress.advance(n); });
-  progress.finish();
-
-  const Bvh reference(scene, AccelOptions{});
-  const ReferenceComparison cmp = compareWithReference(scene, rays.rays, traceRays(reference, rays.rays), job, quantizer,
-                                                         exactCandidates(reference, scene.bounds));
-  const double hostSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - hostStart).count();
-  const double clockHz = args.clockMhz * 1e6;
-  const double testsPerCycle = job.cycles ? double(job.intersectionTests) / double(job.cycles) : 0.0;
-  const double rate = job.cycles ? double(job.intersectionTests) / (double(job.cycles) / clockHz) : 0.0;
-  const double raysPerSecond = job.cycles ? double(rays.rays.size()) / (double(job.cycles) / clockHz) : 0.0;
-  size_t hitCount = 0, inLattice = 0;
-  for (size_t i = 0; i < job.hits.size(); ++i) {
-    hitCount += job.hits[i].has_value();
-    inLattice += job.rays[i].has_value();
-  }
-
-  fmt::print("run: {} ({} triangles), {} rays from {}, model {}, accel {}, formats pos {} / dir {} bits\n",
-             scene.name, scene.size(), rays.rays.size(), rays.origin, args.job.model, args.accel, fx::kPosBits,
-             fx::kDirBits);
-  if (job.cycleAccurate) {
-    fmt::print("  intersection tests  {} in {} cycles ({:.4f} tests/cycle)\n", job.intersectionTests, job.cycles,
-               testsPerCycle);
-    fmt::print("  simulated rate      {:.1f} M intersections/s, {:.2f} M rays/s at {:g} MHz ({:.1f}x the AR250's 80 M/s)\n",
-               rate / 1e6, raysPerSecond / 1e6, args.clockMhz, rate / 80e6);
-  } else {
-    fmt::print("  intersection tests  {} (golden model: no cycle timing{})\n", job.intersectionTests,
-               job.cycles ? fmt::format(", ideal pipeline {} cycles", job.cycles) : "");
-  }
-  for (const JobCounter& c : job.counters) {
-    fmt::print("  {:<19} {}\n", c.label, isWhole(c.value) ? fmt::format("{}", int64_t(c.value)) : fmt::format("{:.4g}", c.value));
-  }
-  fmt::print("  host                {:.2f} s in all, {:.2f} s in the model ({:.0f} rays/s), {:.2f} s in golden\n",
-             hostSeconds, job.modelSeconds, job.modelSeconds > 0 ? double(inLattice) / job.modelSeconds : 0.0,
-             job.goldenSeconds);
-  fmt::print("  bit-exact vs golden {} rays ({} entered the lattice, {} hit), {} mismatches\n", rays.rays.size(),
-             inLattice, hitCount, job.mismatchedRays);
-  printReferenceComparison(cmp);
-
+// The image and the hits file drawn from the model's hits, where asked for.
+void writeHitOutputs(const Args& args, const Scene& scene, const Rays& rays, const JobResult& job) {
   if (!args.image.empty()) {
     if (!rays.camera) throw InputError("--image needs camera rays (no --rays file)");
     std::vector<std::optional<Hit>> hits(job.hits.size());
@@ -329,46 +414,17 @@ void run(const Args& args) {
     fmt::print("  image               {} (drawn from the model's hits)\n", args.image);
   }
   if (!args.hits.empty()) writeHardwareHits(args.hits, job);
+}
 
-  nlohmann::json report = {
-      {"command", "run"},
-      {"scene", scene.name},
-      {"triangles", scene.size()},
-      {"accel", args.accel},
-      {"model", args.job.model},
-      {"pos_bits", fx::kPosBits},
-      {"dir_bits", fx::kDirBits},
-      {"rays", rays.rays.size()},
-      {"rays_in_lattice", inLattice},
-      {"rays_hit", hitCount},
-      {"mismatches", job.mismatchedRays},
-      {"cycles", job.cycles},
-      {"cycle_accurate", job.cycleAccurate},
-      {"intersection_tests", job.intersectionTests},
-      {"tests_per_cycle", testsPerCycle},
-      {"clock_hz", clockHz},
-      {"intersections_per_second", rate},
-      {"rays_per_second", raysPerSecond},
-      {"host_seconds", hostSeconds},
-      {"model_seconds", job.modelSeconds},
-      {"golden_seconds", job.goldenSeconds},
-      {"output_stall_probability", args.job.stream.outputStallProbability},
-      {"seed", args.job.stream.seed},
-  };
-  report.update(toJson(cmp));
-  for (const JobCounter& c : job.counters) {
-    if (isWhole(c.value)) {
-      report[c.key] = int64_t(c.value);
-    } else {
-      report[c.key] = c.value;
-    }
-  }
-  // A reproducer of the first failing ray: a one-ray rays file and the command that replays it.
+// The first failing ray (a mismatch, else an answer beyond the bound): printed
+// with a one-ray rays file and the command that replays it, and added to the report.
+void reportFirstFailure(const Args& args, const Scene& scene, const Rays& rays, const JobResult& job,
+                        const ReferenceComparison& cmp, nlohmann::json& report) {
   const auto reproduce = [&](uint32_t ray, std::string_view what) {
     writeRaysFile(args.repro, {rays.rays[ray]}, fmt::format("ray {} of {}: {} reproducer", ray, rays.origin, what));
     return fmt::format("lancer run --scene {}{} --rays {} --model {} --accel {}{} --stall {} --seed {}", scene.name,
                        args.scene.subdivide ? fmt::format(" --subdivide {}", args.scene.subdivide) : "", args.repro,
-                       args.job.model, args.accel, unitOptions(args), args.job.stream.outputStallProbability,
+                       args.job.model, toString(args.accel), unitOptions(args), args.job.stream.outputStallProbability,
                        args.job.stream.seed);
   };
   if (job.firstMismatch) {
@@ -382,11 +438,38 @@ void run(const Args& args) {
     fmt::print(stderr, "{}", text);
     report["first_beyond_bound"] = {{"ray", *beyond}, {"report", text}, {"repro_rays", args.repro}};
   }
-  writeReport(args.report, report);
-  if (job.mismatchedRays) {
-    throw CheckFailed(fmt::format("model {} disagrees with the golden model on {} rays", args.job.model,
-                                  job.mismatchedRays));
+}
+
+void run(const Args& args) {
+  checkRunOptions(args);
+  const auto hostStart = std::chrono::steady_clock::now();
+  const Scene scene = args.scene.load();
+  const EffectsPlan plan = planEffects(scene, args.effects.options());
+  const Quantizer quantizer(scene.bounds, args.latticeMargin);
+  fmt::print("{}", plan.describe());
+  const bool secondary =
+      plan.has(RayClass::Shadow) || plan.has(RayClass::Reflection) || plan.has(RayClass::Refraction);
+  if (args.source.fromCamera() && (secondary || args.effects.parsedSampling() == Sampling::Corners)) {
+    runEffects(args, scene, plan, quantizer, hostStart);
+    return;
   }
+  if (secondary) fmt::print("  (rays from {}: primary rays only; effects need camera rays)\n", args.source.raysFile);
+  const Rays rays = loadRays(args.source, scene);
+
+  Progress progress(fmt::format("run {} {}", toString(args.accel), args.job.model), rays.rays.size());
+  const JobResult job = runJob(args.accel, scene, rays.rays, quantizer, args.job, [&](size_t n) { progress.advance(n); });
+  progress.finish();
+
+  const Bvh reference(scene, AccelOptions{});
+  const ReferenceComparison cmp = compareWithReference(scene, rays.rays, traceRays(reference, rays.rays), job, quantizer,
+                                                         exactCandidates(reference, scene.bounds));
+  const RunFigures figures{args, scene, rays, job, cmp, secondsSince(hostStart)};
+  figures.print();
+  writeHitOutputs(args, scene, rays, job);
+  nlohmann::json report = figures.toJson();
+  reportFirstFailure(args, scene, rays, job, cmp, report);
+  writeReport(args.report, report);
+  failMismatches(args, job.mismatchedRays, "rays");
   failBeyondBound(cmp.arbiter.beyondBound(), "rays");
 }
 
@@ -397,11 +480,15 @@ void addRunCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("run", "Run rays through a hardware model and check it bit for bit");
   args->scene.add(*cmd);
   args->source.add(*cmd);
+  std::map<std::string, fx::UnitKind> paths;
+  for (fx::UnitKind path : hardwarePaths()) paths.emplace(toString(path), path);
+  const std::vector<std::string> names = hardwarePathNames();
   cmd->add_option("--accel", args->accel,
-                 "Hardware path: bvh (host BVH feeding the intersection pipeline), grid (the grid unit) or octree "
-                 "(the octree unit)")
-      ->check(CLI::IsMember(hardwareAccels()))
-      ->capture_default_str();
+                 fmt::format("Hardware path: bvh (the host BVH feeding the intersection pipeline) or a traversal "
+                             "unit ({})",
+                             fmt::join(names.begin() + 1, names.end(), ", ")))
+      ->transform(CLI::CheckedTransformer(paths))
+      ->default_str(std::string(toString(args->accel)));
   cmd->add_option("--model", args->job.model, "Model of the hardware: golden, systemc, rtl, rtl-systemc")
       ->check(CLI::IsMember({"golden", "systemc", "rtl", "rtl-systemc"}))
       ->capture_default_str();

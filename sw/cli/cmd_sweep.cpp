@@ -13,7 +13,7 @@
 #include "driver/quantize.h"
 #include "golden/formats.h"
 #include "scene/rays_file.h"
-#include "sweep/cracks.h"
+#include "driver/cracks.h"
 #include "sweep/merge.h"
 #include "sweep/sweep.h"
 
@@ -163,7 +163,7 @@ void addCrackRays(CLI::App& app) {
   cmd->callback([a] {
     const Scene scene = a->scene.load();
     const Quantizer quantizer(scene.bounds);
-    const sweep::CrackRays c = sweep::makeCrackRays(scene, quantizer, a->count, a->seed);
+    const CrackRays c = makeCrackRays(scene, quantizer, a->count, a->seed);
     writeRaysFile(a->out, c.rays,
                   fmt::format("{}: {} crack rays ({} at edges, {} at vertices) on the {}/{}-bit lattice, seed {}",
                               scene.name, c.rays.size(), c.edgeRays, c.vertexRays, fx::kPosBits, fx::kDirBits,

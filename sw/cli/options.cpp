@@ -7,6 +7,7 @@
 
 #include "common/error.h"
 #include "common/progress.h"
+#include "oracle/make_accel.h"
 #include "ref/trace.h"
 
 namespace lancer::cli {

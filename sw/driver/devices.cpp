@@ -1,5 +1,9 @@
 #include "driver/devices.h"
 
+#include <functional>
+#include <string_view>
+#include <tuple>
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -12,75 +16,90 @@
 #define LANCER_HW_MODELS 1
 #endif
 #if LANCER_HW_MODELS
-#include "driver/systemc_grid_device.h"
 #include "driver/systemc_isect_device.h"
-#include "driver/systemc_octree_device.h"
-#include "driver/verilator_grid_device.h"
 #include "driver/verilator_isect_device.h"
-#include "driver/verilator_octree_device.h"
 #endif
 
 namespace lancer {
 
 namespace {
 
-[[noreturn]] void unknownModel(const std::string& name, const char* unit, const std::vector<std::string>& names) {
-  throw InputError(
-      fmt::format("unknown model '{}' for the {} (available: {})", name, unit, fmt::join(names, ", ")));
+// One model of a unit: its name and how to make it.
+template <class Base>
+struct Model {
+  const char* name;
+  std::function<std::unique_ptr<Base>()> make;
+};
+
+template <class Base>
+std::vector<std::string> namesOf(const std::vector<Model<Base>>& models) {
+  std::vector<std::string> names;
+  for (const Model<Base>& m : models) names.push_back(m.name);
+  return names;
 }
 
+template <class Base>
+std::unique_ptr<Base> pick(const std::vector<Model<Base>>& models, const std::string& name, std::string_view unit) {
+  for (const Model<Base>& m : models) {
+    if (m.name == name) return m.make();
+  }
+  throw InputError(
+      fmt::format("unknown model '{}' for the {} (available: {})", name, unit, fmt::join(namesOf(models), ", ")));
+}
+
+// golden, systemc, rtl, and rtl-systemc where the build has it.
+std::vector<Model<IsectDevice>> isectModels() {
+  std::vector<Model<IsectDevice>> models{{"golden", [] { return std::make_unique<GoldenIsectDevice>(); }}};
 #if LANCER_HW_MODELS
-// The four models of one unit, by name: its golden model, its SystemC device
-// (the cycle model, or the Verilated RTL in SystemC where the build has it) and
-// its Verilated device.
-template <class Base, class Golden, class SystemC, class Verilator>
-struct UnitModels {
-  static std::vector<std::string> names() {
-    std::vector<std::string> names{"golden", "systemc", "rtl"};
-    if (SystemC::rtlAvailable()) names.push_back("rtl-systemc");
-    return names;
+  models.push_back({"systemc", [] { return std::make_unique<SystemCIsectDevice>(SystemCIsectDevice::Impl::Model); }});
+  models.push_back({"rtl", [] { return std::make_unique<VerilatorIsectDevice>(); }});
+  if (SystemCIsectDevice::rtlAvailable()) {
+    models.push_back(
+        {"rtl-systemc", [] { return std::make_unique<SystemCIsectDevice>(SystemCIsectDevice::Impl::Rtl); }});
   }
-
-  // Throws InputError for an unknown name; `unit` names the unit in the message.
-  static std::unique_ptr<Base> make(const std::string& name, const char* unit) {
-    if (name == "golden") return std::make_unique<Golden>();
-    if (name == "systemc") return std::make_unique<SystemC>(SystemC::Impl::Model);
-    if (name == "rtl") return std::make_unique<Verilator>();
-    if (name == "rtl-systemc" && SystemC::rtlAvailable()) return std::make_unique<SystemC>(SystemC::Impl::Rtl);
-    unknownModel(name, unit, names());
-  }
-};
-
-using IsectModels = UnitModels<IsectDevice, GoldenIsectDevice, SystemCIsectDevice, VerilatorIsectDevice>;
-using GridModels = UnitModels<GridDevice, GoldenGridDevice, SystemCGridDevice, VerilatorGridDevice>;
-using OctreeModels = UnitModels<OctreeDevice, GoldenOctreeDevice, SystemCOctreeDevice, VerilatorOctreeDevice>;
-#else
-template <class Base, class Golden>
-struct UnitModels {
-  static std::vector<std::string> names() { return {"golden"}; }
-  static std::unique_ptr<Base> make(const std::string& name, const char* unit) {
-    if (name == "golden") return std::make_unique<Golden>();
-    unknownModel(name, unit, names());
-  }
-};
-using IsectModels = UnitModels<IsectDevice, GoldenIsectDevice>;
-using GridModels = UnitModels<GridDevice, GoldenGridDevice>;
-using OctreeModels = UnitModels<OctreeDevice, GoldenOctreeDevice>;
 #endif
+  return models;
+}
+
+template <class Unit>
+std::vector<Model<DeviceOf<Unit>>> traversalModels() {
+  std::vector<Model<DeviceOf<Unit>>> models{
+      {"golden", [] { return std::make_unique<GoldenTraversalDevice<typename Unit::Image>>(); }}};
+#if LANCER_HW_MODELS
+  models.push_back({"systemc", [] { return makeSystemCDevice<Unit>(SystemCImpl::Model); }});
+  models.push_back({"rtl", [] { return makeVerilatorDevice<Unit>(); }});
+  if (systemCRtlAvailable<Unit>()) {
+    models.push_back({"rtl-systemc", [] { return makeSystemCDevice<Unit>(SystemCImpl::Rtl); }});
+  }
+#endif
+  return models;
+}
 
 }  // namespace
 
-std::vector<std::string> isectDeviceNames() { return IsectModels::names(); }
+std::vector<std::string> isectDeviceNames() { return namesOf(isectModels()); }
 std::unique_ptr<IsectDevice> makeIsectDevice(const std::string& name) {
-  return IsectModels::make(name, "intersection pipeline");
+  return pick(isectModels(), name, "intersection pipeline");
 }
 
-std::vector<std::string> gridDeviceNames() { return GridModels::names(); }
-std::unique_ptr<GridDevice> makeGridDevice(const std::string& name) { return GridModels::make(name, "grid unit"); }
-
-std::vector<std::string> octreeDeviceNames() { return OctreeModels::names(); }
-std::unique_ptr<OctreeDevice> makeOctreeDevice(const std::string& name) {
-  return OctreeModels::make(name, "octree unit");
+template <class Unit>
+std::vector<std::string> traversalDeviceNames() {
+  return namesOf(traversalModels<Unit>());
 }
+
+template <class Unit>
+std::unique_ptr<DeviceOf<Unit>> makeTraversalDevice(const std::string& name) {
+  return pick(traversalModels<Unit>(), name, fmt::format("{} unit", Unit::kNames.unit));
+}
+
+// Both templates for every unit of fx::TraversalUnits: the explicit
+// instantiation of all() emits them.
+template <class Units>
+struct TraversalDeviceTables;
+template <class... Units>
+struct TraversalDeviceTables<std::tuple<Units...>> {
+  static auto all() { return std::tuple{std::pair{&traversalDeviceNames<Units>, &makeTraversalDevice<Units>}...}; }
+};
+template struct TraversalDeviceTables<fx::TraversalUnits>;
 
 }  // namespace lancer

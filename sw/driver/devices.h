@@ -4,8 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "driver/traversal_device.h"
+#include "driver/hardware_devices.h"
 #include "driver/isect_device.h"
+#include "driver/traversal_device.h"
 
 namespace lancer {
 
@@ -15,12 +16,13 @@ std::vector<std::string> isectDeviceNames();
 // Throws InputError for an unknown name.
 std::unique_ptr<IsectDevice> makeIsectDevice(const std::string& name);
 
-// Every model of the grid unit (traversal + memory + intersection pipeline).
-std::vector<std::string> gridDeviceNames();
-std::unique_ptr<GridDevice> makeGridDevice(const std::string& name);
-
-// Every model of the octree unit.
-std::vector<std::string> octreeDeviceNames();
-std::unique_ptr<OctreeDevice> makeOctreeDevice(const std::string& name);
+// Every model of the traversal unit `Unit` (its descriptor; traversal +
+// memory + intersection pipeline), by the same names. Instantiated for every
+// unit of fx::TraversalUnits.
+template <class Unit>
+std::vector<std::string> traversalDeviceNames();
+// Throws InputError for an unknown name.
+template <class Unit>
+std::unique_ptr<DeviceOf<Unit>> makeTraversalDevice(const std::string& name);
 
 }  // namespace lancer

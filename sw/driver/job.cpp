@@ -40,33 +40,61 @@ class BvhPath final : public HardwarePath {
   CandidateSource candidates_;
 };
 
-// A traversal unit: its model against its golden model, over the image the
-// driver builds for the scene.
-template <class Image, auto makeDevice, auto buildImageFor>
+// A traversal unit (its descriptor `Unit`): its model against its golden
+// model, over the image the driver builds for the scene.
+template <class Unit>
 class TraversalPath final : public HardwarePath {
  public:
   TraversalPath(const Scene& scene, const Quantizer& quantizer, const JobConfig& config)
-      : config_(config), model_(makeDevice(config.model)), image_(buildImageFor(scene, quantizer, config.accel)) {}
+      : config_(config), model_(makeTraversalDevice<Unit>(config.model)),
+        image_(buildImageFor<Unit>(scene, quantizer, config.accel)) {}
   JobResult run(std::span<const std::optional<QuantizedRay>> rays, const ProgressFn& onProgress) override {
     return runTraversalJob(image_, rays, *model_, golden_, config_, onProgress);
   }
 
  private:
   JobConfig config_;
-  std::unique_ptr<TraversalDevice<Image>> model_;
-  GoldenTraversalDevice<Image> golden_;
-  Image image_;
+  std::unique_ptr<DeviceOf<Unit>> model_;
+  GoldenTraversalDevice<typename Unit::Image> golden_;
+  typename Unit::Image image_;
 };
 
 }  // namespace
 
-std::vector<std::string> hardwareAccels() { return {"bvh", "grid", "octree"}; }
+std::vector<fx::UnitKind> hardwarePaths() {
+  std::vector<fx::UnitKind> paths{fx::UnitKind::Isect};
+  fx::forEachTraversalUnit([&](auto unit) { paths.push_back(decltype(unit)::kKind); });
+  return paths;
+}
 
-std::vector<std::string> modelsFor(const std::string& accel) {
-  if (accel == "bvh") return isectDeviceNames();
-  if (accel == "grid") return gridDeviceNames();
-  if (accel == "octree") return octreeDeviceNames();
-  return {};
+std::vector<std::string> hardwarePathNames() {
+  std::vector<std::string> names;
+  for (fx::UnitKind path : hardwarePaths()) names.emplace_back(toString(path));
+  return names;
+}
+
+std::string_view toString(fx::UnitKind path) {
+  std::string_view name = "bvh";
+  fx::forEachTraversalUnit([&](auto unit) {
+    if (decltype(unit)::kKind == path) name = decltype(unit)::kNames.unit;
+  });
+  return name;
+}
+
+fx::UnitKind parseHardwarePath(std::string_view name) {
+  for (fx::UnitKind path : hardwarePaths()) {
+    if (toString(path) == name) return path;
+  }
+  throw InputError(
+      fmt::format("no hardware path for --accel {} (available: {})", name, fmt::join(hardwarePathNames(), ", ")));
+}
+
+std::vector<std::string> modelsFor(fx::UnitKind path) {
+  std::vector<std::string> models = isectDeviceNames();
+  fx::forEachTraversalUnit([&](auto unit) {
+    if (decltype(unit)::kKind == path) models = traversalDeviceNames<decltype(unit)>();
+  });
+  return models;
 }
 
 QuantizedRays quantizeRays(const Quantizer& quantizer, std::span<const Ray> rays) {
@@ -75,22 +103,19 @@ QuantizedRays quantizeRays(const Quantizer& quantizer, std::span<const Ray> rays
   return out;
 }
 
-std::unique_ptr<HardwarePath> makeHardwarePath(const std::string& accel, const Scene& scene,
-                                               const Quantizer& quantizer, const JobConfig& config) {
-  if (accel == "bvh") return std::make_unique<BvhPath>(scene, quantizer, config);
-  if (accel == "grid") {
-    return std::make_unique<TraversalPath<fx::GridImage, makeGridDevice, buildGridImageFor>>(scene, quantizer, config);
-  }
-  if (accel == "octree") {
-    return std::make_unique<TraversalPath<fx::OctreeImage, makeOctreeDevice, buildOctreeImageFor>>(scene, quantizer,
-                                                                                                   config);
-  }
-  throw InputError(fmt::format("no hardware path for --accel {} (available: {})", accel, fmt::join(hardwareAccels(), ", ")));
+std::unique_ptr<HardwarePath> makeHardwarePath(fx::UnitKind path, const Scene& scene, const Quantizer& quantizer,
+                                               const JobConfig& config) {
+  std::unique_ptr<HardwarePath> made;
+  fx::forEachTraversalUnit([&](auto unit) {
+    using Unit = decltype(unit);
+    if (Unit::kKind == path) made = std::make_unique<TraversalPath<Unit>>(scene, quantizer, config);
+  });
+  return made ? std::move(made) : std::make_unique<BvhPath>(scene, quantizer, config);
 }
 
-JobResult runJob(const std::string& accel, const Scene& scene, std::span<const Ray> rays,
+JobResult runJob(fx::UnitKind path, const Scene& scene, std::span<const Ray> rays,
                  const Quantizer& quantizer, const JobConfig& config, const ProgressFn& onProgress) {
-  return makeHardwarePath(accel, scene, quantizer, config)->run(quantizeRays(quantizer, rays), onProgress);
+  return makeHardwarePath(path, scene, quantizer, config)->run(quantizeRays(quantizer, rays), onProgress);
 }
 
 }  // namespace lancer

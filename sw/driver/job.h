@@ -11,10 +11,12 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "driver/isect_device.h"
 #include "driver/quantize.h"
+#include "golden/unit.h"
 #include "ref/accel.h"
 
 namespace lancer {
@@ -67,9 +69,16 @@ struct JobConfig {
 
 using ProgressFn = std::function<void(size_t raysDone)>;
 
-// The hardware paths, by --accel name, and the models each has.
-std::vector<std::string> hardwareAccels();
-std::vector<std::string> modelsFor(const std::string& accel);
+// The hardware paths of --accel (fx::UnitKind): the host's BVH feeding the
+// intersection pipeline ("bvh"), then every traversal unit by its descriptor's
+// name ("grid", "octree").
+std::vector<fx::UnitKind> hardwarePaths();
+std::vector<std::string> hardwarePathNames();
+std::string_view toString(fx::UnitKind path);
+// Throws InputError naming the paths for an unknown name.
+fx::UnitKind parseHardwarePath(std::string_view name);
+// The models a path has ("golden", "systemc", "rtl", ...).
+std::vector<std::string> modelsFor(fx::UnitKind path);
 
 // Rays as a job takes them: ray k quantized with id k, nullopt where it misses
 // the lattice cube.
@@ -86,12 +95,12 @@ class HardwarePath {
   virtual JobResult run(std::span<const std::optional<QuantizedRay>> rays, const ProgressFn& onProgress = {}) = 0;
 };
 
-// Throws InputError for an unknown path or model, or a configuration the model cannot run.
-std::unique_ptr<HardwarePath> makeHardwarePath(const std::string& accel, const Scene& scene,
-                                               const Quantizer& quantizer, const JobConfig& config);
+// Throws InputError for an unknown model, or a configuration the model cannot run.
+std::unique_ptr<HardwarePath> makeHardwarePath(fx::UnitKind path, const Scene& scene, const Quantizer& quantizer,
+                                               const JobConfig& config);
 
 // Runs `rays` through the path: quantizeRays, then one job.
-JobResult runJob(const std::string& accel, const Scene& scene, std::span<const Ray> rays,
+JobResult runJob(fx::UnitKind path, const Scene& scene, std::span<const Ray> rays,
                  const Quantizer& quantizer, const JobConfig& config, const ProgressFn& onProgress = {});
 
 }  // namespace lancer

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "golden/records.h"
-#include "ref/ray.h"
+#include "common/ray.h"
 #include "scene/scene.h"
 
 namespace lancer {

@@ -5,16 +5,15 @@
 
 namespace lancer {
 
-template <>
-void SystemCGridDevice::checkImage(const fx::GridImage& image) {
-  for (int a = 0; a < 3; ++a) {
-    if (image.res[a] < 1 || image.res[a] > fx::kGridResMax) {
-      throw InputError(fmt::format("grid resolution {} on axis {} is out of range 1..{}", image.res[a], a,
-                                   fx::kGridResMax));
-    }
-  }
-}
-
 template class SystemCTraversalDevice<fx::GridImage, sc::rt_grid_unit>;
+
+template <>
+std::unique_ptr<GridDevice> makeSystemCDevice<fx::GridUnit>(SystemCImpl impl) {
+  return std::make_unique<SystemCGridDevice>(impl);
+}
+template <>
+bool systemCRtlAvailable<fx::GridUnit>() {
+  return SystemCGridDevice::rtlAvailable();
+}
 
 }  // namespace lancer

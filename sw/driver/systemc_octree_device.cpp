@@ -5,15 +5,15 @@
 
 namespace lancer {
 
-template <>
-void SystemCOctreeDevice::checkImage(const fx::OctreeImage& image) {
-  if (image.nodes.empty()) throw InputError("the octree image has no root node");
-  if (image.depth > fx::kOctreeMaxDepth) {
-    throw InputError(fmt::format("octree depth {} exceeds the unit's stack ({} levels)", image.depth,
-                                 fx::kOctreeMaxDepth));
-  }
-}
-
 template class SystemCTraversalDevice<fx::OctreeImage, sc::rt_octree_unit>;
+
+template <>
+std::unique_ptr<OctreeDevice> makeSystemCDevice<fx::OctreeUnit>(SystemCImpl impl) {
+  return std::make_unique<SystemCOctreeDevice>(impl);
+}
+template <>
+bool systemCRtlAvailable<fx::OctreeUnit>() {
+  return SystemCOctreeDevice::rtlAvailable();
+}
 
 }  // namespace lancer

@@ -5,14 +5,10 @@
 #include <vector>
 
 #include "common/rt_trav_cycle.h"
+#include "driver/hardware_devices.h"
 #include "driver/traversal_device.h"
 
 namespace lancer {
-
-namespace sc {
-struct rt_grid_unit;
-struct rt_octree_unit;
-}  // namespace sc
 
 // A traversal unit simulated in SystemC (systemc/common/rt_trav_top.h over the
 // unit's traits, systemc/<unit>/rt_<unit>_unit.h), behind the unit's
@@ -36,19 +32,18 @@ struct rt_octree_unit;
 //
 // Throws InputError for raysInFlight outside 0..maxRaysInFlight() (naming both),
 // a memory latency < 1 or a negative jitter, stall/idle probabilities outside
-// [0, 1), and an image the unit cannot take (checkImage: a grid resolution
-// outside 1..256; an octree without a root or deeper than the formats allow);
+// [0, 1), and an image or ray the unit cannot take (its descriptor's checkImage);
 // std::runtime_error when a run is abandoned (watchdog: 10^6 cycles without
 // progress, inconsistent streams, a model assertion, an address outside the
 // image). StreamOptions::wavePath writes an FST for "rtl-systemc" (when built
 // with LANCER_SC_RTL_WAVES) and is ignored by the cycle models.
 //
-// The members are defined in systemc_traversal_device_impl.h and instantiated,
-// with the unit's checkImage(), by systemc_<unit>_device.cpp.
+// The members are defined in systemc_traversal_device_impl.h and instantiated
+// by systemc_<unit>_device.cpp.
 template <class Image, class Unit>
 class SystemCTraversalDevice final : public TraversalDevice<Image> {
  public:
-  enum class Impl { Model, Rtl, ModelRtlIsect };
+  using Impl = SystemCImpl;
 
   explicit SystemCTraversalDevice(Impl impl = Impl::Model);
 
@@ -68,8 +63,6 @@ class SystemCTraversalDevice final : public TraversalDevice<Image> {
   static bool wavesAvailable();
 
  private:
-  static void checkImage(const Image& image);  // the unit's own input checks
-
   Impl impl_;
   std::vector<sc::TraversalCycle>* trace_ = nullptr;
 };

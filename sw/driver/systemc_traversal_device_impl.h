@@ -1,9 +1,7 @@
 #pragma once
 
 // The members of SystemCTraversalDevice<Image, Unit>, for the unit's device
-// .cpp to instantiate after it has defined the unit's checkImage():
-// (systemc_grid_device.cpp)
-//   template <> void SystemCGridDevice::checkImage(const fx::GridImage& image) { ... }
+// .cpp to instantiate (systemc_grid_device.cpp), with its makeSystemCDevice():
 //   template class SystemCTraversalDevice<fx::GridImage, sc::rt_grid_unit>;
 
 #include <array>
@@ -23,11 +21,12 @@ namespace lancer {
 template <class Image, class Unit>
 SystemCTraversalDevice<Image, Unit>::SystemCTraversalDevice(Impl impl) : impl_(impl) {
   if (impl_ == Impl::Rtl && !rtlAvailable()) {
-    throw std::runtime_error(fmt::format("rtl-systemc is not part of this build (no {})", Unit::kNames.rtlSources));
+    throw std::runtime_error(
+        fmt::format("rtl-systemc is not part of this build (no {})", fx::UnitFor<Image>::kNames.rtlSources));
   }
   if (impl_ == Impl::ModelRtlIsect && !rtlIsectAvailable()) {
     throw std::runtime_error(fmt::format("the {} cycle model with the Verilated rt_isect is not part of this build",
-                                         Unit::kNames.module));
+                                         fx::UnitFor<Image>::kNames.module));
   }
 }
 
@@ -65,18 +64,19 @@ template <class Image, class Unit>
 TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, std::span<const fx::QRay> rays,
                                                            std::vector<fx::TraversalTrace>& traces,
                                                            const TraversalRunOptions& options) {
+  using Desc = fx::UnitFor<Image>;
   const int maxSlots = maxRaysInFlight();
   if (options.raysInFlight < 0 || options.raysInFlight > maxSlots) {
     throw InputError(fmt::format("rays in flight {} is out of range: the SystemC {} unit ({}) has {} ray slots "
                                  "(use 1..{}, or 0 for all; rebuild with -D{} for more)",
-                                 options.raysInFlight, Unit::kNames.unit, name(), maxSlots, maxSlots,
-                                 Unit::kNames.slotsOption));
+                                 options.raysInFlight, Desc::kNames.unit, name(), maxSlots, maxSlots,
+                                 Desc::kNames.slotsOption));
   }
   if (options.memLatency < 1 || options.memLatencyJitter < 0) {
     throw InputError(fmt::format("memory latency {} (jitter {}) is out of range: latency >= 1, jitter >= 0",
                                  options.memLatency, options.memLatencyJitter));
   }
-  checkImage(image);
+  Desc::checkImage(image, rays);
   for (const double p : {options.stream.outputStallProbability, options.stream.inputIdleProbability}) {
     if (!(p >= 0.0 && p < 1.0)) {
       throw InputError(fmt::format("{}: stall and idle probabilities must lie in [0, 1), got {}", name(), p));
@@ -141,7 +141,7 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
   for (size_t k = 0; k < n; ++k) {
     if (tally.resultSteps[k] != traces[k].visits.size()) {
       throw std::runtime_error(fmt::format("{}: ray {} reports {} {} but {} visit records came out", name(), k,
-                                           tally.resultSteps[k], Unit::kNames.steps, traces[k].visits.size()));
+                                           tally.resultSteps[k], Desc::kNames.elements, traces[k].visits.size()));
     }
   }
   stats.cycles = tally.cycles;

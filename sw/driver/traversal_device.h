@@ -6,9 +6,8 @@
 #include <vector>
 
 #include "driver/isect_device.h"
-#include "golden/grid.h"
-#include "golden/octree.h"
 #include "golden/trace.h"
+#include "golden/units.h"
 
 namespace lancer {
 
@@ -34,6 +33,20 @@ struct TraversalRunStats {
   bool cycleAccurate = true;     // false for the golden model (no timing)
 
   uint64_t memoryReads() const { return nodeReads + indexReads + triangleReads; }
+  // The stats of consecutive runs, as of one.
+  TraversalRunStats& operator+=(const TraversalRunStats& o) {
+    cycles += o.cycles;
+    rays += o.rays;
+    steps += o.steps;
+    stepReadyCycles += o.stepReadyCycles;
+    nodeReads += o.nodeReads;
+    indexReads += o.indexReads;
+    triangleReads += o.triangleReads;
+    isectTests += o.isectTests;
+    isectBusyCycles += o.isectBusyCycles;
+    cycleAccurate = o.cycleAccurate;
+    return *this;
+  }
 };
 
 // The one interface over every model of a traversal unit (traversal + memory +
@@ -55,27 +68,36 @@ class TraversalDevice {
 using GridDevice = TraversalDevice<fx::GridImage>;
 using OctreeDevice = TraversalDevice<fx::OctreeImage>;
 
-// The golden models: the traversals of sw/golden/, no timing. Memory reads are
-// what the hardware would issue: one per cell (grid) or per interior node
-// entered (octree: its child group), one index and one triangle read per test.
+// The golden models: each unit's walk (its descriptor's traverse()), no
+// timing. Memory reads are what the hardware would issue (the descriptor's
+// NodeReads), and one index and one triangle read per test.
 template <class Image>
 class GoldenTraversalDevice final : public TraversalDevice<Image> {
  public:
   std::string_view name() const override { return "golden"; }
   int maxRaysInFlight() const override { return 1 << 16; }
   TraversalRunStats run(const Image& image, std::span<const fx::QRay> rays, std::vector<fx::TraversalTrace>& traces,
-                        const TraversalRunOptions& options = {}) override;
+                        const TraversalRunOptions& = {}) override {
+    using Unit = fx::UnitFor<Image>;
+    const typename Unit::NodeReads nodeReads(image);
+    TraversalRunStats stats;
+    stats.cycleAccurate = false;
+    traces.clear();
+    traces.reserve(rays.size());
+    for (const fx::QRay& ray : rays) {
+      const fx::TraversalTrace& t = traces.emplace_back(Unit::traverse(image, ray));
+      stats.steps += t.visits.size();
+      stats.nodeReads += nodeReads(t);
+      stats.indexReads += t.tests;
+      stats.triangleReads += t.tests;
+      stats.isectTests += t.tests;
+    }
+    stats.rays = rays.size();
+    return stats;
+  }
 };
 
 using GoldenGridDevice = GoldenTraversalDevice<fx::GridImage>;
 using GoldenOctreeDevice = GoldenTraversalDevice<fx::OctreeImage>;
-
-// Each unit's walk and its count of structure reads (traversal_device.cpp).
-template <>
-TraversalRunStats GoldenGridDevice::run(const fx::GridImage& image, std::span<const fx::QRay> rays,
-                                        std::vector<fx::TraversalTrace>& traces, const TraversalRunOptions& options);
-template <>
-TraversalRunStats GoldenOctreeDevice::run(const fx::OctreeImage& image, std::span<const fx::QRay> rays,
-                                          std::vector<fx::TraversalTrace>& traces, const TraversalRunOptions& options);
 
 }  // namespace lancer

@@ -1,6 +1,7 @@
 #include "driver/traversal_job.h"
 
 #include <chrono>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -23,69 +24,7 @@ std::string visitRun(const std::vector<uint32_t>& visits, size_t from) {
   return out.empty() ? " (none)" : out;
 }
 
-// What differs between the units in their job: names and image counters.
-template <class Image>
-struct TraversalUnit;
-
-template <>
-struct TraversalUnit<fx::GridImage> {
-  static constexpr const char* kName = "grid";
-  static constexpr const char* kElement = "cells";
-  static constexpr const char* kStepsKey = "voxel_steps";
-  static constexpr const char* kStepsLabel = "voxel steps";
-  static constexpr const char* kReadsKey = "cell_reads";
-  static constexpr const char* kReadsLabel = "cell table reads";
-  static void addImageCounters(JobResult& job, const fx::GridImage& image) {
-    job.addCounter("grid_resolution_x", "grid cells x", image.res[0]);
-    job.addCounter("grid_resolution_y", "grid cells y", image.res[1]);
-    job.addCounter("grid_resolution_z", "grid cells z", image.res[2]);
-  }
-};
-
-template <>
-struct TraversalUnit<fx::OctreeImage> {
-  static constexpr const char* kName = "octree";
-  static constexpr const char* kElement = "nodes";
-  static constexpr const char* kStepsKey = "node_steps";
-  static constexpr const char* kStepsLabel = "node steps";
-  static constexpr const char* kReadsKey = "node_reads";
-  static constexpr const char* kReadsLabel = "child group reads";
-  static void addImageCounters(JobResult& job, const fx::OctreeImage& image) {
-    job.addCounter("octree_depth", "octree depth", image.depth);
-    job.addCounter("octree_max_depth", "octree max depth", image.maxDepth);
-    job.addCounter("octree_leaf_size", "octree leaf size", image.leafSize);
-    job.addCounter("octree_nodes", "octree nodes", double(image.nodes.size()));
-  }
-};
-
-void accumulate(TraversalRunStats& total, const TraversalRunStats& stats) {
-  total.cycles += stats.cycles;
-  total.rays += stats.rays;
-  total.steps += stats.steps;
-  total.stepReadyCycles += stats.stepReadyCycles;
-  total.nodeReads += stats.nodeReads;
-  total.indexReads += stats.indexReads;
-  total.triangleReads += stats.triangleReads;
-  total.isectTests += stats.isectTests;
-  total.isectBusyCycles += stats.isectBusyCycles;
-  total.cycleAccurate = stats.cycleAccurate;
-}
-
 }  // namespace
-
-fx::GridImage buildGridImageFor(const Scene& scene, const Quantizer& quantizer, const AccelOptions& options) {
-  std::vector<fx::QTriangle> triangles = quantizer.quantize(scene);
-  const int r = options.gridResolution;
-  const fx::GridRes res = r ? fx::GridRes{r, r, r} : fx::chooseGridResolution(triangles);
-  return fx::buildGridImage(std::move(triangles), res);
-}
-
-fx::OctreeImage buildOctreeImageFor(const Scene& scene, const Quantizer& quantizer, const AccelOptions& options) {
-  std::vector<fx::QTriangle> triangles = quantizer.quantize(scene);
-  const int depth = options.octreeMaxDepth ? options.octreeMaxDepth : fx::defaultOctreeDepth(triangles.size());
-  const int leaf = options.octreeLeafSize ? options.octreeLeafSize : fx::kDefaultOctreeLeafSize;
-  return fx::buildOctreeImage(std::move(triangles), depth, leaf);
-}
 
 std::string describeTraversalMismatch(std::string_view unit, std::string_view element, const fx::QRay& ray,
                                       const fx::TraversalTrace& model, const fx::TraversalTrace& golden) {
@@ -113,10 +52,10 @@ template <class Image>
 JobResult runTraversalJob(const Image& image, std::span<const std::optional<QuantizedRay>> rays,
                           TraversalDevice<Image>& model, TraversalDevice<Image>& golden, const JobConfig& config,
                           const ProgressFn& onProgress) {
-  using Unit = TraversalUnit<Image>;
+  using Unit = fx::UnitFor<Image>;
   if (config.raysInFlight < 0 || config.raysInFlight > model.maxRaysInFlight()) {
     throw InputError(fmt::format("--rays-in-flight {}: the {} {} unit was built with {} ray slots (1..{})",
-                                 config.raysInFlight, model.name(), Unit::kName, model.maxRaysInFlight(),
+                                 config.raysInFlight, model.name(), Unit::kNames.unit, model.maxRaysInFlight(),
                                  model.maxRaysInFlight()));
   }
   if (config.memLatency < 1 || config.memLatencyJitter < 0) {
@@ -144,7 +83,7 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
       batch.push_back(job.rays[i]->q);
     }
     auto start = std::chrono::steady_clock::now();
-    accumulate(total, model.run(image, batch, modelTraces, options));
+    total += model.run(image, batch, modelTraces, options);
     job.modelSeconds += secondsSince(start);
     start = std::chrono::steady_clock::now();
     golden.run(image, batch, goldenTraces, {});
@@ -157,7 +96,7 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
       ++job.mismatchedRays;
       if (!job.firstMismatch) {
         job.firstMismatch = MismatchReport{
-            id, describeTraversalMismatch(Unit::kName, Unit::kElement, batch[k], mine ? *mine : fx::TraversalTrace{},
+            id, describeTraversalMismatch(Unit::kNames.unit, Unit::kNames.elements, batch[k], mine ? *mine : fx::TraversalTrace{},
                                           goldenTraces[k])};
       }
     }
@@ -169,14 +108,14 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
   job.steps = total.steps;
   job.memoryReads = total.memoryReads();
   const double cycles = double(std::max<uint64_t>(total.cycles, 1));
-  Unit::addImageCounters(job, image);
-  job.addCounter(Unit::kStepsKey, Unit::kStepsLabel, double(total.steps));
+  for (const fx::ImageCounter& c : Unit::imageCounters(image)) job.addCounter(c.key, c.label, c.value);
+  job.addCounter(Unit::kNames.stepsKey, Unit::kNames.stepsLabel, double(total.steps));
   job.addCounter("memory_reads", "memory reads", double(total.memoryReads()));
-  job.addCounter(Unit::kReadsKey, Unit::kReadsLabel, double(total.nodeReads));
+  job.addCounter(Unit::kNames.readsKey, Unit::kNames.readsLabel, double(total.nodeReads));
   job.addCounter("index_reads", "index list reads", double(total.indexReads));
   job.addCounter("triangle_reads", "triangle reads", double(total.triangleReads));
   if (job.cycleAccurate) {  // timing figures mean nothing for the golden model
-    job.addCounter("steps_per_cycle", fmt::format("{}/cycle", Unit::kStepsLabel), double(total.steps) / cycles);
+    job.addCounter("steps_per_cycle", fmt::format("{}/cycle", Unit::kNames.stepsLabel), double(total.steps) / cycles);
     if (total.stepReadyCycles) {
       job.addCounter("steps_per_ready_cycle", "steps/ready cycle",
                      double(total.steps) / double(total.stepReadyCycles));
@@ -189,9 +128,14 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
   return job;
 }
 
-template JobResult runTraversalJob(const fx::GridImage&, std::span<const std::optional<QuantizedRay>>, GridDevice&,
-                                   GridDevice&, const JobConfig&, const ProgressFn&);
-template JobResult runTraversalJob(const fx::OctreeImage&, std::span<const std::optional<QuantizedRay>>,
-                                   OctreeDevice&, OctreeDevice&, const JobConfig&, const ProgressFn&);
+// runTraversalJob for every unit: the explicit instantiation of all() emits
+// each one.
+template <class Units>
+struct TraversalJobs;
+template <class... Units>
+struct TraversalJobs<std::tuple<Units...>> {
+  static auto all() { return std::tuple{&runTraversalJob<typename Units::Image>...}; }
+};
+template struct TraversalJobs<fx::TraversalUnits>;
 
 }  // namespace lancer

@@ -3,7 +3,8 @@
 // The hardware job of a traversal unit (grid, octree): rays through the unit's
 // model and its golden model, compared per ray bit for bit, with the unit's
 // counters for the summary and the JSON report. One implementation for every
-// unit; what differs per unit (names, image counters) is in TraversalUnit<Image>.
+// unit; what differs per unit (names, image counters) is its descriptor
+// (golden/unit.h).
 
 #include <string>
 
@@ -12,28 +13,27 @@
 
 namespace lancer {
 
-// The grid's memory image for a scene: triangles quantized, resolution from
-// AccelOptions::gridResolution (a cube of that many cells a side) or the
-// golden model's heuristic.
-fx::GridImage buildGridImageFor(const Scene& scene, const Quantizer& quantizer, const AccelOptions& options);
-
-// The octree's memory image: depth from AccelOptions::octreeMaxDepth (0: the
-// golden model's default for the triangle count), leaf size from
-// octreeLeafSize (0: fx::kDefaultOctreeLeafSize).
-fx::OctreeImage buildOctreeImageFor(const Scene& scene, const Quantizer& quantizer, const AccelOptions& options);
+// A unit's memory image for a scene: the triangles quantized, then the
+// descriptor's build() with the --grid-res / --octree-* options (0: the golden
+// model's heuristics).
+template <class Unit>
+typename Unit::Image buildImageFor(const Scene& scene, const Quantizer& quantizer, const AccelOptions& options) {
+  return Unit::build(quantizer.quantize(scene), options);
+}
 
 // Runs every ray that entered the lattice (rays[k], id k) through `model` and
 // `golden` and compares, per ray, bit for bit: the elements visited in order,
 // the tests issued, and the closest hit record. Throws InputError for a
-// rays-in-flight count or memory latency the model cannot run.
+// rays-in-flight count or memory latency the model cannot run. Instantiated
+// for every unit of fx::TraversalUnits.
 template <class Image>
 JobResult runTraversalJob(const Image& image, std::span<const std::optional<QuantizedRay>> rays,
                           TraversalDevice<Image>& model, TraversalDevice<Image>& golden, const JobConfig& config,
                           const ProgressFn& onProgress = {});
 
 // The reproducer text of a mismatch: the ray, both visit sequences from the
-// first difference, both hit records. `unit` is "grid", "octree"; `element`
-// names what is visited ("cells", "nodes").
+// first difference, both hit records. `unit` is the unit's name ("grid"),
+// `element` what it visits ("cells").
 std::string describeTraversalMismatch(std::string_view unit, std::string_view element, const fx::QRay& ray,
                                       const fx::TraversalTrace& model, const fx::TraversalTrace& golden);
 

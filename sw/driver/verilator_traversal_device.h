@@ -5,6 +5,7 @@
 #include <string_view>
 #include <vector>
 
+#include "driver/hardware_devices.h"
 #include "driver/traversal_device.h"
 
 namespace lancer {
@@ -19,16 +20,6 @@ class VerilatedUnit;
 // verilator_traversal_run.h lists the members a specialization defines.
 template <class Top>
 struct VerilatedTraversalUnit;
-
-// How a unit's messages name it, its build option and its node table.
-struct VerilatedTraversalNames {
-  const char* top;          // the model ("rt_grid")
-  const char* unit;         // the unit ("grid")
-  const char* slotsOption;  // the CMake variable of its ray slots
-  const char* elements;     // what a visit enters, plural ("cells", "nodes")
-  const char* nodeRead;     // one read of the node port ("cell", "child group")
-  const char* nodeTable;    // the table it reads ("cell table", "node table")
-};
 
 // The Verilated RTL of a traversal unit (rt_grid, rt_octree: a traversal with
 // its memory ports and its rt_isect) behind TraversalDevice<Image>, name
@@ -69,29 +60,5 @@ class VerilatorTraversalDevice : public TraversalDevice<Image> {
  private:
   std::unique_ptr<VerilatedUnit<Top>> unit_;
 };
-
-}  // namespace lancer
-
-// The units, instantiated in verilator_grid_device.cpp and
-// verilator_octree_device.cpp (their headers include this one).
-class Vrt_grid;
-class Vrt_octree;
-
-namespace lancer {
-
-extern template class VerilatorTraversalDevice<Vrt_grid, fx::GridImage>;
-extern template class VerilatorTraversalDevice<Vrt_octree, fx::OctreeImage>;
-
-// rt_grid (rtl/grid/rt_grid.sv, with its rt_isect) behind GridDevice. A node
-// response is one grid cell; the run's configuration is the resolution
-// (cfg_res_i), checked against 1..fx::kGridResMax per axis (InputError). Node
-// reads may run up to CellQueue - 1 cells past a ray's last cell (prefetch).
-class VerilatorGridDevice final : public VerilatorTraversalDevice<Vrt_grid, fx::GridImage> {};
-
-// rt_octree (rtl/octree/rt_octree.sv, with its rt_isect) behind OctreeDevice.
-// A node request at `first` returns the child group first .. first+7; the
-// run's configuration is the root's record (cfg_root_i = image.nodes[0]).
-// Also throws InputError for a ray with a zero direction or an image without nodes.
-class VerilatorOctreeDevice final : public VerilatorTraversalDevice<Vrt_octree, fx::OctreeImage> {};
 
 }  // namespace lancer

@@ -5,18 +5,14 @@
 // specialization and the Verilated header, followed by
 //   template class VerilatorTraversalDevice<Top, Image>;
 //
-// A specialization VerilatedTraversalUnit<Top> defines (all static, inline):
-//   kNames             VerilatedTraversalNames: the unit's names in messages
+// A specialization VerilatedTraversalUnit<Top> defines (all static, inline)
+// only what names the Verilated model's own members:
+//   Desc               the unit's descriptor (golden/unit.h): names, records,
+//                      node packing, configuration, image checks
 //   kMaxSlots          RaysInFlight, from the unit's compile definition
-//   kVisitFields, kResFields   its visit and result records (golden/records.h)
-//   kGroup             elements per node response (1 cell, 8 nodes)
-//   nodes(image)       the node table (cells or nodes)
-//   packNode(element)  one element as its 64-bit wire image
 //   nodePort(top)      std::tie of the node port: req valid, addr, tag,
 //                      req ready, rsp valid, data, tag
-//   checkImage(image, rays)  InputError for what the unit cannot take
-//   idleConfig(top)    the configuration ports at reset
-//   configure(top, image)    the configuration ports of a run (not cfg_slots_i)
+//   configPort(top)    its configuration port besides cfg_slots_i
 
 #include <array>
 #include <cstdint>
@@ -35,6 +31,18 @@
 namespace lancer {
 
 namespace trav_detail {
+
+// The unit's configuration port for `image` (an empty Image at reset).
+template <class Top, class Image>
+void configure(Top& top, const Image& image) {
+  using Desc = typename VerilatedTraversalUnit<Top>::Desc;
+  std::array<uint32_t, size_t(fx::wireWords(fx::kCfgBitsOf<Desc>))> wire{};
+  fx::packConfig<Desc>(image, wire);
+  auto& port = VerilatedTraversalUnit<Top>::configPort(top);
+  static_assert(portWords<std::remove_reference_t<decltype(port)>>() == wire.size(),
+                "the configuration port does not match the descriptor's kCfgFields: rebuild rt_pkg");
+  writePort(port, wire.data(), wire.size());
+}
 
 // Bit offset of field `index` in a record: the first field is the most significant.
 constexpr int fieldLsb(std::span<const fx::FieldSpec> fields, size_t index) {
@@ -59,14 +67,14 @@ void idleInputs(Top& top) {
   top.idx_rsp_valid_i = 0;
   top.tri_rsp_valid_i = 0;
   top.cfg_slots_i = Unit::kMaxSlots;
-  Unit::idleConfig(top);
+  configure(top, typename Unit::Desc::Image{});
 }
 
 }  // namespace trav_detail
 
 template <class Top, class Image>
 VerilatorTraversalDevice<Top, Image>::VerilatorTraversalDevice()
-    : unit_(std::make_unique<VerilatedUnit<Top>>(VerilatedTraversalUnit<Top>::kNames.top)) {
+    : unit_(std::make_unique<VerilatedUnit<Top>>(VerilatedTraversalUnit<Top>::Desc::kNames.module)) {
   unit_->reset(trav_detail::idleInputs<Top>);
 }
 
@@ -83,9 +91,10 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
                                                             std::vector<fx::TraversalTrace>& traces,
                                                             const TraversalRunOptions& options) {
   using Unit = VerilatedTraversalUnit<Top>;
+  using Desc = typename Unit::Desc;
   const int maxSlots = Unit::kMaxSlots;
-  checkTraversalOptions(options, maxSlots, Unit::kNames.unit, Unit::kNames.slotsOption);
-  Unit::checkImage(image, rays);
+  checkTraversalOptions(options, maxSlots, Desc::kNames.unit, Desc::kNames.slotsOption);
+  Desc::checkImage(image, rays);
 
   TraversalRunStats stats;
   const size_t n = rays.size();
@@ -94,26 +103,24 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
   if (n == 0) return stats;
 
   // The records of the two narrow streams, taken straight from their ports.
-  constexpr auto kVisitFields = Unit::kVisitFields;
+  constexpr auto kVisitFields = Desc::kVisitFields;
   static_assert(fx::recordBits(kVisitFields) <= 64 && kVisitFields.size() == 2, "a visit is {ray_id, element}");
   constexpr int kVisitRayLsb = trav_detail::fieldLsb(kVisitFields, 0);
   constexpr int kVisitIdLsb = trav_detail::fieldLsb(kVisitFields, 1);
   constexpr int kVisitIdBits = kVisitFields[1].width;
   static_assert(kVisitFields[0].width == 32 && kVisitIdBits <= 32 && kVisitRayLsb + 32 == fx::recordBits(kVisitFields));
   constexpr uint64_t kVisitIdMask = (uint64_t(1) << kVisitIdBits) - 1;
-  constexpr size_t kResWords = size_t(fx::wireWords(fx::recordBits(Unit::kResFields)));
+  constexpr size_t kResWords = size_t(fx::wireWords(fx::recordBits(Desc::kResFields)));
   constexpr size_t kTriWords = fx::kIsectTriWords;
-  constexpr size_t kNodeWords = 2;  // one element, 64 bits
-  constexpr size_t kGroupWords = Unit::kGroup * kNodeWords;
+  constexpr size_t kNodeWords = size_t(fx::wireWords(fx::kNodeBitsOf<Desc>));
+  constexpr size_t kGroupWords = Desc::kGroup * kNodeWords;
 
   // The image as the ports carry it, packed once: node table (a group is
   // kGroup consecutive elements) and triangles. Nothing is allocated per cycle.
-  const auto& nodes = Unit::nodes(image);
+  const auto& nodes = Desc::nodes(image);
   std::vector<uint32_t> nodeWire(nodes.size() * kNodeWords);
   for (size_t i = 0; i < nodes.size(); ++i) {
-    const uint64_t wire = Unit::packNode(nodes[i]);
-    nodeWire[kNodeWords * i] = uint32_t(wire);
-    nodeWire[kNodeWords * i + 1] = uint32_t(wire >> 32);
+    fx::packNode<Desc>(nodes[i], std::span<uint32_t>(nodeWire).subspan(kNodeWords * i, kNodeWords));
   }
   std::vector<uint32_t> triWire(image.triangles.size() * kTriWords);
   for (size_t i = 0; i < image.triangles.size(); ++i) {
@@ -126,12 +133,12 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
       Unit::nodePort(top);
   (void)nodeReqReady;  // always ready, set by idleInputs
   static_assert(portWords<std::remove_reference_t<decltype(nodeRspData)>>() == kGroupWords,
-                "the node response port does not carry kGroup elements of 64 bits: rebuild rt_pkg");
+                "the node response port does not carry kGroup nodes of the descriptor: rebuild rt_pkg");
   static_assert(portWords<std::remove_reference_t<decltype(top.res_data_o)>>() >= kResWords,
                 "res_data_o does not match the unit's result record: rebuild rt_pkg");
   auto configure = [&] {
     top.cfg_slots_i = options.raysInFlight == 0 ? maxSlots : options.raysInFlight;
-    Unit::configure(top, image);
+    trav_detail::configure(top, image);
   };
   unit.reset(trav_detail::idleInputs<Top>);
   configure();
@@ -142,7 +149,7 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
   std::vector<uint8_t> finished(n, 0);
   std::vector<uint32_t> resultElements(n, 0);
   std::array<uint32_t, kResWords> resWire{};
-  std::array<fx::u128, fx::valueCount(Unit::kResFields)> res{};
+  std::array<fx::u128, fx::valueCount(Desc::kResFields)> res{};
   fx::RayWire rayWire{};
   size_t offered = 0, results = 0;
   bool offering = false, started = false;
@@ -175,9 +182,9 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
       uint32_t addr = 0, tag = 0;
       nodeRspValid = stim.nodePort.respond(cycle, addr, tag);
       if (nodeRspValid) {
-        if (uint64_t(addr) + Unit::kGroup > nodes.size()) {
-          fail(fmt::format("{} read at {} outside the {} ({} entries)", Unit::kNames.nodeRead, addr,
-                           Unit::kNames.nodeTable, nodes.size()));
+        if (uint64_t(addr) + Desc::kGroup > nodes.size()) {
+          fail(fmt::format("{} read at {} outside the {} ({} entries)", Desc::kNames.nodeRead, addr,
+                           Desc::kNames.nodeTable, nodes.size()));
         }
         writePort(nodeRspData, &nodeWire[size_t(addr) * kNodeWords], kGroupWords);
         nodeRspTag = tag;
@@ -234,7 +241,7 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
       }
       if (top.res_valid_o && resReady) {
         readPort(top.res_data_o, resWire.data(), kResWords);
-        fx::unpackFields(Unit::kResFields, resWire, res);
+        fx::unpackFields(Desc::kResFields, resWire, res);
         const size_t k = size_t(res[0]);
         if (k >= offered || finished[k]) fail(fmt::format("a result for ray {} that is not in flight", k));
         finished[k] = 1;
@@ -266,7 +273,7 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
   for (size_t k = 0; k < n; ++k) {
     if (resultElements[k] != traces[k].visits.size()) {
       fail(fmt::format("ray {} reports {} {} but {} visit records came out", k, resultElements[k],
-                       Unit::kNames.elements, traces[k].visits.size()));
+                       Desc::kNames.elements, traces[k].visits.size()));
     }
   }
   return stats;

@@ -10,16 +10,16 @@
 
 namespace lancer {
 
-HardwareWaveTracer::HardwareWaveTracer(const std::string& accel, const Scene& scene, const Quantizer& quantizer,
+HardwareWaveTracer::HardwareWaveTracer(fx::UnitKind path, const Scene& scene, const Quantizer& quantizer,
                                        const JobConfig& config, const Bvh* reference, double offsetUnits)
-    : quantizer_(quantizer), path_(makeHardwarePath(accel, scene, quantizer, config)),
+    : quantizer_(quantizer), path_(makeHardwarePath(path, scene, quantizer, config)),
       offset_(offsetUnits), scene_(scene), reference_(reference) {
   if (reference_) candidates_ = exactCandidates(*reference_, scene.bounds);
   // The bvh path streams every candidate either way: any-hit saves it nothing to measure.
-  if (accel != "bvh") {
+  if (path != fx::UnitKind::Isect) {
     JobConfig golden = config;
     golden.model = "golden";
-    golden_ = makeHardwarePath(accel, scene, quantizer, golden);
+    golden_ = makeHardwarePath(path, scene, quantizer, golden);
   }
   for (const fx::QTriangle& t : quantizer.quantize(scene)) {
     glm::dvec3 v[3];
@@ -28,6 +28,39 @@ HardwareWaveTracer::HardwareWaveTracer(const std::string& accel, const Scene& sc
     const double length = glm::length(n);
     normals_.push_back(length > 0 ? n / length : glm::dvec3(0.0));  // degenerate: never hit
   }
+}
+
+void ClassHardwareStats::add(const JobResult& job, std::span<const std::optional<QuantizedRay>> batch) {
+  rays += batch.size();
+  for (const auto& r : batch) traced += r.has_value();
+  for (const auto& h : job.hits) hits += h.has_value();
+  intersectionTests += job.intersectionTests;
+  steps += job.steps;
+  memoryReads += job.memoryReads;
+  cycles += job.cycles;
+  mismatches += job.mismatchedRays;
+  modelSeconds += job.modelSeconds;
+  goldenSeconds += job.goldenSeconds;
+}
+
+nlohmann::json ClassHardwareStats::toJson(double clockHz) const {
+  nlohmann::json j = {{"rays", rays},
+                      {"rays_in_lattice", traced},
+                      {"hits", hits},
+                      {"intersection_tests", intersectionTests},
+                      {"steps", steps},
+                      {"memory_reads", memoryReads},
+                      {"cycles", cycles},
+                      {"simulated_seconds", double(cycles) / clockHz},
+                      {"mismatches", mismatches},
+                      {"host_seconds", modelSeconds + goldenSeconds},
+                      {"model_seconds", modelSeconds},
+                      {"golden_seconds", goldenSeconds}};
+  if (closestHitSteps || closestHitTests) {
+    j["closest_hit_steps"] = closestHitSteps;
+    j["closest_hit_tests"] = closestHitTests;
+  }
+  return j;
 }
 
 uint64_t HardwareWaveTracer::beyondBound() const {
@@ -109,15 +142,7 @@ void HardwareWaveTracer::trace(int generation, std::span<const WaveRay> rays, st
     }
     const JobResult job = path_->run(batch);
     ClassHardwareStats& s = stats_[size_t(c)];
-    s.rays += members.size();
-    for (const auto& r : batch) s.traced += r.has_value();
-    s.intersectionTests += job.intersectionTests;
-    s.steps += job.steps;
-    s.memoryReads += job.memoryReads;
-    s.cycles += job.cycles;
-    s.mismatches += job.mismatchedRays;
-    s.modelSeconds += job.modelSeconds;
-    s.goldenSeconds += job.goldenSeconds;
+    s.add(job, batch);
     cycleAccurate_ = cycleAccurate_ && job.cycleAccurate;
     if (job.firstMismatch && !firstMismatch_) {
       const uint32_t index = members[job.firstMismatch->rayId];
@@ -128,7 +153,6 @@ void HardwareWaveTracer::trace(int generation, std::span<const WaveRay> rays, st
     for (size_t k = 0; k < members.size(); ++k) {
       hits[members[k]] = sceneHit(job, k);
       waveHits[members[k]] = job.hits[k];
-      s.hits += job.hits[k].has_value();
     }
     if (reference_) compare(generation, cls, rays, members, batch, job);
     if (anyHitRays && golden_) {  // what the same rays would have cost as closest-hit rays

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "driver/job.h"
 #include "driver/report.h"
 #include "ref/bvh.h"
@@ -50,6 +52,11 @@ struct ClassHardwareStats {
   uint64_t closestHitSteps = 0;  // any-hit rays: steps of the same rays as closest-hit (golden model; grid, octree)
   uint64_t closestHitTests = 0;
   double modelSeconds = 0, goldenSeconds = 0;
+
+  // One job's figures over the class's `rays` (nullopt: outside the lattice).
+  void add(const JobResult& job, std::span<const std::optional<QuantizedRay>> rays);
+  // The class's report entry; `clockHz` turns cycles into simulated seconds.
+  nlohmann::json toJson(double clockHz) const;
 };
 
 // The first wave ray on which the model and the golden model disagree.
@@ -66,7 +73,7 @@ class HardwareWaveTracer final : public WaveTracer {
   // With a `reference` (which must outlive it too), every wave's rays are also
   // traced by it, as the hardware was asked them, and each class's disagreements
   // are settled by the exact arbiter (comparison()).
-  HardwareWaveTracer(const std::string& accel, const Scene& scene, const Quantizer& quantizer, const JobConfig& config,
+  HardwareWaveTracer(fx::UnitKind path, const Scene& scene, const Quantizer& quantizer, const JobConfig& config,
                      const Bvh* reference = nullptr, double offsetUnits = kSecondaryOffsetUnits);
 
   void trace(int generation, std::span<const WaveRay> rays, std::vector<std::optional<Hit>>& hits) override;

@@ -13,7 +13,7 @@
 #include "common/png.h"
 #include "effects/plan.h"
 #include "effects/ray_class.h"
-#include "ref/ray.h"
+#include "common/ray.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 

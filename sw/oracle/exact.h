@@ -24,7 +24,7 @@
 
 #include <gmpxx.h>
 
-#include "ref/ray.h"
+#include "common/ray.h"
 #include "scene/scene.h"
 
 namespace lancer {

@@ -6,7 +6,8 @@
 #include <string>
 #include <string_view>
 
-#include "ref/ray.h"
+#include "common/accel_options.h"
+#include "common/ray.h"
 #include "scene/scene.h"
 
 namespace lancer {
@@ -41,19 +42,5 @@ enum class AccelKind { Grid, Octree, Bvh, Embree };
 std::string_view toString(AccelKind kind);
 // Throws InputError for an unknown name.
 AccelKind parseAccelKind(std::string_view name);
-
-// Build parameters; zero means "choose by the documented heuristic".
-struct AccelOptions {
-  int gridResolution = 0;  // voxels along the longest axis (1..1024)
-  int octreeMaxDepth = 0;  // 1..kMaxOctreeDepth
-  int octreeLeafSize = 0;  // split a node holding more triangles than this
-  int bvhLeafSize = 4;     // largest leaf the SAH builder may make
-};
-
-// Builds the structure over `scene` (which must outlive it). Throws InputError
-// on impossible options.
-std::unique_ptr<Accel> makeAccel(AccelKind kind, const Scene& scene,
-                                 const AccelOptions& options = {});
-std::unique_ptr<Accel> makeAccel(AccelKind, Scene&&, const AccelOptions& = {}) = delete;
 
 }  // namespace lancer

@@ -4,7 +4,7 @@
 #include <span>
 
 #include "common/png.h"
-#include "ref/ray.h"
+#include "common/ray.h"
 #include "scene/scene.h"
 
 namespace lancer {

@@ -2,7 +2,7 @@
 
 #include <optional>
 
-#include "ref/ray.h"
+#include "common/ray.h"
 #include "scene/scene.h"
 
 namespace lancer {

@@ -5,7 +5,7 @@
 #include <string_view>
 #include <vector>
 
-#include "ref/ray.h"
+#include "common/ray.h"
 #include "scene/scene.h"
 
 namespace lancer {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "ref/ray.h"
+#include "common/ray.h"
 
 namespace lancer {
 

@@ -17,7 +17,7 @@
 #include "driver/quantize.h"
 #include "golden/formats.h"
 #include "scene/obj.h"
-#include "sweep/cracks.h"
+#include "driver/cracks.h"
 
 namespace lancer::stress {
 
@@ -119,7 +119,7 @@ StressCase closedMesh(size_t rays, uint64_t seed) {
   StressCase c = named("closed-mesh", "closed icosphere, rays at its shared vertices and edges (lattice-exact and float)");
   c.scene = makeScene("stress:closed-mesh", makeIcosphere(3).triangles);
   const Quantizer quantizer(c.scene.bounds);
-  const sweep::CrackRays cracks = sweep::makeCrackRays(c.scene, quantizer, rays / 2, seed);
+  const CrackRays cracks = makeCrackRays(c.scene, quantizer, rays / 2, seed);
   c.rays = cracks.rays;
   c.latticeRejected = cracks.rejected;
   Draw draw(seed);

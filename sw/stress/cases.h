@@ -38,7 +38,7 @@
 #include <vector>
 
 #include "ref/accel.h"
-#include "ref/ray.h"
+#include "common/ray.h"
 #include "scene/scene.h"
 
 namespace lancer::stress {

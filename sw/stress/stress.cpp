@@ -189,17 +189,21 @@ nlohmann::json StressResult::toJson() const {
 
 StressResult runStress(const StressOptions& options, const StressProgress& progress) {
   const std::vector<std::string> cases = options.cases.empty() ? caseNames() : options.cases;
-  const std::vector<std::string> all = hardwareAccels();
-  const std::vector<std::string> units = options.units.empty() ? all : options.units;
-  for (const std::string& u : units) {
+  const std::vector<std::string> all = hardwarePathNames();
+  std::vector<fx::UnitKind> units;
+  for (const std::string& u : options.units) {
     if (std::find(all.begin(), all.end(), u) == all.end()) {
       throw InputError(fmt::format("--units {}: no such hardware path (available: {})", u, fmt::join(all, ", ")));
     }
+    units.push_back(parseHardwarePath(u));
+  }
+  if (units.empty()) units = hardwarePaths();
+  for (fx::UnitKind u : units) {
     for (const std::string& m : options.models) {
       const auto have = modelsFor(u);
       if (std::find(have.begin(), have.end(), m) == have.end()) {
-        throw InputError(fmt::format("--models {}: the {} path has no such model in this build (available: {})", m, u,
-                                     fmt::join(have, ", ")));
+        throw InputError(fmt::format("--models {}: the {} path has no such model in this build (available: {})", m,
+                                     toString(u), fmt::join(have, ", ")));
       }
     }
   }
@@ -234,7 +238,7 @@ StressResult runStress(const StressOptions& options, const StressProgress& progr
       JobConfig config;
       config.accel = placed.accel;
 
-      for (const std::string& unit : units) {
+      for (fx::UnitKind unit : units) {
         const std::vector<std::string> models = options.models.empty() ? modelsFor(unit) : options.models;
         for (const std::string& model : models) {
           const auto start = std::chrono::steady_clock::now();
@@ -243,13 +247,13 @@ StressResult runStress(const StressOptions& options, const StressProgress& progr
           StressRow row;
           row.caseName = name;
           row.variant = variant.name();
-          row.unit = unit;
+          row.unit = toString(unit);
           row.model = model;
           row.rays = placed.rays.size();
           row.mismatches = job.mismatchedRays;
           row.latticeExact = variant.latticeExact();
           row.mustHit = placed.mustHit;
-          const std::string key = unit + "/" + model;
+          const std::string key = row.unit + "/" + model;
           const bool isBase = variant.kind == Variant::Kind::Base;
           if (isBase) baseAnswers[key] = {job.rays, job.hits};
           const BaseAnswers& baseOf = baseAnswers.at(key);

@@ -8,6 +8,7 @@
 #include <fmt/ranges.h>
 
 #include "common/error.h"
+#include "golden/units.h"
 
 namespace lancer::sweep {
 
@@ -46,7 +47,11 @@ Width parseWidth(const std::string& text, const std::string& where) {
 }
 
 const std::vector<std::string>& sweepUnits() {
-  static const std::vector<std::string> units{"isect", "grid", "octree"};
+  static const std::vector<std::string> units = [] {
+    std::vector<std::string> names{"isect"};
+    fx::forEachTraversalUnit([&](auto unit) { names.emplace_back(decltype(unit)::kNames.unit); });
+    return names;
+  }();
   return units;
 }
 

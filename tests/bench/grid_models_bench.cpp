@@ -5,7 +5,7 @@
 //     by the driver's Quantizer (rays that miss the lattice cube are dropped);
 //     the grid the driver builds (fx::chooseGridResolution). --order shuffled
 //     feeds the same rays in a random order (seed 1) instead of scanline order.
-//  2. Check pass: every model (makeGridDevice) runs the rays once; every trace
+//  2. Check pass: every model (makeTraversalDevice) runs the rays once; every trace
 //     must equal golden's bit for bit, or the program exits 1. Its simulated
 //     figures (cycles, steps per cycle, isect busy, ...) are printed.
 //  3. Timed passes: `--repetitions` rounds; each round runs every model once,
@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   std::string scenePath = LANCER_BENCH_BUNNY;
   int width = 256, height = 256, repetitions = 5, raysInFlight = 0, memLatency = 20;
   std::string order = "scanline", jsonPath;
-  std::vector<std::string> models = gridDeviceNames();
+  std::vector<std::string> models = traversalDeviceNames<fx::GridUnit>();
   app.add_option("--scene", scenePath, "scene file (default: the bunny)");
   app.add_option("--width", width, "camera rays per row")->check(CLI::PositiveNumber);
   app.add_option("--height", height, "camera rays per column")->check(CLI::PositiveNumber);
@@ -82,9 +82,9 @@ int main(int argc, char** argv) {
 
   // ---- Check pass: bit-exact traces, simulated figures.
   std::map<std::string, std::unique_ptr<GridDevice>> devices;
-  for (const std::string& m : models) devices[m] = makeGridDevice(m);
+  for (const std::string& m : models) devices[m] = makeTraversalDevice<fx::GridUnit>(m);
   std::vector<fx::TraversalTrace> want, got;
-  if (!devices.count("golden")) devices["golden"] = makeGridDevice("golden");
+  if (!devices.count("golden")) devices["golden"] = makeTraversalDevice<fx::GridUnit>("golden");
   devices["golden"]->run(image, rays, want, options);
   nlohmann::json json;
   json["scene"] = scenePath;

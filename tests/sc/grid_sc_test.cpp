@@ -137,13 +137,13 @@ TEST(ScGridCycleAccuracy, StatsEqualTheCxxVerilatedDevice) {
 // ---- The device in the process --------------------------------------------------
 
 TEST(ScGridDevice, NamesAndFactory) {
-  const std::vector<std::string> names = gridDeviceNames();
+  const std::vector<std::string> names = traversalDeviceNames<fx::GridUnit>();
   EXPECT_NE(std::find(names.begin(), names.end(), "systemc"), names.end());
   EXPECT_NE(std::find(names.begin(), names.end(), "rtl"), names.end());
   EXPECT_EQ(std::find(names.begin(), names.end(), "rtl-systemc") != names.end(), SystemCGridDevice::rtlAvailable());
-  for (const std::string& n : names) EXPECT_EQ(makeGridDevice(n)->name(), n);
-  EXPECT_EQ(makeGridDevice("systemc")->maxRaysInFlight(), VerilatorGridDevice().maxRaysInFlight());
-  EXPECT_THROW(makeGridDevice("nope"), InputError);
+  for (const std::string& n : names) EXPECT_EQ(makeTraversalDevice<fx::GridUnit>(n)->name(), n);
+  EXPECT_EQ(makeTraversalDevice<fx::GridUnit>("systemc")->maxRaysInFlight(), VerilatorGridDevice().maxRaysInFlight());
+  EXPECT_THROW(makeTraversalDevice<fx::GridUnit>("nope"), InputError);
 }
 
 TEST(ScGridDevice, GridAndIsectDevicesShareOneKernel) {

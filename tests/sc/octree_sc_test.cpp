@@ -212,14 +212,14 @@ TEST(ScOctreeCycleAccuracy, ModelMatchesVerilatedRtlCycleForCycle) {
 }
 
 TEST(ScOctreeCycleAccuracy, StatsEqualTheCxxVerilatedDevice) {
-  const std::vector<std::string> names = octreeDeviceNames();
+  const std::vector<std::string> names = traversalDeviceNames<fx::OctreeUnit>();
   if (std::find(names.begin(), names.end(), "rtl") == names.end()) {
     GTEST_SKIP() << "no C++ Verilated octree device (\"rtl\") in this build";
   }
   // The cycle model against the C++-driven RTL ("rtl-systemc" equals the model
   // cycle for cycle, above): the same stimulus and memory timing give the same
   // counters, cycles included.
-  const auto cxx = makeOctreeDevice("rtl");
+  const auto cxx = makeTraversalDevice<fx::OctreeUnit>("rtl");
   const std::vector<TraversalRunOptions> settings = timingSettings();
   SystemCOctreeDevice model(Impl::Model);
   for (const OctreeCase& c : cycleCases()) {
@@ -237,13 +237,13 @@ TEST(ScOctreeCycleAccuracy, StatsEqualTheCxxVerilatedDevice) {
 // ---- The device in the process ------------------------------------------------------------
 
 TEST(ScOctreeDevice, NamesAndFactory) {
-  const std::vector<std::string> names = octreeDeviceNames();
+  const std::vector<std::string> names = traversalDeviceNames<fx::OctreeUnit>();
   EXPECT_NE(std::find(names.begin(), names.end(), "systemc"), names.end());
   EXPECT_EQ(std::find(names.begin(), names.end(), "rtl-systemc") != names.end(),
             SystemCOctreeDevice::rtlAvailable());
-  for (const std::string& n : names) EXPECT_EQ(makeOctreeDevice(n)->name(), n);
-  EXPECT_EQ(makeOctreeDevice("systemc")->maxRaysInFlight(), LANCER_OCTREE_RAYS_IN_FLIGHT);
-  EXPECT_THROW(makeOctreeDevice("nope"), InputError);
+  for (const std::string& n : names) EXPECT_EQ(makeTraversalDevice<fx::OctreeUnit>(n)->name(), n);
+  EXPECT_EQ(makeTraversalDevice<fx::OctreeUnit>("systemc")->maxRaysInFlight(), LANCER_OCTREE_RAYS_IN_FLIGHT);
+  EXPECT_THROW(makeTraversalDevice<fx::OctreeUnit>("nope"), InputError);
 }
 
 TEST(ScOctreeDevice, SharesTheKernelWithTheGridUnit) {

@@ -7,7 +7,7 @@
 
 #include "common/error.h"
 #include "golden/isect.h"
-#include "sweep/cracks.h"
+#include "driver/cracks.h"
 #include "sweep/spec.h"
 
 namespace lancer::sweep {

@@ -170,8 +170,8 @@ TEST(RtOctree, RejectsBadConfigurations) {
   // The device still works afterwards.
   expectSameTraces(image, one, o);
   // The factory knows it.
-  EXPECT_EQ(makeOctreeDevice("rtl")->name(), "rtl");
-  EXPECT_EQ(makeOctreeDevice("rtl")->maxRaysInFlight(), LANCER_OCTREE_RAYS_IN_FLIGHT);
+  EXPECT_EQ(makeTraversalDevice<fx::OctreeUnit>("rtl")->name(), "rtl");
+  EXPECT_EQ(makeTraversalDevice<fx::OctreeUnit>("rtl")->maxRaysInFlight(), LANCER_OCTREE_RAYS_IN_FLIGHT);
 }
 
 // Runs `device` on the too-deep image: it must throw, naming rt_octree's assertion.

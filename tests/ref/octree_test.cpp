@@ -14,9 +14,9 @@
 #include "ref/brute_force.h"
 #include "ref/octree.h"
 #include "scene/scene.h"
-#include "structure_test_support.h"
+#include "support/structure_test_support.h"
 #include "structure_tests.h"
-#include "test_paths.h"
+#include "support/test_paths.h"
 
 namespace lancer {
 namespace {

@@ -138,7 +138,7 @@ TEST(Stress, ShortRunPassesOnTheGoldenModels) {
   const StressResult r = runStress(options);
   EXPECT_EQ(r.failures(), 0u);
   EXPECT_EQ(r.placements.size(), caseNames().size() * 5);  // base, two scales, a translation, a stretch
-  EXPECT_EQ(r.rows.size(), r.placements.size() * hardwareAccels().size());
+  EXPECT_EQ(r.rows.size(), r.placements.size() * hardwarePaths().size());
   for (const StressRow& row : r.rows) {
     SCOPED_TRACE(row.caseName + ", " + row.variant + ", " + row.unit);
     EXPECT_EQ(row.mismatches, 0u);

@@ -11,7 +11,7 @@
 
 #include "common/error.h"
 #include "scene/scene.h"
-#include "test_paths.h"
+#include "support/test_paths.h"
 
 namespace lancer {
 namespace {

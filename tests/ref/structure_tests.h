@@ -36,7 +36,7 @@
 #include "ref/accel.h"
 #include "ref/brute_force.h"
 #include "scene/scene.h"
-#include "structure_test_support.h"
+#include "support/structure_test_support.h"
 
 namespace lancer::test {
 

@@ -9,8 +9,8 @@
 #include "golden/octree.h"
 #include "scene/scene.h"
 #include "golden_test_support.h"
-#include "structure_test_support.h"
-#include "test_paths.h"
+#include "support/structure_test_support.h"
+#include "support/test_paths.h"
 
 namespace lancer::fx {
 namespace {

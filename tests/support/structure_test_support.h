@@ -21,7 +21,7 @@
 #include "common/error.h"
 #include "ref/brute_force.h"
 #include "scene/scene.h"
-#include "test_paths.h"
+#include "support/test_paths.h"
 
 namespace lancer::test {
 

@@ -1,4 +1,4 @@
-#include "sweep/cracks.h"
+#include "driver/cracks.h"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,7 @@
 
 #include "golden/formats.h"
 
-namespace lancer::sweep {
+namespace lancer {
 
 namespace {
 
@@ -165,4 +165,4 @@ CrackRays makeCrackRays(const Scene& scene, const Quantizer& quantizer, size_t c
   return Builder(scene, quantizer).build(count, seed);
 }
 
-}  // namespace lancer::sweep
+}  // namespace lancer

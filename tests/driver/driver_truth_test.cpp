@@ -69,9 +69,9 @@ TEST(DriverTruth, ACubeSeenFromOutsideShowsItsOutsideOnEveryPath) {
   const std::vector<Ray> rays = raysIntoTheCube(3000, 21);
   const Bvh reference(cube, AccelOptions{});
   const auto refHits = traceRays(reference, rays);
-  for (const std::string accel : {"bvh", "grid", "octree"}) {
-    SCOPED_TRACE(accel);
-    const JobResult job = runJob(accel, cube, rays, quantizer, JobConfig{});
+  for (const fx::UnitKind path : hardwarePaths()) {
+    SCOPED_TRACE(toString(path));
+    const JobResult job = runJob(path, cube, rays, quantizer, JobConfig{});
     EXPECT_EQ(job.mismatchedRays, 0u);
     // Rays through a face's inside (every third ray) meet one triangle first:
     // the reference's. At an edge or a corner two or three tie, and either is right.
@@ -108,9 +108,9 @@ TEST(DriverTruth, TheNearWallOfAPairIsHit) {
     const glm::vec3 dir(1.0f, tilt(rng), tilt(rng));
     rays.push_back({target - 0.5f * dir, dir, kInfinity});
   }
-  for (const std::string accel : {"bvh", "grid", "octree"}) {
-    SCOPED_TRACE(accel);
-    const JobResult job = runJob(accel, walls, rays, quantizer, JobConfig{});
+  for (const fx::UnitKind path : hardwarePaths()) {
+    SCOPED_TRACE(toString(path));
+    const JobResult job = runJob(path, walls, rays, quantizer, JobConfig{});
     size_t nearWall = 0;
     for (size_t i = 0; i < rays.size(); ++i) {
       const auto hw = sceneHit(job, i);
@@ -163,9 +163,9 @@ TEST(DriverTruth, SecondaryRaysNeverMeetTheTriangleTheyLeave) {
     r.ray = {target + glm::vec3(0.3f, 0.9f, 0.2f), glm::vec3(-0.3f, -0.9f, -0.2f), kInfinity};
     primaries.push_back(r);
   }
-  for (const std::string accel : {"bvh", "octree"}) {
-    SCOPED_TRACE(accel);
-    HardwareWaveTracer tracer(accel, scene, quantizer, JobConfig{}, &reference);
+  for (const fx::UnitKind path : {fx::UnitKind::Isect, fx::UnitKind::Octree}) {
+    SCOPED_TRACE(toString(path));
+    HardwareWaveTracer tracer(path, scene, quantizer, JobConfig{}, &reference);
     std::vector<std::optional<Hit>> hits;
     tracer.trace(0, primaries, hits);
     std::vector<WaveRay> secondaries;
@@ -205,7 +205,7 @@ TEST(DriverTruth, EveryWaveClassIsJudgedAndTheCornellShadowsAgree) {
   const Bvh reference(scene, AccelOptions{});
   const EffectsPlan plan = planEffects(scene, EffectsOptions{});
   const std::vector<Ray> eye = frameScene(scene, CameraOptions::sized(64, 64)).generateRays();
-  HardwareWaveTracer tracer("octree", scene, quantizer, JobConfig{}, &reference);
+  HardwareWaveTracer tracer(fx::UnitKind::Octree, scene, quantizer, JobConfig{}, &reference);
   const WhittedResult hw = traceWhitted(scene, plan, eye, tracer);
   RefWaveTracer refTracer(scene, reference);
   const WhittedResult ref = traceWhitted(scene, plan, eye, refTracer);

@@ -21,10 +21,10 @@
 #include <vector>
 
 #include "driver/quantize.h"
-#include "ref/ray.h"
+#include "common/ray.h"
 #include "scene/scene.h"
 
-namespace lancer::sweep {
+namespace lancer {
 
 struct CrackRays {
   std::vector<Ray> rays;       // edge rays first, then vertex rays
@@ -38,4 +38,4 @@ struct CrackRays {
 // Up to `count` rays, about half at edges and half at vertices, chosen by `seed`.
 CrackRays makeCrackRays(const Scene& scene, const Quantizer& quantizer, size_t count, uint64_t seed);
 
-}  // namespace lancer::sweep
+}  // namespace lancer

@@ -9,10 +9,11 @@
 
 #include "common/error.h"
 #include "oracle/exact.h"
+#include "oracle/make_accel.h"
 #include "ref/accel.h"
 #include "ref/brute_force.h"
 #include "scene/scene.h"
-#include "test_paths.h"
+#include "support/test_paths.h"
 
 namespace lancer {
 namespace {

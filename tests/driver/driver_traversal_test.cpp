@@ -51,14 +51,14 @@ class DropLastVisit final : public TraversalDevice<Image> {
 
 TEST(DriverTraversalJob, EveryUnitIsExactAgainstItselfAndCountsWhatItDid) {
   CornellRays c;
-  for (const std::string accel : {"grid", "octree"}) {
-    SCOPED_TRACE(accel);
-    const JobResult job = runJob(accel, c.scene, c.rays, c.quantizer, JobConfig{});
+  for (const fx::UnitKind path : {fx::UnitKind::Grid, fx::UnitKind::Octree}) {
+    SCOPED_TRACE(toString(path));
+    const JobResult job = runJob(path, c.scene, c.rays, c.quantizer, JobConfig{});
     EXPECT_EQ(job.mismatchedRays, 0u);
     EXPECT_FALSE(job.cycleAccurate);
     auto k = counters(job);
-    const std::string steps = accel == "grid" ? "voxel_steps" : "node_steps";
-    const std::string reads = accel == "grid" ? "cell_reads" : "node_reads";
+    const std::string steps = path == fx::UnitKind::Grid ? "voxel_steps" : "node_steps";
+    const std::string reads = path == fx::UnitKind::Grid ? "cell_reads" : "node_reads";
     EXPECT_GT(k[steps], double(c.rays.size()) / 2) << "most rays enter a few elements";
     EXPECT_EQ(k["index_reads"], double(job.intersectionTests));
     EXPECT_EQ(k["triangle_reads"], double(job.intersectionTests));
@@ -72,7 +72,7 @@ TEST(DriverTraversalJob, EveryUnitIsExactAgainstItselfAndCountsWhatItDid) {
 
 TEST(DriverTraversalJob, OctreeReadsCountTheChildGroupBuffer) {
   CornellRays c;
-  const fx::OctreeImage image = buildOctreeImageFor(c.scene, c.quantizer, AccelOptions{.octreeMaxDepth = 4});
+  const fx::OctreeImage image = buildImageFor<fx::OctreeUnit>(c.scene, c.quantizer, AccelOptions{.octreeMaxDepth = 4});
   GoldenOctreeDevice golden;
   std::vector<fx::QRay> rays;
   for (uint32_t i = 0; i < c.rays.size(); ++i) {
@@ -99,11 +99,11 @@ TEST(DriverTraversalJob, AWrongVisitSequenceIsReportedWithBothSequences) {
     if (accel == "grid") {
       DropLastVisit<fx::GridImage, GoldenGridDevice> model(victim);
       GoldenGridDevice golden;
-      job = runTraversalJob(buildGridImageFor(c.scene, c.quantizer, {}), quantizeRays(c.quantizer, c.rays), model, golden, {});
+      job = runTraversalJob(buildImageFor<fx::GridUnit>(c.scene, c.quantizer, {}), quantizeRays(c.quantizer, c.rays), model, golden, {});
     } else {
       DropLastVisit<fx::OctreeImage, GoldenOctreeDevice> model(victim);
       GoldenOctreeDevice golden;
-      job = runTraversalJob(buildOctreeImageFor(c.scene, c.quantizer, {}), quantizeRays(c.quantizer, c.rays), model, golden, {});
+      job = runTraversalJob(buildImageFor<fx::OctreeUnit>(c.scene, c.quantizer, {}), quantizeRays(c.quantizer, c.rays), model, golden, {});
     }
     EXPECT_EQ(job.mismatchedRays, 1u);
     ASSERT_TRUE(job.firstMismatch.has_value());
@@ -119,14 +119,14 @@ TEST(DriverTraversalJob, ImpossibleConfigurationsAreInputErrors) {
   CornellRays c;
   JobConfig config;
   config.raysInFlight = 1 << 20;
-  EXPECT_THROW(runJob("octree", c.scene, c.rays, c.quantizer, config), InputError);
+  EXPECT_THROW(runJob(fx::UnitKind::Octree, c.scene, c.rays, c.quantizer, config), InputError);
   config = {};
   config.memLatency = 0;
-  EXPECT_THROW(runJob("grid", c.scene, c.rays, c.quantizer, config), InputError);
+  EXPECT_THROW(runJob(fx::UnitKind::Grid, c.scene, c.rays, c.quantizer, config), InputError);
   config = {};
   config.accel.octreeMaxDepth = fx::kOctreeMaxDepth + 1;
-  EXPECT_THROW(runJob("octree", c.scene, c.rays, c.quantizer, config), InputError);
-  EXPECT_THROW(runJob("kdtree", c.scene, c.rays, c.quantizer, JobConfig{}), InputError);
+  EXPECT_THROW(runJob(fx::UnitKind::Octree, c.scene, c.rays, c.quantizer, config), InputError);
+  EXPECT_THROW(parseHardwarePath("kdtree"), InputError);
 }
 
 }  // namespace

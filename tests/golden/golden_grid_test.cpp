@@ -8,7 +8,7 @@
 #include "golden/isect.h"
 #include "scene/scene.h"
 #include "golden_test_support.h"
-#include "test_paths.h"
+#include "support/test_paths.h"
 
 namespace lancer::fx {
 namespace {

@@ -17,7 +17,7 @@
 #include "ref/bvh.h"
 #include "ref/trace.h"
 #include "scene/camera.h"
-#include "test_paths.h"
+#include "support/test_paths.h"
 
 namespace lancer {
 namespace {

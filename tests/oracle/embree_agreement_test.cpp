@@ -20,8 +20,8 @@
 #include "ref/triangle.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
-#include "random_points.h"
-#include "test_paths.h"
+#include "support/random_points.h"
+#include "support/test_paths.h"
 
 namespace lancer {
 namespace {

@@ -1,0 +1,15 @@
+#pragma once
+
+namespace lancer {
+
+// How an acceleration structure is built, in software (sw/ref/) or as a
+// hardware unit's memory image (sw/golden/): zero means "choose by the
+// documented heuristic".
+struct AccelOptions {
+  int gridResolution = 0;  // voxels along the longest axis (1..1024)
+  int octreeMaxDepth = 0;  // 1..kMaxOctreeDepth
+  int octreeLeafSize = 0;  // split a node holding more triangles than this
+  int bvhLeafSize = 4;     // largest leaf the SAH builder may make
+};
+
+}  // namespace lancer

@@ -1,0 +1,113 @@
+#pragma once
+
+// The octree unit's descriptor (golden/unit.h lists what a descriptor provides).
+
+#include <array>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "common/accel_options.h"
+#include "common/error.h"
+#include "golden/octree.h"
+#include "golden/unit.h"
+
+namespace lancer::fx {
+
+struct OctreeUnit {
+  using Image = OctreeImage;
+  using Node = OctreeNode;
+
+  static constexpr UnitKind kKind = UnitKind::Octree;
+  static constexpr UnitNames kNames{.unit = "octree",
+                                    .module = "rt_octree",
+                                    .elements = "nodes",
+                                    .nodePort = "node",
+                                    .nodeRead = "child group",
+                                    .nodeTable = "node table",
+                                    .cfgPort = "cfg_root_i",
+                                    .slotsOption = "LANCER_OCTREE_RAYS_IN_FLIGHT",
+                                    .rtlSources = "LANCER_RTL_OCTREE_SOURCES",
+                                    .stepsKey = "node_steps",
+                                    .stepsLabel = "node steps",
+                                    .readsKey = "node_reads",
+                                    .readsLabel = "child group reads"};
+  static constexpr std::span<const FieldSpec> kNodeFields = kOctreeNodeFields;
+  static constexpr std::span<const FieldSpec> kVisitFields = kOctreeVisitFields;
+  static constexpr std::span<const FieldSpec> kResFields = kOctreeResFields;
+  static constexpr std::span<const FieldSpec> kCfgFields = kOctreeNodeFields;  // cfg_root_i: the root's record
+  static constexpr size_t kGroup = kOctreeChildren;  // a node read returns a child group
+
+  static const std::vector<Node>& nodes(const Image& image) { return image.nodes; }
+  static std::array<u128, 3> nodeValues(const Node& node) { return {node.leaf ? 1u : 0u, node.count, node.first}; }
+  // The root's record; zero (the reset value) for an image without nodes.
+  static std::array<u128, 3> configValues(const Image& image) {
+    return image.nodes.empty() ? std::array<u128, 3>{} : nodeValues(image.nodes[0]);
+  }
+
+  // --octree-depth and --octree-leaf, or the heuristics where 0.
+  static Image build(std::vector<QTriangle> triangles, const AccelOptions& options) {
+    const int depth = options.octreeMaxDepth ? options.octreeMaxDepth : defaultOctreeDepth(triangles.size());
+    const int leaf = options.octreeLeafSize ? options.octreeLeafSize : kDefaultOctreeLeafSize;
+    return buildOctreeImage(std::move(triangles), depth, leaf);
+  }
+
+  static void checkImage(const Image& image, std::span<const QRay> rays) {
+    if (image.nodes.empty()) throw InputError("the octree image has no nodes (node 0 is the root)");
+    if (image.depth > kOctreeMaxDepth) {
+      throw InputError(
+          fmt::format("octree depth {} exceeds the unit's stack ({} levels)", image.depth, kOctreeMaxDepth));
+    }
+    for (const QRay& ray : rays) {
+      if (ray.dir[0] == 0 && ray.dir[1] == 0 && ray.dir[2] == 0) {
+        throw InputError(fmt::format("ray {} has a zero direction: the octree unit needs a non-zero component", ray.id));
+      }
+    }
+  }
+
+  static TraversalTrace traverse(const Image& image, const QRay& ray) { return traverseOctree(image, ray); }
+
+  // The unit holds one child group: the one of the node it descended into
+  // last (or refilled). Entering a node whose parent's group is not held costs
+  // a refill read; every interior node entered costs the read of its children.
+  class NodeReads {
+   public:
+    explicit NodeReads(const Image& image) : image_(image), parent_(image.nodes.size(), 0) {
+      for (uint32_t i = 0; i < image.nodes.size(); ++i) {
+        if (image.nodes[i].leaf) continue;
+        for (uint32_t c = 0; c < uint32_t(kOctreeChildren); ++c) parent_[image.nodes[i].first + c] = i;
+      }
+    }
+    uint64_t operator()(const TraversalTrace& trace) const {
+      uint64_t reads = 0;
+      std::optional<uint32_t> held;  // the node whose children are in the group buffer
+      for (size_t k = 0; k < trace.visits.size(); ++k) {
+        const uint32_t node = trace.visits[k];
+        if (k > 0 && held != parent_[node]) {  // refill
+          ++reads;
+          held = parent_[node];
+        }
+        if (!image_.nodes[node].leaf) {
+          ++reads;
+          held = node;
+        }
+      }
+      return reads;
+    }
+
+   private:
+    const Image& image_;
+    std::vector<uint32_t> parent_;
+  };
+
+  static std::vector<ImageCounter> imageCounters(const Image& image) {
+    return {{"octree_depth", "octree depth", double(image.depth)},
+            {"octree_max_depth", "octree max depth", double(image.maxDepth)},
+            {"octree_leaf_size", "octree leaf size", double(image.leafSize)},
+            {"octree_nodes", "octree nodes", double(image.nodes.size())}};
+  }
+};
+
+}  // namespace lancer::fx

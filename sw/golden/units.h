@@ -1,0 +1,32 @@
+#pragma once
+
+// Every traversal unit, by its descriptor (golden/unit.h). A new unit adds its
+// descriptor to TraversalUnits (and its enumerator to fx::UnitKind).
+
+#include <tuple>
+#include <type_traits>
+
+#include "golden/grid_unit.h"
+#include "golden/octree_unit.h"
+
+namespace lancer::fx {
+
+using TraversalUnits = std::tuple<GridUnit, OctreeUnit>;
+
+// Calls fn(U{}) for each descriptor U, in TraversalUnits order.
+template <class Fn>
+constexpr void forEachTraversalUnit(Fn&& fn) {
+  std::apply([&](auto... units) { (fn(units), ...); }, TraversalUnits{});
+}
+
+// The descriptor whose memory image is `Image`.
+template <class Image, class Units = TraversalUnits>
+struct UnitOfImage;
+template <class Image, class U, class... Rest>
+struct UnitOfImage<Image, std::tuple<U, Rest...>>
+    : std::conditional_t<std::is_same_v<typename U::Image, Image>, std::type_identity<U>,
+                         UnitOfImage<Image, std::tuple<Rest...>>> {};
+template <class Image>
+using UnitFor = typename UnitOfImage<Image>::type;
+
+}  // namespace lancer::fx
