@@ -1,19 +1,5 @@
-#include "driver/systemc_octree_device.h"
-
+#include "driver/octree_devices.h"
 #include "driver/systemc_traversal_device_impl.h"
 #include "octree/rt_octree_unit.h"
 
-namespace lancer {
-
-template class SystemCTraversalDevice<fx::OctreeImage, sc::rt_octree_unit>;
-
-template <>
-std::unique_ptr<OctreeDevice> makeSystemCDevice<fx::OctreeUnit>(SystemCImpl impl) {
-  return std::make_unique<SystemCOctreeDevice>(impl);
-}
-template <>
-bool systemCRtlAvailable<fx::OctreeUnit>() {
-  return SystemCOctreeDevice::rtlAvailable();
-}
-
-}  // namespace lancer
+LANCER_SYSTEMC_TRAVERSAL_UNIT(fx::OctreeUnit, sc::rt_octree_unit)

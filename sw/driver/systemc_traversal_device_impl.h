@@ -1,8 +1,7 @@
 #pragma once
 
 // The members of SystemCTraversalDevice<Image, Unit>, for the unit's device
-// .cpp to instantiate (systemc_grid_device.cpp), with its makeSystemCDevice():
-//   template class SystemCTraversalDevice<fx::GridImage, sc::rt_grid_unit>;
+// .cpp (systemc_grid_device.cpp) to instantiate with LANCER_SYSTEMC_TRAVERSAL_UNIT.
 
 #include <array>
 #include <mutex>
@@ -157,3 +156,19 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
 }
 
 }  // namespace lancer
+
+// A unit's SystemC device, in its systemc_<unit>_device.cpp: the explicit
+// instantiation for the descriptor `Descriptor` and the SystemC traits `Traits`
+// (systemc/<unit>/rt_<unit>_unit.h), and its factories.
+#define LANCER_SYSTEMC_TRAVERSAL_UNIT(Descriptor, Traits)                                        \
+  namespace lancer {                                                                            \
+  template class SystemCTraversalDevice<Descriptor::Image, Traits>;                             \
+  template <>                                                                                   \
+  std::unique_ptr<DeviceOf<Descriptor>> makeSystemCDevice<Descriptor>(SystemCImpl impl) {       \
+    return std::make_unique<SystemCTraversalDevice<Descriptor::Image, Traits>>(impl);           \
+  }                                                                                             \
+  template <>                                                                                   \
+  bool systemCRtlAvailable<Descriptor>() {                                                      \
+    return SystemCTraversalDevice<Descriptor::Image, Traits>::rtlAvailable();                   \
+  }                                                                                             \
+  }  // namespace lancer

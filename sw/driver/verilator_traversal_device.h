@@ -45,7 +45,7 @@ struct VerilatedTraversalUnit;
 // Per cycle the loop does only inlined work on the ports (no virtual call, no
 // allocation): the unit's differences are compile-time members of its traits.
 template <class Top, class Image>
-class VerilatorTraversalDevice : public TraversalDevice<Image> {
+class VerilatorTraversalDevice final : public TraversalDevice<Image> {
  public:
   VerilatorTraversalDevice();  // builds the model and resets it
   ~VerilatorTraversalDevice() override;

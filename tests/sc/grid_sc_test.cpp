@@ -13,9 +13,8 @@
 #include "common/error.h"
 #include "driver/devices.h"
 #include "driver/golden_device.h"
-#include "driver/systemc_grid_device.h"
+#include "driver/grid_devices.h"
 #include "driver/systemc_isect_device.h"
-#include "driver/verilator_grid_device.h"
 #include "support/grid_cases.h"
 #include "trav_sc_fixture.h"
 

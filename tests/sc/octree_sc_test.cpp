@@ -13,8 +13,8 @@
 
 #include "common/error.h"
 #include "driver/devices.h"
-#include "driver/systemc_grid_device.h"
-#include "driver/systemc_octree_device.h"
+#include "driver/grid_devices.h"
+#include "driver/octree_devices.h"
 #include "golden/octree.h"
 #include "scene/scene.h"
 #include "support/octree_cases.h"

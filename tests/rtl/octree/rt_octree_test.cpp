@@ -12,7 +12,7 @@
 #include "common/error.h"
 #include "driver/devices.h"
 #include "driver/traversal_device.h"
-#include "driver/verilator_octree_device.h"
+#include "driver/octree_devices.h"
 #include "golden/isect.h"
 #include "scene/scene.h"
 #include "support/octree_cases.h"
@@ -158,6 +158,10 @@ TEST(RtOctree, RejectsBadConfigurations) {
   const TraversalRunOptions o;
   EXPECT_THROW(rtl().run(image, std::vector<QRay>{QRay{0, {1, 2, 3}, {0, 0, 0}}}, traces, o), InputError);
   EXPECT_THROW(rtl().run(OctreeImage{}, one, traces, o), InputError);
+  // An image deeper than the unit's stack (the descriptor's check, as in every model).
+  OctreeImage deep = image;
+  deep.depth = fx::kOctreeMaxDepth + 1;
+  EXPECT_THROW(rtl().run(deep, one, traces, o), InputError);
   // A corrupt image: an interior node whose children lie outside the node table.
   OctreeImage broken = image;
   broken.nodes[0] = fx::OctreeNode{false, 5, 0};

@@ -4,7 +4,9 @@
 // fire (rt_octree_test.cpp, verilated_context_test.cpp): its interior nodes go
 // one level deeper than kOctreeMaxDepth (a node one lattice unit wide split
 // again). The ray from the corner at 0 along the diagonal enters child 0 at
-// every level and trips a_stack_depth in DESCEND.
+// every level and trips a_stack_depth in DESCEND. Its recorded depth is the
+// deepest allowed, as a corrupt memory image's would be: the descriptor's
+// checkImage rejects an image that says it is too deep before any run.
 
 #include <vector>
 
@@ -16,7 +18,7 @@ inline fx::OctreeImage tooDeepOctreeImage() {
   fx::OctreeImage image;
   image.maxDepth = fx::kOctreeMaxDepth;
   image.leafSize = 1;
-  image.depth = fx::kOctreeMaxDepth + 1;
+  image.depth = fx::kOctreeMaxDepth;  // what it claims; its nodes go one level deeper
   image.nodes.push_back(fx::OctreeNode{false, 1, 0});
   for (int level = 0; level <= fx::kOctreeMaxDepth; ++level) {
     const uint32_t base = uint32_t(image.nodes.size());
