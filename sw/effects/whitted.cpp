@@ -58,6 +58,29 @@ class Loop {
   void shade(const WaveRay& r, const Hit& h, uint32_t k, std::vector<WaveRay>& next);
 
  private:
+  // A hit as shading sees it: the ray, its wave index, the point and the normals.
+  struct Surface {
+    const WaveRay& ray;
+    const Hit& hit;
+    uint32_t index;       // of the ray in its wave
+    const Material& material;
+    glm::vec3 point;      // from the barycentrics: on the triangle's plane to float rounding
+    glm::vec3 dir;        // the ray's unit direction
+    glm::vec3 geometric;  // unit geometric normal (-dir for a degenerate triangle)
+    glm::vec3 normal;     // shading normal, turned to the side the ray arrives on
+    bool front;           // the ray arrives on the geometric normal's side
+  };
+  Surface surfaceAt(const WaveRay& r, const Hit& h, uint32_t k) const;
+  void addLocalTerms(const Surface& s);
+  void lightByLights(const Surface& s, std::vector<WaveRay>& next);
+  void lightByEmitters(const Surface& s, std::vector<WaveRay>& next);
+  void spawnSecondary(const Surface& s, std::vector<WaveRay>& next);
+  // A ray spawned from this hit, with what every child of it shares.
+  WaveRay child(const Surface& s, RayClass cls, const Ray& ray, const glm::vec3& weight) const;
+  // A light's contribution from direction `dir`: a shadow ray to it, or the
+  // light itself where the plan has no shadows.
+  void light(const Surface& s, const glm::vec3& contribution, const glm::vec3& dir, float tMax, uint32_t emitter,
+             std::vector<WaveRay>& next);
   glm::vec3 phong(const Material& m, const glm::vec3& n, const glm::vec3& toLight, const glm::vec3& toEye,
                   float cosine) const {
     glm::vec3 c = m.kd * m.diffuse * cosine;
@@ -77,10 +100,17 @@ class Loop {
 };
 
 void Loop::shade(const WaveRay& r, const Hit& h, uint32_t k, std::vector<WaveRay>& next) {
+  const Surface s = surfaceAt(r, h, k);
+  addLocalTerms(s);
+  lightByLights(s, next);
+  lightByEmitters(s, next);
+  // Secondary rays (SPD rules 7 to 9): none from a ray already at the depth limit.
+  if (int(r.depth) < plan_.maxDepth) spawnSecondary(s, next);
+}
+
+Loop::Surface Loop::surfaceAt(const WaveRay& r, const Hit& h, uint32_t k) const {
   const Triangle& tri = scene_.triangles[h.prim];
-  const Material& m = scene_.materials[scene_.materialOf[h.prim]];
   const float w0 = 1.0f - h.u - h.v;
-  // The point from the barycentrics: on the triangle's plane to float rounding, whatever t's error.
   const glm::vec3 p = w0 * tri.v0 + h.u * tri.v1 + h.v * tri.v2;
   const glm::vec3 d = glm::normalize(r.ray.dir);
   const glm::vec3 cross = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
@@ -96,62 +126,60 @@ void Loop::shade(const WaveRay& r, const Hit& h, uint32_t k, std::vector<WaveRay
   // Both normals turned to the side the ray arrives on. An opaque triangle hit
   // from behind is shaded as if two-sided (docs/effects.md): SPD rule 2 allows
   // one-sided opaque primitives, and in its closed scenes no eye ray meets a back.
-  const glm::vec3 n = front ? ns : -ns;
-  const bool transmitter = m.transmittance > 0.0f;
-  if (!front && !transmitter) ++out_.opaqueBackHits;
-  const glm::vec3 toEye = -d;
-  const auto sideOf = [&](const glm::vec3& dir) -> int8_t {
-    const float s = glm::dot(dir, ng);
-    return s > 0.0f ? 1 : s < 0.0f ? -1 : (front ? 1 : -1);
-  };
+  return {r, h, k, scene_.materials[scene_.materialOf[h.prim]], p, d, ng, front ? ns : -ns, front};
+}
 
-  // Local terms: ambient for every object (as the SPD suggests), and emission seen from the front.
+// Ambient for every object (as the SPD suggests), and emission seen from the front.
+void Loop::addLocalTerms(const Surface& s) {
+  const Material& m = s.material;
+  if (!s.front && !(m.transmittance > 0.0f)) ++out_.opaqueBackHits;
   glm::vec3 local = intensity_ * m.kd * m.diffuse;
-  if (front) local += m.emission;
-  out_.samples[r.sample] += r.weight * local;
+  if (s.front) local += m.emission;
+  out_.samples[s.ray.sample] += s.ray.weight * local;
+}
 
-  // A ray spawned from this hit, with what every child of it shares.
-  const auto child = [&](RayClass cls, const Ray& ray, const glm::vec3& weight) {
-    WaveRay s;
-    s.ray = ray;
-    s.cls = cls;
-    s.depth = r.depth + 1;
-    s.sample = r.sample;
-    s.weight = r.weight * weight;
-    s.parent = k;
-    s.originPrim = h.prim;
-    s.side = sideOf(ray.dir);
-    return s;
-  };
+WaveRay Loop::child(const Surface& s, RayClass cls, const Ray& ray, const glm::vec3& weight) const {
+  WaveRay c;
+  c.ray = ray;
+  c.cls = cls;
+  c.depth = s.ray.depth + 1;
+  c.sample = s.ray.sample;
+  c.weight = s.ray.weight * weight;
+  c.parent = s.index;
+  c.originPrim = s.hit.prim;
+  const float side = glm::dot(ray.dir, s.geometric);
+  c.side = side > 0.0f ? 1 : side < 0.0f ? -1 : (s.front ? 1 : -1);
+  return c;
+}
 
-  const bool shadows = plan_.has(RayClass::Shadow);
-  const auto light = [&](const glm::vec3& contribution, const glm::vec3& dir, float tMax,
-                         uint32_t emitter = UINT32_MAX) {
-    if (!shadows) {  // --effects without shadow: the light reaches every surface facing it
-      out_.samples[r.sample] += r.weight * contribution;
-      return;
-    }
-    WaveRay s = child(RayClass::Shadow, Ray{p, dir, tMax}, contribution);
-    s.anyHit = true;
-    s.targetPrim = emitter;
-    next.push_back(s);
-    ++out_.shadowRays;
-  };
+void Loop::light(const Surface& s, const glm::vec3& contribution, const glm::vec3& dir, float tMax, uint32_t emitter,
+                 std::vector<WaveRay>& next) {
+  if (!plan_.has(RayClass::Shadow)) {  // --effects without shadow: the light reaches every surface facing it
+    out_.samples[s.ray.sample] += s.ray.weight * contribution;
+    return;
+  }
+  WaveRay shadow = child(s, RayClass::Shadow, Ray{s.point, dir, tMax}, contribution);
+  shadow.anyHit = true;
+  shadow.targetPrim = emitter;
+  next.push_back(shadow);
+  ++out_.shadowRays;
+}
 
-  // Point, spot and directional lights: one shadow ray each, none when the
-  // shading normal faces away from the light (SPD rule 10, transmitters too).
+// Point, spot and directional lights: one shadow ray each, none when the
+// shading normal faces away from the light (SPD rule 10, transmitters too).
+void Loop::lightByLights(const Surface& s, std::vector<WaveRay>& next) {
   for (const Light& l : scene_.lights) {
     glm::vec3 dir;
     float dist = kInfinity;
     if (l.kind == Light::Kind::Directional) {
       dir = -glm::normalize(l.direction);
     } else {
-      const glm::vec3 toLight = l.position - p;
+      const glm::vec3 toLight = l.position - s.point;
       dist = glm::length(toLight);
       if (!(dist > 0.0f)) continue;
       dir = toLight / dist;
     }
-    const float cosine = glm::dot(n, dir);
+    const float cosine = glm::dot(s.normal, dir);
     if (!(cosine > 0.0f)) continue;
     float cone = 1.0f;
     if (l.kind == Light::Kind::Spot) {
@@ -161,60 +189,69 @@ void Loop::shade(const WaveRay& r, const Hit& h, uint32_t k, std::vector<WaveRay
                  ? std::clamp((c - l.outerConeCos) / (l.innerConeCos - l.outerConeCos), 0.0f, 1.0f)
                  : 1.0f;
     }
-    light(intensity_ * cone * l.color * phong(m, n, dir, toEye, cosine), dir, dist);
+    light(s, intensity_ * cone * l.color * phong(s.material, s.normal, dir, -s.dir, cosine), dir, dist, UINT32_MAX,
+          next);
   }
+}
 
-  // Area lights: --light-samples rays per emissive triangle, stratified over
-  // it and jittered by a hash of (sample, wave index, emitter, stratum).
+// Area lights: --light-samples rays per emissive triangle, stratified over
+// it and jittered by a hash of (sample, wave index, emitter, stratum).
+void Loop::lightByEmitters(const Surface& s, std::vector<WaveRay>& next) {
   const int samples = plan_.lightSamples;
   const int cols = int(std::ceil(std::sqrt(double(samples))));
   const int rows = (samples + cols - 1) / cols;
   for (const Emitter& e : emitters_) {
-    if (e.prim == h.prim) continue;  // a lamp does not light itself
+    if (e.prim == s.hit.prim) continue;  // a lamp does not light itself
     const Triangle& et = scene_.triangles[e.prim];
     for (int i = 0; i < samples; ++i) {
-      const uint64_t key = splitmix64((uint64_t(r.sample) << 32) ^ k) ^ (uint64_t(e.prim) << 20) ^ uint64_t(i);
+      const uint64_t key =
+          splitmix64((uint64_t(s.ray.sample) << 32) ^ s.index) ^ (uint64_t(e.prim) << 20) ^ uint64_t(i);
       const glm::vec2 xi = jitter(key);
       const float a = (float(i % cols) + xi.x) / float(cols), b = (float(i / cols) + xi.y) / float(rows);
       const float ra = std::sqrt(a);  // uniform on the triangle
       const glm::vec3 q = (1.0f - ra) * et.v0 + ra * (1.0f - b) * et.v1 + ra * b * et.v2;
-      const glm::vec3 toLight = q - p;
+      const glm::vec3 toLight = q - s.point;
       const float dist = glm::length(toLight);
       if (!(dist > 0.0f)) continue;
       const glm::vec3 dir = toLight / dist;
-      const float cosine = glm::dot(n, dir);
+      const float cosine = glm::dot(s.normal, dir);
       const float cosEmitter = -glm::dot(e.normal, dir);
       if (!(cosine > 0.0f) || !(cosEmitter > 0.0f)) continue;  // facing away, or behind the lamp
       const float solid = cosEmitter * e.area / (dist * dist * float(samples));
       // Stop just short of the lamp so its own triangle does not count as a blocker.
-      light(intensity_ * solid * e.emission * phong(m, n, dir, toEye, cosine), dir, dist * (1.0f - 1e-4f), e.prim);
+      light(s, intensity_ * solid * e.emission * phong(s.material, s.normal, dir, -s.dir, cosine), dir,
+            dist * (1.0f - 1e-4f), e.prim, next);
     }
   }
+}
 
-  // Secondary rays (SPD rules 7 to 9): none from a ray already at the depth limit.
-  if (int(r.depth) >= plan_.maxDepth) return;
+// Refraction (Snell's law) and reflection, as the plan has them.
+void Loop::spawnSecondary(const Surface& s, std::vector<WaveRay>& next) {
+  const Material& m = s.material;
+  const glm::vec3& n = s.normal;
   const auto spawn = [&](RayClass cls, const glm::vec3& dir, const glm::vec3& weight) {
-    next.push_back(child(cls, Ray{p, glm::normalize(dir), kInfinity}, weight));
+    next.push_back(child(s, cls, Ray{s.point, glm::normalize(dir), kInfinity}, weight));
   };
-  const float cosIn = glm::dot(toEye, n);
+  const bool transmitter = m.transmittance > 0.0f;
+  const float cosIn = glm::dot(-s.dir, n);
   bool totalInternal = false;
   if (transmitter && plan_.has(RayClass::Refraction)) {
-    // Snell's law: entering through the front, leaving through the back.
-    const float eta = front ? 1.0f / m.ior : m.ior;
+    // Entering through the front, leaving through the back.
+    const float eta = s.front ? 1.0f / m.ior : m.ior;
     const float k2 = 1.0f - eta * eta * (1.0f - cosIn * cosIn);
     ++out_.refractRays;  // the SPD counts total internal reflections among refractions
     if (k2 < 0.0f) {
       totalInternal = true;
       ++out_.totalInternalReflections;
     } else {
-      spawn(RayClass::Refraction, eta * d + (eta * cosIn - std::sqrt(k2)) * n, glm::vec3(m.transmittance));
+      spawn(RayClass::Refraction, eta * s.dir + (eta * cosIn - std::sqrt(k2)) * n, glm::vec3(m.transmittance));
       ++out_.refractionsTraced;
     }
   }
   if ((m.ks > 0.0f || transmitter) && plan_.has(RayClass::Reflection)) {
     // Every reflective surface and every transmitter reflects (rule 8); under
     // total internal reflection the transmitted share is reflected too.
-    spawn(RayClass::Reflection, d + 2.0f * cosIn * n, glm::vec3(m.ks + (totalInternal ? m.transmittance : 0.0f)));
+    spawn(RayClass::Reflection, s.dir + 2.0f * cosIn * n, glm::vec3(m.ks + (totalInternal ? m.transmittance : 0.0f)));
     ++out_.reflectRays;
   }
 }

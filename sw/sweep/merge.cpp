@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -74,6 +75,23 @@ struct Totals {
     crackRejected += c.value("rejected", uint64_t(0));
     isectLatency = c.value("isect_latency_cycles", isectLatency);
   }
+  // The sums over several scenes (the scene "all").
+  Totals& operator+=(const Totals& t) {
+    rays += t.rays, inLattice += t.inLattice, hit += t.hit;
+    disagreements += t.disagreements, hitMiss += t.hitMiss, prim += t.prim, compared += t.compared;
+    tErrMax = std::max(tErrMax, t.tErrMax), tErrSum += t.tErrSum;
+    arbHwCorrect += t.arbHwCorrect, arbHwTie += t.arbHwTie, arbHwWithin += t.arbHwWithin;
+    arbHwBeyond += t.arbHwBeyond, arbRefWrong += t.arbRefWrong;
+    cycles += t.cycles, tests += t.tests, steps += t.steps, refNodes += t.refNodes, mismatches += t.mismatches;
+    cycleAccurate = cycleAccurate && t.cycleAccurate;
+    refComparable = refComparable && t.refComparable;
+    modelSeconds += t.modelSeconds;
+    crackRays += t.crackRays, crackMisses += t.crackMisses, crackRefDiffers += t.crackRefDiffers;
+    crackRejected += t.crackRejected;
+    cameraJobs += t.cameraJobs, crackJobs += t.crackJobs;
+    isectLatency = std::max(isectLatency, t.isectLatency);
+    return *this;
+  }
 };
 
 double ratio(double a, double b) { return b > 0 ? a / b : NAN; }
@@ -112,17 +130,8 @@ std::string csvCell(const nlohmann::json& v) {
   return v.dump();
 }
 
-}  // namespace
-
-MergeResult mergeSweep(const std::string& out, FILE* table, bool plots) {
-  const nlohmann::json plan = readJson(out + "/plan.json");
-  if (!plan.is_object()) throw InputError(fmt::format("{}/plan.json: no sweep plan here (run lancer sweep first)", out));
-  const Spec spec = Spec::fromJson(plan.at("spec"), out + "/plan.json");
-  const nlohmann::json trees = readJson(out + "/trees.json");
-  const nlohmann::json synth = readJson(out + "/synth.json");
-
-  MergeResult m;
-  nlohmann::json errors = nlohmann::json::array(), missing = nlohmann::json::array();
+// The errors the width trees and the syntheses recorded.
+void collectBuildErrors(const nlohmann::json& trees, const nlohmann::json& synth, nlohmann::json& errors) {
   if (trees.is_object()) {
     for (const auto& [name, t] : trees.items()) {
       if (t.contains("error")) errors.push_back(t["error"]);
@@ -135,8 +144,16 @@ MergeResult mergeSweep(const std::string& out, FILE* table, bool plots) {
       }
     }
   }
-  // Group the results: (width, unit, model) -> per scene -> totals.
-  std::map<std::tuple<Width, std::string, std::string>, std::map<int, Totals>> groups;
+}
+
+// (width, unit, model) -> per scene -> the sums of its jobs' results.
+using Groups = std::map<std::tuple<Width, std::string, std::string>, std::map<int, Totals>>;
+
+// Every finished job's result in its group; a missing or failed job, or one
+// with answers beyond the hardware's bound, is an error.
+Groups groupResults(const std::string& out, const Spec& spec, const nlohmann::json& plan, MergeResult& m,
+                    nlohmann::json& errors, nlohmann::json& missing) {
+  Groups groups;
   for (const nlohmann::json& jj : plan.at("jobs")) {
     const Job job = Job::fromJson(jj);
     if (!jobDone(out, spec, job)) {
@@ -159,89 +176,88 @@ MergeResult mergeSweep(const std::string& out, FILE* table, bool plots) {
     Totals& t = groups[{job.width, job.unit, job.model}][job.scene];
     job.set == "cracks" ? t.addCracks(result) : t.addCamera(result);
   }
+  return groups;
+}
 
+// One row of the table: a width, unit, model and scene, with the synthesis
+// figures of the unit at that width (`syn`) and the width's tree (`tree`).
+nlohmann::json sweepRow(const Width& w, const std::string& unit, const std::string& model, const std::string& scene,
+                        const Totals& t, const nlohmann::json& syn, const nlohmann::json& tree) {
+  const double lattice = double((int64_t(1) << w.pos) - 1);
+  const bool timed = t.cycleAccurate && t.cameraJobs > 0;
+  const double cyclesPerRay = timed ? ratio(double(t.cycles), double(t.inLattice)) : NAN;
+  const double depth = syn.value("logic_depth", NAN);
+  const double fmax = std::isfinite(depth) ? fmaxMhzOfDepth(depth) : NAN;
+  const double nsPerRay = cyclesPerRay / fmax * 1e3;
+  const double cells = syn.value("cells", NAN);
+  const double tErrMean = ratio(t.tErrSum, double(t.compared));
+  const bool hasCamera = t.cameraJobs > 0;
+  const bool walks = unit != "isect";  // a traversal unit: it takes steps
+  const auto ifCracks = [&](uint64_t v) { return t.crackJobs ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  return {{"width", w.name()}, {"pos_bits", w.pos}, {"dir_bits", w.dir}, {"unit", unit}, {"model", model},
+          {"scene", scene}, {"rays", t.rays}, {"rays_in_lattice", t.inLattice},
+          {"disagreements", t.disagreements}, {"hit_miss_differs", t.hitMiss}, {"prim_differs", t.prim},
+          {"misclassified_fraction", hasCamera ? num(ratio(double(t.disagreements), double(t.rays))) : nullptr},
+          {"t_error_max_lattice", hasCamera ? num(t.tErrMax) : nullptr},
+          {"t_error_mean_lattice", num(tErrMean)},
+          {"t_error_max_relative", hasCamera ? num(t.tErrMax / lattice) : nullptr},
+          {"t_error_mean_relative", num(tErrMean / lattice)},
+          {"arbiter_hw_correct", t.arbHwCorrect}, {"arbiter_hw_tie", t.arbHwTie},
+          {"arbiter_hw_within_bound", t.arbHwWithin}, {"arbiter_hw_beyond_bound", t.arbHwBeyond},
+          {"arbiter_ref_wrong", t.arbRefWrong},
+          {"crack_rays", ifCracks(t.crackRays)}, {"cracks", ifCracks(t.crackMisses)},
+          {"crack_ref_hit_miss_differs", ifCracks(t.crackRefDiffers)},
+          {"crack_rays_rejected", ifCracks(t.crackRejected)},
+          {"unit_steps", walks ? nlohmann::json(t.steps) : nullptr},
+          {"reference_steps", walks && t.refComparable ? nlohmann::json(t.refNodes) : nullptr},
+          {"extra_steps_fraction",
+           walks && t.refComparable ? num(ratio(double(t.steps), double(t.refNodes)) - 1.0) : nullptr},
+          {"mismatches_vs_golden", t.mismatches},
+          {"isect_latency_cycles", t.isectLatency >= 0 ? nlohmann::json(t.isectLatency) : nullptr},
+          {"cycles", timed ? nlohmann::json(t.cycles) : nullptr},
+          {"cycles_per_ray", num(cyclesPerRay)},
+          {"tests_per_cycle", timed ? num(ratio(double(t.tests), double(t.cycles))) : nullptr},
+          {"tests_per_ray", num(ratio(double(t.tests), double(t.inLattice)))},
+          {"cells", num(cells)}, {"flip_flops", num(syn.value("flip_flops", NAN))},
+          {"logic_depth", num(depth)}, {"fmax_mhz_est", num(fmax)}, {"ns_per_ray_at_fmax", num(nsPerRay)},
+          {"cells_x_ns_per_ray", num(cells * nsPerRay)},
+          {"host_model_seconds", t.modelSeconds},
+          {"host_rays_per_second", num(ratio(double(t.inLattice), t.modelSeconds))},
+          {"build_seconds", tree.value("build_seconds", nlohmann::json(nullptr))},
+          {"synth_cpu_seconds", num(syn.value("cpu_seconds", NAN))}};
+}
+
+// The rows in spec order: per width, unit and model, each scene, and "all"
+// where there are several.
+std::vector<nlohmann::json> sweepRows(const Spec& spec, const Groups& groups, const nlohmann::json& trees,
+                                      const nlohmann::json& synth) {
   std::vector<nlohmann::json> rows;
   for (const Width& w : spec.widths) {
-    const nlohmann::json tree = trees.is_object() ? trees.value(w.name(), nlohmann::json::object()) : nlohmann::json::object();
+    const nlohmann::json tree =
+        trees.is_object() ? trees.value(w.name(), nlohmann::json::object()) : nlohmann::json::object();
     for (const std::string& unit : spec.units) {
       const std::string top = synthTopOf(unit);
       nlohmann::json syn = nlohmann::json::object();
       if (synth.is_object() && synth.contains(w.name()) && synth[w.name()].contains(top)) syn = synth[w.name()][top];
       for (const std::string& model : spec.models) {
-        auto g = groups.find({w, unit, model});
+        const auto g = groups.find({w, unit, model});
         if (g == groups.end()) continue;
         Totals all;
-        bool first = true;
-        std::vector<std::pair<std::string, Totals>> scenes;
-        for (const auto& [s, t] : g->second) scenes.push_back({spec.scenes[size_t(s)], t});
-        // The scene "all": the sums over every scene with results.
-        for (const auto& [name, t] : scenes) {
-          all.rays += t.rays; all.inLattice += t.inLattice; all.hit += t.hit;
-          all.disagreements += t.disagreements; all.hitMiss += t.hitMiss; all.prim += t.prim;
-          all.compared += t.compared; all.tErrMax = std::max(all.tErrMax, t.tErrMax); all.tErrSum += t.tErrSum;
-          all.arbHwCorrect += t.arbHwCorrect; all.arbHwTie += t.arbHwTie; all.arbHwWithin += t.arbHwWithin;
-          all.arbHwBeyond += t.arbHwBeyond; all.arbRefWrong += t.arbRefWrong; all.cycles += t.cycles;
-          all.tests += t.tests; all.steps += t.steps; all.refNodes += t.refNodes; all.mismatches += t.mismatches;
-          all.cycleAccurate = all.cycleAccurate && t.cycleAccurate;
-          all.refComparable = all.refComparable && t.refComparable;
-          all.modelSeconds += t.modelSeconds; all.crackRays += t.crackRays; all.crackMisses += t.crackMisses;
-          all.crackRefDiffers += t.crackRefDiffers; all.crackRejected += t.crackRejected;
-          all.cameraJobs += t.cameraJobs; all.crackJobs += t.crackJobs;
-          if (first || t.isectLatency >= 0) all.isectLatency = std::max(all.isectLatency, t.isectLatency);
-          first = false;
+        for (const auto& [s, t] : g->second) {
+          rows.push_back(sweepRow(w, unit, model, spec.scenes[size_t(s)], t, syn, tree));
+          all += t;
         }
-        if (scenes.size() > 1) scenes.push_back({"all", all});
-        for (const auto& [name, t] : scenes) {
-          const double lattice = double((int64_t(1) << w.pos) - 1);
-          const bool timed = t.cycleAccurate && t.cameraJobs > 0;
-          const double cyclesPerRay = timed ? ratio(double(t.cycles), double(t.inLattice)) : NAN;
-          const double depth = syn.value("logic_depth", NAN);
-          const double fmax = std::isfinite(depth) ? fmaxMhzOfDepth(depth) : NAN;
-          const double nsPerRay = cyclesPerRay / fmax * 1e3;
-          const double cells = syn.value("cells", NAN);
-          const double tErrMean = ratio(t.tErrSum, double(t.compared));
-          const bool hasCamera = t.cameraJobs > 0;
-          nlohmann::json row = {
-              {"width", w.name()}, {"pos_bits", w.pos}, {"dir_bits", w.dir}, {"unit", unit}, {"model", model},
-              {"scene", name}, {"rays", t.rays}, {"rays_in_lattice", t.inLattice},
-              {"disagreements", t.disagreements}, {"hit_miss_differs", t.hitMiss}, {"prim_differs", t.prim},
-              {"misclassified_fraction", hasCamera ? num(ratio(double(t.disagreements), double(t.rays))) : nullptr},
-              {"t_error_max_lattice", hasCamera ? num(t.tErrMax) : nullptr},
-              {"t_error_mean_lattice", num(tErrMean)},
-              {"t_error_max_relative", hasCamera ? num(t.tErrMax / lattice) : nullptr},
-              {"t_error_mean_relative", num(tErrMean / lattice)},
-              {"arbiter_hw_correct", t.arbHwCorrect}, {"arbiter_hw_tie", t.arbHwTie},
-              {"arbiter_hw_within_bound", t.arbHwWithin}, {"arbiter_hw_beyond_bound", t.arbHwBeyond},
-              {"arbiter_ref_wrong", t.arbRefWrong},
-              {"crack_rays", t.crackJobs ? nlohmann::json(t.crackRays) : nullptr},
-              {"cracks", t.crackJobs ? nlohmann::json(t.crackMisses) : nullptr},
-              {"crack_ref_hit_miss_differs", t.crackJobs ? nlohmann::json(t.crackRefDiffers) : nullptr},
-              {"crack_rays_rejected", t.crackJobs ? nlohmann::json(t.crackRejected) : nullptr},
-              {"unit_steps", unit == "isect" ? nullptr : nlohmann::json(t.steps)},
-              {"reference_steps", unit != "isect" && t.refComparable ? nlohmann::json(t.refNodes) : nullptr},
-              {"extra_steps_fraction", unit != "isect" && t.refComparable
-                                           ? num(ratio(double(t.steps), double(t.refNodes)) - 1.0) : nullptr},
-              {"mismatches_vs_golden", t.mismatches},
-              {"isect_latency_cycles", t.isectLatency >= 0 ? nlohmann::json(t.isectLatency) : nullptr},
-              {"cycles", timed ? nlohmann::json(t.cycles) : nullptr},
-              {"cycles_per_ray", num(cyclesPerRay)},
-              {"tests_per_cycle", timed ? num(ratio(double(t.tests), double(t.cycles))) : nullptr},
-              {"tests_per_ray", num(ratio(double(t.tests), double(t.inLattice)))},
-              {"cells", num(cells)}, {"flip_flops", num(syn.value("flip_flops", NAN))},
-              {"logic_depth", num(depth)}, {"fmax_mhz_est", num(fmax)}, {"ns_per_ray_at_fmax", num(nsPerRay)},
-              {"cells_x_ns_per_ray", num(cells * nsPerRay)},
-              {"host_model_seconds", t.modelSeconds},
-              {"host_rays_per_second", num(ratio(double(t.inLattice), t.modelSeconds))},
-              {"build_seconds", tree.value("build_seconds", nlohmann::json(nullptr))},
-              {"synth_cpu_seconds", num(syn.value("cpu_seconds", NAN))}};
-          rows.push_back(std::move(row));
-        }
+        if (g->second.size() > 1) rows.push_back(sweepRow(w, unit, model, "all", all, syn, tree));
       }
     }
   }
-  // The unit's own walk against itself at the widest width of the sweep (the
-  // same structure on the same lattice cube, so what differs is the narrower
-  // arithmetic's conservative stepping).
+  return rows;
+}
+
+// The unit's own walk against itself at the widest width of the sweep (the
+// same structure on the same lattice cube, so what differs is the narrower
+// arithmetic's conservative stepping).
+void addStepsVsWidest(std::vector<nlohmann::json>& rows) {
   for (nlohmann::json& row : rows) {
     row["steps_vs_widest_fraction"] = nullptr;
     if (row["unit_steps"].is_null()) continue;
@@ -254,73 +270,100 @@ MergeResult mergeSweep(const std::string& out, FILE* table, bool plots) {
     const double base = double((*widest)["unit_steps"].get<uint64_t>());
     row["steps_vs_widest_fraction"] = num(ratio(double(row["unit_steps"].get<uint64_t>()), base) - 1.0);
   }
-  m.rows = rows.size();
+}
 
+// sweep.csv (every column) and sweep-exact.csv (the deterministic ones).
+void writeCsvFiles(const std::string& out, const std::vector<nlohmann::json>& rows) {
   std::string csv, exact;
-  for (const Column& c : columns()) {
-    csv += (csv.empty() ? "" : ",") + std::string(c.name);
-    if (c.exact) exact += (exact.empty() ? "" : ",") + std::string(c.name);
-  }
-  csv += "\n";
-  exact += "\n";
-  for (const nlohmann::json& row : rows) {
-    std::string line, exactLine;
+  // One line of each file: the cells of every column, and of the exact ones.
+  const auto addLine = [&](auto cellOf) {
+    bool first = true, firstExact = true;
     for (const Column& c : columns()) {
-      const std::string cell = csvCell(row.at(c.name));
-      line += (&c == &columns().front() ? "" : ",") + cell;
-      if (c.exact) exactLine += (&c == &columns().front() ? "" : ",") + cell;
+      const std::string cell = cellOf(c);
+      if (!std::exchange(first, false)) csv += ',';
+      csv += cell;
+      if (!c.exact) continue;
+      if (!std::exchange(firstExact, false)) exact += ',';
+      exact += cell;
     }
-    csv += line + "\n";
-    exact += exactLine + "\n";
-  }
+    csv += '\n';
+    exact += '\n';
+  };
+  addLine([](const Column& c) { return std::string(c.name); });
+  for (const nlohmann::json& row : rows) addLine([&](const Column& c) { return csvCell(row.at(c.name)); });
   writeAtomically(out + "/sweep.csv", csv);
   writeAtomically(out + "/sweep-exact.csv", exact);
+}
 
-  // The terminal summary: per width, unit and scene, the most detailed model
-  // (the last in the spec that has results: rtl after golden).
-  if (table) {
-    fmt::print(table, "{:<6} {:<6} {:<7} {:<14} {:>9} {:>10} {:>7} {:>7} {:>8} {:>7} {:>8} {:>7} {:>9} {:>7}\n",
-               "width", "unit", "model", "scene", "misclass", "t err max", "cracks", "extra", "cyc/ray",
-               "tst/cyc", "cells", "MHz", "host r/s", "build");
-    const auto fmtNum = [](const nlohmann::json& v, const char* f) {
-      return v.is_null() ? std::string("-") : fmt::format(fmt::runtime(f), v.get<double>());
-    };
-    for (const nlohmann::json& row : rows) {
-      // Only the last model of each width/unit/scene.
-      bool later = false;
-      for (const nlohmann::json& other : rows) {
-        if (&other == &row || other["width"] != row["width"] || other["unit"] != row["unit"] ||
-            other["scene"] != row["scene"]) {
-          continue;
-        }
-        const auto pos = [&](const nlohmann::json& r) {
-          return std::find(spec.models.begin(), spec.models.end(), r["model"].get<std::string>()) - spec.models.begin();
-        };
-        later = later || pos(other) > pos(row);
-      }
-      if (later) continue;
-      std::string scene = fs::path(row["scene"].get<std::string>()).stem().string();
-      if (scene.size() > 14) scene = scene.substr(0, 14);
-      const nlohmann::json mis = row["misclassified_fraction"];
-      fmt::print(table, "{:<6} {:<6} {:<7} {:<14} {:>9} {:>10} {:>7} {:>7} {:>8} {:>7} {:>8} {:>7} {:>9} {:>7}\n",
-                 row["width"].get<std::string>(), row["unit"].get<std::string>(), row["model"].get<std::string>(),
-                 scene, mis.is_null() ? "-" : fmt::format("{:.4f}%", 100 * mis.get<double>()),
-                 fmtNum(row["t_error_max_relative"], "{:.2e}"),
-                 row["cracks"].is_null() ? "-" : fmt::format("{}/{}", row["cracks"].get<uint64_t>(), row["crack_rays"].get<uint64_t>()),
-                 row["extra_steps_fraction"].is_null() ? "-" : fmt::format("{:+.1f}%", 100 * row["extra_steps_fraction"].get<double>()),
-                 fmtNum(row["cycles_per_ray"], "{:.2f}"), fmtNum(row["tests_per_cycle"], "{:.3f}"),
-                 fmtNum(row["cells"], "{:.0f}"), fmtNum(row["fmax_mhz_est"], "{:.0f}"),
-                 fmtNum(row["host_rays_per_second"], "{:.0f}"), fmtNum(row["build_seconds"], "{:.0f}s"));
-    }
-  }
+// Whether a later model of the spec has a row for the same width, unit and scene.
+bool hasLaterModel(const Spec& spec, const std::vector<nlohmann::json>& rows, const nlohmann::json& row) {
+  const auto pos = [&](const nlohmann::json& r) {
+    return std::find(spec.models.begin(), spec.models.end(), r["model"].get<std::string>()) - spec.models.begin();
+  };
+  return std::any_of(rows.begin(), rows.end(), [&](const nlohmann::json& other) {
+    return &other != &row && other["width"] == row["width"] && other["unit"] == row["unit"] &&
+           other["scene"] == row["scene"] && pos(other) > pos(row);
+  });
+}
 
-  if (plots && !rows.empty()) {
-    const std::string log = out + "/plots.log";
-    std::ofstream(log, std::ios::trunc).close();
-    if (const int rc = runLogged({spec.source + "/scripts/sweep-plot", out}, log); rc != 0) {
-      errors.push_back(fmt::format("plots: scripts/sweep-plot exited {}: {} (log {})", rc, lastLine(log), log));
-    }
+// The terminal summary: per width, unit and scene, the most detailed model
+// (the last in the spec that has results: rtl after golden).
+void printTable(FILE* table, const Spec& spec, const std::vector<nlohmann::json>& rows) {
+  constexpr const char* kLine = "{:<6} {:<6} {:<7} {:<14} {:>9} {:>10} {:>7} {:>7} {:>8} {:>7} {:>8} {:>7} {:>9} {:>7}\n";
+  fmt::print(table, fmt::runtime(kLine), "width", "unit", "model", "scene", "misclass", "t err max", "cracks",
+             "extra", "cyc/ray", "tst/cyc", "cells", "MHz", "host r/s", "build");
+  const auto fmtNum = [](const nlohmann::json& v, const char* f) {
+    return v.is_null() ? std::string("-") : fmt::format(fmt::runtime(f), v.get<double>());
+  };
+  for (const nlohmann::json& row : rows) {
+    if (hasLaterModel(spec, rows, row)) continue;
+    std::string scene = fs::path(row["scene"].get<std::string>()).stem().string();
+    if (scene.size() > 14) scene = scene.substr(0, 14);
+    const nlohmann::json mis = row["misclassified_fraction"];
+    fmt::print(table, fmt::runtime(kLine), row["width"].get<std::string>(), row["unit"].get<std::string>(),
+               row["model"].get<std::string>(), scene,
+               mis.is_null() ? "-" : fmt::format("{:.4f}%", 100 * mis.get<double>()),
+               fmtNum(row["t_error_max_relative"], "{:.2e}"),
+               row["cracks"].is_null()
+                   ? "-"
+                   : fmt::format("{}/{}", row["cracks"].get<uint64_t>(), row["crack_rays"].get<uint64_t>()),
+               row["extra_steps_fraction"].is_null()
+                   ? "-"
+                   : fmt::format("{:+.1f}%", 100 * row["extra_steps_fraction"].get<double>()),
+               fmtNum(row["cycles_per_ray"], "{:.2f}"), fmtNum(row["tests_per_cycle"], "{:.3f}"),
+               fmtNum(row["cells"], "{:.0f}"), fmtNum(row["fmax_mhz_est"], "{:.0f}"),
+               fmtNum(row["host_rays_per_second"], "{:.0f}"), fmtNum(row["build_seconds"], "{:.0f}s"));
   }
+}
+
+// scripts/sweep-plot over the merged sweep; a failure is one of its errors.
+void runPlots(const std::string& out, const Spec& spec, nlohmann::json& errors) {
+  const std::string log = out + "/plots.log";
+  std::ofstream(log, std::ios::trunc).close();
+  if (const int rc = runLogged({spec.source + "/scripts/sweep-plot", out}, log); rc != 0) {
+    errors.push_back(fmt::format("plots: scripts/sweep-plot exited {}: {} (log {})", rc, lastLine(log), log));
+  }
+}
+
+}  // namespace
+
+MergeResult mergeSweep(const std::string& out, FILE* table, bool plots) {
+  const nlohmann::json plan = readJson(out + "/plan.json");
+  if (!plan.is_object()) throw InputError(fmt::format("{}/plan.json: no sweep plan here (run lancer sweep first)", out));
+  const Spec spec = Spec::fromJson(plan.at("spec"), out + "/plan.json");
+  const nlohmann::json trees = readJson(out + "/trees.json");
+  const nlohmann::json synth = readJson(out + "/synth.json");
+
+  MergeResult m;
+  nlohmann::json errors = nlohmann::json::array(), missing = nlohmann::json::array();
+  collectBuildErrors(trees, synth, errors);
+  const Groups groups = groupResults(out, spec, plan, m, errors, missing);
+  std::vector<nlohmann::json> rows = sweepRows(spec, groups, trees, synth);
+  addStepsVsWidest(rows);
+  m.rows = rows.size();
+  writeCsvFiles(out, rows);
+  if (table) printTable(table, spec, rows);
+  if (plots && !rows.empty()) runPlots(out, spec, errors);
   m.errors = errors.size();
   const nlohmann::json doc = {{"spec", spec.toJson()}, {"rows", rows}, {"trees", trees}, {"synth", synth},
                               {"missing_jobs", missing}, {"errors", errors},
