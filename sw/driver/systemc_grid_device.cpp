@@ -1,4 +1,3 @@
-#include "driver/grid_devices.h"
 #include "driver/systemc_traversal_device_impl.h"
 #include "grid/rt_grid_unit.h"
 

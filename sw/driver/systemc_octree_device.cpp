@@ -1,4 +1,3 @@
-#include "driver/octree_devices.h"
 #include "driver/systemc_traversal_device_impl.h"
 #include "octree/rt_octree_unit.h"
 

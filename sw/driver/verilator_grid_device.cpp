@@ -1,5 +1,4 @@
 #include "Vrt_grid.h"
-#include "driver/grid_devices.h"
 #include "driver/verilator_traversal_run.h"
 
 #ifndef LANCER_GRID_RAYS_IN_FLIGHT

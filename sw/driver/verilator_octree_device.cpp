@@ -1,5 +1,4 @@
 #include "Vrt_octree.h"
-#include "driver/octree_devices.h"
 #include "driver/verilator_traversal_run.h"
 
 #ifndef LANCER_OCTREE_RAYS_IN_FLIGHT

@@ -13,7 +13,7 @@
 #include "common/error.h"
 #include "driver/devices.h"
 #include "driver/golden_device.h"
-#include "driver/grid_devices.h"
+#include "support/unit_devices.h"
 #include "driver/systemc_isect_device.h"
 #include "support/grid_cases.h"
 #include "trav_sc_fixture.h"

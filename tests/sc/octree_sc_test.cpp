@@ -13,8 +13,7 @@
 
 #include "common/error.h"
 #include "driver/devices.h"
-#include "driver/grid_devices.h"
-#include "driver/octree_devices.h"
+#include "support/unit_devices.h"
 #include "golden/octree.h"
 #include "scene/scene.h"
 #include "support/octree_cases.h"

@@ -11,7 +11,7 @@
 
 #include "common/error.h"
 #include "driver/traversal_device.h"
-#include "driver/grid_devices.h"
+#include "support/unit_devices.h"
 #include "support/grid_cases.h"
 #include "trav_test_support.h"
 

@@ -12,7 +12,7 @@
 #include "common/error.h"
 #include "driver/devices.h"
 #include "driver/traversal_device.h"
-#include "driver/octree_devices.h"
+#include "support/unit_devices.h"
 #include "golden/isect.h"
 #include "scene/scene.h"
 #include "support/octree_cases.h"
