@@ -5,7 +5,7 @@
 
 #include <systemc>
 
-#include "common/rt_gated_clock.h"
+#include "base/rt_gated_clock.h"
 #include "common/rt_trav_stream.h"
 #include "common/rt_trav_unit.h"
 #include "isect/rt_isect_types.h"

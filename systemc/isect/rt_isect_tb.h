@@ -7,7 +7,7 @@
 
 #include <systemc>
 
-#include "common/rt_gated_clock.h"
+#include "base/rt_gated_clock.h"
 #include "golden/records.h"
 #include "isect/rt_isect_cycle.h"
 #include "isect/rt_isect_types.h"

@@ -5,7 +5,7 @@
 
 #include <systemc>
 
-#include "common/rt_fst_wave.h"
+#include "base/rt_fst_wave.h"
 #include "isect/rt_isect_tb.h"
 
 namespace lancer::sc {
