@@ -42,38 +42,37 @@ struct rt_trav_host_ports {
   Out<bool> perf_step_ready_o{"perf_step_ready_o"};
 };
 
-// The node/cell read port: requests {addr, tag} valid/ready, responses {data,
-// tag} without ready, named with the unit's prefix (kNames.nodePort: cell_* for
-// rt_grid) on the SystemC side and node_* in C++.
+// One read port's seven ports, <p>_req_valid_o .. <p>_rsp_tag_i in C++,
+// <prefix>_req_valid_o .. in SystemC: requests {addr, tag} valid/ready,
+// responses {data, tag} without ready. (A macro: the names are the RTL's.)
+#define LANCER_SC_READ_PORT(p, prefix, data_t)                                                \
+  Out<bool> p##_req_valid_o{portName(prefix, "req_valid_o").c_str()};                         \
+  In<bool> p##_req_ready_i{portName(prefix, "req_ready_i").c_str()};                          \
+  Out<typename Unit::mem_addr_t> p##_req_addr_o{portName(prefix, "req_addr_o").c_str()};     \
+  Out<typename Unit::slot_t> p##_req_tag_o{portName(prefix, "req_tag_o").c_str()};           \
+  In<bool> p##_rsp_valid_i{portName(prefix, "rsp_valid_i").c_str()};                         \
+  In<data_t> p##_rsp_data_i{portName(prefix, "rsp_data_i").c_str()};                         \
+  In<typename Unit::slot_t> p##_rsp_tag_i{portName(prefix, "rsp_tag_i").c_str()}
+
+// Binds read port p of `a` to the same of `b`.
+#define LANCER_SC_BIND_READ_PORT(a, b, p)                                                     \
+  (a).p##_req_valid_o((b).p##_req_valid_o), (a).p##_req_ready_i((b).p##_req_ready_i),         \
+      (a).p##_req_addr_o((b).p##_req_addr_o), (a).p##_req_tag_o((b).p##_req_tag_o),           \
+      (a).p##_rsp_valid_i((b).p##_rsp_valid_i), (a).p##_rsp_data_i((b).p##_rsp_data_i),       \
+      (a).p##_rsp_tag_i((b).p##_rsp_tag_i)
+
+// The node/cell read port (SystemC names with the unit's prefix, kNames.nodePort:
+// cell_* for rt_grid; node_* in C++).
 template <class Unit, template <class> class In, template <class> class Out>
 struct rt_trav_node_port {
-  Out<bool> node_req_valid_o{portName(Unit::kNames.nodePort, "req_valid_o").c_str()};
-  In<bool> node_req_ready_i{portName(Unit::kNames.nodePort, "req_ready_i").c_str()};
-  Out<typename Unit::mem_addr_t> node_req_addr_o{portName(Unit::kNames.nodePort, "req_addr_o").c_str()};
-  Out<typename Unit::slot_t> node_req_tag_o{portName(Unit::kNames.nodePort, "req_tag_o").c_str()};
-  In<bool> node_rsp_valid_i{portName(Unit::kNames.nodePort, "rsp_valid_i").c_str()};
-  In<typename Unit::node_data_t> node_rsp_data_i{portName(Unit::kNames.nodePort, "rsp_data_i").c_str()};
-  In<typename Unit::slot_t> node_rsp_tag_i{portName(Unit::kNames.nodePort, "rsp_tag_i").c_str()};
+  LANCER_SC_READ_PORT(node, Unit::kNames.nodePort, typename Unit::node_data_t);
 };
 
-// The index and triangle read ports, as the node port.
+// The index and triangle read ports.
 template <class Unit, template <class> class In, template <class> class Out>
 struct rt_trav_mem_ports {
-  Out<bool> idx_req_valid_o{"idx_req_valid_o"};
-  In<bool> idx_req_ready_i{"idx_req_ready_i"};
-  Out<typename Unit::mem_addr_t> idx_req_addr_o{"idx_req_addr_o"};
-  Out<typename Unit::slot_t> idx_req_tag_o{"idx_req_tag_o"};
-  In<bool> idx_rsp_valid_i{"idx_rsp_valid_i"};
-  In<typename Unit::idx_data_t> idx_rsp_data_i{"idx_rsp_data_i"};
-  In<typename Unit::slot_t> idx_rsp_tag_i{"idx_rsp_tag_i"};
-
-  Out<bool> tri_req_valid_o{"tri_req_valid_o"};
-  In<bool> tri_req_ready_i{"tri_req_ready_i"};
-  Out<typename Unit::mem_addr_t> tri_req_addr_o{"tri_req_addr_o"};
-  Out<typename Unit::slot_t> tri_req_tag_o{"tri_req_tag_o"};
-  In<bool> tri_rsp_valid_i{"tri_rsp_valid_i"};
-  In<isect_tri_t> tri_rsp_data_i{"tri_rsp_data_i"};
-  In<typename Unit::slot_t> tri_rsp_tag_i{"tri_rsp_tag_i"};
+  LANCER_SC_READ_PORT(idx, "idx", typename Unit::idx_data_t);
+  LANCER_SC_READ_PORT(tri, "tri", isect_tri_t);
 };
 
 // Binds one side's ports (a module's, or a parent's) to another's of the same
@@ -81,31 +80,13 @@ struct rt_trav_mem_ports {
 // node_* (rt_grid's Verilated class) is its traits' to bind (bindUnitPorts).
 template <class A, class B>
 void bindNodePort(A& a, B& b) {
-  a.node_req_valid_o(b.node_req_valid_o);
-  a.node_req_ready_i(b.node_req_ready_i);
-  a.node_req_addr_o(b.node_req_addr_o);
-  a.node_req_tag_o(b.node_req_tag_o);
-  a.node_rsp_valid_i(b.node_rsp_valid_i);
-  a.node_rsp_data_i(b.node_rsp_data_i);
-  a.node_rsp_tag_i(b.node_rsp_tag_i);
+  LANCER_SC_BIND_READ_PORT(a, b, node);
 }
 
 template <class A, class B>
 void bindMemPorts(A& a, B& b) {
-  a.idx_req_valid_o(b.idx_req_valid_o);
-  a.idx_req_ready_i(b.idx_req_ready_i);
-  a.idx_req_addr_o(b.idx_req_addr_o);
-  a.idx_req_tag_o(b.idx_req_tag_o);
-  a.idx_rsp_valid_i(b.idx_rsp_valid_i);
-  a.idx_rsp_data_i(b.idx_rsp_data_i);
-  a.idx_rsp_tag_i(b.idx_rsp_tag_i);
-  a.tri_req_valid_o(b.tri_req_valid_o);
-  a.tri_req_ready_i(b.tri_req_ready_i);
-  a.tri_req_addr_o(b.tri_req_addr_o);
-  a.tri_req_tag_o(b.tri_req_tag_o);
-  a.tri_rsp_valid_i(b.tri_rsp_valid_i);
-  a.tri_rsp_data_i(b.tri_rsp_data_i);
-  a.tri_rsp_tag_i(b.tri_rsp_tag_i);
+  LANCER_SC_BIND_READ_PORT(a, b, idx);
+  LANCER_SC_BIND_READ_PORT(a, b, tri);
 }
 
 template <class A, class B>

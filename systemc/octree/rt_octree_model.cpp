@@ -181,47 +181,36 @@ void rt_octree_model::finish(int k) {
 
 // The state register with the request vectors and the self-acting set derived from it.
 void rt_octree_model::setState(int k, State next) {
-  Slot& s = slots_[size_t(k)];
-  switch (s.state) {  // leave the old state's sets
-    case State::Free: free_.reset(k); break;
-    case State::Enter: enter_.reset(k); break;
+  mark(k, slots_[size_t(k)].state, false);
+  slots_[size_t(k)].state = next;
+  mark(k, next, true);
+}
+
+// The sets a slot in state `st` belongs to, joined or left.
+void rt_octree_model::mark(int k, State st, bool join) {
+  const Slot& s = slots_[size_t(k)];
+  const auto put = [&](slot_mask& m) { join ? m.set(k) : m.reset(k); };
+  switch (st) {
+    case State::Free: put(free_); break;
+    case State::Enter: put(enter_); break;
     case State::GroupReq:
-    case State::RefillReq: nodeWant_.reset(k); break;
+    case State::RefillReq: put(nodeWant_); break;
     case State::Fetch:
-      fetch_.reset(k);
-      idxWant_.reset(k);
-      self_.reset(k);
+      put(fetch_);
+      if (!join || s.issued != s.rec.count) put(idxWant_);
+      if (!join || s.received == s.rec.count) put(self_);
       break;
     case State::Check:
-      checkWant_.reset(k);
-      advWant_.reset(k);
-      break;
-    case State::Descend: self_.reset(k); break;
-    case State::Next: advWant_.reset(k); break;
-    case State::Done: done_.reset(k); break;
-    default: break;
-  }
-  s.state = next;
-  switch (next) {
-    case State::Free: free_.set(k); break;
-    case State::Enter: enter_.set(k); break;
-    case State::GroupReq:
-    case State::RefillReq: nodeWant_.set(k); break;
-    case State::Fetch:
-      fetch_.set(k);
-      if (s.issued != s.rec.count) idxWant_.set(k);
-      if (s.received == s.rec.count) self_.set(k);
-      break;
-    case State::Check:
-      if (hit(k).wantsCheck()) {
-        checkWant_.set(k);
+      if (join) {
+        put(hit(k).wantsCheck() ? checkWant_ : advWant_);
       } else {
-        advWant_.set(k);
+        checkWant_.reset(k);
+        advWant_.reset(k);
       }
       break;
-    case State::Descend: self_.set(k); break;
-    case State::Next: advWant_.set(k); break;
-    case State::Done: done_.set(k); break;
+    case State::Descend: put(self_); break;
+    case State::Next: put(advWant_); break;
+    case State::Done: put(done_); break;
     default: break;
   }
 }

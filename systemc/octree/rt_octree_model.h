@@ -93,6 +93,7 @@ class rt_octree_model : public rt_trav_shell_model<rt_octree_unit, /*RegRsp=*/fa
   void finish(int k);
   void load(int k);
   void setState(int k, State s);
+  void mark(int k, State st, bool join);
   void enter(int k);
   void descend(int k);
   void advance(int k);
