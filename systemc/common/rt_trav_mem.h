@@ -10,6 +10,7 @@
 #include <systemc>
 
 #include "common/rt_record_bits.h"
+#include "common/rt_trav_ports.h"
 #include "common/rt_trav_unit.h"
 #include "golden/stimulus.h"
 #include "isect/rt_isect_types.h"
@@ -31,33 +32,11 @@ namespace lancer::sc {
 // unit's kNames.nodePort prefix, cell_* for rt_grid). An address outside the image
 // is an SC_REPORT_ERROR (the device throws).
 template <class Unit>
-class rt_trav_mem : public sc_core::sc_module {
+class rt_trav_mem : public sc_core::sc_module,
+                    public rt_trav_node_port<Unit, sc_core::sc_out, sc_core::sc_in>,
+                    public rt_trav_mem_ports<Unit, sc_core::sc_out, sc_core::sc_in> {
  public:
   sc_core::sc_in<bool> clk_i{"clk_i"};
-
-  sc_core::sc_in<bool> node_req_valid_o{portName(Unit::kNames.nodePort, "req_valid_o").c_str()};
-  sc_core::sc_out<bool> node_req_ready_i{portName(Unit::kNames.nodePort, "req_ready_i").c_str()};
-  sc_core::sc_in<typename Unit::mem_addr_t> node_req_addr_o{portName(Unit::kNames.nodePort, "req_addr_o").c_str()};
-  sc_core::sc_in<typename Unit::slot_t> node_req_tag_o{portName(Unit::kNames.nodePort, "req_tag_o").c_str()};
-  sc_core::sc_out<bool> node_rsp_valid_i{portName(Unit::kNames.nodePort, "rsp_valid_i").c_str()};
-  sc_core::sc_out<typename Unit::node_data_t> node_rsp_data_i{portName(Unit::kNames.nodePort, "rsp_data_i").c_str()};
-  sc_core::sc_out<typename Unit::slot_t> node_rsp_tag_i{portName(Unit::kNames.nodePort, "rsp_tag_i").c_str()};
-
-  sc_core::sc_in<bool> idx_req_valid_o{"idx_req_valid_o"};
-  sc_core::sc_out<bool> idx_req_ready_i{"idx_req_ready_i"};
-  sc_core::sc_in<typename Unit::mem_addr_t> idx_req_addr_o{"idx_req_addr_o"};
-  sc_core::sc_in<typename Unit::slot_t> idx_req_tag_o{"idx_req_tag_o"};
-  sc_core::sc_out<bool> idx_rsp_valid_i{"idx_rsp_valid_i"};
-  sc_core::sc_out<typename Unit::idx_data_t> idx_rsp_data_i{"idx_rsp_data_i"};
-  sc_core::sc_out<typename Unit::slot_t> idx_rsp_tag_i{"idx_rsp_tag_i"};
-
-  sc_core::sc_in<bool> tri_req_valid_o{"tri_req_valid_o"};
-  sc_core::sc_out<bool> tri_req_ready_i{"tri_req_ready_i"};
-  sc_core::sc_in<typename Unit::mem_addr_t> tri_req_addr_o{"tri_req_addr_o"};
-  sc_core::sc_in<typename Unit::slot_t> tri_req_tag_o{"tri_req_tag_o"};
-  sc_core::sc_out<bool> tri_rsp_valid_i{"tri_rsp_valid_i"};
-  sc_core::sc_out<isect_tri_t> tri_rsp_data_i{"tri_rsp_data_i"};
-  sc_core::sc_out<typename Unit::slot_t> tri_rsp_tag_i{"tri_rsp_tag_i"};
 
   SC_HAS_PROCESS(rt_trav_mem);
   explicit rt_trav_mem(sc_core::sc_module_name name) : sc_core::sc_module(name) {
@@ -84,41 +63,41 @@ class rt_trav_mem : public sc_core::sc_module {
  private:
   void edge() {
     if (!readyWritten_) {
-      node_req_ready_i.write(true);
-      idx_req_ready_i.write(true);
-      tri_req_ready_i.write(true);
+      this->node_req_ready_i.write(true);
+      this->idx_req_ready_i.write(true);
+      this->tri_req_ready_i.write(true);
       readyWritten_ = true;
     }
     if (image_ == nullptr) {
-      node_rsp_valid_i.write(false);
-      idx_rsp_valid_i.write(false);
-      tri_rsp_valid_i.write(false);
+      this->node_rsp_valid_i.write(false);
+      this->idx_rsp_valid_i.write(false);
+      this->tri_rsp_valid_i.write(false);
       return;
     }
     // The requests of the cycle that ends at this edge, then the responses of the next.
     const uint64_t c = cycle_++;
-    if (node_req_valid_o.read()) node_.request(c, uint32_t(node_req_addr_o.read()), uint32_t(node_req_tag_o.read()));
-    if (idx_req_valid_o.read()) idx_.request(c, uint32_t(idx_req_addr_o.read()), uint32_t(idx_req_tag_o.read()));
-    if (tri_req_valid_o.read()) tri_.request(c, uint32_t(tri_req_addr_o.read()), uint32_t(tri_req_tag_o.read()));
+    if (this->node_req_valid_o.read()) node_.request(c, uint32_t(this->node_req_addr_o.read()), uint32_t(this->node_req_tag_o.read()));
+    if (this->idx_req_valid_o.read()) idx_.request(c, uint32_t(this->idx_req_addr_o.read()), uint32_t(this->idx_req_tag_o.read()));
+    if (this->tri_req_valid_o.read()) tri_.request(c, uint32_t(this->tri_req_addr_o.read()), uint32_t(this->tri_req_tag_o.read()));
 
     uint32_t addr = 0, tag = 0;
     const bool node = node_.respond(c + 1, addr, tag);
-    node_rsp_valid_i.write(node);
+    this->node_rsp_valid_i.write(node);
     if (node) {
       if (!nodes_.holds(addr)) outside(Unit::kNames.nodeRegion, addr, nodes_.entries());
       assignPort<Unit::NODE_DATA_W>(nodePort_, nodes_.wire(addr));
-      node_rsp_data_i.write(nodePort_);
-      node_rsp_tag_i.write(typename Unit::slot_t(tag));
+      this->node_rsp_data_i.write(nodePort_);
+      this->node_rsp_tag_i.write(typename Unit::slot_t(tag));
     }
     const bool idx = idx_.respond(c + 1, addr, tag);
-    idx_rsp_valid_i.write(idx);
+    this->idx_rsp_valid_i.write(idx);
     if (idx) {
       if (addr >= image_->indices.size()) outside("index list", addr, image_->indices.size());
-      idx_rsp_data_i.write(typename Unit::idx_data_t(image_->indices[addr]));
-      idx_rsp_tag_i.write(typename Unit::slot_t(tag));
+      this->idx_rsp_data_i.write(typename Unit::idx_data_t(image_->indices[addr]));
+      this->idx_rsp_tag_i.write(typename Unit::slot_t(tag));
     }
     const bool tri = tri_.respond(c + 1, addr, tag);
-    tri_rsp_valid_i.write(tri);
+    this->tri_rsp_valid_i.write(tri);
     if (tri) {
       if (addr >= image_->triangles.size()) outside("triangle table", addr, image_->triangles.size());
       const std::span<uint32_t> wire(triWire_.data() + size_t(addr) * fx::kIsectTriWords, fx::kIsectTriWords);
@@ -127,8 +106,8 @@ class rt_trav_mem : public sc_core::sc_module {
         triPacked_[addr] = 1;
       }
       assignPort<ISECT_TRI_W>(triPort_, wire);
-      tri_rsp_data_i.write(triPort_);
-      tri_rsp_tag_i.write(typename Unit::slot_t(tag));
+      this->tri_rsp_data_i.write(triPort_);
+      this->tri_rsp_tag_i.write(typename Unit::slot_t(tag));
     }
   }
 

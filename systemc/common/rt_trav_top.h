@@ -5,7 +5,7 @@
 
 #include <systemc>
 
-#include "common/rt_fst_wave.h"
+#include "base/rt_fst_wave.h"
 #include "common/rt_trav_mem.h"
 #include "common/rt_trav_tb.h"
 

@@ -12,7 +12,7 @@
 
 #include "common/rt_trav_bench.h"
 #include "common/rt_trav_top.h"
-#include "isect/rt_isect_top.h"
+#include "isect/rt_isect_rtl.h"
 
 #if LANCER_SC_HAVE_GRID_RTL || LANCER_SC_HAVE_OCTREE_RTL
 #include "verilated.h"

@@ -2,6 +2,7 @@
 
 #include <systemc>
 
+#include "isect/rt_isect_ports.h"
 #include "isect/rt_isect_tb.h"
 #include "isect/rt_isect_types.h"
 
@@ -13,17 +14,10 @@ namespace lancer::sc {
 // the testbench, whose ports carry the same names, too. The binding below is
 // the wiring diagram: every signal is named after the RTL port it connects.
 template <class Dut>
-class rt_isect_bench : public sc_core::sc_module {
+class rt_isect_bench : public sc_core::sc_module, public rt_isect_signals {
  public:
   sc_core::sc_signal<bool> clk_i{"clk_i"};
   sc_core::sc_signal<bool> rst_ni{"rst_ni"};
-  sc_core::sc_signal<bool> req_valid_i{"req_valid_i"};
-  sc_core::sc_signal<bool> req_ready_o{"req_ready_o"};
-  sc_core::sc_signal<isect_ray_t> req_ray_i{"req_ray_i"};
-  sc_core::sc_signal<isect_tri_t> req_tri_i{"req_tri_i"};
-  sc_core::sc_signal<bool> res_valid_o{"res_valid_o"};
-  sc_core::sc_signal<bool> res_ready_i{"res_ready_i"};
-  sc_core::sc_signal<isect_res_t> res_data_o{"res_data_o"};
 
   rt_isect_tb u_tb{"u_tb"};
   Dut u_dut{"u_dut"};
@@ -38,13 +32,7 @@ class rt_isect_bench : public sc_core::sc_module {
   void bind(M& m) {
     m.clk_i(clk_i);
     m.rst_ni(rst_ni);
-    m.req_valid_i(req_valid_i);
-    m.req_ready_o(req_ready_o);
-    m.req_ray_i(req_ray_i);
-    m.req_tri_i(req_tri_i);
-    m.res_valid_o(res_valid_o);
-    m.res_ready_i(res_ready_i);
-    m.res_data_o(res_data_o);
+    bindIsectPorts(m, *this);
   }
 };
 

@@ -4,6 +4,7 @@
 
 #include <systemc>
 
+#include "isect/rt_isect_ports.h"
 #include "isect/rt_isect_types.h"
 
 namespace lancer::sc {
@@ -25,24 +26,13 @@ namespace lancer::sc {
 //
 // The arithmetic is not duplicated: the entry stage computes the whole result
 // with fx::intersect() (the golden model) and the other stages only carry it.
-// Ports carry the RTL's names and the port types Verilator generates for them
+// Ports (rt_isect_ports.h) carry the RTL's names and the port types Verilator generates for them
 // (rt_isect_types.h), so this module and Vrt_isect_sc bind identically.
-SC_MODULE(rt_isect_model) {
+struct rt_isect_model : sc_core::sc_module, rt_isect_ports<sc_core::sc_in, sc_core::sc_out> {
   static constexpr int NUM_STAGES = ISECT_LATENCY;
 
   sc_core::sc_in<bool> clk_i{"clk_i"};
   sc_core::sc_in<bool> rst_ni{"rst_ni"};
-
-  // Requests: one ray-triangle pair per transfer.
-  sc_core::sc_in<bool> req_valid_i{"req_valid_i"};
-  sc_core::sc_out<bool> req_ready_o{"req_ready_o"};
-  sc_core::sc_in<isect_ray_t> req_ray_i{"req_ray_i"};
-  sc_core::sc_in<isect_tri_t> req_tri_i{"req_tri_i"};
-
-  // Results, in request order.
-  sc_core::sc_out<bool> res_valid_o{"res_valid_o"};
-  sc_core::sc_in<bool> res_ready_i{"res_ready_i"};
-  sc_core::sc_out<isect_res_t> res_data_o{"res_data_o"};
 
   SC_HAS_PROCESS(rt_isect_model);
   explicit rt_isect_model(sc_core::sc_module_name name);

@@ -7,9 +7,10 @@
 
 #include <systemc>
 
-#include "common/rt_gated_clock.h"
+#include "base/rt_gated_clock.h"
 #include "golden/records.h"
 #include "isect/rt_isect_cycle.h"
+#include "isect/rt_isect_ports.h"
 #include "isect/rt_isect_types.h"
 
 namespace lancer::sc {
@@ -61,20 +62,11 @@ struct rt_isect_tally {
 // before the stall draw, a draw only for a non-zero probability, true when
 // rng() < p * 2^64. So every cycle-accurate device sees the same stimulus for
 // the same options, and two that behave the same report the same StreamStats.
-SC_MODULE(rt_isect_tb) {
+struct rt_isect_tb : sc_core::sc_module, rt_isect_ports<sc_core::sc_out, sc_core::sc_in> {
   static constexpr int RESET_CYCLES = 2;
 
   sc_core::sc_out<bool> clk_i{"clk_i"};
   sc_core::sc_out<bool> rst_ni{"rst_ni"};
-
-  sc_core::sc_out<bool> req_valid_i{"req_valid_i"};
-  sc_core::sc_in<bool> req_ready_o{"req_ready_o"};
-  sc_core::sc_out<isect_ray_t> req_ray_i{"req_ray_i"};
-  sc_core::sc_out<isect_tri_t> req_tri_i{"req_tri_i"};
-
-  sc_core::sc_in<bool> res_valid_o{"res_valid_o"};
-  sc_core::sc_out<bool> res_ready_i{"res_ready_i"};
-  sc_core::sc_in<isect_res_t> res_data_o{"res_data_o"};
 
   rt_gated_clock u_clk{"u_clk"};
 

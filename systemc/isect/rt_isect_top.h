@@ -5,15 +5,11 @@
 
 #include <systemc>
 
-#include "common/rt_fst_wave.h"
+#include "base/rt_fst_wave.h"
+#include "isect/rt_isect_rtl.h"
 #include "isect/rt_isect_tb.h"
 
 namespace lancer::sc {
-
-enum class rt_isect_impl {
-  model,  // rt_isect_model, the hand-written cycle model
-  rtl,    // Vrt_isect_sc, rtl/isect/rt_isect.sv Verilated with --sc
-};
 
 // rt_isect_top: the SystemC system of the intersection pipeline. It holds both
 // implementations, each on its own testbench and gated clock (rt_isect_bench),

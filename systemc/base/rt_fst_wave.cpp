@@ -1,4 +1,4 @@
-#include "common/rt_fst_wave.h"
+#include "base/rt_fst_wave.h"
 
 #include <stdexcept>
 

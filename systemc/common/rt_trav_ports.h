@@ -1,0 +1,110 @@
+#pragma once
+
+// The ports every traversal unit has (rtl/lib/rt_trav_ports.svh and the
+// shell's node port), declared once for each side that meets them: In and Out
+// are what the unit's inputs and outputs are on that side, so one list serves
+//   the unit (cycle model)   <sc_in, sc_out>
+//   the memory               <sc_out, sc_in>   (node and memory ports)
+//   the testbench            <sc_out, sc_in>   (host ports), <sc_in, sc_in> (node and memory ports, observed)
+//   the bench                <rt_signal, rt_signal>
+// Port names are the RTL's (the node port's prefix is the unit's: cell_* for
+// rt_grid), and one bind function per group binds any side to a bench's
+// signals, the Verilated class too, whose members carry the same names.
+
+#include <systemc>
+
+#include "common/rt_trav_unit.h"
+#include "isect/rt_isect_ports.h"
+#include "isect/rt_isect_types.h"
+
+namespace lancer::sc {
+
+// Clock, reset, cfg_slots_i, the ray, result and visit streams, the performance outputs.
+template <class Unit, template <class> class In, template <class> class Out>
+struct rt_trav_host_ports {
+  In<bool> clk_i{"clk_i"};
+  In<bool> rst_ni{"rst_ni"};
+  In<typename Unit::cfg_slots_t> cfg_slots_i{"cfg_slots_i"};
+
+  In<bool> ray_valid_i{"ray_valid_i"};
+  Out<bool> ray_ready_o{"ray_ready_o"};
+  In<isect_ray_t> ray_data_i{"ray_data_i"};
+
+  Out<bool> res_valid_o{"res_valid_o"};
+  In<bool> res_ready_i{"res_ready_i"};
+  Out<typename Unit::res_t> res_data_o{"res_data_o"};
+
+  Out<bool> visit_valid_o{"visit_valid_o"};
+  In<bool> visit_ready_i{"visit_ready_i"};
+  Out<typename Unit::visit_t> visit_data_o{"visit_data_o"};
+
+  Out<bool> perf_isect_fire_o{"perf_isect_fire_o"};
+  Out<bool> perf_step_ready_o{"perf_step_ready_o"};
+};
+
+// One read port's seven ports, <p>_req_valid_o .. <p>_rsp_tag_i in C++,
+// <prefix>_req_valid_o .. in SystemC: requests {addr, tag} valid/ready,
+// responses {data, tag} without ready. (A macro: the names are the RTL's.)
+#define LANCER_SC_READ_PORT(p, prefix, data_t)                                                \
+  Out<bool> p##_req_valid_o{portName(prefix, "req_valid_o").c_str()};                         \
+  In<bool> p##_req_ready_i{portName(prefix, "req_ready_i").c_str()};                          \
+  Out<typename Unit::mem_addr_t> p##_req_addr_o{portName(prefix, "req_addr_o").c_str()};     \
+  Out<typename Unit::slot_t> p##_req_tag_o{portName(prefix, "req_tag_o").c_str()};           \
+  In<bool> p##_rsp_valid_i{portName(prefix, "rsp_valid_i").c_str()};                         \
+  In<data_t> p##_rsp_data_i{portName(prefix, "rsp_data_i").c_str()};                         \
+  In<typename Unit::slot_t> p##_rsp_tag_i{portName(prefix, "rsp_tag_i").c_str()}
+
+// Binds read port p of `a` to the same of `b`.
+#define LANCER_SC_BIND_READ_PORT(a, b, p)                                                     \
+  (a).p##_req_valid_o((b).p##_req_valid_o), (a).p##_req_ready_i((b).p##_req_ready_i),         \
+      (a).p##_req_addr_o((b).p##_req_addr_o), (a).p##_req_tag_o((b).p##_req_tag_o),           \
+      (a).p##_rsp_valid_i((b).p##_rsp_valid_i), (a).p##_rsp_data_i((b).p##_rsp_data_i),       \
+      (a).p##_rsp_tag_i((b).p##_rsp_tag_i)
+
+// The node/cell read port (SystemC names with the unit's prefix, kNames.nodePort:
+// cell_* for rt_grid; node_* in C++).
+template <class Unit, template <class> class In, template <class> class Out>
+struct rt_trav_node_port {
+  LANCER_SC_READ_PORT(node, Unit::kNames.nodePort, typename Unit::node_data_t);
+};
+
+// The index and triangle read ports.
+template <class Unit, template <class> class In, template <class> class Out>
+struct rt_trav_mem_ports {
+  LANCER_SC_READ_PORT(idx, "idx", typename Unit::idx_data_t);
+  LANCER_SC_READ_PORT(tri, "tri", isect_tri_t);
+};
+
+// Binds one side's ports (a module's, or a parent's) to another's of the same
+// names (a bench's signals). The node port of a unit whose C++ names are not
+// node_* (rt_grid's Verilated class) is its traits' to bind (bindUnitPorts).
+template <class A, class B>
+void bindNodePort(A& a, B& b) {
+  LANCER_SC_BIND_READ_PORT(a, b, node);
+}
+
+template <class A, class B>
+void bindMemPorts(A& a, B& b) {
+  LANCER_SC_BIND_READ_PORT(a, b, idx);
+  LANCER_SC_BIND_READ_PORT(a, b, tri);
+}
+
+template <class A, class B>
+void bindHostPorts(A& a, B& b) {
+  a.clk_i(b.clk_i);
+  a.rst_ni(b.rst_ni);
+  a.cfg_slots_i(b.cfg_slots_i);
+  a.ray_valid_i(b.ray_valid_i);
+  a.ray_ready_o(b.ray_ready_o);
+  a.ray_data_i(b.ray_data_i);
+  a.res_valid_o(b.res_valid_o);
+  a.res_ready_i(b.res_ready_i);
+  a.res_data_o(b.res_data_o);
+  a.visit_valid_o(b.visit_valid_o);
+  a.visit_ready_i(b.visit_ready_i);
+  a.visit_data_o(b.visit_data_o);
+  a.perf_isect_fire_o(b.perf_isect_fire_o);
+  a.perf_step_ready_o(b.perf_step_ready_o);
+}
+
+}  // namespace lancer::sc

@@ -1,0 +1,574 @@
+#pragma once
+
+// rt_trav_shell_model: the cycle model of rtl/lib/rt_trav_shell.sv, the part
+// of every traversal unit that is not its walk. A unit's cycle model
+// (rt_grid_model, rt_octree_model) derives from it and holds only its walk
+// (rt_<unit>_slots.sv) and its per-ray setup; its seq() calls the shell's
+// steps in this order, once per rising edge:
+//
+//   wants      the walk's want vectors, from the registers at the start of the cycle
+//   grant()    allocation, the five round-robin arbiters, FIFO room, credits;
+//              the FIFO heads taken in this cycle leave
+//   nodeResponse()   the node/cell response of the cycle (registered when RegRsp)
+//   intersect()      u_isect: the triangle response enters with its slot's ray,
+//              the result leaving updates its slot's closest hit
+//   (events)   the walk's slot updates; at its grants it pushes the node request,
+//              the visit, the index request and the result (push*()), and loads
+//              the ray leaving the setup pipeline (loadRay())
+//   endCycle() the index buffer and triangle requests, credits, arbiter
+//              pointers, the setup pipeline, the boundary registers, the outputs
+//
+// Outputs are written only when they change (flags) or when a FIFO head
+// changes (data): the kernel calls are most of a cycle's cost.
+//
+// u_isect (constructor argument rt_isect_impl): `model` is rt_isect's timing
+// inside this module (it never stalls and its results are always taken, so it
+// is an ISECT_LATENCY-deep delay line of fx::intersect); `rtl` is the
+// Verilated rt_isect on signals (the mixed system). RegRsp is the RTL's
+// parameter: node and triangle responses are used in the cycle after they
+// arrive (rt_grid) or in it (rt_octree).
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include <fmt/format.h>
+#include <systemc>
+
+#include "common/rt_record_bits.h"
+#include "common/rt_trav_ports.h"
+#include "common/rt_trav_unit.h"
+#include "golden/isect.h"
+#include "isect/rt_isect_ports.h"
+#include "isect/rt_isect_rtl.h"
+#include "isect/rt_isect_types.h"
+
+namespace lancer::sc {
+
+// A set of slots (N bits): a want vector.
+template <int N>
+class rt_slot_mask {
+ public:
+  static constexpr int kWords = (N + 63) / 64;
+  void set(int k) { w_[size_t(k >> 6)] |= uint64_t(1) << (k & 63); }
+  void reset(int k) { w_[size_t(k >> 6)] &= ~(uint64_t(1) << (k & 63)); }
+  bool test(int k) const { return (w_[size_t(k >> 6)] >> (k & 63)) & 1; }
+  bool any() const {
+    for (uint64_t w : w_)
+      if (w) return true;
+    return false;
+  }
+  void clear() { w_.fill(0); }
+  int lowest() const {  // -1 if empty
+    for (int i = 0; i < kWords; ++i)
+      if (w_[size_t(i)]) return i * 64 + __builtin_ctzll(w_[size_t(i)]);
+    return -1;
+  }
+  int lowestBelow(int limit) const {  // the lowest member < limit, or -1
+    const int k = lowest();
+    return k >= 0 && k < limit ? k : -1;
+  }
+  // rt_rr_arb: the lowest member at or after `from`, cyclically; -1 if empty.
+  int pickFrom(int from) const {
+    const int first = from >> 6;
+    const uint64_t upper = w_[size_t(first)] & (~uint64_t(0) << (from & 63));
+    if (upper) return first * 64 + __builtin_ctzll(upper);
+    for (int i = first + 1; i < kWords; ++i)
+      if (w_[size_t(i)]) return i * 64 + __builtin_ctzll(w_[size_t(i)]);
+    return lowest();  // wraps around: every member lies below `from`, or there is none
+  }
+  template <class F>
+  void forEach(F f) const {
+    for (int i = 0; i < kWords; ++i) {
+      for (uint64_t m = w_[size_t(i)]; m != 0; m &= m - 1) f(i * 64 + __builtin_ctzll(m));
+    }
+  }
+
+ private:
+  std::array<uint64_t, kWords> w_{};
+};
+
+// rt_rr_arb's pointer: grants the lowest requester at or after it; moves past a used grant.
+template <int N>
+struct rt_rr_arb_model {
+  int ptr = 0;
+  int pick(const rt_slot_mask<N>& want) const { return want.pickFrom(ptr); }
+  void ack(int granted) { ptr = granted + 1 == N ? 0 : granted + 1; }
+};
+
+// rt_fifo: Depth entries; in_ready = !full, out_valid = !empty, from the
+// occupancy at the start of the cycle.
+template <class T, size_t Depth>
+struct rt_fifo_model {
+  std::array<T, Depth> items{};
+  size_t head = 0, size = 0;
+  bool full() const { return size == Depth; }
+  bool empty() const { return size == 0; }
+  const T& front() const { return items[head]; }
+  void pop() {
+    head = head + 1 == Depth ? 0 : head + 1;
+    --size;
+  }
+  void push(const T& v) {
+    size_t tail = head + size;
+    if (tail >= Depth) tail -= Depth;
+    items[tail] = v;
+    ++size;
+  }
+  void clear() { head = size = 0; }
+};
+
+// A memory request FIFO entry (node/cell, index, triangle ports; the index
+// buffer's {triangle id, slot}).
+struct rt_mem_req {
+  uint32_t addr = 0, slot = 0;
+};
+
+// A visit FIFO entry: {ray_id, element id} (a cell id, a node id).
+struct rt_visit_entry {
+  uint32_t rayId = 0, id = 0;
+};
+
+// The setup pipeline's valid/slot/ray registers, two stages (the arithmetic
+// happens at the slot load, after the second). Per cycle: shift(), then
+// load() the ray accepted in it.
+struct rt_setup_pipe {
+  struct stage {
+    bool valid = false;
+    int slot = 0;
+    isect_ray_t ray{};
+  };
+  stage s1, s2;
+
+  void clear() { s1.valid = s2.valid = false; }
+  void shift() {
+    if (s1.valid) {
+      s2.slot = s1.slot;
+      s2.ray = s1.ray;
+    }
+    s2.valid = s1.valid;
+    s1.valid = false;
+  }
+  void load(int slot, const isect_ray_t& ray) {
+    s1.valid = true;
+    s1.slot = slot;
+    s1.ray = ray;
+  }
+};
+
+// A slot's closest-hit record, as rt_trav_shell keeps it: the closest hit so
+// far, and before the first one the segment end as a pseudo hit (the bound the
+// exit test compares with; fx::walkBound). A bounded ray is exit-tested before
+// its first hit; an any-hit ray with a hit is settled (the walk ends without
+// the exit test's arithmetic).
+struct rt_closest_record {
+  bool hasHit = false;
+  bool bounded = false;
+  bool anyHit = false;
+  fx::IsectResult best;
+
+  void start(const fx::QRay& ray) {
+    hasHit = false;
+    bounded = ray.bounded();
+    anyHit = ray.anyHit;
+    best = fx::segmentEndBound(ray);
+  }
+  // rt_closest_hit: does the result replace the record?
+  bool takes(const fx::IsectResult& res) const { return res.hit && (!hasHit || fx::closerResult(res, best)); }
+  void take(const fx::IsectResult& res) {
+    hasHit = true;
+    best = res;
+  }
+  bool wantsCheck() const { return hasHit || bounded; }
+  bool settled() const { return anyHit && hasHit; }
+  // The unit's result record: {ray id, elements visited, tests, hit, the hit's fields (zero without one)}.
+  std::array<fx::u128, 9> resultValues(uint32_t rayId, uint32_t visited, uint64_t tests) const {
+    const fx::IsectResult hit = hasHit ? best : fx::IsectResult{};
+    return {rayId, visited, tests, hasHit ? 1u : 0u, hit.primId, hit.tNum, hit.det, hit.uNum, hit.vNum};
+  }
+};
+
+// The walk's want vectors (rt_trav_shell's free_i, want_*_i, expect_i).
+template <int N>
+struct rt_trav_wants {
+  rt_slot_mask<N> free, node, visit, idx, check, done;
+  rt_slot_mask<N> expect;  // slots that expect triangles and results (FETCH)
+};
+
+// The grants of a cycle: the granted slot of each arbiter whose grant goes, or
+// -1; alloc: the slot that takes the ray offered in this cycle, or -1.
+struct rt_trav_grants {
+  int alloc = -1, node = -1, visit = -1, idx = -1, check = -1, done = -1;
+};
+
+// The intersection result absorbed in this cycle.
+struct rt_isect_result {
+  bool valid = false;
+  int slot = -1;
+  fx::IsectResult res;
+};
+
+// isect_tri_t {prim_id, v0[3], v1[3], v2[3]} from its wire image.
+inline fx::QTriangle unpackTriangle(const uint32_t* wire) {
+  static_assert(fx::kIsectTriValues == 10, "isect_tri_t layout changed");
+  fx::QTriangle t;
+  t.id = uint32_t(getField<fx::kIsectTriFields, 0>(wire));
+  [&]<size_t... I>(std::index_sequence<I...>) {
+    ((t.v[I / 3][I % 3] = getField<fx::kIsectTriFields, 1 + I>(wire)), ...);
+  }(std::make_index_sequence<9>{});
+  return t;
+}
+
+template <class Unit, bool RegRsp>
+class rt_trav_shell_model : public sc_core::sc_module,
+                            public rt_trav_host_ports<Unit, sc_core::sc_in, sc_core::sc_out>,
+                            public rt_trav_node_port<Unit, sc_core::sc_in, sc_core::sc_out>,
+                            public rt_trav_mem_ports<Unit, sc_core::sc_in, sc_core::sc_out> {
+ public:
+  using cfg_t = typename Unit::cfg_t;
+  using slot_t = typename Unit::slot_t;
+  using mem_addr_t = typename Unit::mem_addr_t;
+  using node_data_t = typename Unit::node_data_t;
+  using res_t = typename Unit::res_t;
+  static constexpr int N = Unit::RAYS_IN_FLIGHT;
+  using slot_mask = rt_slot_mask<N>;
+  using wants_t = rt_trav_wants<N>;
+
+  // The unit's configuration port (its RTL name: Unit::kNames.cfgPort).
+  sc_core::sc_in<cfg_t> cfg_i{Unit::kNames.cfgPort};
+
+ protected:
+  static constexpr uint32_t SLOT_MASK = (uint32_t(1) << Unit::SLOT_W) - 1;
+
+  // ADDR_W'(value): the RTL truncates addresses to the address width.
+  static constexpr uint32_t addrOf(uint32_t value) {
+    return MEM_ADDR_W >= 32 ? value : value & ((uint32_t(1) << MEM_ADDR_W) - 1);
+  }
+
+  // A node/cell response of this cycle; data valid while `valid`.
+  struct node_rsp {
+    bool valid = false;
+    int slot = -1;
+    const node_data_t* data = nullptr;
+  };
+
+  SC_HAS_PROCESS(rt_trav_shell_model);
+  rt_trav_shell_model(sc_core::sc_module_name name, rt_isect_impl isect) : sc_core::sc_module(name) {
+    if (isect == rt_isect_impl::rtl) {
+      isect_ = std::make_unique<rt_isect_signals>();
+      u_isect = make_rtl_isect("u_isect", this->clk_i, this->rst_ni, *isect_);
+    }
+    SC_METHOD(comb);
+    this->sensitive << state_changed_;
+    if constexpr (!RegRsp) {
+      this->sensitive << this->tri_rsp_valid_i;
+      if (isect_) this->sensitive << this->tri_rsp_tag_i << this->tri_rsp_data_i;
+    }
+    if (isect_) this->sensitive << isect_->req_ready_o;
+  }
+
+  // Reset: every register, and every output written.
+  void resetShell() {
+    q_setup_.clear();
+    nodeQ_.clear();
+    idxQ_.clear();
+    triQ_.clear();
+    idxBuf_.clear();
+    visitQ_.clear();
+    resQ_.clear();
+    credits_ = IDX_BUF_DEPTH;
+    nodeArb_ = visitArb_ = idxArb_ = checkArb_ = doneArb_ = rt_rr_arb_model<N>{};
+    nodeRsp_.valid = triRsp_.valid = false;
+    for (isect_stage& st : pipe_) st.valid = false;
+    pipePos_ = 0;
+    if (isect_) isect_->res_ready_i.write(true);  // rt_trav_shell takes every rt_isect result
+    slot_mask all;
+    for (int k = 0; k < N; ++k) all.set(k);
+    writeOutputs(true, all, false);
+    isectFireStale_ = true;  // comb() writes it, its one writer
+    state_changed_.notify();
+  }
+
+  // Allocation, the arbiters' grants that go (FIFO room, a credit), the checks
+  // on the index response; then the FIFO heads taken in this cycle leave.
+  rt_trav_grants grant(const wants_t& w) {
+    rt_trav_grants g;
+    const int usable = std::min<int>(int(this->cfg_slots_i.read()), N);
+    if (this->ray_valid_i.read()) g.alloc = w.free.lowestBelow(usable);
+    g.node = goes(nodeArb_.pick(w.node), !nodeQ_.full());
+    g.visit = goes(visitArb_.pick(w.visit), !visitQ_.full());
+    g.idx = goes(idxArb_.pick(w.idx), !idxQ_.full() && credits_ != 0);
+    g.check = checkArb_.pick(w.check);
+    g.done = goes(doneArb_.pick(w.done), !resQ_.full());
+    idxBufPop_ = !idxBuf_.empty() && !triQ_.full();
+    if (this->idx_rsp_valid_i.read() && idxBuf_.full()) fail("index response with the index buffer full (credit error)");
+
+    nodeHead_ |= popOnReady(nodeQ_, this->node_req_ready_i);
+    idxHead_ |= popOnReady(idxQ_, this->idx_req_ready_i);
+    triHead_ |= popOnReady(triQ_, this->tri_req_ready_i);
+    visitHead_ |= popOnReady(visitQ_, this->visit_ready_i);
+    resHead_ |= popOnReady(resQ_, this->res_ready_i);
+    return g;
+  }
+
+  node_rsp nodeResponse() const {
+    if constexpr (RegRsp) {
+      return {nodeRsp_.valid, int(nodeRsp_.tag & SLOT_MASK), &nodeRsp_.data};
+    } else {
+      const bool valid = this->node_rsp_valid_i.read();
+      return {valid, valid ? int(uint32_t(this->node_rsp_tag_i.read()) & SLOT_MASK) : -1,
+              &this->node_rsp_data_i.read()};
+    }
+  }
+
+  // u_isect in this cycle: the triangle response enters with its slot's ray;
+  // the result leaving updates its slot's closest hit (rt_closest_hit).
+  rt_isect_result intersect(const slot_mask& expect) {
+    const tri_in in = triInput();
+    if (in.valid && (in.slot >= N || !expect.test(in.slot))) {
+      fail(fmt::format("triangle response for slot {}, which is not fetching", in.slot));
+    }
+    rt_isect_result out;
+    if (isect_) {
+      out.valid = isect_->res_valid_o.read();
+      if (out.valid) {
+        std::array<uint32_t, fx::kIsectResWords> wire{};
+        fromPort<ISECT_RES_W>(isect_->res_data_o.read(), wire);
+        fx::unpackResult(wire, out.res);
+      }
+    } else {
+      isect_stage& stage = pipe_[pipePos_];
+      out.valid = stage.valid;
+      out.res = stage.res;
+      stage.valid = in.valid;
+      if (in.valid) {
+        std::array<uint32_t, fx::kIsectTriWords> wire{};
+        fromPort<ISECT_TRI_W>(*in.data, wire);
+        stage.res = fx::intersect(ray_[size_t(in.slot)], unpackTriangle(wire.data()));
+      }
+      pipePos_ = pipePos_ + 1 == size_t(ISECT_LATENCY) ? 0 : pipePos_ + 1;
+    }
+    if (out.valid) {
+      out.slot = int(out.res.rayId & SLOT_MASK);
+      if (out.slot >= N || !expect.test(out.slot)) {
+        fail(fmt::format("rt_isect result for slot {}, which expects none", out.slot));
+      }
+      rt_closest_record& hit = hit_[size_t(out.slot)];
+      if (hit.takes(out.res)) hit.take(out.res);
+    }
+    return out;
+  }
+
+  // The slot whose ray leaves the setup pipeline in this cycle, or -1.
+  int loadSlot() const { return q_setup_.s2.valid ? q_setup_.s2.slot : -1; }
+
+  // The slot's records from that ray (rt_trav_shell's init): its id, its ray
+  // for u_isect (with the slot index as id, returned), its closest hit.
+  fx::QRay loadRay(int k) {
+    fx::QRay ray;
+    std::array<uint32_t, fx::kIsectRayWords> wire{};
+    fromPort<ISECT_RAY_W>(q_setup_.s2.ray, wire);
+    fx::unpackRay(wire, ray);
+    rayId_[size_t(k)] = ray.id;
+    ray.id = uint32_t(k);
+    ray_[size_t(k)] = ray;
+    hit_[size_t(k)].start(ray);
+    return ray;
+  }
+
+  // The records pushed at the grants of this cycle (each from its slot's
+  // registers at the start of the cycle).
+  void pushNode(int k, uint32_t addr) { push(nodeQ_, nodeHead_, rt_mem_req{addrOf(addr), uint32_t(k)}); }
+  void pushVisit(int k, uint32_t id) { push(visitQ_, visitHead_, rt_visit_entry{rayId_[size_t(k)], id}); }
+  void pushIdx(int k, uint32_t addr) { push(idxQ_, idxHead_, rt_mem_req{addrOf(addr), uint32_t(k)}); }
+  void pushResult(int k, uint32_t visited, uint64_t tests) {
+    const auto values = hit_[size_t(k)].resultValues(rayId_[size_t(k)], visited, tests);
+    std::array<uint32_t, size_t(fx::wireWords(Unit::RESULT_W))> wire{};
+    fx::packFields(Unit::kResFields, values, wire);
+    push(resQ_, resHead_, toPort<Unit::RESULT_W>(wire));
+  }
+
+  // The rest of the cycle: index buffer -> triangle requests, credits, arbiter
+  // pointers, setup pipeline, boundary registers; then the outputs, with the
+  // walk's free slots and whether a visit is wanted (perf_step_ready_o), both
+  // from the registers at the end of the cycle.
+  void endCycle(const rt_trav_grants& g, const slot_mask& free, bool stepReady) {
+    if (idxBufPop_) {
+      push(triQ_, triHead_, idxBuf_.front());
+      idxBuf_.pop();
+    }
+    if (this->idx_rsp_valid_i.read()) {
+      idxBuf_.push({addrOf(uint32_t(this->idx_rsp_data_i.read())), uint32_t(this->idx_rsp_tag_i.read()) & SLOT_MASK});
+    }
+    if (g.idx >= 0 && !idxBufPop_) --credits_;
+    if (idxBufPop_ && g.idx < 0) ++credits_;
+
+    ack(nodeArb_, g.node);
+    ack(visitArb_, g.visit);
+    ack(idxArb_, g.idx);
+    ack(checkArb_, g.check);
+    ack(doneArb_, g.done);
+
+    q_setup_.shift();
+    if (g.alloc >= 0) q_setup_.load(g.alloc, this->ray_data_i.read());
+
+    if constexpr (RegRsp) {
+      registerResponse(nodeRsp_, this->node_rsp_valid_i, this->node_rsp_tag_i, this->node_rsp_data_i);
+      registerResponse(triRsp_, this->tri_rsp_valid_i, this->tri_rsp_tag_i, this->tri_rsp_data_i);
+    }
+    writeOutputs(false, free, stepReady);
+    if (RegRsp || isect_) state_changed_.notify();  // immediate: comb() runs in this evaluation phase
+  }
+
+  const rt_closest_record& hit(int k) const { return hit_[size_t(k)]; }
+
+  [[noreturn]] void fail(const std::string& what) const {
+    SC_REPORT_ERROR(this->name(), what.c_str());
+    throw std::runtime_error(what);  // not reached with SC_THROW
+  }
+
+ private:
+  template <class Data>
+  struct boundary_reg {
+    bool valid = false;
+    uint32_t tag = 0;
+    Data data{};
+  };
+  // The triangle response entering u_isect in this cycle.
+  struct tri_in {
+    bool valid = false;
+    int slot = -1;
+    const isect_tri_t* data = nullptr;
+  };
+  struct isect_stage {
+    bool valid = false;
+    fx::IsectResult res;
+  };
+  enum Flag { NODE_VALID, IDX_VALID, TRI_VALID, VISIT_VALID, RES_VALID, RAY_READY, STEP_READY, ISECT_FIRE, FLAGS };
+
+  static int goes(int granted, bool room) { return room ? granted : -1; }
+  static void ack(rt_rr_arb_model<N>& arb, int granted) {
+    if (granted >= 0) arb.ack(granted);
+  }
+  template <class Fifo>
+  static bool popOnReady(Fifo& q, const sc_core::sc_in<bool>& ready) {
+    const bool pop = !q.empty() && ready.read();
+    if (pop) q.pop();
+    return pop;
+  }
+  template <class Fifo, class T>
+  static void push(Fifo& q, bool& headChanged, const T& v) {
+    headChanged |= q.empty();
+    q.push(v);
+  }
+  template <class Reg, class Tag, class Data>
+  static void registerResponse(Reg& r, const sc_core::sc_in<bool>& valid, const Tag& tag, const Data& data) {
+    r.valid = valid.read();
+    if (r.valid) {
+      r.tag = uint32_t(tag.read());
+      r.data = data.read();
+    }
+  }
+
+  tri_in triInput() const {
+    if constexpr (RegRsp) {
+      return {triRsp_.valid, int(triRsp_.tag & SLOT_MASK), &triRsp_.data};
+    } else {
+      const bool valid = this->tri_rsp_valid_i.read();
+      return {valid, valid ? int(uint32_t(this->tri_rsp_tag_i.read()) & SLOT_MASK) : -1, &this->tri_rsp_data_i.read()};
+    }
+  }
+
+  // The combinational paths: the triangle with its slot's ray into the
+  // Verilated u_isect, and perf_isect_fire_o (rt_isect never stalls here).
+  void comb() {
+    const tri_in in = triInput();
+    if (isect_) {
+      if (in.valid && in.slot < N) {
+        std::array<uint32_t, fx::kIsectRayWords> wire{};
+        fx::packWire(ray_[size_t(in.slot)], wire);
+        isect_->req_ray_i.write(toPort<ISECT_RAY_W>(wire));
+        isect_->req_tri_i.write(*in.data);
+      }
+      isect_->req_valid_i.write(in.valid);
+    }
+    writeFlag(this->perf_isect_fire_o, ISECT_FIRE, isectFire(in), isectFireStale_);
+    isectFireStale_ = false;
+  }
+
+  bool isectFire(const tri_in& in) const { return in.valid && (!isect_ || isect_->req_ready_o.read()); }
+
+  // A flag output is written only when it changes (the signal keeps its value);
+  // `all` (reset) writes every output.
+  void writeFlag(sc_core::sc_out<bool>& port, Flag f, bool value, bool all) {
+    if (all || flags_[f] != value) {
+      port.write(value);
+      flags_[f] = value;
+    }
+  }
+
+  template <class Fifo>
+  void writeRequest(sc_core::sc_out<bool>& valid, Flag f, const Fifo& q, bool head, bool all,
+                    sc_core::sc_out<mem_addr_t>& addr, sc_core::sc_out<slot_t>& tag) {
+    writeFlag(valid, f, !q.empty(), all);
+    if (!q.empty() && (head || all)) {
+      addr.write(mem_addr_t(q.front().addr));
+      tag.write(slot_t(q.front().slot));
+    }
+  }
+
+  void writeOutputs(bool all, const slot_mask& free, bool stepReady) {
+    writeRequest(this->node_req_valid_o, NODE_VALID, nodeQ_, nodeHead_, all, this->node_req_addr_o,
+                 this->node_req_tag_o);
+    writeRequest(this->idx_req_valid_o, IDX_VALID, idxQ_, idxHead_, all, this->idx_req_addr_o, this->idx_req_tag_o);
+    writeRequest(this->tri_req_valid_o, TRI_VALID, triQ_, triHead_, all, this->tri_req_addr_o, this->tri_req_tag_o);
+    writeFlag(this->visit_valid_o, VISIT_VALID, !visitQ_.empty(), all);
+    if (!visitQ_.empty() && (visitHead_ || all)) {
+      std::array<uint32_t, size_t(fx::wireWords(Unit::VISIT_W))> wire{};
+      putField<Unit::kVisitFields, 0>(wire.data(), visitQ_.front().rayId);
+      putField<Unit::kVisitFields, 1>(wire.data(), visitQ_.front().id);
+      this->visit_data_o.write(toPort<Unit::VISIT_W>(wire));
+    }
+    writeFlag(this->res_valid_o, RES_VALID, !resQ_.empty(), all);
+    if (!resQ_.empty() && (resHead_ || all)) this->res_data_o.write(resQ_.front());
+    nodeHead_ = idxHead_ = triHead_ = visitHead_ = resHead_ = false;
+
+    const int usable = std::min<int>(int(this->cfg_slots_i.read()), N);
+    writeFlag(this->ray_ready_o, RAY_READY, free.lowestBelow(usable) >= 0, all);
+    writeFlag(this->perf_step_ready_o, STEP_READY, stepReady, all);
+  }
+
+  // Per slot: the ray's own id, its ray for u_isect (id = the slot index), its closest hit.
+  std::array<uint32_t, N> rayId_{};
+  std::array<fx::QRay, N> ray_{};
+  std::array<rt_closest_record, N> hit_{};
+
+  rt_setup_pipe q_setup_;
+  rt_fifo_model<rt_mem_req, MEMREQ_FIFO_DEPTH> nodeQ_, idxQ_, triQ_;
+  rt_fifo_model<rt_mem_req, IDX_BUF_DEPTH> idxBuf_;  // {triangle id, slot}
+  rt_fifo_model<rt_visit_entry, VISIT_FIFO_DEPTH> visitQ_;
+  rt_fifo_model<res_t, RES_FIFO_DEPTH> resQ_;
+  int credits_ = IDX_BUF_DEPTH;  // index buffer entries not yet claimed by a request
+  bool idxBufPop_ = false;       // this cycle's
+  rt_rr_arb_model<N> nodeArb_, visitArb_, idxArb_, checkArb_, doneArb_;
+  boundary_reg<node_data_t> nodeRsp_;  // RegRsp only
+  boundary_reg<isect_tri_t> triRsp_;
+
+  std::array<isect_stage, ISECT_LATENCY> pipe_{};  // u_isect inside (rt_isect_impl::model)
+  size_t pipePos_ = 0;
+  std::unique_ptr<rt_isect_signals> isect_;  // u_isect on signals (rt_isect_impl::rtl)
+  std::unique_ptr<sc_core::sc_module> u_isect;
+
+  // Which FIFO heads changed since the outputs were last written.
+  bool nodeHead_ = true, idxHead_ = true, triHead_ = true, visitHead_ = true, resHead_ = true;
+  std::array<bool, FLAGS> flags_{};  // the flag outputs as last written
+  bool isectFireStale_ = true;       // perf_isect_fire_o to be written whatever flags_ says
+  sc_core::sc_event state_changed_;
+};
+
+}  // namespace lancer::sc

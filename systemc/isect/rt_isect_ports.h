@@ -1,0 +1,48 @@
+#pragma once
+
+// rt_isect's request and result streams, declared once for each side that
+// meets them: In and Out are what rt_isect's inputs and outputs are there —
+// <sc_in, sc_out> in the cycle model, <sc_out, sc_in> in the testbench,
+// <sc_signal, sc_signal> in a bench or a traversal unit that holds rt_isect.
+// Clock and reset are each side's own (a bench's signals, a unit's ports).
+
+#include <systemc>
+
+#include "isect/rt_isect_types.h"
+
+namespace lancer::sc {
+
+template <template <class> class In, template <class> class Out>
+struct rt_isect_ports {
+  // Requests: one ray-triangle pair per transfer.
+  In<bool> req_valid_i{"req_valid_i"};
+  Out<bool> req_ready_o{"req_ready_o"};
+  In<isect_ray_t> req_ray_i{"req_ray_i"};
+  In<isect_tri_t> req_tri_i{"req_tri_i"};
+
+  // Results, in request order.
+  Out<bool> res_valid_o{"res_valid_o"};
+  In<bool> res_ready_i{"res_ready_i"};
+  Out<isect_res_t> res_data_o{"res_data_o"};
+};
+
+// sc_signal under one template parameter, for the In/Out of a port list.
+template <class T>
+using rt_signal = sc_core::sc_signal<T>;
+
+using rt_isect_signals = rt_isect_ports<rt_signal, rt_signal>;
+
+// Binds a module's rt_isect ports (the cycle model's, the testbench's, the
+// Verilated class's: the same names) to signals of the same names.
+template <class M, class Signals>
+void bindIsectPorts(M& m, Signals& s) {
+  m.req_valid_i(s.req_valid_i);
+  m.req_ready_o(s.req_ready_o);
+  m.req_ray_i(s.req_ray_i);
+  m.req_tri_i(s.req_tri_i);
+  m.res_valid_o(s.res_valid_o);
+  m.res_ready_i(s.res_ready_i);
+  m.res_data_o(s.res_data_o);
+}
+
+}  // namespace lancer::sc
