@@ -84,7 +84,7 @@ class rt_trav_mem : public sc_core::sc_module,
     const bool node = node_.respond(c + 1, addr, tag);
     this->node_rsp_valid_i.write(node);
     if (node) {
-      if (!nodes_.holds(addr)) outside(Unit::kNames.nodeRegion, addr, nodes_.entries());
+      if (!nodes_.holds(addr)) outside(Unit::kNames.nodeTable, addr, nodes_.entries());
       assignPort<Unit::NODE_DATA_W>(nodePort_, nodes_.wire(addr));
       this->node_rsp_data_i.write(nodePort_);
       this->node_rsp_tag_i.write(typename Unit::slot_t(tag));

@@ -1,39 +1,35 @@
 #pragma once
 
 // What the shared SystemC modules of a traversal unit (rt_trav_mem, rt_trav_tb,
-// rt_trav_bench, rt_trav_top; systemc/common/) need to know of a unit: its
-// traits class (grid/rt_grid_unit.h, octree/rt_octree_unit.h). Every traversal
-// unit has the same ports (rtl/lib/'s traversal shell) except for
-//   - the node/cell memory port: its name prefix (kNames.nodePort: "cell", "node")
-//     and the record its responses carry (node_data_t: a grid cell, a child
-//     group of 8 octree nodes), packed from the unit's image by a node_packer;
-//   - one configuration port besides cfg_slots_i (kNames.cfgPort, cfg_t, config()):
-//     rt_grid's cfg_res_i, rt_octree's cfg_root_i;
-//   - the result and visit records (res_t, visit_t, kResFields, kVisitFields);
-//   - the cycle model (model_t; one whose constructor takes an rt_isect_impl
-//     can hold the Verilated rt_isect); the Verilated class is named in
-//     systemc/rt_trav_units.cpp (rt_trav_rtl<Unit>), when the build has it.
-// A unit's traits also bind the DUT's unit-specific ports (bindUnitPorts),
-// since the DUT's C++ members carry the RTL's names.
+// rt_trav_bench, rt_trav_top, rt_trav_shell_model; systemc/common/) need to
+// know of a unit: its traits class (grid/rt_grid_unit.h, octree/rt_octree_unit.h),
+// which derives from rt_trav_unit<RaysInFlight, Descriptor>. Everything but
+// the cycle model and the DUT's own port names comes from the unit's
+// descriptor (golden/unit.h): names, records, the configuration port's value,
+// the node port's responses.
 //
 // A unit traits class provides:
-//   kNames                                     rt_trav_names (RTL module, port prefixes, messages)
-//   rt_trav_unit_types<...> as a base          ray slots as the RTL is built, the port
-//                                              types (cfg_slots_t, cfg_t, slot_t, mem_addr_t,
-//                                              idx_data_t, node_data_t, res_t, visit_t), the
-//                                              widths and field lists of the records
-//   image_t                                    fx::GridImage, fx::OctreeImage
-//   cfg_t config(const image_t&)               the configuration port's value of a run
-//   node_packer                                start(image); holds(addr) and entries() for the
-//                                              memory's address check; wire(addr): the response's
-//                                              wire image
-//   model_t                                    the cycle model
-//   bindUnitPorts(dut, bench)                  cfg and node/cell ports of the DUT
+//   rt_trav_unit<RaysInFlight, Descriptor> as a base: ray slots as the RTL is
+//       built; kNames; image_t; the port types (cfg_slots_t, cfg_t, slot_t,
+//       mem_addr_t, idx_data_t, node_data_t, res_t, visit_t), the widths and
+//       field lists of the records; config(image), the configuration port's
+//       value of a run; node_packer (start(image); holds(addr) and entries()
+//       for the memory's address check; wire(addr): the response's wire image)
+//   model_t                     the cycle model (one whose constructor takes
+//                               an rt_isect_impl can hold the Verilated rt_isect);
+//                               the Verilated class is named in
+//                               systemc/rt_trav_units.cpp (rt_trav_rtl<Unit>)
+//   bindUnitPorts(dut, bench)   the DUT's configuration and node ports, by the
+//                               RTL's names (its C++ members carry them)
 
+#include <array>
 #include <cstdint>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "golden/records.h"
+#include "golden/unit.h"
 #include "isect/rt_isect_types.h"
 
 namespace lancer::sc {
@@ -44,21 +40,6 @@ constexpr int clog2(uint64_t n) {
   return bits;
 }
 
-// A unit's names: its RTL module, the prefix of its node/cell port, its
-// configuration port, the node table as memory errors name it, and for the
-// driver's messages the unit, the build options of its slots and of its RTL
-// sources, what its result record's element count counts.
-struct rt_trav_names {
-  const char* module;      // "rt_grid"
-  const char* nodePort;    // "cell": cell_req_valid_o, ...
-  const char* cfgPort;     // "cfg_res_i"
-  const char* nodeRegion;  // "cell table"
-  const char* unit;        // "grid"
-  const char* slotsOption; // "LANCER_GRID_RAYS_IN_FLIGHT"
-  const char* rtlSources;  // "LANCER_RTL_GRID_SOURCES"
-  const char* steps;       // "cells"
-};
-
 // The traversal shell's parameters, every unit's (rtl/lib/; docs/octree-unit.md:
 // as rt_grid's): the index buffer and its credits, the FIFO depths, the address width.
 inline constexpr int IDX_BUF_DEPTH = 64;
@@ -67,29 +48,79 @@ inline constexpr int VISIT_FIFO_DEPTH = 4;
 inline constexpr int RES_FIFO_DEPTH = 2;
 inline constexpr int MEM_ADDR_W = fx::kMemAddrBits;
 
-// The port types of a unit from its parameters, under the names the traits
-// provide (a unit's traits derive from it): RaysInFlight ray slots, a
-// configuration port of CfgW bits, node/cell responses of NodeDataW bits, the
-// result and visit records' field lists.
-template <int RaysInFlight, int CfgW, int NodeDataW, const auto& ResFields, const auto& VisitFields>
-struct rt_trav_unit_types {
+// The types and the memory-facing members of a unit, from its descriptor
+// `Desc` and the ray slots it is built with.
+template <int RaysInFlight, class Desc>
+struct rt_trav_unit {
   static_assert(RaysInFlight >= 1 && RaysInFlight <= 256, "RaysInFlight is 1..256");
+  static constexpr const fx::UnitNames& kNames = Desc::kNames;
   static constexpr int RAYS_IN_FLIGHT = RaysInFlight;
   static constexpr int SLOT_W = RaysInFlight > 1 ? clog2(RaysInFlight) : 1;
-  static constexpr int NODE_DATA_W = NodeDataW;
-  static constexpr int RESULT_W = fx::recordBits(ResFields);
-  static constexpr int VISIT_W = fx::recordBits(VisitFields);
-  static constexpr const auto& kResFields = ResFields;
-  static constexpr const auto& kVisitFields = VisitFields;
+  static constexpr int NODE_W = fx::kNodeBitsOf<Desc>;
+  static constexpr int NODE_DATA_W = NODE_W * int(Desc::kGroup);
+  static constexpr int CFG_W = fx::kCfgBitsOf<Desc>;
+  static constexpr int RESULT_W = fx::recordBits(Desc::kResFields);
+  static constexpr int VISIT_W = fx::recordBits(Desc::kVisitFields);
+  static constexpr auto kResFields = Desc::kResFields;
+  static constexpr auto kVisitFields = Desc::kVisitFields;
+  static_assert(Desc::kGroup == 1 || NODE_W % 32 == 0, "the nodes of a group start on word boundaries");
 
+  using descriptor = Desc;
+  using image_t = typename Desc::Image;
   using cfg_slots_t = vl_port_t<clog2(RaysInFlight + 1)>;
-  using cfg_t = vl_port_t<CfgW>;
+  using cfg_t = vl_port_t<CFG_W>;
   using slot_t = vl_port_t<SLOT_W>;
   using mem_addr_t = vl_port_t<MEM_ADDR_W>;
   using idx_data_t = vl_port_t<32>;
-  using node_data_t = vl_port_t<NodeDataW>;
+  using node_data_t = vl_port_t<NODE_DATA_W>;
   using res_t = vl_port_t<RESULT_W>;
   using visit_t = vl_port_t<VISIT_W>;
+
+  // The configuration port's value of a run.
+  static cfg_t config(const image_t& image) {
+    std::array<uint32_t, size_t(fx::wireWords(CFG_W))> wire{};
+    fx::packConfig<Desc>(image, wire);
+    return toPort<CFG_W>(wire);
+  }
+
+  // The node port's responses: Desc::kGroup nodes from the address on. A
+  // single node is packed when read; a group (read many times) on first use.
+  class node_packer {
+    static constexpr size_t kNodeWords = size_t(fx::wireWords(NODE_W));
+    static constexpr size_t kGroupWords = Desc::kGroup * kNodeWords;
+
+   public:
+    void start(const image_t& image) {
+      image_ = &image;
+      if constexpr (Desc::kGroup > 1) {
+        packed_.assign(entries(), 0);
+        wire_.assign(entries() * kGroupWords, 0);
+      }
+    }
+    size_t entries() const { return Desc::nodes(*image_).size(); }
+    bool holds(uint32_t addr) const { return uint64_t(addr) + Desc::kGroup <= entries(); }
+    std::span<const uint32_t> wire(uint32_t addr) {
+      const auto& nodes = Desc::nodes(*image_);
+      if constexpr (Desc::kGroup == 1) {
+        one_ = {};
+        fx::packNode<Desc>(nodes[addr], one_);
+        return one_;
+      } else {
+        const std::span<uint32_t> w(wire_.data() + size_t(addr) * kGroupWords, kGroupWords);
+        if (!packed_[addr]) {
+          for (size_t i = 0; i < Desc::kGroup; ++i) fx::packNode<Desc>(nodes[addr + i], w.subspan(i * kNodeWords, kNodeWords));
+          packed_[addr] = 1;
+        }
+        return w;
+      }
+    }
+
+   private:
+    const image_t* image_ = nullptr;
+    std::array<uint32_t, kNodeWords> one_{};
+    std::vector<uint32_t> wire_;
+    std::vector<uint8_t> packed_;
+  };
 };
 
 // "<prefix>_<suffix>": the SystemC name of one port of a unit's node/cell
