@@ -7,7 +7,8 @@
 // from this header by gen_rt_pkg (sw/golden/gen_rt_pkg.cpp), so the RTL, the
 // SystemC models and the golden model cannot drift. A precision sweep is a
 // rebuild with other values, not an edit. docs/number-formats.md derives each
-// width and error bound.
+// width and error bound. Each traversal unit's own formats sit beside its
+// golden model, in the same way (grid_formats.h, octree_formats.h).
 
 #include <cstdint>
 
@@ -78,45 +79,6 @@ static_assert(kTBits <= 127, "T must fit __int128: need 3*POS_BITS + 2*DIR_BITS 
 inline constexpr int kSegFracBits = 8;
 inline constexpr int kSegEndBits = kPosBits + 1 + kSegFracBits;
 inline constexpr uint64_t kSegEndNone = (uint64_t(1) << kSegEndBits) - 1;
-
-// ---- Uniform grid traversal unit (docs/grid-unit.md) ---------------------------
-// Resolution per axis 1..kGridResMax. The grid covers the lattice cube [0, 2^P)
-// and works in per-axis scaled coordinates X = x * R (exact integers), where
-// cell i spans [i * 2^P, (i+1) * 2^P): the cell of a point is X >> P, no division.
-inline constexpr int kGridResMax = 256;
-inline constexpr int kGridResolutionBits = 9;    // holds R = 1..256
-inline constexpr int kCellIndexBits = 8;   // holds a cell coordinate 0..255
-inline constexpr int kGridScaleBits = 8;   // R <= 2^8
-// Scaled origin X = o * R < 2^(P+8) ................................ P+8 unsigned
-inline constexpr int kGridPosBits = kPosBits + kGridScaleBits;
-// Scaled direction |D| = |d| * R < 2^(D-1+8) ........................ D+8 signed
-inline constexpr int kGridDirBits = kDirBits + kGridScaleBits;
-// Product of the other two axes' |D|: < 2^(2(D+7)) ................ 2D+14 unsigned
-inline constexpr int kGridPairBits = 2 * (kDirBits + 7);
-// Product of all three |D|: < 2^(3(D+7)) ............................ 3D+21 unsigned
-inline constexpr int kGridTripleBits = 3 * (kDirBits + 7);
-// DDA accumulator N_a = (distance to the next boundary along a) * (product of the
-// other active |D|), in the same units for all axes so comparing them compares
-// the t of the next crossing. Starts <= 2^P * 2^(2D+14), grows by one cell
-// (2^P * pair) per step, at most R steps: < 2^(P+8) * 2^(2D+14) ... P+2D+23 unsigned
-inline constexpr int kGridAccBits = kPosBits + 2 * kDirBits + 23;
-static_assert(kGridAccBits + kDirBits <= 127, "N * |d| must fit u128 for the exit test");
-
-// ---- Octree stepping unit (docs/octree-unit.md) ----------------------------------
-// The root is the lattice cube [0, 2^P]; a node at depth k has side 2^(P-k), so
-// every mid-plane of a node of side >= 2 is an integer and the parametric
-// traversal's halvings tm = (t0 + t1) / 2 are exact: depth P is the limit.
-inline constexpr int kOctreeMaxDepth = kPosBits;
-// Plane parameters over the common denominator prod(|d_b|, active b):
-// T = (plane - o') * prod(|d_b|, b != a), |plane - o'| <= 2^P, prod < 2^(2(D-1))
-// ............................................................. P+2D signed
-inline constexpr int kOctreeTBits = kPosBits + 2 * kDirBits;
-// Common denominator C = prod(|d_a|, active a) < 2^(3(D-1)) ....... 3D-3 unsigned
-inline constexpr int kOctreeCommonBits = 3 * (kDirBits - 1);
-// The walk holds one entry per level, root included: at most P + 1.
-inline constexpr int kOctreeStackDepth = kOctreeMaxDepth + 1;
-// A child group: an interior node's eight children, read as one memory word.
-inline constexpr int kOctreeChildren = 8;
 
 // Memory image address width (every region: cells, index list, triangles).
 #ifndef LANCER_MEM_ADDR_BITS

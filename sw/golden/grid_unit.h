@@ -42,6 +42,8 @@ struct GridUnit {
   static constexpr std::span<const FieldSpec> kVisitFields = kGridVisitFields;
   static constexpr std::span<const FieldSpec> kResFields = kGridResFields;
   static constexpr std::span<const FieldSpec> kCfgFields = kGridCfgFields;
+  static constexpr std::span<const RecordSpec> kRecords = kGridRecords;
+  static constexpr std::span<const PackageParam> kPkgParams = kGridPkgParams;
   static constexpr size_t kGroup = 1;  // a node read returns one cell
 
   static const std::vector<Node>& nodes(const Image& image) { return image.cells; }

@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "golden/octree_formats.h"
 #include "golden/records.h"
 #include "golden/trace.h"
 

@@ -38,6 +38,8 @@ struct OctreeUnit {
   static constexpr std::span<const FieldSpec> kVisitFields = kOctreeVisitFields;
   static constexpr std::span<const FieldSpec> kResFields = kOctreeResFields;
   static constexpr std::span<const FieldSpec> kCfgFields = kOctreeNodeFields;  // cfg_root_i: the root's record
+  static constexpr std::span<const RecordSpec> kRecords = kOctreeRecords;
+  static constexpr std::span<const PackageParam> kPkgParams = kOctreePkgParams;
   static constexpr size_t kGroup = kOctreeChildren;  // a node read returns a child group
 
   static const std::vector<Node>& nodes(const Image& image) { return image.nodes; }

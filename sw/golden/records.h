@@ -64,17 +64,7 @@ inline constexpr FieldSpec kIsectResFields[] = {
     {"v_num", kBaryBits, 1, false, "v = v_num / det (weight of v2)"},
 };
 
-// ---- grid_cell_t: one entry of the grid unit's cell table -----------------------
-inline constexpr FieldSpec kGridCellFields[] = {
-    {"first", 32, 1, false, "first entry of the cell's run in the index list"},
-    {"count", 32, 1, false, "triangles listed in the cell"},
-};
-// ---- grid_visit_t: one voxel step, on the unit's trace stream ---------------------
-inline constexpr FieldSpec kGridVisitFields[] = {
-    {"ray_id", kRayIdBits, 1, false, "ray id"},
-    {"cell_id", 3 * kCellIndexBits, 1, false, "(z * Ry + y) * Rx + x"},
-};
-// ---- grid_res_t, octree_res_t: a ray's answer from a traversal unit: the
+// ---- <unit>_res_t: a ray's answer from a traversal unit: the
 // structure elements it visited (`visited`: cells, nodes), the tests it issued,
 // and its closest hit, field for field as isect_res_t ---------------------------------
 constexpr std::array<FieldSpec, 9> traversalResFields(const char* visited, const char* visitedDoc) {
@@ -90,44 +80,23 @@ constexpr std::array<FieldSpec, 9> traversalResFields(const char* visited, const
       {"v_num", kBaryBits, 1, false, "as isect_res_t"},
   }};
 }
-inline constexpr std::array<FieldSpec, 9> kGridResFields = traversalResFields("cells", "cells visited");
-
-// ---- octree_node_t: one entry of the octree unit's node table ---------------------
-inline constexpr FieldSpec kOctreeNodeFields[] = {
-    {"leaf", 1, 1, false, "1: a leaf; 0: an interior node"},
-    {"count", 31, 1, false, "leaf: triangles listed; interior: 0"},
-    {"first", 32, 1, false, "leaf: first index-list entry; interior: node index of child 0"},
-};
-// ---- octree_visit_t: one node entered, on the unit's trace stream ------------------
-inline constexpr FieldSpec kOctreeVisitFields[] = {
-    {"ray_id", kRayIdBits, 1, false, "ray id"},
-    {"node_id", 32, 1, false, "node index in the node table"},
-};
-inline constexpr std::array<FieldSpec, 9> kOctreeResFields = traversalResFields("nodes", "nodes entered");
 
 inline constexpr RecordSpec kIsectRay{"isect_ray_t", "a quantized ray", kIsectRayFields};
 inline constexpr RecordSpec kIsectTri{"isect_tri_t", "a quantized triangle", kIsectTriFields};
 inline constexpr RecordSpec kIsectRes{"isect_res_t", "an intersection result", kIsectResFields};
-inline constexpr RecordSpec kGridCell{"grid_cell_t", "a grid cell table entry", kGridCellFields};
-inline constexpr RecordSpec kGridVisit{"grid_visit_t", "a grid unit voxel step", kGridVisitFields};
-inline constexpr RecordSpec kGridRes{"grid_res_t", "a grid unit ray result", kGridResFields};
-inline constexpr RecordSpec kOctreeNode{"octree_node_t", "an octree node table entry", kOctreeNodeFields};
-inline constexpr RecordSpec kOctreeVisit{"octree_visit_t", "an octree unit node step", kOctreeVisitFields};
-inline constexpr RecordSpec kOctreeRes{"octree_res_t", "an octree unit ray result", kOctreeResFields};
-inline constexpr RecordSpec kAllRecords[] = {kIsectRay,  kIsectTri,   kIsectRes,    kGridCell, kGridVisit,
-                                             kGridRes,   kOctreeNode, kOctreeVisit, kOctreeRes};
+// The intersection pipeline's records; each traversal unit lists its own
+// (its descriptor's kRecords), and golden/units.h's allRecords() has them all.
+inline constexpr RecordSpec kIsectRecords[] = {kIsectRay, kIsectTri, kIsectRes};
+
+// A localparam of rt_pkg: the name the RTL reads and its value.
+struct PackageParam {
+  const char* name;
+  long long value;
+};
 
 inline constexpr int kIsectRayBits = recordBits(kIsectRayFields);
 inline constexpr int kIsectTriBits = recordBits(kIsectTriFields);
 inline constexpr int kIsectResBits = recordBits(kIsectResFields);
-inline constexpr int kGridCellBits = recordBits(kGridCellFields);
-inline constexpr int kGridVisitBits = recordBits(kGridVisitFields);
-inline constexpr int kGridResultBits = recordBits(kGridResFields);
-inline constexpr int kOctreeNodeBits = recordBits(kOctreeNodeFields);
-inline constexpr int kOctreeVisitBits = recordBits(kOctreeVisitFields);
-inline constexpr int kOctreeResultBits = recordBits(kOctreeResFields);
-static_assert(kMemAddrBits <= 31, "a leaf's count (up to the index list's size) must fit octree_node_t.count");
-static_assert(kOctreeNodeBits == 64, "a node is one 64-bit word; a child group one 512-bit line");
 
 // ---- The C++ views of the records ----------------------------------------------
 struct QRay {

@@ -11,8 +11,9 @@
 // A descriptor `U` provides:
 //   Image, Node                      the memory image and one entry of its node table
 //   kKind, kNames                    its hardware path and names (UnitNames)
-//   kNodeFields, kVisitFields,       its records (golden/records.h)
+//   kNodeFields, kVisitFields,       its records (golden/<unit>_formats.h)
 //   kResFields, kCfgFields
+//   kRecords, kPkgParams             what rt_pkg holds of its records and formats
 //   kGroup                           nodes per node-port response (the octree's child group: 8)
 //   nodes(image)                     the node table
 //   nodeValues(node)                 a node's field values, in kNodeFields order

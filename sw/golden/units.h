@@ -5,6 +5,7 @@
 
 #include <tuple>
 #include <type_traits>
+#include <vector>
 
 #include "golden/grid_unit.h"
 #include "golden/octree_unit.h"
@@ -17,6 +18,19 @@ using TraversalUnits = std::tuple<GridUnit, OctreeUnit>;
 template <class Fn>
 constexpr void forEachTraversalUnit(Fn&& fn) {
   std::apply([&](auto... units) { (fn(units), ...); }, TraversalUnits{});
+}
+
+// Every record that crosses the hardware boundary: the intersection
+// pipeline's, then each unit's (rt_pkg's typedefs, in this order).
+inline const std::vector<RecordSpec>& allRecords() {
+  static const std::vector<RecordSpec> all = [] {
+    std::vector<RecordSpec> records(std::begin(kIsectRecords), std::end(kIsectRecords));
+    forEachTraversalUnit([&](auto unit) {
+      records.insert(records.end(), decltype(unit)::kRecords.begin(), decltype(unit)::kRecords.end());
+    });
+    return records;
+  }();
+  return all;
 }
 
 // The descriptor whose memory image is `Image`.

@@ -1,5 +1,5 @@
 // libFuzzer target: the record unpacking (sw/golden/records). The first input
-// byte picks a record of kAllRecords, the rest are its wire words (zero-padded).
+// byte picks a record of allRecords(), the rest are its wire words (zero-padded).
 // Every value unpackFields returns lies in its field's range (unsigned: below
 // 2^width; signed: sign-extended from width bits), and packFields puts back
 // exactly the record's bits of the input. For isect_ray_t, isect_tri_t and
@@ -10,6 +10,7 @@
 
 #include "fuzz_support.h"
 #include "golden/records.h"
+#include "golden/units.h"
 
 using namespace lancer;
 using namespace lancer::fx;
@@ -64,7 +65,8 @@ void checkTyped(const RecordSpec& spec, void (*unpack)(std::span<const uint32_t>
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size == 0) return 0;
   fuzz::Bytes in(data, size);
-  const RecordSpec& spec = kAllRecords[in.take<uint8_t>() % std::size(kAllRecords)];
+  const std::vector<RecordSpec>& all = allRecords();
+  const RecordSpec& spec = all[in.take<uint8_t>() % all.size()];
   const int bits = recordBits(spec.fields);
   // At least the record's words; any extra words must be ignored.
   Wire words(std::max<size_t>(size_t(wireWords(bits)), (in.left() + 3) / 4));
@@ -76,8 +78,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const Wire packed = packFields(spec.fields, values);
   FUZZ_CHECK(packed == expected, "{}: {} -> unpack -> pack -> {}", spec.name, hex(expected), hex(packed));
 
-  if (&spec == &kAllRecords[0]) checkTyped<QRay>(spec, unpackRay, words, values, expected);
-  if (&spec == &kAllRecords[1]) checkTyped<QTriangle>(spec, unpackTriangle, words, values, expected);
-  if (&spec == &kAllRecords[2]) checkTyped<IsectResult>(spec, unpackResult, words, values, expected);
+  if (&spec == &all[0]) checkTyped<QRay>(spec, unpackRay, words, values, expected);
+  if (&spec == &all[1]) checkTyped<QTriangle>(spec, unpackTriangle, words, values, expected);
+  if (&spec == &all[2]) checkTyped<IsectResult>(spec, unpackResult, words, values, expected);
   return 0;
 }

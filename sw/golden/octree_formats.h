@@ -1,0 +1,60 @@
+#pragma once
+
+// The octree unit's formats and records (docs/octree-unit.md), as
+// golden/formats.h and golden/records.h are the shared ones: gen_rt_pkg emits
+// them into rt_pkg through the unit's descriptor (kPkgParams, kRecords).
+
+#include <array>
+
+#include "golden/records.h"
+
+namespace lancer::fx {
+
+// ---- Octree stepping unit (docs/octree-unit.md) ----------------------------------
+// The root is the lattice cube [0, 2^P]; a node at depth k has side 2^(P-k), so
+// every mid-plane of a node of side >= 2 is an integer and the parametric
+// traversal's halvings tm = (t0 + t1) / 2 are exact: depth P is the limit.
+inline constexpr int kOctreeMaxDepth = kPosBits;
+// Plane parameters over the common denominator prod(|d_b|, active b):
+// T = (plane - o') * prod(|d_b|, b != a), |plane - o'| <= 2^P, prod < 2^(2(D-1))
+// ............................................................. P+2D signed
+inline constexpr int kOctreeTBits = kPosBits + 2 * kDirBits;
+// Common denominator C = prod(|d_a|, active a) < 2^(3(D-1)) ....... 3D-3 unsigned
+inline constexpr int kOctreeCommonBits = 3 * (kDirBits - 1);
+// The walk holds one entry per level, root included: at most P + 1.
+inline constexpr int kOctreeStackDepth = kOctreeMaxDepth + 1;
+// A child group: an interior node's eight children, read as one memory word.
+inline constexpr int kOctreeChildren = 8;
+
+// ---- octree_node_t: one entry of the octree unit's node table ---------------------
+inline constexpr FieldSpec kOctreeNodeFields[] = {
+    {"leaf", 1, 1, false, "1: a leaf; 0: an interior node"},
+    {"count", 31, 1, false, "leaf: triangles listed; interior: 0"},
+    {"first", 32, 1, false, "leaf: first index-list entry; interior: node index of child 0"},
+};
+// ---- octree_visit_t: one node entered, on the unit's trace stream ------------------
+inline constexpr FieldSpec kOctreeVisitFields[] = {
+    {"ray_id", kRayIdBits, 1, false, "ray id"},
+    {"node_id", 32, 1, false, "node index in the node table"},
+};
+inline constexpr std::array<FieldSpec, 9> kOctreeResFields = traversalResFields("nodes", "nodes entered");
+
+inline constexpr RecordSpec kOctreeNode{"octree_node_t", "an octree node table entry", kOctreeNodeFields};
+inline constexpr RecordSpec kOctreeVisit{"octree_visit_t", "an octree unit node step", kOctreeVisitFields};
+inline constexpr RecordSpec kOctreeRes{"octree_res_t", "an octree unit ray result", kOctreeResFields};
+inline constexpr RecordSpec kOctreeRecords[] = {kOctreeNode, kOctreeVisit, kOctreeRes};
+inline constexpr int kOctreeNodeBits = recordBits(kOctreeNodeFields);
+inline constexpr int kOctreeVisitBits = recordBits(kOctreeVisitFields);
+inline constexpr int kOctreeResultBits = recordBits(kOctreeResFields);
+static_assert(kMemAddrBits <= 31, "a leaf's count (up to the index list's size) must fit octree_node_t.count");
+static_assert(kOctreeNodeBits == 64, "a node is one 64-bit word; a child group one 512-bit line");
+
+// What rt_pkg holds of the octree's formats.
+inline constexpr PackageParam kOctreePkgParams[] = {
+    {"OCTREE_MAX_DEPTH", kOctreeMaxDepth},   {"OCTREE_STACK_DEPTH", kOctreeStackDepth},
+    {"OCTREE_T_W", kOctreeTBits},            {"OCTREE_COMMON_W", kOctreeCommonBits},
+    {"OCTREE_CHILDREN", kOctreeChildren},    {"OCTREE_NODE_W", kOctreeNodeBits},
+    {"OCTREE_VISIT_W", kOctreeVisitBits},    {"OCTREE_RESULT_W", kOctreeResultBits},
+};
+
+}  // namespace lancer::fx
