@@ -31,8 +31,9 @@ void use_verilated_context();
 // in the RTL) -> memory (rt_trav_mem), fed and drained by rt_trav_tb. One bench
 // (rt_trav_bench) per implementation, each with its own gated clock, because
 // SystemC elaborates once per process; a run clocks only the bench it uses.
-// Its members are defined in common/rt_trav_top_impl.h and instantiated by
-// systemc/rt_trav_units.cpp, the one file that includes the Verilated classes.
+// Its members are defined in common/rt_trav_top_impl.h and instantiated by the
+// unit's systemc/<unit>/rt_<unit>_system.cpp, the one file that includes its
+// Verilated class.
 template <class Unit>
 class rt_trav_top : public sc_core::sc_module {
  public:

@@ -1,7 +1,7 @@
 #pragma once
 
-// The members of rt_trav_top<Unit>, for systemc/rt_trav_units.cpp to
-// instantiate once it has named the unit's Verilated class:
+// The members of rt_trav_top<Unit>, for the unit's rt_<unit>_system.cpp to
+// instantiate once it has named its Verilated class:
 //   template <> struct rt_trav_rtl<rt_grid_unit> { using type = Vrt_grid_sc; };  // when built
 //   template class rt_trav_top<rt_grid_unit>;
 // Compiled inside lancer_systemc, with its LANCER_SC_* definitions.

@@ -18,7 +18,7 @@
 //   model_t                     the cycle model (one whose constructor takes
 //                               an rt_isect_impl can hold the Verilated rt_isect);
 //                               the Verilated class is named in
-//                               systemc/rt_trav_units.cpp (rt_trav_rtl<Unit>)
+//                               systemc/<unit>/rt_<unit>_system.cpp (rt_trav_rtl<Unit>)
 //   bindUnitPorts(dut, bench)   the DUT's configuration and node ports, by the
 //                               RTL's names (its C++ members carry them)
 
@@ -129,8 +129,8 @@ struct rt_trav_unit {
 inline std::string portName(const char* prefix, const char* suffix) { return std::string(prefix) + "_" + suffix; }
 
 // The Verilated SystemC class of a unit (Vrt_grid_sc, ...), or void when the
-// build lacks it: specialized by systemc/rt_trav_units.cpp, the one file that
-// includes the Verilated classes.
+// build lacks it: specialized by the unit's systemc/<unit>/rt_<unit>_system.cpp,
+// the one file that includes its Verilated class.
 template <class Unit>
 struct rt_trav_rtl {
   using type = void;

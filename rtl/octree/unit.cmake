@@ -1,0 +1,5 @@
+# rt_octree's build (read by lancer_rtl_traversal_unit, rtl/CMakeLists.txt):
+# its sources in compile order after the package and the shell.
+set(unit_sources rt_octree_setup.sv rt_octree_slots.sv rt_octree.sv)
+set(unit_params)
+set(unit_definitions)
