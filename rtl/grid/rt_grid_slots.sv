@@ -420,33 +420,29 @@ module rt_grid_slots #(
   assign done_tests_o    = tests_q[done_slot_i];
 
 `ifdef RT_ASSERT_ON
+`include "rt_assert.svh"
   logic r_expected;  // a result is due: fewer received than issued
   assign r_expected = received_q[r_slot] != issued_q[r_slot];
 
   // Events name slots in the right state.
-  a_alloc_free : assert property (@(posedge clk_i) disable iff (!rst_ni) alloc_i |-> free_q[alloc_slot_i]);
-  a_init_setup : assert property (@(posedge clk_i) disable iff (!rst_ni) init_i |-> setup_q[init_slot_i]);
-  a_cell_go    : assert property (@(posedge clk_i) disable iff (!rst_ni) cell_go_i |-> want_cell_o[cell_slot_i]);
-  a_visit_go   : assert property (@(posedge clk_i) disable iff (!rst_ni) visit_go_i |-> want_visit_o[visit_slot_i]);
-  a_idx_go     : assert property (@(posedge clk_i) disable iff (!rst_ni) idx_go_i |-> iss_q[idx_slot_i]);
-  a_check_go   : assert property (@(posedge clk_i) disable iff (!rst_ni) check_go_i |-> check_q[check_slot_i]);
-  a_done_go    : assert property (@(posedge clk_i) disable iff (!rst_ni) done_go_i |-> want_done_o[done_slot_i]);
+  `RT_ASSERT(a_alloc_free, alloc_i |-> free_q[alloc_slot_i])
+  `RT_ASSERT(a_init_setup, init_i |-> setup_q[init_slot_i])
+  `RT_ASSERT(a_cell_go, cell_go_i |-> want_cell_o[cell_slot_i])
+  `RT_ASSERT(a_visit_go, visit_go_i |-> want_visit_o[visit_slot_i])
+  `RT_ASSERT(a_idx_go, idx_go_i |-> iss_q[idx_slot_i])
+  `RT_ASSERT(a_check_go, check_go_i |-> check_q[check_slot_i])
+  `RT_ASSERT(a_done_go, done_go_i |-> want_done_o[done_slot_i])
   // Responses: a cell response answers an outstanding read of its slot (the
   // head's, for a slot waiting in WAIT_CELL); results arrive for a slot in
   // FETCH that expects them (rt_trav_shell checks the triangles' slots).
-  a_cell_rsp_slot : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      cell_rsp_valid_i |-> t_out != '0);
-  a_cell_rsp_head : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      cell_rsp_valid_i && wait_q[cell_rsp_tag_i] |-> t_cnt == t_out);
-  a_res_fetch : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      res_valid_i |-> fetch_q[r_slot] && r_expected);
+  `RT_ASSERT(a_cell_rsp_slot, cell_rsp_valid_i |-> t_out != '0)
+  `RT_ASSERT(a_cell_rsp_head, cell_rsp_valid_i && wait_q[cell_rsp_tag_i] |-> t_cnt == t_out)
+  `RT_ASSERT(a_res_fetch, res_valid_i |-> fetch_q[r_slot] && r_expected)
   // Every slot is in one state (parity catches any slot in two).
-  a_states : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      (free_q | setup_q | visit_q | wait_q | fetch_q | check_q | done_q) == '1 &&
-      (free_q ^ setup_q ^ visit_q ^ wait_q ^ fetch_q ^ check_q ^ done_q) == '1);
-  if (CellQueue < 2 || (CellQueue & (CellQueue - 1)) != 0) begin : g_queue_check
-    $error("rt_grid_slots: CellQueue must be a power of two >= 2");
-  end
+  `RT_ASSERT(a_states, (free_q | setup_q | visit_q | wait_q | fetch_q | check_q | done_q) == '1 &&
+                       (free_q ^ setup_q ^ visit_q ^ wait_q ^ fetch_q ^ check_q ^ done_q) == '1)
+  `RT_ASSERT_STATIC(g_queue_check, CellQueue >= 2 && (CellQueue & (CellQueue - 1)) == 0,
+                    "rt_grid_slots: CellQueue must be a power of two >= 2")
 `endif
 
 endmodule

@@ -474,6 +474,7 @@ module rt_trav_shell #(
   );
 
 `ifdef RT_ASSERT_ON
+`include "rt_assert.svh"
   // The state of the slots the triangles and results name.
   logic tri_expected, res_expected;
   assign tri_expected = expect_i[tri_slot];
@@ -483,25 +484,17 @@ module rt_trav_shell #(
   // from rt_fifo instances, whose a_out_hold checks that valid never drops and
   // data holds until taken; they are not checked twice here.
   // Input stream (the producer's duty).
-  a_ray_hold : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      ray_valid_i && !ray_ready_o |=> ray_valid_i && $stable(ray_data_i));
+  `RT_ASSERT(a_ray_hold, ray_valid_i && !ray_ready_o |=> ray_valid_i && $stable(ray_data_i))
   // Responses: credits guarantee room, triangles and results name a slot that
   // expects them.
-  a_idx_buf_room : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      idx_rsp_valid_i |-> idxbuf_ready);
-  a_isect_ready : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      tri_valid |-> isect_req_ready);
-  a_tri_rsp_slot : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      tri_valid |-> tri_expected);
-  a_res_slot : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      isect_valid_o |-> res_expected);
-  a_cfg_slots : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      cfg_slots_i != '0 && cfg_slots_i <= CfgSlotsW'(N));
-  a_credit_range : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      credit_q <= CREDIT_W'(IdxBufDepth));
-  if (N > 256) begin : g_slots_check
-    $error("rt_trav_shell: RaysInFlight must lie in 1..256 (the setup carries an 8-bit slot)");
-  end
+  `RT_ASSERT(a_idx_buf_room, idx_rsp_valid_i |-> idxbuf_ready)
+  `RT_ASSERT(a_isect_ready, tri_valid |-> isect_req_ready)
+  `RT_ASSERT(a_tri_rsp_slot, tri_valid |-> tri_expected)
+  `RT_ASSERT(a_res_slot, isect_valid_o |-> res_expected)
+  `RT_ASSERT(a_cfg_slots, cfg_slots_i != '0 && cfg_slots_i <= CfgSlotsW'(N))
+  `RT_ASSERT(a_credit_range, credit_q <= CREDIT_W'(IdxBufDepth))
+  `RT_ASSERT_STATIC(g_slots_check, N <= 256,
+                    "rt_trav_shell: RaysInFlight must lie in 1..256 (the setup carries an 8-bit slot)")
 `endif
 
 endmodule

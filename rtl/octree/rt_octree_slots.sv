@@ -541,19 +541,21 @@ module rt_octree_slots #(
   assign waiting_node_o = wait_group_q | wait_refill_q;
 
 `ifdef RT_ASSERT_ON
+`include "rt_assert.svh"
+  // (Array reads as wires: Verilator 5.006 fails on them inside a property.)
+  logic res_expected, desc_splits;
+  assign res_expected = received_q[res_slot_i] != issued_q[res_slot_i];
+  assign desc_splits  = desc_depth < DEPTH_W'(STACK);
+
   // Events meet slots in the states that expect them.
-  always_ff @(posedge clk_i) begin
-    if (rst_ni) begin
-      if (alloc_i) a_alloc_free : assert (free_q[alloc_slot_i]);
-      if (init_i) a_init_setup : assert (setup_q[init_slot_i]);
-      if (visit_go_i) a_visit_enter : assert (enter_q[visit_slot_i]);
-      if (idx_go_i) a_idx_fetch : assert (iss_q[idx_slot_i]);
-      if (res_valid_i) a_res_fetch : assert (fetch_q[res_slot_i] && received_q[res_slot_i] != issued_q[res_slot_i]);
-      if (check_go_i) a_check_wants : assert (check_q[check_slot_i] && bound_i[check_slot_i]);
-      // An interior node one lattice unit wide cannot be split: the image is malformed.
-      if (desc_q) a_stack_depth : assert (depth_q[desc_slot_q] < DEPTH_W'(STACK));
-    end
-  end
+  `RT_ASSERT(a_alloc_free, alloc_i |-> free_q[alloc_slot_i])
+  `RT_ASSERT(a_init_setup, init_i |-> setup_q[init_slot_i])
+  `RT_ASSERT(a_visit_enter, visit_go_i |-> enter_q[visit_slot_i])
+  `RT_ASSERT(a_idx_fetch, idx_go_i |-> iss_q[idx_slot_i])
+  `RT_ASSERT(a_res_fetch, res_valid_i |-> fetch_q[res_slot_i] && res_expected)
+  `RT_ASSERT(a_check_wants, check_go_i |-> check_q[check_slot_i] && bound_i[check_slot_i])
+  // An interior node one lattice unit wide cannot be split: the image is malformed.
+  `RT_ASSERT(a_stack_depth, desc_q |-> desc_splits)
 `endif
 
 endmodule
