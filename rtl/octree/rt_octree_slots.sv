@@ -45,8 +45,8 @@
 //
 // Shape (as rt_grid_slots): the next state is combinational (b_advance, the
 // lanes' steps; b_descend; b_state_d, the state vectors' _d), p_state holds
-// the reset state, and p_walk, p_stack, p_ray and p_leaf write the per-slot
-// arrays, which have no reset.
+// the reset state, and p_walk, p_stack, p_ray and p_node write the per-slot
+// arrays, which have no reset; u_idx_count counts a leaf's reads and results.
 //
 // Latency: every transition takes one clock edge. Throughput: per cycle one
 // allocation, one init, one visit, one node grant, one node response, one
@@ -183,10 +183,7 @@ module rt_octree_slots #(
   logic [2:0]             mirror_q   [N];
   logic [2:0]             active_q   [N];
   logic [3*ORG_W-1:0]     org_q      [N];   // o' {z, y, x}
-  logic [31:0]            first_q    [N];   // the current node's record
-  logic [31:0]            count_q    [N];
-  logic [31:0]            issued_q   [N];
-  logic [31:0]            received_q [N];
+  logic [31:0]            first_q    [N];   // the current node's record (its count: u_idx_count)
   // The ancestors' entries: one memory of N * STACK entries, slot s's level d
   // at s * STACK + d; DESCEND writes it (one port), each advance lane reads it
   // (AdvLanes + 1 ports).
@@ -389,6 +386,24 @@ module rt_octree_slots #(
     end
   end
 
+  // ---- The leaf's index reads and results, counted from the visit ----------------------
+  logic [31:0] idx_issued;
+  logic        idx_last, res_last;
+  rt_idx_count #(.N(N), .Starts(1), .SlotW(SlotW)) u_idx_count (
+    .clk_i,
+    .rst_ni,
+    .start_i       (visit_go_i),
+    .start_slot_i  (visit_slot_i),
+    .start_count_i (32'(visit_rec_i.count)),
+    .idx_go_i,
+    .idx_slot_i,
+    .idx_issued_o  (idx_issued),
+    .idx_last_o    (idx_last),
+    .res_valid_i,
+    .res_slot_i,
+    .res_last_o    (res_last)
+  );
+
   // ---- Next state of the state vectors ---------------------------------------------------
   logic [N-1:0] free_d, setup_d, enter_d, group_req_d, wait_group_d, fetch_d, check_d;
   logic [N-1:0] next_d, refill_req_d, wait_refill_d, done_d, iss_d, gv_d, fin_d;
@@ -399,7 +414,7 @@ module rt_octree_slots #(
     visit_group   = visit_oh & {N{!visit_leaf}};
     visit_fetch   = visit_oh & {N{visit_leaf && !visit_empty}};
     visit_check   = visit_oh & {N{visit_leaf && visit_empty}};
-    issued_all    = onehot(idx_go_i && (issued_q[idx_slot_i] + 1'b1 == count_q[idx_slot_i]), idx_slot_i);
+    issued_all    = onehot(idx_last, idx_slot_i);
     free_d        = (free_q & ~alloc_oh) | done_oh;
     setup_d       = (setup_q & ~init_oh) | alloc_oh;
     enter_d       = (enter_q & ~visit_oh) | (init_oh & {N{init_enter_i}})
@@ -417,7 +432,7 @@ module rt_octree_slots #(
     gv_d          = (gv_q & ~popped & ~init_oh) | rsp_oh;
     desc_d        = node_rsp_valid_i && wait_group_q[node_rsp_slot_i];
     // The result that completes the leaf: FETCH ends in the next cycle.
-    fin_d         = onehot(res_valid_i && (received_q[res_slot_i] + 1'b1 == count_q[res_slot_i]), res_slot_i);
+    fin_d         = onehot(res_last, res_slot_i);
   end
 
   // ---- State (reset) ---------------------------------------------------------------------
@@ -501,7 +516,7 @@ module rt_octree_slots #(
     end
   end
 
-  // The ray's setup, and the current node's record and its leaf's counters.
+  // The ray's setup, and the current node's record.
   always_ff @(posedge clk_i) begin : p_ray
     if (init_i) begin
       mirror_q[init_slot_i] <= init_mirror_i;
@@ -510,16 +525,10 @@ module rt_octree_slots #(
     end
   end
 
-  always_ff @(posedge clk_i) begin : p_leaf
-    if (visit_go_i) begin
-      first_q[visit_slot_i]    <= visit_rec_i.first;
-      count_q[visit_slot_i]    <= 32'(visit_rec_i.count);
-      issued_q[visit_slot_i]   <= '0;
-      received_q[visit_slot_i] <= '0;
-    end
-    if (idx_go_i) issued_q[idx_slot_i] <= issued_q[idx_slot_i] + 1'b1;
-    if (res_valid_i) received_q[res_slot_i] <= received_q[res_slot_i] + 1'b1;
+  always_ff @(posedge clk_i) begin : p_node
+    if (visit_go_i) first_q[visit_slot_i] <= visit_rec_i.first;
   end
+
   // ---- Outputs ----------------------------------------------------------------------------
   logic [2:0] visit_sel;
   assign visit_sel       = child_q[visit_slot_i] ^ mirror_q[visit_slot_i];
@@ -527,7 +536,7 @@ module rt_octree_slots #(
   assign visit_sel_o     = visit_sel;
   assign visit_node_id_o = visit_at_root_o ? '0 : grp_q[visit_slot_i] + 32'(visit_sel);
   assign node_addr_o     = ADDR_W'(group_req_q[node_slot_i] ? first_q[node_slot_i] : grp_q[node_slot_i]);
-  assign idx_addr_o      = ADDR_W'(first_q[idx_slot_i] + issued_q[idx_slot_i]);
+  assign idx_addr_o      = ADDR_W'(first_q[idx_slot_i] + idx_issued);
   assign check_exit_o    = min_active(active_q[check_slot_i], t1_q[check_slot_i][0*T_W +: T_W], t1_q[check_slot_i][1*T_W +: T_W],
                                       t1_q[check_slot_i][2*T_W +: T_W]);
 
@@ -542,9 +551,8 @@ module rt_octree_slots #(
 
 `ifdef RT_ASSERT_ON
 `include "rt_assert.svh"
-  // (Array reads as wires: Verilator 5.006 fails on them inside a property.)
-  logic res_expected, desc_splits;
-  assign res_expected = received_q[res_slot_i] != issued_q[res_slot_i];
+  // (An array read as a wire: Verilator 5.006 fails on one inside a property.)
+  logic desc_splits;
   assign desc_splits  = desc_depth < DEPTH_W'(STACK);
 
   // Events meet slots in the states that expect them.
@@ -552,7 +560,7 @@ module rt_octree_slots #(
   `RT_ASSERT(a_init_setup, init_i |-> setup_q[init_slot_i])
   `RT_ASSERT(a_visit_enter, visit_go_i |-> enter_q[visit_slot_i])
   `RT_ASSERT(a_idx_fetch, idx_go_i |-> iss_q[idx_slot_i])
-  `RT_ASSERT(a_res_fetch, res_valid_i |-> fetch_q[res_slot_i] && res_expected)
+  `RT_ASSERT(a_res_fetch, res_valid_i |-> fetch_q[res_slot_i])
   `RT_ASSERT(a_check_wants, check_go_i |-> check_q[check_slot_i] && bound_i[check_slot_i])
   // An interior node one lattice unit wide cannot be split: the image is malformed.
   `RT_ASSERT(a_stack_depth, desc_q |-> desc_splits)

@@ -5,5 +5,6 @@ lib/rt_rr_arb.sv
 lib/rt_closest_hit.sv
 lib/rt_exit_test.sv
 lib/rt_setup_front.sv
+lib/rt_idx_count.sv
 isect/rt_isect.sv
 lib/rt_trav_shell.sv
