@@ -226,38 +226,12 @@ module rt_trav_shell #(
 
   if (RegRsp) begin : g_reg_rsp
     // A node or triangle response arriving in cycle c is used in cycle c+1.
-    logic                node_valid_q, tri_valid_q;
-    logic [SlotW-1:0]    node_tag_q, tri_tag_q;
-    logic [NodeRspW-1:0] node_data_q;
-    rt_pkg::isect_tri_t  tri_data_q;
-
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        node_valid_q <= 1'b0;
-        tri_valid_q  <= 1'b0;
-      end else begin
-        node_valid_q <= node_rsp_valid_i;
-        tri_valid_q  <= tri_rsp_valid_i;
-      end
-    end
-
-    always_ff @(posedge clk_i) begin
-      if (node_rsp_valid_i) begin
-        node_tag_q  <= node_rsp_tag_i;
-        node_data_q <= node_rsp_data_i;
-      end
-      if (tri_rsp_valid_i) begin
-        tri_tag_q  <= tri_rsp_tag_i;
-        tri_data_q <= tri_rsp_data_i;
-      end
-    end
-
-    assign node_valid_o = node_valid_q;
-    assign node_tag_o   = node_tag_q;
-    assign node_data_o  = node_data_q;
-    assign tri_valid    = tri_valid_q;
-    assign tri_slot     = tri_tag_q;
-    assign tri_data     = tri_data_q;
+    rt_pipe_reg #(.Width(SlotW + NodeRspW)) u_node_rsp (
+      .clk_i, .rst_ni, .valid_i(node_rsp_valid_i), .data_i({node_rsp_tag_i, node_rsp_data_i}),
+      .valid_o(node_valid_o), .data_o({node_tag_o, node_data_o}));
+    rt_pipe_reg #(.Width(SlotW + rt_pkg::ISECT_TRI_W)) u_tri_rsp (
+      .clk_i, .rst_ni, .valid_i(tri_rsp_valid_i), .data_i({tri_rsp_tag_i, tri_rsp_data_i}),
+      .valid_o(tri_valid), .data_o({tri_slot, tri_data}));
   end else begin : g_direct_rsp
     assign node_valid_o = node_rsp_valid_i;
     assign node_tag_o   = node_rsp_tag_i;
