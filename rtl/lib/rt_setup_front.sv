@@ -15,24 +15,16 @@
 module rt_setup_front #(
   parameter int unsigned SlotW = 5  // width of the slot index carried along
 ) (
-  input  logic                       clk_i,
-  input  logic                       rst_ni,
+`include "rt_setup_ports.svh"
 
-  input  logic                       valid_i,
-  input  logic [SlotW-1:0]           slot_i,
-  input  rt_pkg::isect_ray_t         ray_i,
   output logic [3*rt_pkg::DIR_W-1:0] mag_o,        // |d| of ray_i {z, y, x}, for stage 1
 
   output logic                       s1_valid_o,   // stage 1 holds a ray
   output logic [2:0]                 s1_active_o,  // its axes with d != 0
   output logic [2:0]                 s1_neg_o,     // its axes with d < 0
 
-  output logic                       valid_o,      // stage 2
-  output logic [SlotW-1:0]           slot_o,
-  output rt_pkg::isect_ray_t         ray_o,
-  output logic [2:0]                 active_o,
-  output logic [2:0]                 neg_o,
-  output logic [rt_pkg::DIR_W-1:0]   dom_o         // max |d|
+  output logic [2:0]                 active_o,     // stage 2's
+  output logic [2:0]                 neg_o
 );
 
   localparam int DIR_W = rt_pkg::DIR_W;

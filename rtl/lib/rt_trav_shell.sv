@@ -233,12 +233,8 @@ module rt_trav_shell #(
       .clk_i, .rst_ni, .valid_i(tri_rsp_valid_i), .data_i({tri_rsp_tag_i, tri_rsp_data_i}),
       .valid_o(tri_valid), .data_o({tri_slot, tri_data}));
   end else begin : g_direct_rsp
-    assign node_valid_o = node_rsp_valid_i;
-    assign node_tag_o   = node_rsp_tag_i;
-    assign node_data_o  = node_rsp_data_i;
-    assign tri_valid    = tri_rsp_valid_i;
-    assign tri_slot     = tri_rsp_tag_i;
-    assign tri_data     = tri_rsp_data_i;
+    assign {node_valid_o, node_tag_o, node_data_o} = {node_rsp_valid_i, node_rsp_tag_i, node_rsp_data_i};
+    assign {tri_valid, tri_slot, tri_data}         = {tri_rsp_valid_i, tri_rsp_tag_i, tri_rsp_data_i};
   end
 
   // ---- Node reads and visit records ----------------------------------------------------
