@@ -23,25 +23,16 @@
 module rt_grid_setup #(
   parameter int unsigned SlotW = 5  // width of the slot index carried along
 ) (
-  input  logic                                   clk_i,
-  input  logic                                   rst_ni,
-  input  logic [3*rt_pkg::GRID_RESOLUTION_W-1:0] cfg_res_i,   // {Rz, Ry, Rx}
+`include "rt_setup_ports.svh"
 
-  input  logic                                   valid_i,
-  input  logic [SlotW-1:0]                       slot_i,
-  input  rt_pkg::isect_ray_t                     ray_i,
-
-  output logic                                   valid_o,
-  output logic [SlotW-1:0]                       slot_o,
-  output rt_pkg::isect_ray_t                     ray_o,
+  input  logic [3*rt_pkg::GRID_RESOLUTION_W-1:0] cfg_res_i,     // {Rz, Ry, Rx}
   output logic [3*rt_pkg::CELL_INDEX_W-1:0]      cell_o,        // {z, y, x}
   output logic [3*rt_pkg::CELL_INDEX_W-1:0]      cell_id_o,
   output logic [2:0]                             active_o,      // axis steps
   output logic [2:0]                             neg_o,         // axis steps by -1
   output logic [3*rt_pkg::GRID_ACC_W-1:0]        acc_o,         // {z, y, x}
   output logic [3*rt_pkg::GRID_PAIR_W-1:0]       pair_o,        // {z, y, x}
-  output logic [rt_pkg::GRID_TRIPLE_W-1:0]       triple_o,
-  output logic [rt_pkg::DIR_W-1:0]               dom_o
+  output logic [rt_pkg::GRID_TRIPLE_W-1:0]       triple_o
 );
 
   localparam int POS_W    = rt_pkg::POS_W;

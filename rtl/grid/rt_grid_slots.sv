@@ -127,7 +127,7 @@ module rt_grid_slots #(
   logic [3*PAIR_W-1:0] pair_q  [N];
   logic [2:0]          act_q   [N];
   logic [2:0]          neg_q   [N];
-  logic [31:0]         first_q [N], count_q [N], issued_q [N], received_q [N];  // the current cell
+  logic [31:0]         first_q [N];   // the current cell's (its counters: u_idx_count)
   logic [31:0]         cells_q [N], tests_q [N];
   // Cell queue entries, index {slot, entry}.
   logic [ID_W-1:0]     ecid_q  [NE];  // cell id
@@ -253,6 +253,9 @@ module rt_grid_slots #(
   logic          cv, cw, cr;
   logic          last_v, last_t, last_r, last_k;
   logic [N-1:0]  check_set, done_set, pop_set, fetch_set;
+  // The counters of the cell's index reads and results (u_idx_count).
+  logic [31:0] idx_issued;
+  logic        idx_last, res_last;
 
   always_comb begin
     g_push    = head(hd_q, cell_slot_i) + QW'(therm(qc_q, cell_slot_i));
@@ -268,7 +271,7 @@ module rt_grid_slots #(
     v_data    = v_pending ? cell_rsp_data_i : {efirst_q[{visit_slot_i, v_hd}], ecount_q[{visit_slot_i, v_hd}]};
     cv        = stv && (v_data.count == '0);
     cw        = stw && (cell_rsp_data_i.count == '0);
-    cr        = res_valid_i && (received_q[r_slot] + 1'b1 == count_q[r_slot]);
+    cr        = res_last;
     last_v    = elast_q[{visit_slot_i, v_hd}];
     last_t    = elast_q[{cell_rsp_tag_i, head(hd_q, cell_rsp_tag_i)}];
     last_r    = elast_q[{r_slot, head(hd_q, r_slot)}];
@@ -289,6 +292,22 @@ module rt_grid_slots #(
                 onehot(check_go_i && !(holds || last_k), check_slot_i);
   end
 
+  // ---- The cell's index reads and results, counted from the start of the cell -----
+  rt_idx_count #(.N(N), .Starts(2), .SlotW(SlotW)) u_idx_count (
+    .clk_i,
+    .rst_ni,
+    .start_i       ({stw, stv}),
+    .start_slot_i  ({cell_rsp_tag_i, visit_slot_i}),
+    .start_count_i ({cell_rsp_data_i.count, v_data.count}),
+    .idx_go_i,
+    .idx_slot_i,
+    .idx_issued_o  (idx_issued),
+    .idx_last_o    (idx_last),
+    .res_valid_i,
+    .res_slot_i    (r_slot),
+    .res_last_o    (res_last)
+  );
+
   // ---- State vectors ----------------------------------------------------------------
   logic [N-1:0] alloc_oh, init_oh, cgo_oh, rsp_oh, vgo_oh, igo_oh, res_oh, chk_oh, done_oh;
   assign alloc_oh = onehot(alloc_i, alloc_slot_i);
@@ -296,7 +315,7 @@ module rt_grid_slots #(
   assign cgo_oh   = onehot(cell_go_i, cell_slot_i);
   assign rsp_oh   = onehot(cell_rsp_valid_i, cell_rsp_tag_i);
   assign vgo_oh   = onehot(visit_go_i, visit_slot_i);
-  assign igo_oh   = onehot(idx_go_i && (issued_q[idx_slot_i] + 1'b1 == count_q[idx_slot_i]), idx_slot_i);
+  assign igo_oh   = onehot(idx_last, idx_slot_i);
   assign res_oh   = onehot(cr, r_slot);
   assign chk_oh   = onehot(check_go_i, check_slot_i);
   assign done_oh  = onehot(done_go_i, done_slot_i);
@@ -388,21 +407,13 @@ module rt_grid_slots #(
     end
     if (visit_go_i) cells_q[visit_slot_i] <= cells_q[visit_slot_i] + 1'b1;
     if (stv) begin
-      first_q[visit_slot_i]    <= v_data.first;
-      count_q[visit_slot_i]    <= v_data.count;
-      tests_q[visit_slot_i]    <= tests_q[visit_slot_i] + v_data.count;
-      issued_q[visit_slot_i]   <= '0;
-      received_q[visit_slot_i] <= '0;
+      first_q[visit_slot_i] <= v_data.first;
+      tests_q[visit_slot_i] <= tests_q[visit_slot_i] + v_data.count;
     end
     if (stw) begin
-      first_q[cell_rsp_tag_i]    <= cell_rsp_data_i.first;
-      count_q[cell_rsp_tag_i]    <= cell_rsp_data_i.count;
-      tests_q[cell_rsp_tag_i]    <= tests_q[cell_rsp_tag_i] + cell_rsp_data_i.count;
-      issued_q[cell_rsp_tag_i]   <= '0;
-      received_q[cell_rsp_tag_i] <= '0;
+      first_q[cell_rsp_tag_i] <= cell_rsp_data_i.first;
+      tests_q[cell_rsp_tag_i] <= tests_q[cell_rsp_tag_i] + cell_rsp_data_i.count;
     end
-    if (idx_go_i) issued_q[idx_slot_i] <= issued_q[idx_slot_i] + 1'b1;
-    if (res_valid_i) received_q[r_slot] <= received_q[r_slot] + 1'b1;
   end
 
   // ---- Outputs ----------------------------------------------------------------------------
@@ -415,38 +426,32 @@ module rt_grid_slots #(
   assign fetching_o      = fetch_q;
   assign cell_id_o       = fid_q[cell_slot_i];
   assign visit_cell_id_o = ecid_q[{visit_slot_i, v_hd}];
-  assign idx_addr_o      = ADDR_W'(first_q[idx_slot_i] + issued_q[idx_slot_i]);
+  assign idx_addr_o      = ADDR_W'(first_q[idx_slot_i] + idx_issued);
   assign done_cells_o    = cells_q[done_slot_i];
   assign done_tests_o    = tests_q[done_slot_i];
 
 `ifdef RT_ASSERT_ON
-  logic r_expected;  // a result is due: fewer received than issued
-  assign r_expected = received_q[r_slot] != issued_q[r_slot];
-
+`include "rt_assert.svh"
   // Events name slots in the right state.
-  a_alloc_free : assert property (@(posedge clk_i) disable iff (!rst_ni) alloc_i |-> free_q[alloc_slot_i]);
-  a_init_setup : assert property (@(posedge clk_i) disable iff (!rst_ni) init_i |-> setup_q[init_slot_i]);
-  a_cell_go    : assert property (@(posedge clk_i) disable iff (!rst_ni) cell_go_i |-> want_cell_o[cell_slot_i]);
-  a_visit_go   : assert property (@(posedge clk_i) disable iff (!rst_ni) visit_go_i |-> want_visit_o[visit_slot_i]);
-  a_idx_go     : assert property (@(posedge clk_i) disable iff (!rst_ni) idx_go_i |-> iss_q[idx_slot_i]);
-  a_check_go   : assert property (@(posedge clk_i) disable iff (!rst_ni) check_go_i |-> check_q[check_slot_i]);
-  a_done_go    : assert property (@(posedge clk_i) disable iff (!rst_ni) done_go_i |-> want_done_o[done_slot_i]);
+  `RT_ASSERT(a_alloc_free, alloc_i |-> free_q[alloc_slot_i])
+  `RT_ASSERT(a_init_setup, init_i |-> setup_q[init_slot_i])
+  `RT_ASSERT(a_cell_go, cell_go_i |-> want_cell_o[cell_slot_i])
+  `RT_ASSERT(a_visit_go, visit_go_i |-> want_visit_o[visit_slot_i])
+  `RT_ASSERT(a_idx_go, idx_go_i |-> iss_q[idx_slot_i])
+  `RT_ASSERT(a_check_go, check_go_i |-> check_q[check_slot_i])
+  `RT_ASSERT(a_done_go, done_go_i |-> want_done_o[done_slot_i])
   // Responses: a cell response answers an outstanding read of its slot (the
   // head's, for a slot waiting in WAIT_CELL); results arrive for a slot in
-  // FETCH that expects them (rt_trav_shell checks the triangles' slots).
-  a_cell_rsp_slot : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      cell_rsp_valid_i |-> t_out != '0);
-  a_cell_rsp_head : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      cell_rsp_valid_i && wait_q[cell_rsp_tag_i] |-> t_cnt == t_out);
-  a_res_fetch : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      res_valid_i |-> fetch_q[r_slot] && r_expected);
+  // FETCH (u_idx_count checks that it expects them, rt_trav_shell the
+  // triangles' slots).
+  `RT_ASSERT(a_cell_rsp_slot, cell_rsp_valid_i |-> t_out != '0)
+  `RT_ASSERT(a_cell_rsp_head, cell_rsp_valid_i && wait_q[cell_rsp_tag_i] |-> t_cnt == t_out)
+  `RT_ASSERT(a_res_fetch, res_valid_i |-> fetch_q[r_slot])
   // Every slot is in one state (parity catches any slot in two).
-  a_states : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      (free_q | setup_q | visit_q | wait_q | fetch_q | check_q | done_q) == '1 &&
-      (free_q ^ setup_q ^ visit_q ^ wait_q ^ fetch_q ^ check_q ^ done_q) == '1);
-  if (CellQueue < 2 || (CellQueue & (CellQueue - 1)) != 0) begin : g_queue_check
-    $error("rt_grid_slots: CellQueue must be a power of two >= 2");
-  end
+  `RT_ASSERT(a_states, (free_q | setup_q | visit_q | wait_q | fetch_q | check_q | done_q) == '1 &&
+                       (free_q ^ setup_q ^ visit_q ^ wait_q ^ fetch_q ^ check_q ^ done_q) == '1)
+  `RT_ASSERT_STATIC(g_queue_check, CellQueue >= 2 && (CellQueue & (CellQueue - 1)) == 0,
+                    "rt_grid_slots: CellQueue must be a power of two >= 2")
 `endif
 
 endmodule

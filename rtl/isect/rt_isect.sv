@@ -393,22 +393,18 @@ module rt_isect (
   // and passes --assert); Yosys and Icarus skip them.
   // ---------------------------------------------------------------------------
 `ifdef RT_ASSERT_ON
-  if (rt_pkg::ISECT_LATENCY != NUM_STAGES) begin : g_latency_check
-    $error("rt_isect has %0d stages but rt_pkg::ISECT_LATENCY is %0d",
-           NUM_STAGES, rt_pkg::ISECT_LATENCY);
-  end
+`include "rt_assert.svh"
+  `RT_ASSERT_STATIC(g_latency_check, rt_pkg::ISECT_LATENCY == NUM_STAGES,
+                    "rt_isect: its stages differ from rt_pkg::ISECT_LATENCY")
 
   // Valid and ready are never X once out of reset.
-  a_res_valid_known : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      !$isunknown(res_valid_o));
-  a_req_ready_known : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      !$isunknown(req_ready_o));
-  a_req_valid_known : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      !$isunknown(req_valid_i));
+  `RT_ASSERT_KNOWN(a_res_valid_known, res_valid_o)
+  `RT_ASSERT_KNOWN(a_req_ready_known, req_ready_o)
+  `RT_ASSERT_KNOWN(a_req_valid_known, req_valid_i)
   // Output stream: a result that is not taken stays, unchanged. Input stream
-  // (the producer's duty): an offered request stays, unchanged. Written as
-  // immediate assertions against copies taken in a stall only: a concurrent
-  // $stable makes a simulator copy the wide records in every evaluation.
+  // (the producer's duty): an offered request stays, unchanged. Checked
+  // against copies taken in a stall only: $stable would make a simulator copy
+  // the wide records in every evaluation.
   logic               res_stall_q, req_stall_q;
   rt_pkg::isect_res_t res_held_q;
   rt_pkg::isect_ray_t ray_held_q;
@@ -418,8 +414,6 @@ module rt_isect (
       res_stall_q <= 1'b0;
       req_stall_q <= 1'b0;
     end else begin
-      if (res_stall_q) a_res_hold : assert (res_valid_o && res_data_o == res_held_q);
-      if (req_stall_q) a_req_hold : assert (req_valid_i && req_ray_i == ray_held_q && req_tri_i == tri_held_q);
       res_stall_q <= res_valid_o && !res_ready_i;
       req_stall_q <= req_valid_i && !req_ready_o;
       if (res_valid_o && !res_ready_i) res_held_q <= res_data_o;
@@ -429,9 +423,10 @@ module rt_isect (
       end
     end
   end
+  `RT_ASSERT(a_res_hold, res_stall_q |-> res_valid_o && res_data_o == res_held_q)
+  `RT_ASSERT(a_req_hold, req_stall_q |-> req_valid_i && req_ray_i == ray_held_q && req_tri_i == tri_held_q)
   // A full pipeline whose result is taken accepts a new request (II = 1).
-  a_full_throughput : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      res_ready_i |-> req_ready_o);
+  `RT_ASSERT(a_full_throughput, res_ready_i |-> req_ready_o)
 `endif
 
 endmodule

@@ -63,16 +63,14 @@ module rt_fifo #(
   end
 
 `ifdef RT_ASSERT_ON
+`include "rt_assert.svh"
   // Output stream: valid never drops and data holds until taken. The data is
   // mem_q[rd_ptr_q], so it holds when the read pointer does and no write lands
   // on the head entry while it is valid: checked on the pointers, so that a
   // simulator samples no data word in every evaluation.
-  a_out_hold : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      out_valid_o && !out_ready_i |=> out_valid_o && $stable(rd_ptr_q));
-  a_head_kept : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      in_fire && out_valid_o |-> wr_ptr_q != rd_ptr_q);
-  a_count_range : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      count_q <= FULL);
+  `RT_ASSERT(a_out_hold, out_valid_o && !out_ready_i |=> out_valid_o && $stable(rd_ptr_q))
+  `RT_ASSERT(a_head_kept, in_fire && out_valid_o |-> wr_ptr_q != rd_ptr_q)
+  `RT_ASSERT(a_count_range, count_q <= FULL)
 `endif
 
 endmodule

@@ -226,45 +226,15 @@ module rt_trav_shell #(
 
   if (RegRsp) begin : g_reg_rsp
     // A node or triangle response arriving in cycle c is used in cycle c+1.
-    logic                node_valid_q, tri_valid_q;
-    logic [SlotW-1:0]    node_tag_q, tri_tag_q;
-    logic [NodeRspW-1:0] node_data_q;
-    rt_pkg::isect_tri_t  tri_data_q;
-
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) begin
-        node_valid_q <= 1'b0;
-        tri_valid_q  <= 1'b0;
-      end else begin
-        node_valid_q <= node_rsp_valid_i;
-        tri_valid_q  <= tri_rsp_valid_i;
-      end
-    end
-
-    always_ff @(posedge clk_i) begin
-      if (node_rsp_valid_i) begin
-        node_tag_q  <= node_rsp_tag_i;
-        node_data_q <= node_rsp_data_i;
-      end
-      if (tri_rsp_valid_i) begin
-        tri_tag_q  <= tri_rsp_tag_i;
-        tri_data_q <= tri_rsp_data_i;
-      end
-    end
-
-    assign node_valid_o = node_valid_q;
-    assign node_tag_o   = node_tag_q;
-    assign node_data_o  = node_data_q;
-    assign tri_valid    = tri_valid_q;
-    assign tri_slot     = tri_tag_q;
-    assign tri_data     = tri_data_q;
+    rt_pipe_reg #(.Width(SlotW + NodeRspW)) u_node_rsp (
+      .clk_i, .rst_ni, .valid_i(node_rsp_valid_i), .data_i({node_rsp_tag_i, node_rsp_data_i}),
+      .valid_o(node_valid_o), .data_o({node_tag_o, node_data_o}));
+    rt_pipe_reg #(.Width(SlotW + rt_pkg::ISECT_TRI_W)) u_tri_rsp (
+      .clk_i, .rst_ni, .valid_i(tri_rsp_valid_i), .data_i({tri_rsp_tag_i, tri_rsp_data_i}),
+      .valid_o(tri_valid), .data_o({tri_slot, tri_data}));
   end else begin : g_direct_rsp
-    assign node_valid_o = node_rsp_valid_i;
-    assign node_tag_o   = node_rsp_tag_i;
-    assign node_data_o  = node_rsp_data_i;
-    assign tri_valid    = tri_rsp_valid_i;
-    assign tri_slot     = tri_rsp_tag_i;
-    assign tri_data     = tri_rsp_data_i;
+    assign {node_valid_o, node_tag_o, node_data_o} = {node_rsp_valid_i, node_rsp_tag_i, node_rsp_data_i};
+    assign {tri_valid, tri_slot, tri_data}         = {tri_rsp_valid_i, tri_rsp_tag_i, tri_rsp_data_i};
   end
 
   // ---- Node reads and visit records ----------------------------------------------------
@@ -474,6 +444,7 @@ module rt_trav_shell #(
   );
 
 `ifdef RT_ASSERT_ON
+`include "rt_assert.svh"
   // The state of the slots the triangles and results name.
   logic tri_expected, res_expected;
   assign tri_expected = expect_i[tri_slot];
@@ -483,25 +454,17 @@ module rt_trav_shell #(
   // from rt_fifo instances, whose a_out_hold checks that valid never drops and
   // data holds until taken; they are not checked twice here.
   // Input stream (the producer's duty).
-  a_ray_hold : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      ray_valid_i && !ray_ready_o |=> ray_valid_i && $stable(ray_data_i));
+  `RT_ASSERT(a_ray_hold, ray_valid_i && !ray_ready_o |=> ray_valid_i && $stable(ray_data_i))
   // Responses: credits guarantee room, triangles and results name a slot that
   // expects them.
-  a_idx_buf_room : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      idx_rsp_valid_i |-> idxbuf_ready);
-  a_isect_ready : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      tri_valid |-> isect_req_ready);
-  a_tri_rsp_slot : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      tri_valid |-> tri_expected);
-  a_res_slot : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      isect_valid_o |-> res_expected);
-  a_cfg_slots : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      cfg_slots_i != '0 && cfg_slots_i <= CfgSlotsW'(N));
-  a_credit_range : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      credit_q <= CREDIT_W'(IdxBufDepth));
-  if (N > 256) begin : g_slots_check
-    $error("rt_trav_shell: RaysInFlight must lie in 1..256 (the setup carries an 8-bit slot)");
-  end
+  `RT_ASSERT(a_idx_buf_room, idx_rsp_valid_i |-> idxbuf_ready)
+  `RT_ASSERT(a_isect_ready, tri_valid |-> isect_req_ready)
+  `RT_ASSERT(a_tri_rsp_slot, tri_valid |-> tri_expected)
+  `RT_ASSERT(a_res_slot, isect_valid_o |-> res_expected)
+  `RT_ASSERT(a_cfg_slots, cfg_slots_i != '0 && cfg_slots_i <= CfgSlotsW'(N))
+  `RT_ASSERT(a_credit_range, credit_q <= CREDIT_W'(IdxBufDepth))
+  `RT_ASSERT_STATIC(g_slots_check, N <= 256,
+                    "rt_trav_shell: RaysInFlight must lie in 1..256 (the setup carries an 8-bit slot)")
 `endif
 
 endmodule

@@ -262,12 +262,12 @@ module rt_octree #(
   assign done_tests = tests_q[done_idx];
 
 `ifdef RT_ASSERT_ON
+`include "rt_assert.svh"
   // Node responses name a slot that waits for one (rt_trav_shell checks the
   // triangles' and the results' slots).
   logic node_rsp_waiting;
   assign node_rsp_waiting = waiting_node[node_rsp_tag_i];
-  a_node_rsp_slot : assert property (@(posedge clk_i) disable iff (!rst_ni)
-      node_rsp_valid_i |-> node_rsp_waiting);
+  `RT_ASSERT(a_node_rsp_slot, node_rsp_valid_i |-> node_rsp_waiting)
 `endif
 
 endmodule

@@ -22,23 +22,14 @@
 module rt_octree_setup #(
   parameter int unsigned SlotW = 5  // width of the slot index carried along
 ) (
-  input  logic                                   clk_i,
-  input  logic                                   rst_ni,
+`include "rt_setup_ports.svh"
 
-  input  logic                                   valid_i,
-  input  logic [SlotW-1:0]                       slot_i,
-  input  rt_pkg::isect_ray_t                     ray_i,
-
-  output logic                                   valid_o,
-  output logic [SlotW-1:0]                       slot_o,
-  output rt_pkg::isect_ray_t                     ray_o,
   output logic [2:0]                             mirror_o,  // a: bit 2 = x
   output logic [2:0]                             active_o,  // bit a = axis a crosses planes
   output logic [3*(rt_pkg::POS_W+1)-1:0]         origin_o,  // o' {z, y, x}
   output logic [3*rt_pkg::OCTREE_T_W-1:0]        t0_o,      // {z, y, x}, signed each
   output logic [3*rt_pkg::OCTREE_T_W-1:0]        t1_o,      // {z, y, x}, signed each
   output logic [rt_pkg::OCTREE_COMMON_W-1:0]     common_o,
-  output logic [rt_pkg::DIR_W-1:0]               dom_o,
   output logic                                   enter_o    // the ray meets the root
 );
 

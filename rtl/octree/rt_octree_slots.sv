@@ -43,6 +43,11 @@
 // only by DESCEND. A slot's node id (group base + (child ^ a)) and its node
 // read address are formed when they are granted.
 //
+// Shape (as rt_grid_slots): the next state is combinational (b_advance, the
+// lanes' steps; b_descend; b_state_d, the state vectors' _d), p_state holds
+// the reset state, and p_walk, p_stack, p_ray and p_node write the per-slot
+// arrays, which have no reset; u_idx_count counts a leaf's reads and results.
+//
 // Latency: every transition takes one clock edge. Throughput: per cycle one
 // allocation, one init, one visit, one node grant, one node response, one
 // DESCEND, one index grant, one result, one end of FETCH, one exit test, one
@@ -178,10 +183,7 @@ module rt_octree_slots #(
   logic [2:0]             mirror_q   [N];
   logic [2:0]             active_q   [N];
   logic [3*ORG_W-1:0]     org_q      [N];   // o' {z, y, x}
-  logic [31:0]            first_q    [N];   // the current node's record
-  logic [31:0]            count_q    [N];
-  logic [31:0]            issued_q   [N];
-  logic [31:0]            received_q [N];
+  logic [31:0]            first_q    [N];   // the current node's record (its count: u_idx_count)
   // The ancestors' entries: one memory of N * STACK entries, slot s's level d
   // at s * STACK + d; DESCEND writes it (one port), each advance lane reads it
   // (AdvLanes + 1 ports).
@@ -244,30 +246,197 @@ module rt_octree_slots #(
   assign lane_go[CHECK_LANE]   = check_go_i && !check_holds_i;
   assign lane_slot[CHECK_LANE] = check_slot_i;
 
-  // ---- The walk: the lanes' writes, DESCEND, the events ------------------------------
-  // Every decision is taken from the registers; the state has the asynchronous
-  // reset, the datapath registers are written before they are read.
-  logic [N-1:0] fin_next;
-  assign fin_next = onehot(res_valid_i && (received_q[res_slot_i] + 1'b1 == count_q[res_slot_i]), res_slot_i);
+  // ---- The advance lanes' steps -------------------------------------------------------
+  // Each lane reads its slot's registers only; the lanes' slots differ (a slot
+  // waits in one arbiter's requests, or holds the exit-test grant), so their
+  // writes never meet.
+  logic [3*T_W-1:0]   lane_t0_d    [LANES];  // the slot's parameters after the step
+  logic [3*T_W-1:0]   lane_t1_d    [LANES];
+  logic [2:0]         lane_child_d [LANES];
+  logic [31:0]        lane_grp_d   [LANES];  // a pop's: the parent's entry and depth
+  logic [DEPTH_W-1:0] lane_depth_d [LANES];
+  logic [LANES-1:0]   lane_step;             // depth > 0: parameters and child written
+  logic [LANES-1:0]   lane_pop;              // a pop: group base and depth written too
+  logic [N-1:0]       adv_oh, to_enter, to_refill, to_next, to_done, popped;
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin : p_walk
+  always_comb begin : b_advance
     logic signed [T_W-1:0] t0 [3];      // the slot's parameters
     logic signed [T_W-1:0] t1 [3];
-    logic [3*T_W-1:0]      t0_next, t1_next;
-    logic                  behind;
-    logic [SlotW-1:0]      s;           // a lane's slot
-    logic signed [T_W-1:0] up;          // the advance: 2 t1 - t0 on the exit axis
-    logic [2:0]            child, bits;
+    logic [SlotW-1:0]      s;
+    logic signed [T_W-1:0] up;          // 2 t1 - t0 on the exit axis
+    logic [2:0]            active, child, bits;
     logic [1:0]            xa;
-    logic [34:0]           parent;
-    logic [N-1:0]          adv_oh, to_enter, to_refill, to_next, to_done, popped;
+    logic [DEPTH_W-1:0]    depth;
+    logic [ENTRY_W-1:0]    parent;
+    logic                  sibling, behind;
+    logic [N-1:0]          oh;
+    {adv_oh, to_enter, to_refill, to_next, to_done, popped} = '0;
+    for (int l = 0; l < LANES; l++) begin
+      s      = lane_slot[l];
+      active = active_q[s];
+      child  = child_q[s];
+      depth  = depth_q[s];
+      for (int a = 0; a < 3; a++) begin
+        t0[a] = t0_q[s][a*T_W +: T_W];
+        t1[a] = t1_q[s][a*T_W +: T_W];
+      end
+      xa      = exit_axis(active, t1[0], t1[1], t1[2]);
+      bits    = 3'b100 >> xa;
+      sibling = (child & bits) == '0;
+      up      = (t1[xa] <<< 1) - t0[xa];
+      behind  = active[xa] && up < 0;
+      for (int a = 0; a < 3; a++) begin
+        if (32'(a) != 32'(xa) && active[a] && t1[a] < 0) behind = 1'b1;
+      end
+      parent          = stack_q[stack_addr(s, STK_W'(depth - DEPTH_W'(2)))];
+      lane_t0_d[l]    = t0_q[s];
+      lane_t1_d[l]    = t1_q[s];
+      lane_grp_d[l]   = parent[34:3];
+      lane_depth_d[l] = depth - 1'b1;
+      lane_step[l]    = lane_go[l] && depth != '0;
+      lane_pop[l]     = lane_step[l] && !sibling;
+      if (sibling) begin
+        lane_t0_d[l][xa*T_W +: T_W] = t1[xa];
+        lane_t1_d[l][xa*T_W +: T_W] = up;
+        lane_child_d[l]             = child | bits;
+      end else begin
+        for (int a = 0; a < 3; a++) begin
+          if (active[a]) begin
+            if (child[2-a]) begin
+              lane_t0_d[l][a*T_W +: T_W] = (t0[a] <<< 1) - t1[a];
+            end else begin
+              lane_t1_d[l][a*T_W +: T_W] = (t1[a] <<< 1) - t0[a];
+            end
+          end
+        end
+        lane_child_d[l] = parent[2:0];
+      end
+
+      // Where the slot goes: DONE at depth 0; after a sibling step NEXT,
+      // ENTER or REFILL_REQ; after a pop NEXT, or DONE at the root.
+      oh     = onehot(lane_go[l], s);
+      adv_oh = adv_oh | oh;
+      if (depth == '0) begin
+        to_done = to_done | oh;
+      end else if (sibling) begin
+        to_next   = to_next   | (oh & {N{behind}});
+        to_enter  = to_enter  | (oh & {N{!behind && gv_q[s]}});
+        to_refill = to_refill | (oh & {N{!behind && !gv_q[s]}});
+      end else begin
+        popped  = popped | oh;
+        to_done = to_done | (oh & {N{depth == DEPTH_W'(1)}});
+        to_next = to_next | (oh & {N{depth != DEPTH_W'(1)}});
+      end
+    end
+  end
+
+  // ---- DESCEND (one slot) ----------------------------------------------------------------
+  // The mid-plane parameters (exact halvings), the first child (table 1) and
+  // its parameters; the current entry is pushed (none at the root).
+  logic [3*T_W-1:0]   desc_t0_d, desc_t1_d;  // the first child's parameters
+  logic [2:0]         desc_child_d;          // the first child
+  logic [DEPTH_W-1:0] desc_depth;            // the node's depth
+  logic               desc_behind;           // the first child lies behind the origin
+
+  always_comb begin : b_descend
+    logic signed [T_W-1:0] t0 [3];
+    logic signed [T_W-1:0] t1 [3];
     logic signed [T_W-1:0] tm [3];
     logic [ORG_W-1:0]      org [3];
     logic [1:0]            r0 [3];
     logic [1:0]            rm [3];
-    logic [2:0]            active, c;
-    logic [DEPTH_W-1:0]    depth, mid_bit;
+    logic [2:0]            active;
+    logic [DEPTH_W-1:0]    mid_bit;
     logic [1:0]            entry;
+    active     = active_q[desc_slot_q];
+    desc_depth = depth_q[desc_slot_q];
+    mid_bit    = DEPTH_W'(P - 1) - desc_depth;
+    for (int a = 0; a < 3; a++) begin
+      t0[a]  = t0_q[desc_slot_q][a*T_W +: T_W];
+      t1[a]  = t1_q[desc_slot_q][a*T_W +: T_W];
+      org[a] = org_q[desc_slot_q][a*ORG_W +: ORG_W];
+      // (t0 + t1) / 2 without the carry bit: t0 and t1 have the same parity.
+      tm[a] = (t0[a] >>> 1) + (t1[a] >>> 1) + $signed({{(T_W-1){1'b0}}, t0[a][0] & t1[a][0]});
+      r0[a] = active[a] ? FINITE : NEG_INF;
+      rm[a] = active[a] ? FINITE : (org[a][mid_bit] ? NEG_INF : POS_INF);
+    end
+    // The entry plane: the axis of the largest t0 (fx::firstChild's order).
+    if (t_lt(r0[1], t0[1], r0[0], t0[0])) begin
+      entry = t_lt(r0[2], t0[2], r0[0], t0[0]) ? 2'd0 : 2'd2;
+    end else begin
+      entry = t_lt(r0[2], t0[2], r0[1], t0[1]) ? 2'd1 : 2'd2;
+    end
+    desc_child_d = '0;
+    for (int a = 0; a < 3; a++) begin
+      if (32'(a) != 32'(entry) && t_lt(rm[a], tm[a], r0[entry], t0[entry])) desc_child_d[2-a] = 1'b1;
+    end
+    desc_t0_d   = t0_q[desc_slot_q];
+    desc_t1_d   = t1_q[desc_slot_q];
+    desc_behind = 1'b0;
+    for (int a = 0; a < 3; a++) begin
+      if (active[a]) begin
+        if (desc_child_d[2-a]) begin
+          desc_t0_d[a*T_W +: T_W] = tm[a];
+          if (t1[a] < 0) desc_behind = 1'b1;
+        end else begin
+          desc_t1_d[a*T_W +: T_W] = tm[a];
+          if (tm[a] < 0) desc_behind = 1'b1;
+        end
+      end
+    end
+  end
+
+  // ---- The leaf's index reads and results, counted from the visit ----------------------
+  logic [31:0] idx_issued;
+  logic        idx_last, res_last;
+  rt_idx_count #(.N(N), .Starts(1), .SlotW(SlotW)) u_idx_count (
+    .clk_i,
+    .rst_ni,
+    .start_i       (visit_go_i),
+    .start_slot_i  (visit_slot_i),
+    .start_count_i (32'(visit_rec_i.count)),
+    .idx_go_i,
+    .idx_slot_i,
+    .idx_issued_o  (idx_issued),
+    .idx_last_o    (idx_last),
+    .res_valid_i,
+    .res_slot_i,
+    .res_last_o    (res_last)
+  );
+
+  // ---- Next state of the state vectors ---------------------------------------------------
+  logic [N-1:0] free_d, setup_d, enter_d, group_req_d, wait_group_d, fetch_d, check_d;
+  logic [N-1:0] next_d, refill_req_d, wait_refill_d, done_d, iss_d, gv_d, fin_d;
+  logic         desc_d;
+
+  always_comb begin : b_state_d
+    logic [N-1:0] visit_group, visit_fetch, visit_check, issued_all;
+    visit_group   = visit_oh & {N{!visit_leaf}};
+    visit_fetch   = visit_oh & {N{visit_leaf && !visit_empty}};
+    visit_check   = visit_oh & {N{visit_leaf && visit_empty}};
+    issued_all    = onehot(idx_last, idx_slot_i);
+    free_d        = (free_q & ~alloc_oh) | done_oh;
+    setup_d       = (setup_q & ~init_oh) | alloc_oh;
+    enter_d       = (enter_q & ~visit_oh) | (init_oh & {N{init_enter_i}})
+                    | (desc_oh & {N{!desc_behind}}) | to_enter | (rsp_oh & wait_refill_q);
+    group_req_d   = (group_req_q & ~node_oh) | visit_group;
+    refill_req_d  = (refill_req_q & ~node_oh) | to_refill;
+    wait_group_d  = (wait_group_q & ~rsp_oh) | (node_oh & group_req_q);
+    wait_refill_d = (wait_refill_q & ~rsp_oh) | (node_oh & refill_req_q);
+    fetch_d       = (fetch_q & ~fin_oh) | visit_fetch;
+    check_d       = (check_q & ~adv_oh & ~check_oh) | fin_oh | visit_check;
+    next_d        = (next_q & ~adv_oh) | to_next | (desc_oh & {N{desc_behind}});
+    done_d        = (done_q & ~done_oh) | (init_oh & {N{!init_enter_i}}) | to_done
+                    | (check_oh & {N{check_holds_i}});
+    iss_d         = (iss_q & ~issued_all) | visit_fetch;
+    gv_d          = (gv_q & ~popped & ~init_oh) | rsp_oh;
+    desc_d        = node_rsp_valid_i && wait_group_q[node_rsp_slot_i];
+    // The result that completes the leaf: FETCH ends in the next cycle.
+    fin_d         = onehot(res_last, res_slot_i);
+  end
+
+  // ---- State (reset) ---------------------------------------------------------------------
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_state
     if (!rst_ni) begin
       free_q        <= '1;
       setup_q       <= '0;
@@ -287,161 +456,77 @@ module rt_octree_slots #(
       fin_q         <= 1'b0;
       fin_slot_q    <= '0;
     end else begin
-      // The advance lanes: each reads its slot's registers only; the lanes'
-      // slots differ (a slot waits in one arbiter's requests, or holds the
-      // exit-test grant), so their writes never meet.
-      adv_oh    = '0;
-      to_enter  = '0;
-      to_refill = '0;
-      to_next   = '0;
-      to_done   = '0;
-      popped    = '0;
-      for (int l = 0; l < LANES; l++) begin
-        if (lane_go[l]) begin
-          s         = lane_slot[l];
-          adv_oh[s] = 1'b1;
-          active    = active_q[s];
-          child     = child_q[s];
-          depth     = depth_q[s];
-          t0_next   = t0_q[s];
-          t1_next   = t1_q[s];
-          for (int a = 0; a < 3; a++) begin
-            t0[a] = t0_next[a*T_W +: T_W];
-            t1[a] = t1_next[a*T_W +: T_W];
-          end
-          xa   = exit_axis(active, t1[0], t1[1], t1[2]);
-          bits = 3'b100 >> xa;
-          if (depth == '0) begin
-            to_done[s] = 1'b1;
-          end else if ((child & bits) == '0) begin
-            up     = (t1[xa] <<< 1) - t0[xa];
-            behind = active[xa] && up < 0;
-            for (int a = 0; a < 3; a++) begin
-              if (32'(a) != 32'(xa) && active[a] && t1[a] < 0) behind = 1'b1;
-            end
-            to_next[s]   = behind;
-            to_enter[s]  = !behind && gv_q[s];
-            to_refill[s] = !behind && !gv_q[s];
-            t0_next[xa*T_W +: T_W] = t1[xa];
-            t1_next[xa*T_W +: T_W] = up;
-            child_q[s] <= child | bits;
-          end else begin
-            popped[s]  = 1'b1;
-            to_done[s] = (depth == DEPTH_W'(1));
-            to_next[s] = (depth != DEPTH_W'(1));
-            for (int a = 0; a < 3; a++) begin
-              if (active[a]) begin
-                if (child[2-a]) begin
-                  t0_next[a*T_W +: T_W] = (t0[a] <<< 1) - t1[a];
-                end else begin
-                  t1_next[a*T_W +: T_W] = (t1[a] <<< 1) - t0[a];
-                end
-              end
-            end
-            parent     = stack_q[stack_addr(s, STK_W'(depth - DEPTH_W'(2)))];
-            grp_q[s]   <= parent[34:3];
-            child_q[s] <= parent[2:0];
-            depth_q[s] <= depth - 1'b1;
-          end
-          // (One write of the parameters per lane: each write site costs a
-          // simulator a staging copy in every cycle.)
-          if (depth != '0) begin
-            t0_q[s] <= t0_next;
-            t1_q[s] <= t1_next;
-          end
-        end
-      end
-
-      // DESCEND (one slot): the mid-plane parameters (exact halvings), the first
-      // child (table 1) and its parameters; push the current entry (none at
-      // the root) and enter the child.
-      behind = 1'b0;
-      if (desc_q) begin
-        active  = active_q[desc_slot_q];
-        depth   = depth_q[desc_slot_q];
-        mid_bit = DEPTH_W'(P - 1) - depth;
-        for (int a = 0; a < 3; a++) begin
-          t0[a]  = t0_q[desc_slot_q][a*T_W +: T_W];
-          t1[a]  = t1_q[desc_slot_q][a*T_W +: T_W];
-          org[a] = org_q[desc_slot_q][a*ORG_W +: ORG_W];
-          // (t0 + t1) / 2 without the carry bit: t0 and t1 have the same parity.
-          tm[a] = (t0[a] >>> 1) + (t1[a] >>> 1) + $signed({{(T_W-1){1'b0}}, t0[a][0] & t1[a][0]});
-          r0[a] = active[a] ? FINITE : NEG_INF;
-          rm[a] = active[a] ? FINITE : (org[a][mid_bit] ? NEG_INF : POS_INF);
-        end
-        // The entry plane: the axis of the largest t0 (fx::firstChild's order).
-        if (t_lt(r0[1], t0[1], r0[0], t0[0])) begin
-          entry = t_lt(r0[2], t0[2], r0[0], t0[0]) ? 2'd0 : 2'd2;
-        end else begin
-          entry = t_lt(r0[2], t0[2], r0[1], t0[1]) ? 2'd1 : 2'd2;
-        end
-        c = '0;
-        for (int a = 0; a < 3; a++) begin
-          if (32'(a) != 32'(entry) && t_lt(rm[a], tm[a], r0[entry], t0[entry])) c[2-a] = 1'b1;
-        end
-        t0_next = t0_q[desc_slot_q];
-        t1_next = t1_q[desc_slot_q];
-        for (int a = 0; a < 3; a++) begin
-          if (active[a]) begin
-            if (c[2-a]) begin
-              t0_next[a*T_W +: T_W] = tm[a];
-              if (t1[a] < 0) behind = 1'b1;
-            end else begin
-              t1_next[a*T_W +: T_W] = tm[a];
-              if (tm[a] < 0) behind = 1'b1;
-            end
-          end
-        end
-        t0_q[desc_slot_q] <= t0_next;
-        t1_q[desc_slot_q] <= t1_next;
-        if (depth != '0) begin
-          stack_q[stack_addr(desc_slot_q, STK_W'(depth - 1'b1))] <= {grp_q[desc_slot_q], child_q[desc_slot_q]};
-        end
-        grp_q[desc_slot_q]   <= first_q[desc_slot_q];
-        child_q[desc_slot_q] <= c;
-        depth_q[desc_slot_q] <= depth + 1'b1;
-      end
-      if (init_i) begin
-        t0_q[init_slot_i]     <= init_t0_i;
-        t1_q[init_slot_i]     <= init_t1_i;
-        depth_q[init_slot_i]  <= '0;
-        grp_q[init_slot_i]    <= '0;
-        child_q[init_slot_i]  <= '0;
-        mirror_q[init_slot_i] <= init_mirror_i;
-        active_q[init_slot_i] <= init_active_i;
-        org_q[init_slot_i]    <= init_origin_i;
-      end
-      if (visit_go_i) begin
-        first_q[visit_slot_i]    <= visit_rec_i.first;
-        count_q[visit_slot_i]    <= 32'(visit_rec_i.count);
-        issued_q[visit_slot_i]   <= '0;
-        received_q[visit_slot_i] <= '0;
-      end
-      if (idx_go_i) issued_q[idx_slot_i] <= issued_q[idx_slot_i] + 1'b1;
-      if (res_valid_i) received_q[res_slot_i] <= received_q[res_slot_i] + 1'b1;
-
-      // ---- State vectors ----
-      free_q        <= (free_q & ~alloc_oh) | done_oh;
-      setup_q       <= (setup_q & ~init_oh) | alloc_oh;
-      enter_q       <= (enter_q & ~visit_oh) | (init_oh & {N{init_enter_i}})
-                       | (desc_oh & {N{!behind}}) | to_enter | (rsp_oh & wait_refill_q);
-      group_req_q   <= (group_req_q & ~node_oh) | (visit_oh & {N{!visit_leaf}});
-      refill_req_q  <= (refill_req_q & ~node_oh) | to_refill;
-      wait_group_q  <= (wait_group_q & ~rsp_oh) | (node_oh & group_req_q);
-      wait_refill_q <= (wait_refill_q & ~rsp_oh) | (node_oh & refill_req_q);
-      fetch_q       <= (fetch_q & ~fin_oh) | (visit_oh & {N{visit_leaf && !visit_empty}});
-      check_q       <= (check_q & ~adv_oh & ~check_oh) | fin_oh | (visit_oh & {N{visit_leaf && visit_empty}});
-      next_q        <= (next_q & ~adv_oh) | to_next | (desc_oh & {N{behind}});
-      done_q        <= (done_q & ~done_oh) | (init_oh & {N{!init_enter_i}}) | to_done
-                       | (check_oh & {N{check_holds_i}});
-      iss_q         <= (iss_q & ~onehot(idx_go_i && (issued_q[idx_slot_i] + 1'b1 == count_q[idx_slot_i]), idx_slot_i))
-                       | (visit_oh & {N{visit_leaf && !visit_empty}});
-      gv_q          <= (gv_q & ~popped & ~init_oh) | rsp_oh;
-      desc_q        <= node_rsp_valid_i && wait_group_q[node_rsp_slot_i];
+      free_q        <= free_d;
+      setup_q       <= setup_d;
+      enter_q       <= enter_d;
+      group_req_q   <= group_req_d;
+      wait_group_q  <= wait_group_d;
+      fetch_q       <= fetch_d;
+      check_q       <= check_d;
+      next_q        <= next_d;
+      refill_req_q  <= refill_req_d;
+      wait_refill_q <= wait_refill_d;
+      done_q        <= done_d;
+      iss_q         <= iss_d;
+      gv_q          <= gv_d;
+      desc_q        <= desc_d;
       desc_slot_q   <= node_rsp_slot_i;
-      fin_q         <= |fin_next;
+      fin_q         <= |fin_d;
       fin_slot_q    <= res_slot_i;
     end
+  end
+
+  // ---- Per-slot registers (no reset: written before read) ------------------------------
+  // The walk's registers: the lanes, then DESCEND, then init (a later write wins;
+  // the events' slots differ).
+  always_ff @(posedge clk_i) begin : p_walk
+    for (int l = 0; l < LANES; l++) begin
+      // (One write of the parameters per lane: each write site costs a
+      // simulator a staging copy in every cycle.)
+      if (lane_step[l]) begin
+        t0_q[lane_slot[l]]    <= lane_t0_d[l];
+        t1_q[lane_slot[l]]    <= lane_t1_d[l];
+        child_q[lane_slot[l]] <= lane_child_d[l];
+      end
+      if (lane_pop[l]) begin
+        grp_q[lane_slot[l]]   <= lane_grp_d[l];
+        depth_q[lane_slot[l]] <= lane_depth_d[l];
+      end
+    end
+    if (desc_q) begin
+      t0_q[desc_slot_q]    <= desc_t0_d;
+      t1_q[desc_slot_q]    <= desc_t1_d;
+      grp_q[desc_slot_q]   <= first_q[desc_slot_q];
+      child_q[desc_slot_q] <= desc_child_d;
+      depth_q[desc_slot_q] <= desc_depth + 1'b1;
+    end
+    if (init_i) begin
+      t0_q[init_slot_i]    <= init_t0_i;
+      t1_q[init_slot_i]    <= init_t1_i;
+      depth_q[init_slot_i] <= '0;
+      grp_q[init_slot_i]   <= '0;
+      child_q[init_slot_i] <= '0;
+    end
+  end
+
+  // The stack: DESCEND pushes the current entry (none at the root).
+  always_ff @(posedge clk_i) begin : p_stack
+    if (desc_q && desc_depth != '0) begin
+      stack_q[stack_addr(desc_slot_q, STK_W'(desc_depth - 1'b1))] <= {grp_q[desc_slot_q], child_q[desc_slot_q]};
+    end
+  end
+
+  // The ray's setup, and the current node's record.
+  always_ff @(posedge clk_i) begin : p_ray
+    if (init_i) begin
+      mirror_q[init_slot_i] <= init_mirror_i;
+      active_q[init_slot_i] <= init_active_i;
+      org_q[init_slot_i]    <= init_origin_i;
+    end
+  end
+
+  always_ff @(posedge clk_i) begin : p_node
+    if (visit_go_i) first_q[visit_slot_i] <= visit_rec_i.first;
   end
 
   // ---- Outputs ----------------------------------------------------------------------------
@@ -451,7 +536,7 @@ module rt_octree_slots #(
   assign visit_sel_o     = visit_sel;
   assign visit_node_id_o = visit_at_root_o ? '0 : grp_q[visit_slot_i] + 32'(visit_sel);
   assign node_addr_o     = ADDR_W'(group_req_q[node_slot_i] ? first_q[node_slot_i] : grp_q[node_slot_i]);
-  assign idx_addr_o      = ADDR_W'(first_q[idx_slot_i] + issued_q[idx_slot_i]);
+  assign idx_addr_o      = ADDR_W'(first_q[idx_slot_i] + idx_issued);
   assign check_exit_o    = min_active(active_q[check_slot_i], t1_q[check_slot_i][0*T_W +: T_W], t1_q[check_slot_i][1*T_W +: T_W],
                                       t1_q[check_slot_i][2*T_W +: T_W]);
 
@@ -465,19 +550,20 @@ module rt_octree_slots #(
   assign waiting_node_o = wait_group_q | wait_refill_q;
 
 `ifdef RT_ASSERT_ON
+`include "rt_assert.svh"
+  // (An array read as a wire: Verilator 5.006 fails on one inside a property.)
+  logic desc_splits;
+  assign desc_splits  = desc_depth < DEPTH_W'(STACK);
+
   // Events meet slots in the states that expect them.
-  always_ff @(posedge clk_i) begin
-    if (rst_ni) begin
-      if (alloc_i) a_alloc_free : assert (free_q[alloc_slot_i]);
-      if (init_i) a_init_setup : assert (setup_q[init_slot_i]);
-      if (visit_go_i) a_visit_enter : assert (enter_q[visit_slot_i]);
-      if (idx_go_i) a_idx_fetch : assert (iss_q[idx_slot_i]);
-      if (res_valid_i) a_res_fetch : assert (fetch_q[res_slot_i] && received_q[res_slot_i] != issued_q[res_slot_i]);
-      if (check_go_i) a_check_wants : assert (check_q[check_slot_i] && bound_i[check_slot_i]);
-      // An interior node one lattice unit wide cannot be split: the image is malformed.
-      if (desc_q) a_stack_depth : assert (depth_q[desc_slot_q] < DEPTH_W'(STACK));
-    end
-  end
+  `RT_ASSERT(a_alloc_free, alloc_i |-> free_q[alloc_slot_i])
+  `RT_ASSERT(a_init_setup, init_i |-> setup_q[init_slot_i])
+  `RT_ASSERT(a_visit_enter, visit_go_i |-> enter_q[visit_slot_i])
+  `RT_ASSERT(a_idx_fetch, idx_go_i |-> iss_q[idx_slot_i])
+  `RT_ASSERT(a_res_fetch, res_valid_i |-> fetch_q[res_slot_i])
+  `RT_ASSERT(a_check_wants, check_go_i |-> check_q[check_slot_i] && bound_i[check_slot_i])
+  // An interior node one lattice unit wide cannot be split: the image is malformed.
+  `RT_ASSERT(a_stack_depth, desc_q |-> desc_splits)
 `endif
 
 endmodule
