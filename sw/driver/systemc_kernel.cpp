@@ -1,12 +1,12 @@
 #include "driver/systemc_kernel.h"
 
 #include <cstdlib>
+#include <map>
 
 #include <systemc>
 
-#include "grid/rt_grid_unit.h"
+#include "common/rt_trav_top.h"
 #include "isect/rt_isect_top.h"
-#include "octree/rt_octree_unit.h"
 
 namespace lancer::systemc_kernel {
 
@@ -26,25 +26,22 @@ void routeReports() {
   sc_report_handler::set_actions(sc_core::SC_FATAL, sc_core::SC_THROW);
 }
 
-struct Systems {
-  sc::rt_isect_top* isect;
-  sc::rt_grid_top* grid;
-  sc::rt_octree_top* octree;
-  sc::rt_trav_top<sc::rt_grid_unit>& of(sc::rt_grid_unit*) { return *grid; }
-  sc::rt_trav_top<sc::rt_octree_unit>& of(sc::rt_octree_unit*) { return *octree; }
-};
+// The traversal systems' builders by their order.
+std::map<int, void (*)()>& registry() {
+  static std::map<int, void (*)()> builders;
+  return builders;
+}
 
 // Never destroyed: SystemC cannot tear down an elaborated design and start again.
-Systems& systems() {
-  static Systems* const all = [] {
+sc::rt_isect_top& systems() {
+  static sc::rt_isect_top* const isect = [] {
     routeReports();
     // Every traversal top makes the Verilated SystemC models' context current
-    // before it builds them; the grid's comes first, as it always has.
-    auto* grid = new sc::rt_grid_top("lancer_grid");
-    auto* isect = new sc::rt_isect_top("lancer_isect");
-    return new Systems{isect, grid, new sc::rt_octree_top("lancer_octree")};
+    // before it builds them.
+    for (const auto& [order, build] : registry()) build();
+    return new sc::rt_isect_top("lancer_isect");
   }();
-  return *all;
+  return *isect;
 }
 
 }  // namespace
@@ -54,21 +51,18 @@ std::mutex& mutex() {
   return m;
 }
 
+bool registerTraversalSystem(int order, void (*build)()) {
+  registry().emplace(order, build);
+  return true;
+}
+
+void buildSystems() { systems(); }
+
 // Every run fetches its system through these, under the lock.
 sc::rt_isect_top& isectSystem() {
-  Systems& all = systems();
+  sc::rt_isect_top& isect = systems();
   sc::use_verilated_context();  // the one context of every Verilated SystemC model
-  return *all.isect;
+  return isect;
 }
-
-template <class Unit>
-sc::rt_trav_top<Unit>& traversalSystem() {
-  Systems& all = systems();
-  sc::use_verilated_context();
-  return all.of(static_cast<Unit*>(nullptr));
-}
-
-template sc::rt_grid_top& traversalSystem<sc::rt_grid_unit>();
-template sc::rt_octree_top& traversalSystem<sc::rt_octree_unit>();
 
 }  // namespace lancer::systemc_kernel

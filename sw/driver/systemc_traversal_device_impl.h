@@ -6,6 +6,7 @@
 #include <array>
 #include <mutex>
 #include <stdexcept>
+#include <string>
 
 #include <fmt/format.h>
 #include <systemc>
@@ -16,6 +17,24 @@
 #include "driver/systemc_traversal_device.h"
 
 namespace lancer {
+
+namespace systemc_kernel {
+
+// A traversal unit's system, built with the others (registerTraversalSystem).
+template <class Unit>
+sc::rt_trav_top<Unit>*& systemOf() {
+  static sc::rt_trav_top<Unit>* system = nullptr;
+  return system;
+}
+
+template <class Unit>
+sc::rt_trav_top<Unit>& traversalSystem() {
+  buildSystems();
+  sc::use_verilated_context();  // the one context of every Verilated SystemC model
+  return *systemOf<Unit>();
+}
+
+}  // namespace systemc_kernel
 
 template <class Image, class Unit>
 SystemCTraversalDevice<Image, Unit>::SystemCTraversalDevice(Impl impl) : impl_(impl) {
@@ -159,9 +178,17 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
 
 // A unit's SystemC device, in its systemc_<unit>_device.cpp: the explicit
 // instantiation for the descriptor `Descriptor` and the SystemC traits `Traits`
-// (systemc/<unit>/rt_<unit>_unit.h), and its factories.
+// (systemc/<unit>/rt_<unit>_unit.h), its factories, and its system
+// ("lancer_<unit>"), registered with the process's kernel.
 #define LANCER_SYSTEMC_TRAVERSAL_UNIT(Descriptor, Traits)                                        \
   namespace lancer {                                                                            \
+  namespace {                                                                                   \
+  [[maybe_unused]] const bool kSystemRegistered = systemc_kernel::registerTraversalSystem(      \
+      int(Descriptor::kKind), [] {                                                              \
+        systemc_kernel::systemOf<Traits>() =                                                    \
+            new sc::rt_trav_top<Traits>((std::string("lancer_") + Descriptor::kNames.unit).c_str()); \
+      });                                                                                       \
+  }                                                                                             \
   template class SystemCTraversalDevice<Descriptor::Image, Traits>;                             \
   template <>                                                                                   \
   std::unique_ptr<DeviceOf<Descriptor>> makeSystemCDevice<Descriptor>(SystemCImpl impl) {       \
