@@ -272,60 +272,76 @@ module rt_octree_slots #(
     logic [N-1:0]          oh;
     {adv_oh, to_enter, to_refill, to_next, to_done, popped} = '0;
     for (int l = 0; l < LANES; l++) begin
-      s      = lane_slot[l];
-      active = active_q[s];
-      child  = child_q[s];
-      depth  = depth_q[s];
+      // A lane without a grant writes nothing: its arithmetic is skipped (a
+      // simulator then evaluates it only for the slots that step).
+      lane_t0_d[l]    = '0;
+      lane_t1_d[l]    = '0;
+      lane_child_d[l] = '0;
+      lane_grp_d[l]   = '0;
+      lane_depth_d[l] = '0;
+      lane_step[l]    = 1'b0;
+      lane_pop[l]     = 1'b0;
+      {s, active, child, depth, xa, bits, sibling, up, behind, parent, oh} = '0;
       for (int a = 0; a < 3; a++) begin
-        t0[a] = t0_q[s][a*T_W +: T_W];
-        t1[a] = t1_q[s][a*T_W +: T_W];
+        t0[a] = '0;
+        t1[a] = '0;
       end
-      xa      = exit_axis(active, t1[0], t1[1], t1[2]);
-      bits    = 3'b100 >> xa;
-      sibling = (child & bits) == '0;
-      up      = (t1[xa] <<< 1) - t0[xa];
-      behind  = active[xa] && up < 0;
-      for (int a = 0; a < 3; a++) begin
-        if (32'(a) != 32'(xa) && active[a] && t1[a] < 0) behind = 1'b1;
-      end
-      parent          = stack_q[stack_addr(s, STK_W'(depth - DEPTH_W'(2)))];
-      lane_t0_d[l]    = t0_q[s];
-      lane_t1_d[l]    = t1_q[s];
-      lane_grp_d[l]   = parent[34:3];
-      lane_depth_d[l] = depth - 1'b1;
-      lane_step[l]    = lane_go[l] && depth != '0;
-      lane_pop[l]     = lane_step[l] && !sibling;
-      if (sibling) begin
-        lane_t0_d[l][xa*T_W +: T_W] = t1[xa];
-        lane_t1_d[l][xa*T_W +: T_W] = up;
-        lane_child_d[l]             = child | bits;
-      end else begin
+      if (lane_go[l]) begin
+        s      = lane_slot[l];
+        active = active_q[s];
+        child  = child_q[s];
+        depth  = depth_q[s];
         for (int a = 0; a < 3; a++) begin
-          if (active[a]) begin
-            if (child[2-a]) begin
-              lane_t0_d[l][a*T_W +: T_W] = (t0[a] <<< 1) - t1[a];
-            end else begin
-              lane_t1_d[l][a*T_W +: T_W] = (t1[a] <<< 1) - t0[a];
+          t0[a] = t0_q[s][a*T_W +: T_W];
+          t1[a] = t1_q[s][a*T_W +: T_W];
+        end
+        xa      = exit_axis(active, t1[0], t1[1], t1[2]);
+        bits    = 3'b100 >> xa;
+        sibling = (child & bits) == '0;
+        up      = (t1[xa] <<< 1) - t0[xa];
+        behind  = active[xa] && up < 0;
+        for (int a = 0; a < 3; a++) begin
+          if (32'(a) != 32'(xa) && active[a] && t1[a] < 0) behind = 1'b1;
+        end
+        parent          = stack_q[stack_addr(s, STK_W'(depth - DEPTH_W'(2)))];
+        lane_t0_d[l]    = t0_q[s];
+        lane_t1_d[l]    = t1_q[s];
+        lane_grp_d[l]   = parent[34:3];
+        lane_depth_d[l] = depth - 1'b1;
+        lane_step[l]    = depth != '0;
+        lane_pop[l]     = lane_step[l] && !sibling;
+        if (sibling) begin
+          lane_t0_d[l][xa*T_W +: T_W] = t1[xa];
+          lane_t1_d[l][xa*T_W +: T_W] = up;
+          lane_child_d[l]             = child | bits;
+        end else begin
+          for (int a = 0; a < 3; a++) begin
+            if (active[a]) begin
+              if (child[2-a]) begin
+                lane_t0_d[l][a*T_W +: T_W] = (t0[a] <<< 1) - t1[a];
+              end else begin
+                lane_t1_d[l][a*T_W +: T_W] = (t1[a] <<< 1) - t0[a];
+              end
             end
           end
+          lane_child_d[l] = parent[2:0];
         end
-        lane_child_d[l] = parent[2:0];
-      end
 
-      // Where the slot goes: DONE at depth 0; after a sibling step NEXT,
-      // ENTER or REFILL_REQ; after a pop NEXT, or DONE at the root.
-      oh     = onehot(lane_go[l], s);
-      adv_oh = adv_oh | oh;
-      if (depth == '0) begin
-        to_done = to_done | oh;
-      end else if (sibling) begin
-        to_next   = to_next   | (oh & {N{behind}});
-        to_enter  = to_enter  | (oh & {N{!behind && gv_q[s]}});
-        to_refill = to_refill | (oh & {N{!behind && !gv_q[s]}});
-      end else begin
-        popped  = popped | oh;
-        to_done = to_done | (oh & {N{depth == DEPTH_W'(1)}});
-        to_next = to_next | (oh & {N{depth != DEPTH_W'(1)}});
+        // Where the slot goes: DONE at depth 0; after a sibling step NEXT,
+        // ENTER or REFILL_REQ; after a pop NEXT, or DONE at the root.
+        oh     = onehot(lane_go[l], s);
+        adv_oh = adv_oh | oh;
+        if (depth == '0) begin
+          to_done = to_done | oh;
+        end else if (sibling) begin
+          to_next   = to_next   | (oh & {N{behind}});
+          to_enter  = to_enter  | (oh & {N{!behind && gv_q[s]}});
+          to_refill = to_refill | (oh & {N{!behind && !gv_q[s]}});
+        end else begin
+          popped  = popped | oh;
+          to_done = to_done | (oh & {N{depth == DEPTH_W'(1)}});
+          to_next = to_next | (oh & {N{depth != DEPTH_W'(1)}});
+        end
       end
     end
   end
@@ -348,39 +364,51 @@ module rt_octree_slots #(
     logic [2:0]            active;
     logic [DEPTH_W-1:0]    mid_bit;
     logic [1:0]            entry;
-    active     = active_q[desc_slot_q];
-    desc_depth = depth_q[desc_slot_q];
-    mid_bit    = DEPTH_W'(P - 1) - desc_depth;
-    for (int a = 0; a < 3; a++) begin
-      t0[a]  = t0_q[desc_slot_q][a*T_W +: T_W];
-      t1[a]  = t1_q[desc_slot_q][a*T_W +: T_W];
-      org[a] = org_q[desc_slot_q][a*ORG_W +: ORG_W];
-      // (t0 + t1) / 2 without the carry bit: t0 and t1 have the same parity.
-      tm[a] = (t0[a] >>> 1) + (t1[a] >>> 1) + $signed({{(T_W-1){1'b0}}, t0[a][0] & t1[a][0]});
-      r0[a] = active[a] ? FINITE : NEG_INF;
-      rm[a] = active[a] ? FINITE : (org[a][mid_bit] ? NEG_INF : POS_INF);
-    end
-    // The entry plane: the axis of the largest t0 (fx::firstChild's order).
-    if (t_lt(r0[1], t0[1], r0[0], t0[0])) begin
-      entry = t_lt(r0[2], t0[2], r0[0], t0[0]) ? 2'd0 : 2'd2;
-    end else begin
-      entry = t_lt(r0[2], t0[2], r0[1], t0[1]) ? 2'd1 : 2'd2;
-    end
+    // Only a slot in DESCEND writes these (desc_q): without one, nothing is computed.
+    desc_t0_d    = '0;
+    desc_t1_d    = '0;
     desc_child_d = '0;
+    desc_depth   = '0;
+    desc_behind  = 1'b0;
+    {active, mid_bit, entry} = '0;
     for (int a = 0; a < 3; a++) begin
-      if (32'(a) != 32'(entry) && t_lt(rm[a], tm[a], r0[entry], t0[entry])) desc_child_d[2-a] = 1'b1;
+      {t0[a], t1[a], tm[a], org[a], r0[a], rm[a]} = '0;
     end
-    desc_t0_d   = t0_q[desc_slot_q];
-    desc_t1_d   = t1_q[desc_slot_q];
-    desc_behind = 1'b0;
-    for (int a = 0; a < 3; a++) begin
-      if (active[a]) begin
-        if (desc_child_d[2-a]) begin
-          desc_t0_d[a*T_W +: T_W] = tm[a];
-          if (t1[a] < 0) desc_behind = 1'b1;
-        end else begin
-          desc_t1_d[a*T_W +: T_W] = tm[a];
-          if (tm[a] < 0) desc_behind = 1'b1;
+    if (desc_q) begin : b_descend_slot
+      active     = active_q[desc_slot_q];
+      desc_depth = depth_q[desc_slot_q];
+      mid_bit    = DEPTH_W'(P - 1) - desc_depth;
+      for (int a = 0; a < 3; a++) begin
+        t0[a]  = t0_q[desc_slot_q][a*T_W +: T_W];
+        t1[a]  = t1_q[desc_slot_q][a*T_W +: T_W];
+        org[a] = org_q[desc_slot_q][a*ORG_W +: ORG_W];
+        // (t0 + t1) / 2 without the carry bit: t0 and t1 have the same parity.
+        tm[a] = (t0[a] >>> 1) + (t1[a] >>> 1) + $signed({{(T_W-1){1'b0}}, t0[a][0] & t1[a][0]});
+        r0[a] = active[a] ? FINITE : NEG_INF;
+        rm[a] = active[a] ? FINITE : (org[a][mid_bit] ? NEG_INF : POS_INF);
+      end
+      // The entry plane: the axis of the largest t0 (fx::firstChild's order).
+      if (t_lt(r0[1], t0[1], r0[0], t0[0])) begin
+        entry = t_lt(r0[2], t0[2], r0[0], t0[0]) ? 2'd0 : 2'd2;
+      end else begin
+        entry = t_lt(r0[2], t0[2], r0[1], t0[1]) ? 2'd1 : 2'd2;
+      end
+      desc_child_d = '0;
+      for (int a = 0; a < 3; a++) begin
+        if (32'(a) != 32'(entry) && t_lt(rm[a], tm[a], r0[entry], t0[entry])) desc_child_d[2-a] = 1'b1;
+      end
+      desc_t0_d   = t0_q[desc_slot_q];
+      desc_t1_d   = t1_q[desc_slot_q];
+      desc_behind = 1'b0;
+      for (int a = 0; a < 3; a++) begin
+        if (active[a]) begin
+          if (desc_child_d[2-a]) begin
+            desc_t0_d[a*T_W +: T_W] = tm[a];
+            if (t1[a] < 0) desc_behind = 1'b1;
+          end else begin
+            desc_t1_d[a*T_W +: T_W] = tm[a];
+            if (tm[a] < 0) desc_behind = 1'b1;
+          end
         end
       end
     end
