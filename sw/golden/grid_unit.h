@@ -38,6 +38,8 @@ struct GridUnit {
                                     .stepsLabel = "voxel steps",
                                     .readsKey = "cell_reads",
                                     .readsLabel = "cell table reads"};
+  static constexpr const auto& kNodeFieldList = kGridCellFields;
+  static constexpr const auto& kCfgFieldList = kGridCfgFields;
   static constexpr std::span<const FieldSpec> kNodeFields = kGridCellFields;
   static constexpr std::span<const FieldSpec> kVisitFields = kGridVisitFields;
   static constexpr std::span<const FieldSpec> kResFields = kGridResFields;

@@ -34,6 +34,8 @@ struct OctreeUnit {
                                     .stepsLabel = "node steps",
                                     .readsKey = "node_reads",
                                     .readsLabel = "child group reads"};
+  static constexpr const auto& kNodeFieldList = kOctreeNodeFields;
+  static constexpr const auto& kCfgFieldList = kOctreeNodeFields;
   static constexpr std::span<const FieldSpec> kNodeFields = kOctreeNodeFields;
   static constexpr std::span<const FieldSpec> kVisitFields = kOctreeVisitFields;
   static constexpr std::span<const FieldSpec> kResFields = kOctreeResFields;
