@@ -131,19 +131,6 @@ struct Walker {
 
 }  // namespace
 
-void packChildGroup(const OctreeImage& image, uint32_t first, std::span<uint32_t> wire) {
-  if (uint64_t(first) + kOctreeChildren > image.nodes.size()) {
-    throw std::out_of_range(fmt::format("child group at node {} lies outside the node table ({} nodes)", first,
-                                        image.nodes.size()));
-  }
-  constexpr size_t kNodeWords = size_t(wireWords(kOctreeNodeBits));
-  for (size_t i = 0; i < size_t(kOctreeChildren); ++i) {
-    const OctreeNode& node = image.nodes[first + i];
-    const u128 values[] = {node.leaf ? 1u : 0u, node.count, node.first};
-    packFields(kOctreeNodeFields, values, wire.subspan(i * kNodeWords, kNodeWords));
-  }
-}
-
 int defaultOctreeDepth(size_t triangles) {
   const double leaves = std::max(1.0, double(triangles) / kDefaultOctreeLeafSize);
   const int levels = int(std::ceil(std::log(leaves) / std::log(8.0))) + 3;

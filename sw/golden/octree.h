@@ -36,12 +36,6 @@ struct OctreeImage {
   int depth = 0;                     // deepest leaf built
 };
 
-// A child group as the node port returns it: nodes first .. first + 7 as
-// `octree_node_t [7:0]`, element 0 least significant (2 words each, 16 in
-// all). Throws std::out_of_range if the group is not in the image.
-inline constexpr size_t kOctreeGroupWords = size_t(kOctreeChildren) * size_t(wireWords(kOctreeNodeBits));
-void packChildGroup(const OctreeImage& image, uint32_t first, std::span<uint32_t> wire);
-
 inline constexpr int kDefaultOctreeLeafSize = 8;
 // Deep enough that leaves hold about kDefaultOctreeLeafSize triangles on
 // typical meshes; never deeper than the formats allow.

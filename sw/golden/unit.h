@@ -25,14 +25,12 @@
 //   NodeReads(image)(trace)          node-port reads the hardware issues for a golden trace
 //   imageCounters(image)             the image's figures for the summary and the report
 
-#include <array>
 #include <cstdint>
 #include <span>
-#include <tuple>
-#include <utility>
 #include <string_view>
 #include <vector>
 
+#include "golden/record_bits.h"
 #include "golden/records.h"
 
 namespace lancer::fx {
@@ -65,47 +63,17 @@ struct ImageCounter {
   double value;
 };
 
-// Where each flattened field value of a record sits (lsb, width), at compile
-// time: the layout of records.h (first field most significant, element 0 of an
-// array least significant), for the per-node packing below, which runs over
-// every node of an image before each run.
-template <const auto& Fields>
-inline constexpr auto kFieldSlots = [] {
-  std::array<std::pair<int, int>, valueCount(Fields)> slots{};
-  int msb = recordBits(Fields);
-  size_t at = 0;
-  for (const FieldSpec& f : Fields) {
-    msb -= f.width * f.count;
-    for (int e = 0; e < f.count; ++e) slots[at++] = {msb + e * f.width, f.width};
-  }
-  return slots;
-}();
-
-// Ors `values` into a zeroed `wire` at the slots of `Fields`.
-template <const auto& Fields, class Values>
-void packAtSlots(const Values& values, std::span<uint32_t> wire) {
-  constexpr auto& slots = kFieldSlots<Fields>;
-  static_assert(std::tuple_size_v<Values> == slots.size(), "one value per field element");
-  for (size_t i = 0; i < slots.size(); ++i) {
-    const auto [lsb, width] = slots[i];
-    const u128 value = width >= 128 ? values[i] : (values[i] & ((u128(1) << width) - 1));
-    for (int w = lsb / 32; w <= (lsb + width - 1) / 32; ++w) {
-      const int at = 32 * w - lsb;
-      wire[size_t(w)] |= uint32_t(at >= 0 ? value >> at : value << -at);
-    }
-  }
-}
-
-// A node as its port's wire carries it (kNodeFields; element 0 of a group least significant).
+// A node as its port's wire carries it (kNodeFields, at compile-time positions:
+// the packing runs over every node of an image before each run).
 template <class U>
 void packNode(const typename U::Node& node, std::span<uint32_t> wire) {
-  packAtSlots<U::kNodeFieldList>(U::nodeValues(node), wire);
+  wire_bits::packFixed<U::kNodeFieldList>(U::nodeValues(node), wire);
 }
 
 // The configuration port's value of a run, as a wire image.
 template <class U>
 void packConfig(const typename U::Image& image, std::span<uint32_t> wire) {
-  packAtSlots<U::kCfgFieldList>(U::configValues(image), wire);
+  wire_bits::packFixed<U::kCfgFieldList>(U::configValues(image), wire);
 }
 
 template <class U>
