@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <algorithm>
-#include <map>
 #include <memory>
 #include <numeric>
 
@@ -480,14 +479,13 @@ void addRunCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("run", "Run rays through a hardware model and check it bit for bit");
   args->scene.add(*cmd);
   args->source.add(*cmd);
-  std::map<std::string, fx::UnitKind> paths;
-  for (fx::UnitKind path : hardwarePaths()) paths.emplace(toString(path), path);
+  // Checked by name (the message lists the paths), then kept as fx::UnitKind.
   const std::vector<std::string> names = hardwarePathNames();
-  cmd->add_option("--accel", args->accel,
-                 fmt::format("Hardware path: bvh (the host BVH feeding the intersection pipeline) or a traversal "
-                             "unit ({})",
-                             fmt::join(names.begin() + 1, names.end(), ", ")))
-      ->transform(CLI::CheckedTransformer(paths))
+  cmd->add_option_function<std::string>(
+         "--accel", [args](const std::string& name) { args->accel = parseHardwarePath(name); },
+         fmt::format("Hardware path: bvh (the host BVH feeding the intersection pipeline) or a traversal unit ({})",
+                     fmt::join(names.begin() + 1, names.end(), ", ")))
+      ->check(CLI::IsMember(names))
       ->default_str(std::string(toString(args->accel)));
   cmd->add_option("--model", args->job.model, "Model of the hardware: golden, systemc, rtl, rtl-systemc")
       ->check(CLI::IsMember({"golden", "systemc", "rtl", "rtl-systemc"}))
