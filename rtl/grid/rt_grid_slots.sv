@@ -433,22 +433,22 @@ module rt_grid_slots #(
 `ifdef RT_ASSERT_ON
 `include "rt_assert.svh"
   // Events name slots in the right state.
-  `RT_ASSERT(a_alloc_free, alloc_i |-> free_q[alloc_slot_i])
-  `RT_ASSERT(a_init_setup, init_i |-> setup_q[init_slot_i])
-  `RT_ASSERT(a_cell_go, cell_go_i |-> want_cell_o[cell_slot_i])
-  `RT_ASSERT(a_visit_go, visit_go_i |-> want_visit_o[visit_slot_i])
-  `RT_ASSERT(a_idx_go, idx_go_i |-> iss_q[idx_slot_i])
-  `RT_ASSERT(a_check_go, check_go_i |-> check_q[check_slot_i])
-  `RT_ASSERT(a_done_go, done_go_i |-> want_done_o[done_slot_i])
+  `RT_CHECK_IF(a_alloc_free, alloc_i, free_q[alloc_slot_i])
+  `RT_CHECK_IF(a_init_setup, init_i, setup_q[init_slot_i])
+  `RT_CHECK_IF(a_cell_go, cell_go_i, want_cell_o[cell_slot_i])
+  `RT_CHECK_IF(a_visit_go, visit_go_i, want_visit_o[visit_slot_i])
+  `RT_CHECK_IF(a_idx_go, idx_go_i, iss_q[idx_slot_i])
+  `RT_CHECK_IF(a_check_go, check_go_i, check_q[check_slot_i])
+  `RT_CHECK_IF(a_done_go, done_go_i, want_done_o[done_slot_i])
   // Responses: a cell response answers an outstanding read of its slot (the
   // head's, for a slot waiting in WAIT_CELL); results arrive for a slot in
   // FETCH (u_idx_count checks that it expects them, rt_trav_shell the
   // triangles' slots).
-  `RT_ASSERT(a_cell_rsp_slot, cell_rsp_valid_i |-> t_out != '0)
-  `RT_ASSERT(a_cell_rsp_head, cell_rsp_valid_i && wait_q[cell_rsp_tag_i] |-> t_cnt == t_out)
-  `RT_ASSERT(a_res_fetch, res_valid_i |-> fetch_q[r_slot])
+  `RT_CHECK_IF(a_cell_rsp_slot, cell_rsp_valid_i, t_out != '0)
+  `RT_CHECK_IF(a_cell_rsp_head, cell_rsp_valid_i && wait_q[cell_rsp_tag_i], t_cnt == t_out)
+  `RT_CHECK_IF(a_res_fetch, res_valid_i, fetch_q[r_slot])
   // Every slot is in one state (parity catches any slot in two).
-  `RT_ASSERT(a_states, (free_q | setup_q | visit_q | wait_q | fetch_q | check_q | done_q) == '1 &&
+  `RT_CHECK(a_states, (free_q | setup_q | visit_q | wait_q | fetch_q | check_q | done_q) == '1 &&
                        (free_q ^ setup_q ^ visit_q ^ wait_q ^ fetch_q ^ check_q ^ done_q) == '1)
   `RT_ASSERT_STATIC(g_queue_check, CellQueue >= 2 && (CellQueue & (CellQueue - 1)) == 0,
                     "rt_grid_slots: CellQueue must be a power of two >= 2")

@@ -423,10 +423,10 @@ module rt_isect (
       end
     end
   end
-  `RT_ASSERT(a_res_hold, res_stall_q |-> res_valid_o && res_data_o == res_held_q)
-  `RT_ASSERT(a_req_hold, req_stall_q |-> req_valid_i && req_ray_i == ray_held_q && req_tri_i == tri_held_q)
+  `RT_CHECK_IF(a_res_hold, res_stall_q, res_valid_o && res_data_o == res_held_q)
+  `RT_CHECK_IF(a_req_hold, req_stall_q, req_valid_i && req_ray_i == ray_held_q && req_tri_i == tri_held_q)
   // A full pipeline whose result is taken accepts a new request (II = 1).
-  `RT_ASSERT(a_full_throughput, res_ready_i |-> req_ready_o)
+  `RT_CHECK_IF(a_full_throughput, res_ready_i, req_ready_o)
 `endif
 
 endmodule

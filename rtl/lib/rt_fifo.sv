@@ -69,8 +69,8 @@ module rt_fifo #(
   // on the head entry while it is valid: checked on the pointers, so that a
   // simulator samples no data word in every evaluation.
   `RT_ASSERT(a_out_hold, out_valid_o && !out_ready_i |=> out_valid_o && $stable(rd_ptr_q))
-  `RT_ASSERT(a_head_kept, in_fire && out_valid_o |-> wr_ptr_q != rd_ptr_q)
-  `RT_ASSERT(a_count_range, count_q <= FULL)
+  `RT_CHECK_IF(a_head_kept, in_fire && out_valid_o, wr_ptr_q != rd_ptr_q)
+  `RT_CHECK(a_count_range, count_q <= FULL)
 `endif
 
 endmodule

@@ -52,10 +52,7 @@ module rt_idx_count #(
 `ifdef RT_ASSERT_ON
 `include "rt_assert.svh"
   // A result answers an index read (fewer results in than reads issued).
-  // (Array reads as wires: Verilator 5.006 fails on them inside a property.)
-  logic res_expected;
-  assign res_expected = received_q[res_slot_i] != issued_q[res_slot_i];
-  `RT_ASSERT(a_res_expected, res_valid_i |-> res_expected)
+  `RT_CHECK_IF(a_res_expected, res_valid_i, received_q[res_slot_i] != issued_q[res_slot_i])
 `endif
 
 endmodule

@@ -5,8 +5,8 @@
 //
 // The unit's own stage arithmetic sits beside it: stage 1 loads with valid_i
 // (from ray_i and mag_o), stage 2 with s1_valid_o (from the unit's stage-1
-// registers and s1_active_o / s1_neg_o). Both stages are rt_pipe_reg: their
-// words load only in the cycle a ray passes (enabled flops).
+// registers and s1_active_o / s1_neg_o). Both stages' words load only in the
+// cycle a ray passes (enabled flops; stage 2 is an rt_pipe_reg).
 //
 // Latency:    a ray accepted at edge t (valid_i high in the cycle before t) is
 //             on valid_o after edge t+1; the slot loads it at edge t+2.
@@ -50,31 +50,38 @@ module rt_setup_front #(
   } stage_t;
   localparam int STAGE_W = SlotW + rt_pkg::ISECT_RAY_W + 6 + DIR_W;  // (Yosys 0.23 takes no $bits of a type)
 
-  stage_t s1_d, s1_q, s2_q;
+  stage_t s1_q, s2_q;
 
-  // Stage 1's figures (plain variables: Yosys 0.23 writes no bit of a struct's field).
-  always_comb begin : b_stage1
-    logic [DIR_W-1:0] d, mag, dom;
-    logic [2:0]       active, neg;
-    dom = '0;
-    for (int a = 0; a < 3; a++) begin
-      d         = ray_i.dir[a];
-      mag       = mag_o[a*DIR_W +: DIR_W];
-      active[a] = (d != '0);
-      neg[a]    = d[DIR_W-1];
-      if (mag > dom) dom = mag;
+  // Stage 1: the figures are worked out inside the enabled flop rather than
+  // in an always_comb feeding an rt_pipe_reg (the same gates): a simulator then
+  // evaluates them for each ray that passes, not at every change of ray_i.
+  // (Plain variables: Yosys 0.23 writes no bit of a struct's field.)
+  logic s1_valid_q;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      s1_valid_q <= 1'b0;
+    end else begin
+      s1_valid_q <= valid_i;
     end
-    s1_d = {slot_i, ray_i, active, neg, dom};
   end
 
-  rt_pipe_reg #(.Width(STAGE_W)) u_stage1 (
-    .clk_i,
-    .rst_ni,
-    .valid_i,
-    .data_i  (s1_d),
-    .valid_o (s1_valid_o),
-    .data_o  (s1_q)
-  );
+  always_ff @(posedge clk_i) begin
+    if (valid_i) begin : b_stage1
+      logic [DIR_W-1:0] d, mag, dom;
+      logic [2:0]       active, neg;
+      dom = '0;
+      for (int a = 0; a < 3; a++) begin
+        d         = ray_i.dir[a];
+        mag       = mag_o[a*DIR_W +: DIR_W];
+        active[a] = (d != '0);
+        neg[a]    = d[DIR_W-1];
+        if (mag > dom) dom = mag;
+      end
+      s1_q <= {slot_i, ray_i, active, neg, dom};
+    end
+  end
+  assign s1_valid_o = s1_valid_q;
+
   rt_pipe_reg #(.Width(STAGE_W)) u_stage2 (
     .clk_i,
     .rst_ni,

@@ -445,11 +445,6 @@ module rt_trav_shell #(
 
 `ifdef RT_ASSERT_ON
 `include "rt_assert.svh"
-  // The state of the slots the triangles and results name.
-  logic tri_expected, res_expected;
-  assign tri_expected = expect_i[tri_slot];
-  assign res_expected = expect_i[isect_slot_o];
-
   // Output streams (results, visits, the three request ports) come straight
   // from rt_fifo instances, whose a_out_hold checks that valid never drops and
   // data holds until taken; they are not checked twice here.
@@ -457,12 +452,12 @@ module rt_trav_shell #(
   `RT_ASSERT(a_ray_hold, ray_valid_i && !ray_ready_o |=> ray_valid_i && $stable(ray_data_i))
   // Responses: credits guarantee room, triangles and results name a slot that
   // expects them.
-  `RT_ASSERT(a_idx_buf_room, idx_rsp_valid_i |-> idxbuf_ready)
-  `RT_ASSERT(a_isect_ready, tri_valid |-> isect_req_ready)
-  `RT_ASSERT(a_tri_rsp_slot, tri_valid |-> tri_expected)
-  `RT_ASSERT(a_res_slot, isect_valid_o |-> res_expected)
-  `RT_ASSERT(a_cfg_slots, cfg_slots_i != '0 && cfg_slots_i <= CfgSlotsW'(N))
-  `RT_ASSERT(a_credit_range, credit_q <= CREDIT_W'(IdxBufDepth))
+  `RT_CHECK_IF(a_idx_buf_room, idx_rsp_valid_i, idxbuf_ready)
+  `RT_CHECK_IF(a_isect_ready, tri_valid, isect_req_ready)
+  `RT_CHECK_IF(a_tri_rsp_slot, tri_valid, expect_i[tri_slot])
+  `RT_CHECK_IF(a_res_slot, isect_valid_o, expect_i[isect_slot_o])
+  `RT_CHECK(a_cfg_slots, cfg_slots_i != '0 && cfg_slots_i <= CfgSlotsW'(N))
+  `RT_CHECK(a_credit_range, credit_q <= CREDIT_W'(IdxBufDepth))
   `RT_ASSERT_STATIC(g_slots_check, N <= 256,
                     "rt_trav_shell: RaysInFlight must lie in 1..256 (the setup carries an 8-bit slot)")
 `endif

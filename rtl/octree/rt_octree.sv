@@ -265,9 +265,7 @@ module rt_octree #(
 `include "rt_assert.svh"
   // Node responses name a slot that waits for one (rt_trav_shell checks the
   // triangles' and the results' slots).
-  logic node_rsp_waiting;
-  assign node_rsp_waiting = waiting_node[node_rsp_tag_i];
-  `RT_ASSERT(a_node_rsp_slot, node_rsp_valid_i |-> node_rsp_waiting)
+  `RT_CHECK_IF(a_node_rsp_slot, node_rsp_valid_i, waiting_node[node_rsp_tag_i])
 `endif
 
 endmodule

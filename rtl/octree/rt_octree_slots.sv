@@ -43,10 +43,11 @@
 // only by DESCEND. A slot's node id (group base + (child ^ a)) and its node
 // read address are formed when they are granted.
 //
-// Shape (as rt_grid_slots): the next state is combinational (b_advance, the
-// lanes' steps; b_descend; b_state_d, the state vectors' _d), p_state holds
-// the reset state, and p_walk, p_stack, p_ray and p_node write the per-slot
-// arrays, which have no reset; u_idx_count counts a leaf's reads and results.
+// Shape (as rt_grid_slots): the steps are combinational (b_advance, the
+// lanes'; b_descend), p_state holds the reset state (the state vectors, each
+// its old value less the slots an event takes out plus those it brings in),
+// and p_walk, p_stack, p_ray and p_node write the per-slot arrays, which have
+// no reset; u_idx_count counts a leaf's reads and results.
 //
 // Latency: every transition takes one clock edge. Throughput: per cycle one
 // allocation, one init, one visit, one node grant, one node response, one
@@ -432,38 +433,11 @@ module rt_octree_slots #(
     .res_last_o    (res_last)
   );
 
-  // ---- Next state of the state vectors ---------------------------------------------------
-  logic [N-1:0] free_d, setup_d, enter_d, group_req_d, wait_group_d, fetch_d, check_d;
-  logic [N-1:0] next_d, refill_req_d, wait_refill_d, done_d, iss_d, gv_d, fin_d;
-  logic         desc_d;
-
-  always_comb begin : b_state_d
-    logic [N-1:0] visit_group, visit_fetch, visit_check, issued_all;
-    visit_group   = visit_oh & {N{!visit_leaf}};
-    visit_fetch   = visit_oh & {N{visit_leaf && !visit_empty}};
-    visit_check   = visit_oh & {N{visit_leaf && visit_empty}};
-    issued_all    = onehot(idx_last, idx_slot_i);
-    free_d        = (free_q & ~alloc_oh) | done_oh;
-    setup_d       = (setup_q & ~init_oh) | alloc_oh;
-    enter_d       = (enter_q & ~visit_oh) | (init_oh & {N{init_enter_i}})
-                    | (desc_oh & {N{!desc_behind}}) | to_enter | (rsp_oh & wait_refill_q);
-    group_req_d   = (group_req_q & ~node_oh) | visit_group;
-    refill_req_d  = (refill_req_q & ~node_oh) | to_refill;
-    wait_group_d  = (wait_group_q & ~rsp_oh) | (node_oh & group_req_q);
-    wait_refill_d = (wait_refill_q & ~rsp_oh) | (node_oh & refill_req_q);
-    fetch_d       = (fetch_q & ~fin_oh) | visit_fetch;
-    check_d       = (check_q & ~adv_oh & ~check_oh) | fin_oh | visit_check;
-    next_d        = (next_q & ~adv_oh) | to_next | (desc_oh & {N{desc_behind}});
-    done_d        = (done_q & ~done_oh) | (init_oh & {N{!init_enter_i}}) | to_done
-                    | (check_oh & {N{check_holds_i}});
-    iss_d         = (iss_q & ~issued_all) | visit_fetch;
-    gv_d          = (gv_q & ~popped & ~init_oh) | rsp_oh;
-    desc_d        = node_rsp_valid_i && wait_group_q[node_rsp_slot_i];
-    // The result that completes the leaf: FETCH ends in the next cycle.
-    fin_d         = onehot(res_last, res_slot_i);
-  end
-
   // ---- State (reset) ---------------------------------------------------------------------
+  // Each vector loses the slots whose event leaves its state and gains those
+  // whose event enters it. (Written at the edge, not as an always_comb _d: a
+  // simulator then evaluates it once per cycle instead of at every input
+  // change, for the same gates.)
   always_ff @(posedge clk_i or negedge rst_ni) begin : p_state
     if (!rst_ni) begin
       free_q        <= '1;
@@ -483,23 +457,30 @@ module rt_octree_slots #(
       desc_slot_q   <= '0;
       fin_q         <= 1'b0;
       fin_slot_q    <= '0;
-    end else begin
-      free_q        <= free_d;
-      setup_q       <= setup_d;
-      enter_q       <= enter_d;
-      group_req_q   <= group_req_d;
-      wait_group_q  <= wait_group_d;
-      fetch_q       <= fetch_d;
-      check_q       <= check_d;
-      next_q        <= next_d;
-      refill_req_q  <= refill_req_d;
-      wait_refill_q <= wait_refill_d;
-      done_q        <= done_d;
-      iss_q         <= iss_d;
-      gv_q          <= gv_d;
-      desc_q        <= desc_d;
+    end else begin : b_next
+      logic [N-1:0] visit_group, visit_fetch, visit_check;
+      visit_group   = visit_oh & {N{!visit_leaf}};
+      visit_fetch   = visit_oh & {N{visit_leaf && !visit_empty}};
+      visit_check   = visit_oh & {N{visit_leaf && visit_empty}};
+      free_q        <= (free_q & ~alloc_oh) | done_oh;
+      setup_q       <= (setup_q & ~init_oh) | alloc_oh;
+      enter_q       <= (enter_q & ~visit_oh) | (init_oh & {N{init_enter_i}})
+                       | (desc_oh & {N{!desc_behind}}) | to_enter | (rsp_oh & wait_refill_q);
+      group_req_q   <= (group_req_q & ~node_oh) | visit_group;
+      refill_req_q  <= (refill_req_q & ~node_oh) | to_refill;
+      wait_group_q  <= (wait_group_q & ~rsp_oh) | (node_oh & group_req_q);
+      wait_refill_q <= (wait_refill_q & ~rsp_oh) | (node_oh & refill_req_q);
+      fetch_q       <= (fetch_q & ~fin_oh) | visit_fetch;
+      check_q       <= (check_q & ~adv_oh & ~check_oh) | fin_oh | visit_check;
+      next_q        <= (next_q & ~adv_oh) | to_next | (desc_oh & {N{desc_behind}});
+      done_q        <= (done_q & ~done_oh) | (init_oh & {N{!init_enter_i}}) | to_done
+                       | (check_oh & {N{check_holds_i}});
+      iss_q         <= (iss_q & ~onehot(idx_last, idx_slot_i)) | visit_fetch;
+      gv_q          <= (gv_q & ~popped & ~init_oh) | rsp_oh;
+      desc_q        <= node_rsp_valid_i && wait_group_q[node_rsp_slot_i];
       desc_slot_q   <= node_rsp_slot_i;
-      fin_q         <= |fin_d;
+      // The result that completes the leaf: FETCH ends in the next cycle.
+      fin_q         <= res_last;
       fin_slot_q    <= res_slot_i;
     end
   end
@@ -579,19 +560,15 @@ module rt_octree_slots #(
 
 `ifdef RT_ASSERT_ON
 `include "rt_assert.svh"
-  // (An array read as a wire: Verilator 5.006 fails on one inside a property.)
-  logic desc_splits;
-  assign desc_splits  = desc_depth < DEPTH_W'(STACK);
-
   // Events meet slots in the states that expect them.
-  `RT_ASSERT(a_alloc_free, alloc_i |-> free_q[alloc_slot_i])
-  `RT_ASSERT(a_init_setup, init_i |-> setup_q[init_slot_i])
-  `RT_ASSERT(a_visit_enter, visit_go_i |-> enter_q[visit_slot_i])
-  `RT_ASSERT(a_idx_fetch, idx_go_i |-> iss_q[idx_slot_i])
-  `RT_ASSERT(a_res_fetch, res_valid_i |-> fetch_q[res_slot_i])
-  `RT_ASSERT(a_check_wants, check_go_i |-> check_q[check_slot_i] && bound_i[check_slot_i])
+  `RT_CHECK_IF(a_alloc_free, alloc_i, free_q[alloc_slot_i])
+  `RT_CHECK_IF(a_init_setup, init_i, setup_q[init_slot_i])
+  `RT_CHECK_IF(a_visit_enter, visit_go_i, enter_q[visit_slot_i])
+  `RT_CHECK_IF(a_idx_fetch, idx_go_i, iss_q[idx_slot_i])
+  `RT_CHECK_IF(a_res_fetch, res_valid_i, fetch_q[res_slot_i])
+  `RT_CHECK_IF(a_check_wants, check_go_i, check_q[check_slot_i] && bound_i[check_slot_i])
   // An interior node one lattice unit wide cannot be split: the image is malformed.
-  `RT_ASSERT(a_stack_depth, desc_q |-> desc_splits)
+  `RT_CHECK_IF(a_stack_depth, desc_q, desc_depth < DEPTH_W'(STACK))
 `endif
 
 endmodule
