@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <memory>
 #include <numeric>
+#include <optional>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -14,6 +15,7 @@
 #include "common/error.h"
 #include "common/progress.h"
 #include "driver/candidates.h"
+#include "driver/clocks.h"
 #include "driver/job.h"
 #include "driver/report.h"
 #include "driver/wave_tracer.h"
@@ -30,16 +32,13 @@ namespace lancer::cli {
 
 namespace {
 
-// 500 MHz: one stage per wide multiply (up to 66x17 bits at the default
-// formats) is comfortable at this clock in a 16 nm-class process; see docs/driver.md.
-constexpr double kDefaultClockMhz = 500.0;
 struct Args {
   SceneOptions scene;
   RaySource source;
   fx::UnitKind accel = fx::UnitKind::Isect;
   JobConfig job;
   EffectsArgs effects;
-  double clockMhz = kDefaultClockMhz;
+  std::optional<double> clockMhz;  // --clock-mhz; else the estimated clock (driver/clocks.h)
   int posBits = fx::kPosBits;
   int dirBits = fx::kDirBits;
   std::string report, image, hits;
@@ -98,7 +97,6 @@ void checkFormats(const Args& args) {
         "configure a build with -DLANCER_POS_BITS={} -DLANCER_DIR_BITS={}",
         fx::kPosBits, fx::kDirBits, args.posBits, args.dirBits, args.posBits, args.dirBits));
   }
-  if (!(args.clockMhz > 0.0)) throw InputError(fmt::format("--clock-mhz {} must be positive", args.clockMhz));
   if (!(args.job.stream.outputStallProbability >= 0.0 && args.job.stream.outputStallProbability < 1.0)) {
     throw InputError(fmt::format("--stall {} must lie in [0, 1)", args.job.stream.outputStallProbability));
   }
@@ -139,11 +137,12 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// What every report of lancer run starts with: the command, the scene, the path and model, the formats.
-nlohmann::json reportHeader(const Args& args, const Scene& scene) {
+// What every report of lancer run starts with: the command, the scene, the
+// path and model, the formats, the clock and where it came from.
+nlohmann::json reportHeader(const Args& args, const Scene& scene, const RunClock& clock) {
   return {{"command", "run"},         {"scene", scene.name},          {"triangles", scene.size()},
           {"accel", toString(args.accel)}, {"model", args.job.model}, {"pos_bits", fx::kPosBits},
-          {"dir_bits", fx::kDirBits}};
+          {"dir_bits", fx::kDirBits},  {"clock_mhz", clock.mhz},      {"clock_source", clock.toJson()}};
 }
 
 // The SPD counts of a Whitted run, keyed as in the report.
@@ -156,6 +155,7 @@ std::vector<std::pair<const char*, uint64_t>> spdCounts(const WhittedResult& r) 
 // Every figure of an effects run: the summary and the report are both written from it.
 struct EffectsFigures {
   const Args& args;
+  const RunClock& clock;
   const Scene& scene;
   const EffectsPlan& plan;
   Sampling sampling;
@@ -166,7 +166,7 @@ struct EffectsFigures {
   const WhittedResult& ref;  // the same loop on the float reference
   double hostSeconds;
 
-  double clockHz() const { return args.clockMhz * 1e6; }
+  double clockHz() const { return clock.hz(); }
   uint64_t cycles() const {
     uint64_t total = 0;
     for (int c = 0; c < kRayClassCount; ++c) total += tracer.stats(RayClass(c)).cycles;
@@ -178,12 +178,13 @@ struct EffectsFigures {
     fmt::print("run: {} ({} triangles), {} {} samples {}x{}, model {}, accel {}, formats pos {} / dir {} bits\n",
                scene.name, scene.size(), eyeRays, toString(sampling), camera.width(), camera.height(),
                args.job.model, toString(args.accel), fx::kPosBits, fx::kDirBits);
+    fmt::print("  clock               {}\n", clock.describe());
     printClasses();
     printComparisons();
     printAnyHitSaving();
     printCounts();
     fmt::print("  host                {:.2f} s in all; simulated {:.1f} us at {:g} MHz for {} cycles\n", hostSeconds,
-               double(cycles()) / clockHz() * 1e6, args.clockMhz, cycles());
+               double(cycles()) / clockHz() * 1e6, clock.mhz, cycles());
     fmt::print("  bit-exact vs golden {} rays in {} waves, {} mismatches\n", waveRays(), hw.waveRays.size(),
                tracer.mismatches());
   }
@@ -248,7 +249,7 @@ struct EffectsFigures {
       nlohmann::json& c = classes[std::string(toString(cls))] = tracer.stats(cls).toJson(clockHz());
       c.update(lancer::toJson(tracer.comparison(cls)));
     }
-    nlohmann::json report = reportHeader(args, scene);
+    nlohmann::json report = reportHeader(args, scene, clock);
     report.update({{"sampling", toString(sampling)},
                    {"width", camera.width()},
                    {"height", camera.height()},
@@ -294,8 +295,8 @@ struct EffectsFigures {
 // An effects run (docs/effects.md): the Whitted loop's waves through the
 // hardware, every wave checked against the golden model bit for bit, and the
 // same loop on the float reference tracer for the counts.
-void runEffects(const Args& args, const Scene& scene, const EffectsPlan& plan, const Quantizer& quantizer,
-                std::chrono::steady_clock::time_point hostStart) {
+void runEffects(const Args& args, const RunClock& clock, const Scene& scene, const EffectsPlan& plan,
+                const Quantizer& quantizer, std::chrono::steady_clock::time_point hostStart) {
   const Sampling sampling = args.effects.parsedSampling();
   const PinholeCamera camera = frameScene(scene, args.source.camera.resolve());
   const std::vector<Ray> eye = camera.generateRays(sampling);
@@ -306,7 +307,7 @@ void runEffects(const Args& args, const Scene& scene, const EffectsPlan& plan, c
   });
   RefWaveTracer refTracer(scene, reference);
   const WhittedResult ref = traceWhitted(scene, plan, eye, refTracer);
-  const EffectsFigures figures{args, scene, plan, sampling, camera, eye.size(), tracer, hw, ref,
+  const EffectsFigures figures{args, clock, scene, plan, sampling, camera, eye.size(), tracer, hw, ref,
                                secondsSince(hostStart)};
   figures.print();
   if (!args.image.empty()) {
@@ -323,13 +324,14 @@ void runEffects(const Args& args, const Scene& scene, const EffectsPlan& plan, c
 // and the report are both written from it.
 struct RunFigures {
   const Args& args;
+  const RunClock& clock;
   const Scene& scene;
   const Rays& rays;
   const JobResult& job;
   const ReferenceComparison& cmp;
   double hostSeconds;
 
-  double clockHz() const { return args.clockMhz * 1e6; }
+  double clockHz() const { return clock.hz(); }
   double simulatedSeconds() const { return double(job.cycles) / clockHz(); }
   double testsPerCycle() const { return job.cycles ? double(job.intersectionTests) / double(job.cycles) : 0.0; }
   double testsPerSecond() const { return job.cycles ? double(job.intersectionTests) / simulatedSeconds() : 0.0; }
@@ -341,12 +343,13 @@ struct RunFigures {
     fmt::print("run: {} ({} triangles), {} rays from {}, model {}, accel {}, formats pos {} / dir {} bits\n",
                scene.name, scene.size(), rays.rays.size(), rays.origin, args.job.model, toString(args.accel),
                fx::kPosBits, fx::kDirBits);
+    fmt::print("  clock               {}\n", clock.describe());
     if (job.cycleAccurate) {
       fmt::print("  intersection tests  {} in {} cycles ({:.4f} tests/cycle)\n", job.intersectionTests, job.cycles,
                  testsPerCycle());
       fmt::print("  simulated rate      {:.1f} M intersections/s, {:.2f} M rays/s at {:g} MHz ({:.1f}x the AR250's "
                  "80 M/s)\n",
-                 testsPerSecond() / 1e6, raysPerSecond() / 1e6, args.clockMhz, testsPerSecond() / 80e6);
+                 testsPerSecond() / 1e6, raysPerSecond() / 1e6, clock.mhz, testsPerSecond() / 80e6);
     } else {
       fmt::print("  intersection tests  {} (golden model: no cycle timing{})\n", job.intersectionTests,
                  job.cycles ? fmt::format(", ideal pipeline {} cycles", job.cycles) : "");
@@ -364,7 +367,7 @@ struct RunFigures {
   }
 
   nlohmann::json toJson() const {
-    nlohmann::json report = reportHeader(args, scene);
+    nlohmann::json report = reportHeader(args, scene, clock);
     report.update({{"rays", rays.rays.size()},
                    {"rays_in_lattice", inLattice()},
                    {"rays_hit", hits()},
@@ -441,6 +444,7 @@ void reportFirstFailure(const Args& args, const Scene& scene, const Rays& rays, 
 
 void run(const Args& args) {
   checkRunOptions(args);
+  const RunClock clock = runClock(args.accel, args.clockMhz);
   const auto hostStart = std::chrono::steady_clock::now();
   const Scene scene = args.scene.load();
   const EffectsPlan plan = planEffects(scene, args.effects.options());
@@ -449,7 +453,7 @@ void run(const Args& args) {
   const bool secondary =
       plan.has(RayClass::Shadow) || plan.has(RayClass::Reflection) || plan.has(RayClass::Refraction);
   if (args.source.fromCamera() && (secondary || args.effects.parsedSampling() == Sampling::Corners)) {
-    runEffects(args, scene, plan, quantizer, hostStart);
+    runEffects(args, clock, scene, plan, quantizer, hostStart);
     return;
   }
   if (secondary) fmt::print("  (rays from {}: primary rays only; effects need camera rays)\n", args.source.raysFile);
@@ -462,7 +466,7 @@ void run(const Args& args) {
   const Bvh reference(scene, AccelOptions{});
   const ReferenceComparison cmp = compareWithReference(scene, rays.rays, traceRays(reference, rays.rays), job, quantizer,
                                                          exactCandidates(reference, scene.bounds));
-  const RunFigures figures{args, scene, rays, job, cmp, secondsSince(hostStart)};
+  const RunFigures figures{args, clock, scene, rays, job, cmp, secondsSince(hostStart)};
   figures.print();
   writeHitOutputs(args, scene, rays, job);
   nlohmann::json report = figures.toJson();
@@ -490,7 +494,10 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--model", args->job.model, "Model of the hardware: golden, systemc, rtl, rtl-systemc")
       ->check(CLI::IsMember({"golden", "systemc", "rtl", "rtl-systemc"}))
       ->capture_default_str();
-  cmd->add_option("--clock-mhz", args->clockMhz, "Clock of the simulated chip")->capture_default_str();
+  cmd->add_option_function<double>(
+      "--clock-mhz", [args](double mhz) { args->clockMhz = mhz; },
+      "Clock of the simulated rates (default: the estimated clock of the slowest unit in the run at this build's "
+      "widths, rtl/synth/clocks.json)");
   cmd->add_option("--pos-bits", args->posBits, "Expected position width (must match the build)");
   cmd->add_option("--dir-bits", args->dirBits, "Expected direction width (must match the build)");
   cmd->add_option("--grid-res", args->job.accel.gridResolution,

@@ -87,7 +87,9 @@ void addSweep(CLI::App& app) {
   cmd->add_option("--seed", a->spec.seed, "Seed of the crack rays")->capture_default_str();
   cmd->add_option("--grid-res", a->spec.gridRes, "Grid cells a side (default: the unit's heuristic)");
   cmd->add_option("--mem-latency", a->spec.memLatency, "Memory latency of the traversal units")->capture_default_str();
-  cmd->add_option("--clock-mhz", a->spec.clockMhz, "Clock of the simulated rates in the run reports")->capture_default_str();
+  cmd->add_option_function<double>(
+      "--clock-mhz", [a](double mhz) { a->spec.clockMhz = mhz; },
+      "Clock of the simulated rates in the run reports (default: each run's estimated clock, rtl/synth/clocks.json)");
   cmd->add_flag("--synth", a->spec.synth, "Synthesize each width's units with Yosys (slow; cached per tree)");
   cmd->add_option("--synth-units", a->spec.synthUnits, "With --synth, only these units (rt_grid and rt_octree take "
                                                       "minutes and GBs each)")

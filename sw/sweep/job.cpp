@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 nlohmann::json jobInputs(const Spec& spec, const Job& job) {
   nlohmann::json j = {{"scene", spec.scenes[size_t(job.scene)]}, {"seed", spec.seed},
                       {"mem_latency", spec.memLatency}, {"grid_res", spec.gridRes},
-                      {"clock_mhz", spec.clockMhz}};
+                      {"clock_mhz", spec.clockMhz ? nlohmann::json(*spec.clockMhz) : nlohmann::json()}};
   if (job.set == "camera") {
     j["image"] = spec.image;
     j["chunks"] = spec.chunks;
@@ -80,8 +80,9 @@ std::string executeJob(const std::string& out, const Spec& spec, const Job& job)
   const std::string runReport = work + "/run.json";
   std::vector<std::string> run{lancer, "run", "--scene", scene, "--rays", rays, "--accel", accel, "--model",
                                job.model, "--pos-bits", std::to_string(job.width.pos), "--dir-bits",
-                               std::to_string(job.width.dir), "--clock-mhz", fmt::format("{}", spec.clockMhz),
-                               "--report", runReport, "--repro", work + "/mismatch.rays"};
+                               std::to_string(job.width.dir), "--report", runReport, "--repro",
+                               work + "/mismatch.rays"};
+  if (spec.clockMhz) run.insert(run.end(), {"--clock-mhz", fmt::format("{}", *spec.clockMhz)});
   std::vector<std::string> structure;
   if (job.unit == "grid" && spec.gridRes) structure = {"--grid-res", std::to_string(spec.gridRes)};
   run.insert(run.end(), structure.begin(), structure.end());

@@ -187,7 +187,7 @@ nlohmann::json sweepRow(const Width& w, const std::string& unit, const std::stri
   const bool timed = t.cycleAccurate && t.cameraJobs > 0;
   const double cyclesPerRay = timed ? ratio(double(t.cycles), double(t.inLattice)) : NAN;
   const double depth = syn.value("logic_depth", NAN);
-  const double fmax = std::isfinite(depth) ? fmaxMhzOfDepth(depth) : NAN;
+  const double fmax = syn.value("fmax_mhz", NAN);  // the gate model's (scripts/lancer_synth.py)
   const double nsPerRay = cyclesPerRay / fmax * 1e3;
   const double cells = syn.value("cells", NAN);
   const double tErrMean = ratio(t.tErrSum, double(t.compared));
@@ -365,9 +365,9 @@ MergeResult mergeSweep(const std::string& out, FILE* table, bool plots) {
   if (table) printTable(table, spec, rows);
   if (plots && !rows.empty()) runPlots(out, spec, errors);
   m.errors = errors.size();
-  const nlohmann::json doc = {{"spec", spec.toJson()}, {"rows", rows}, {"trees", trees}, {"synth", synth},
-                              {"missing_jobs", missing}, {"errors", errors},
-                              {"gate_model", {{"gate_delay_ps", kGateDelayPs}, {"register_overhead_ps", kRegisterOverheadPs}}}};
+  // (Each synthesis in `synth` names the gate model its clock came from.)
+  const nlohmann::json doc = {{"spec", spec.toJson()}, {"rows", rows},     {"trees", trees}, {"synth", synth},
+                              {"missing_jobs", missing}, {"errors", errors}};
   writeAtomically(out + "/sweep.json", doc.dump(2) + "\n");
   return m;
 }

@@ -21,10 +21,4 @@ struct MergeResult {
 // prints the table to `table`. Throws InputError if there is no plan.
 MergeResult mergeSweep(const std::string& out, FILE* table, bool plots);
 
-// The documented gate model (docs/accuracy.md, "Clock"): an estimated maximum
-// clock from the longest path in 2-input gates between flip-flops.
-inline constexpr double kGateDelayPs = 25.0;       // one Yosys internal gate ($_AND_, $_XOR_, $_MUX_, ...)
-inline constexpr double kRegisterOverheadPs = 60.0;  // clock-to-q + setup + skew margin
-inline double fmaxMhzOfDepth(double depth) { return 1e6 / (kRegisterOverheadPs + depth * kGateDelayPs); }
-
 }  // namespace lancer::sweep

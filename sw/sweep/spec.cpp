@@ -83,7 +83,7 @@ void Spec::validate() const {
     throw InputError(fmt::format("--chunks {}: must lie in 1..{} (the camera rays)", chunks, image * image));
   }
   if (crackRays < 0) throw InputError(fmt::format("--crack-rays {}: must not be negative", crackRays));
-  if (!(clockMhz > 0)) throw InputError(fmt::format("--clock-mhz {}: must be positive", clockMhz));
+  if (clockMhz && !(*clockMhz > 0)) throw InputError(fmt::format("--clock-mhz {}: must be positive", *clockMhz));
   if (buildJobs < 1) throw InputError(fmt::format("--build-jobs {}: must be at least 1", buildJobs));
   std::vector<Width> sorted = widths;
   std::sort(sorted.begin(), sorted.end());
@@ -125,7 +125,7 @@ nlohmann::json Spec::toJson() const {
   return {{"widths", ws},           {"scenes", scenes},         {"units", units},
           {"models", models},       {"image", image},           {"chunks", chunks},
           {"crack_rays", crackRays}, {"seed", seed},             {"grid_res", gridRes},
-          {"mem_latency", memLatency}, {"clock_mhz", clockMhz}, {"synth", synth}, {"synth_units", synthUnits},
+          {"mem_latency", memLatency}, {"clock_mhz", clockMhz ? nlohmann::json(*clockMhz) : nlohmann::json()}, {"synth", synth}, {"synth_units", synthUnits},
           {"source", source},       {"tree_pattern", treePattern}, {"trees", trees},
           {"cmake_args", cmakeArgs}, {"build_jobs", buildJobs}};
 }
@@ -153,7 +153,7 @@ Spec Spec::fromJson(const nlohmann::json& j, const std::string& where) {
     s.seed = j.value("seed", s.seed);
     s.gridRes = j.value("grid_res", s.gridRes);
     s.memLatency = j.value("mem_latency", s.memLatency);
-    s.clockMhz = j.value("clock_mhz", s.clockMhz);
+    if (j.contains("clock_mhz") && !j["clock_mhz"].is_null()) s.clockMhz = j["clock_mhz"].get<double>();
     s.synth = j.value("synth", s.synth);
     s.synthUnits = j.value("synth_units", s.synthUnits);
     s.source = j.value("source", s.source);

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,7 +43,7 @@ struct Spec {
   uint64_t seed = 1;
   int gridRes = 0;          // 0: the unit's heuristic
   int memLatency = 20;
-  double clockMhz = 500;    // the clock for simulated rates when not synthesized
+  std::optional<double> clockMhz;  // the run reports' clock; none: each run's estimate (rtl/synth/clocks.json)
   bool synth = false;
   std::vector<std::string> synthUnits;  // the units synthesized (empty: every unit of the sweep)
   std::string source;       // the Lancer source tree the width trees are configured from

@@ -109,18 +109,16 @@ nlohmann::json synthTree(const Spec& spec, const Width& w, const std::string& to
   const std::string cache = fmt::format("{}/synth/{}/sweep-synth.json", tree, top);
   const std::string pkg = tree + "/generated/rtl/rt_pkg.sv";
   if (fs::exists(cache) && fs::exists(pkg)) {
-    // Valid while it was made from the same package (by content: a rebuild
-    // rewrites the file) and no RTL source is newer.
-    auto newest = fs::last_write_time(cache);
-    bool stale = false;
-    for (const auto& e : fs::recursive_directory_iterator(spec.source + "/rtl")) {
-      if (e.is_regular_file() && e.last_write_time() > newest) stale = true;
-    }
-    int status = 0;
-    const std::string sum = runCaptured({"sha256sum", pkg}, status);
+    // Valid while it was made from the same package and the same RTL sources,
+    // by content (scripts/lancer_synth.py's hash, which scripts/clock-table uses too).
+    int pkgStatus = 0, srcStatus = 0;
+    const std::string sum = runCaptured({"sha256sum", pkg}, pkgStatus);
+    const std::string sources =
+        runCaptured({"python3", spec.source + "/scripts/lancer_synth.py", "hash", top}, srcStatus);
+    const auto firstWord = [](const std::string& s) { return s.substr(0, s.find_first_of(" \n")); };
     nlohmann::json j = readJson(cache);
-    if (!stale && status == 0 && j.is_object() && !j.contains("error") &&
-        sum.substr(0, sum.find(' ')) == j.value("pkg_sha256", "")) {
+    if (pkgStatus == 0 && srcStatus == 0 && j.is_object() && !j.contains("error") && j.contains("fmax_mhz") &&
+        firstWord(sum) == j.value("pkg_sha256", "") && firstWord(sources) == j.value("sources_sha256", "")) {
       j["cached"] = true;
       return j;
     }

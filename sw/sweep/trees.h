@@ -37,7 +37,7 @@ std::optional<double> recordedBuildSeconds(const std::string& tree);
 std::string lancerOf(const std::string& tree);
 
 // Yosys synthesis of `top` in the tree of `w` (scripts/sweep-synth), cached in
-// the tree at synth/<top>/sweep-synth.json while rt_pkg.sv is the same and rtl/ older.
+// the tree at synth/<top>/sweep-synth.json while rt_pkg.sv and the RTL sources are the same.
 // Returns the cached or new figures, or an object with "error".
 nlohmann::json synthTree(const Spec& spec, const Width& w, const std::string& top, const std::string& out);
 

@@ -18,7 +18,9 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "driver/clocks.h"
 #include "driver/traversal_device.h"
+#include "golden/units.h"
 
 namespace lancer::rtltest {
 
@@ -126,11 +128,15 @@ inline int sweepSide(const char* env) {
 
 // Performance sweep, not a check (docs/grid-unit.md, docs/octree-unit.md have
 // the tables): all slots' subsets at latency 20, then all slots at latencies
-// 1 .. 100; cycles, rates per cycle, and the host's rays per second.
+// 1 .. 100; cycles, rates per cycle, and the host's rays per second. Rays/s
+// at the unit's estimated clock (driver/clocks.h).
 template <class Image>
 void printSweep(TraversalDevice<Image>& rtl, const Image& image, const std::vector<fx::QRay>& rays) {
+  const RunClock clock = runClock(fx::UnitFor<Image>::kKind, std::nullopt);
+  fmt::print("clock: {}\n", clock.describe());
   fmt::print("{:>6} {:>7} {:>10} {:>9} {:>10} {:>11} {:>10} {:>13} {:>11}\n", "slots", "latency", "cycles",
-             "tests/cyc", "steps/cyc", "steps/ready", "isect busy", "Mrays/s@500M", "host ray/s");
+             "tests/cyc", "steps/cyc", "steps/ready", "isect busy", fmt::format("Mrays/s@{:.0f}M", clock.mhz),
+             "host ray/s");
   auto one = [&](int slots, int latency) {
     TraversalRunOptions o;
     o.memLatency = latency;
@@ -143,7 +149,7 @@ void printSweep(TraversalDevice<Image>& rtl, const Image& image, const std::vect
     fmt::print("{:>6} {:>7} {:>10} {:>9.3f} {:>10.3f} {:>11.3f} {:>9.1f}% {:>13.2f} {:>11.0f}\n", slots, latency,
                st.cycles, double(st.isectTests) / c, double(st.steps) / c,
                double(st.steps) / double(std::max<uint64_t>(1, st.stepReadyCycles)),
-               100.0 * double(st.isectBusyCycles) / c, double(st.rays) / c * 500.0, double(st.rays) / host);
+               100.0 * double(st.isectBusyCycles) / c, double(st.rays) / c * clock.mhz, double(st.rays) / host);
   };
   const int max = rtl.maxRaysInFlight();
   for (int slots : {1, 4, 8, 16, 32}) {
