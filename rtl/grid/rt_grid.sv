@@ -82,7 +82,7 @@ module rt_grid #(
   // ---- The shell: streams, memory ports, rt_isect, closest hits, exit tests ----------
   logic [N-1:0]        free, want_cell, want_visit, want_idx, want_check, want_done, fetching, bound;
   logic                ray_fire, cell_go, visit_go, idx_go, check_go, done_go;
-  logic [SlotW-1:0]    alloc_idx, cell_idx, visit_idx, idx_idx, check_idx, done_idx;
+  logic [SlotW-1:0]    alloc_idx, check_sel, cell_idx, visit_idx, idx_idx, check_idx, done_idx;
   logic                cell_valid, isect_valid, take, check_holds;
   logic [SlotW-1:0]    cell_tag, isect_slot;
   rt_pkg::grid_cell_t  cell_data;
@@ -148,6 +148,7 @@ module rt_grid #(
     .take_o        (take),
     .bound_o       (bound),
     .want_check_i  (want_check),
+    .check_sel_o   (check_sel),
     .check_go_o    (check_go),
     .check_slot_o  (check_idx),
     .check_exit_i  (check_exit),
@@ -217,6 +218,7 @@ module rt_grid #(
     .bound_i         (bound),
     .take_i          (take),
     .want_check_o    (want_check),
+    .check_sel_i    (check_sel),
     .check_go_i      (check_go),
     .check_slot_i    (check_idx),
     .check_exit_o    (check_exit),

@@ -87,10 +87,13 @@ module rt_grid_slots #(
   input  logic                                   take_i,        // the result becomes res_slot_i's closest hit
 
   // Exit tests of slots with a bound.
+  // (rt_trav_shell pipelines the test: it reads check_sel_i's exit accumulator
+  // the cycle after the grant, and answers EXIT_TEST_LATENCY cycles after it.)
   output logic [N-1:0]                           want_check_o,
-  input  logic                                   check_go_i,
+  input  logic [SlotW-1:0]                       check_sel_i,
+  output logic [rt_pkg::GRID_ACC_W-1:0]          check_exit_o,  // exit accumulator of check_sel_i's cell
+  input  logic                                   check_go_i,    // the answer for check_slot_i
   input  logic [SlotW-1:0]                       check_slot_i,
-  output logic [rt_pkg::GRID_ACC_W-1:0]          check_exit_o,  // exit accumulator of check_slot_i's cell
   input  logic                                   check_holds_i, // the hit lies within the cell
 
   // Results.
@@ -226,7 +229,8 @@ module rt_grid_slots #(
     end
   end
 
-  // ---- The exit accumulator of the check grant's cell (rt_trav_shell tests it) ------
+  // ---- The exit accumulator of the tested slot's cell (rt_trav_shell tests it) ------
+  // The slot stays in CHECK with the same head cell until the answer.
   logic [SlotW-1:0] r_slot;
   logic [QW-1:0]    k_hd;
   logic             take, holds;
@@ -234,7 +238,7 @@ module rt_grid_slots #(
   assign take         = take_i;
   assign holds        = check_holds_i;
   assign k_hd         = head(hd_q, check_slot_i);
-  assign check_exit_o = eexit_q[{check_slot_i, k_hd}];
+  assign check_exit_o = eexit_q[{check_sel_i, head(hd_q, check_sel_i)}];
 
   // ---- This cycle's events, per slot index --------------------------------------------
   // Cell grant g: the new entry goes behind the queued ones.

@@ -22,11 +22,13 @@
 //              next one when RegRsp (registered at the boundary)
 //   closest    one isect result per cycle updates its slot's closest hit
 //              (rt_closest_hit)
-//   check      one exit test per cycle (round robin over the slots that want
-//              one; rt_exit_test with the walk's exit parameter against the
-//              record: the closest hit, or the segment end). A slot is tested
-//              when bound_o (a hit, or a segment end); an any-hit ray with a
-//              hit holds at once (its walk ends after the region of its hit)
+//   check      one exit test started per cycle (round robin over the slots
+//              that want one and are not under test; rt_exit_test, pipelined,
+//              with the walk's exit parameter against the record: the closest
+//              hit, or the segment end), its answer EXIT_TEST_LATENCY cycles
+//              after the grant. A slot is tested when bound_o (a hit, or a
+//              segment end); an any-hit ray with a hit holds without the
+//              arithmetic (its walk ends after the region of its hit)
 //   res_*      one record per ray: {ray id, done_count_i, done_tests_i, hit,
 //              the closest hit} (round robin, 2-entry FIFO)
 //
@@ -42,7 +44,8 @@
 // order; the tag is the slot.
 //
 // Latency: 0 cycles from a want to its grant; each FIFO 1 cycle; the triangle
-// response 0 (RegRsp = 0) or 1 cycle to rt_isect, then ISECT_LATENCY.
+// response 0 (RegRsp = 0) or 1 cycle to rt_isect, then ISECT_LATENCY; an exit
+// test EXIT_TEST_LATENCY cycles from its grant to its answer.
 // Throughput: per cycle at most one ray accepted, one node read, one visit
 // record, one index read, one triangle read, one intersection test, one
 // closest-hit update, one exit test and one result.
@@ -115,9 +118,13 @@ module rt_trav_shell #(
 
   // Exit tests.
   input  logic [N-1:0]                  want_check_i,
+  // A slot's test is granted in cycle t; its exit parameter is read in t+1
+  // (check_sel_o); its answer reaches the walk in t + EXIT_TEST_LATENCY
+  // (check_go_o, check_slot_o, check_holds_o, from registers).
+  output logic [SlotW-1:0]              check_sel_o,
+  input  logic [ExitW-1:0]              check_exit_i,     // of check_sel_o
   output logic                          check_go_o,
   output logic [SlotW-1:0]              check_slot_o,
-  input  logic [ExitW-1:0]              check_exit_i,     // of check_slot_o
   output logic                          check_holds_o,
 
   // Results.
@@ -178,6 +185,9 @@ module rt_trav_shell #(
 
   // ---- Arbiters -------------------------------------------------------------------
   logic         node_any, visit_any, idx_any, done_any;
+  logic         check_grant;         // a slot's exit test starts (rt_exit_test, below)
+  logic [SlotW-1:0] check_grant_slot;
+  logic [N-1:0] testing_q;           // slots whose exit test is in flight
   // The arbiters' one-hot grants are not needed: the walk takes indices.
   logic [N-1:0] unused_node_gnt, unused_visit_gnt, unused_idx_gnt, unused_check_gnt, unused_done_gnt;
   logic         nodeq_ready, visitq_ready, idxq_ready, resq_ready;
@@ -194,8 +204,8 @@ module rt_trav_shell #(
     .clk_i, .rst_ni, .req_i(want_idx_i), .ack_i(idx_go_o),
     .valid_o(idx_any), .gnt_o(unused_idx_gnt), .idx_o(idx_slot_o));
   rt_rr_arb #(.N(N)) u_check_arb (
-    .clk_i, .rst_ni, .req_i(want_check_i), .ack_i(check_go_o),
-    .valid_o(check_go_o), .gnt_o(unused_check_gnt), .idx_o(check_slot_o));
+    .clk_i, .rst_ni, .req_i(want_check_i & ~testing_q), .ack_i(check_grant),
+    .valid_o(check_grant), .gnt_o(unused_check_gnt), .idx_o(check_grant_slot));
   rt_rr_arb #(.N(N)) u_done_arb (
     .clk_i, .rst_ni, .req_i(want_done_i), .ack_i(done_go_o),
     .valid_o(done_any), .gnt_o(unused_done_gnt), .idx_o(done_slot_o));
@@ -360,22 +370,44 @@ module rt_trav_shell #(
   );
   assign bound_o = has_hit_q | bounded_q;
 
-  // ---- Exit test of the check grant ------------------------------------------------
-  best_t chk_best;
-  logic  chk_settled, chk_holds;
-  assign chk_best      = best_q[check_slot_o];
-  assign chk_settled   = any_hit_q[check_slot_o] && has_hit_q[check_slot_o];
-  assign check_holds_o = chk_settled || chk_holds;
+  // ---- Exit tests, pipelined ---------------------------------------------------------
+  // The grant is registered (cycle t+1 reads the slot's exit parameter and its
+  // record into rt_exit_test), so no path runs from the arbiter into the
+  // arithmetic. The slot stays in its walk's CHECK state meanwhile, with no
+  // result in flight (it tests after its last result), so its record holds
+  // still; testing_q keeps it from asking again until its answer.
+  logic             sel_valid;
+  logic [SlotW-1:0] sel_slot;
+  best_t            sel_best;
+  rt_pipe_reg #(.Width(SlotW)) u_check_grant (
+    .clk_i, .rst_ni, .valid_i(check_grant), .data_i(check_grant_slot),
+    .valid_o(sel_valid), .data_o(sel_slot));
+  assign check_sel_o = sel_slot;
+  assign sel_best    = best_q[sel_slot];
 
-  rt_exit_test #(.ExitW(ExitW), .DenW(DenW)) u_exit (
-    .valid_i (check_go_o && !chk_settled),
-    .exit_i  (check_exit_i),
-    .dom_i   (dom_q[check_slot_o]),
-    .den_i   (den_q[check_slot_o]),
-    .t_num_i (chk_best.t_num),
-    .det_i   (chk_best.det),
-    .holds_o (chk_holds)
+  rt_exit_test #(.ExitW(ExitW), .DenW(DenW), .TagW(SlotW)) u_exit (
+    .clk_i,
+    .rst_ni,
+    .valid_i   (sel_valid),
+    .tag_i     (sel_slot),
+    .settled_i (any_hit_q[sel_slot] && has_hit_q[sel_slot]),
+    .exit_i    (check_exit_i),
+    .dom_i     (dom_q[sel_slot]),
+    .den_i     (den_q[sel_slot]),
+    .t_num_i   (sel_best.t_num),
+    .det_i     (sel_best.det),
+    .valid_o   (check_go_o),
+    .tag_o     (check_slot_o),
+    .holds_o   (check_holds_o)
   );
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      testing_q <= '0;
+    end else begin
+      testing_q <= (testing_q | (N'(check_grant) << check_grant_slot)) & ~(N'(check_go_o) << check_slot_o);
+    end
+  end
 
   // ---- The records kept by slot index ---------------------------------------------------
   ray_geom_t init_geom;
@@ -458,6 +490,8 @@ module rt_trav_shell #(
   `RT_CHECK_IF(a_res_slot, isect_valid_o, expect_i[isect_slot_o])
   `RT_CHECK(a_cfg_slots, cfg_slots_i != '0 && cfg_slots_i <= CfgSlotsW'(N))
   `RT_CHECK(a_credit_range, credit_q <= CREDIT_W'(IdxBufDepth))
+  `RT_ASSERT_STATIC(g_exit_latency_check, rt_pkg::EXIT_TEST_LATENCY == 1 + 4,
+                    "rt_trav_shell: the registered grant and rt_exit_test's 4 stages differ from rt_pkg::EXIT_TEST_LATENCY")
   `RT_ASSERT_STATIC(g_slots_check, N <= 256,
                     "rt_trav_shell: RaysInFlight must lie in 1..256 (the setup carries an 8-bit slot)")
 `endif

@@ -92,7 +92,7 @@ module rt_octree #(
   logic [N-1:0]        free, want_visit, want_node, want_idx, want_check, want_done, bound;
   logic [N-1:0]        fetching, waiting_node;
   logic                ray_fire, visit_go, node_go, idx_go, check_go, done_go;
-  logic [SlotW-1:0]    alloc_idx, visit_idx, node_idx, idx_idx, check_idx, done_idx;
+  logic [SlotW-1:0]    alloc_idx, check_sel, visit_idx, node_idx, idx_idx, check_idx, done_idx;
   logic                node_valid, isect_valid, check_holds;
   logic                unused_take;  // the slots read the exit-test state from bound
   logic [SlotW-1:0]    node_tag, res_slot;
@@ -157,6 +157,7 @@ module rt_octree #(
     .take_o        (unused_take),
     .bound_o       (bound),
     .want_check_i  (want_check),
+    .check_sel_o   (check_sel),
     .check_go_o    (check_go),
     .check_slot_o  (check_idx),
     .check_exit_i  (check_exit),
@@ -235,6 +236,7 @@ module rt_octree #(
     .res_slot_i       (res_slot),
     .bound_i          (bound),
     .want_check_o     (want_check),
+    .check_sel_i     (check_sel),
     .check_go_i       (check_go),
     .check_slot_i     (check_idx),
     .check_exit_o     (check_exit),

@@ -103,10 +103,14 @@ module rt_octree_slots #(
 
   // Exit tests of slots with a bound.
   input  logic [N-1:0]                           bound_i,          // exit-tested: a closest hit so far, or a segment end
+  // (rt_trav_shell pipelines the test: it reads check_sel_i's exit parameter
+  // the cycle after the grant, and answers EXIT_TEST_LATENCY cycles after it;
+  // the slot stays in CHECK meanwhile.)
   output logic [N-1:0]                           want_check_o,
-  input  logic                                   check_go_i,
+  input  logic [SlotW-1:0]                       check_sel_i,
+  output logic [rt_pkg::OCTREE_T_W-1:0]          check_exit_o,     // min t1 over check_sel_i's active axes
+  input  logic                                   check_go_i,       // the answer for check_slot_i
   input  logic [SlotW-1:0]                       check_slot_i,
-  output logic [rt_pkg::OCTREE_T_W-1:0]          check_exit_o,     // min t1 over the active axes
   input  logic                                   check_holds_i,
 
   // Results.
@@ -546,8 +550,8 @@ module rt_octree_slots #(
   assign visit_node_id_o = visit_at_root_o ? '0 : grp_q[visit_slot_i] + 32'(visit_sel);
   assign node_addr_o     = ADDR_W'(group_req_q[node_slot_i] ? first_q[node_slot_i] : grp_q[node_slot_i]);
   assign idx_addr_o      = ADDR_W'(first_q[idx_slot_i] + idx_issued);
-  assign check_exit_o    = min_active(active_q[check_slot_i], t1_q[check_slot_i][0*T_W +: T_W], t1_q[check_slot_i][1*T_W +: T_W],
-                                      t1_q[check_slot_i][2*T_W +: T_W]);
+  assign check_exit_o    = min_active(active_q[check_sel_i], t1_q[check_sel_i][0*T_W +: T_W], t1_q[check_sel_i][1*T_W +: T_W],
+                                      t1_q[check_sel_i][2*T_W +: T_W]);
 
   assign free_o         = free_q;
   assign want_visit_o   = enter_q;

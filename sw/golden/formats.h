@@ -90,5 +90,10 @@ inline constexpr int kMemAddrBits = LANCER_MEM_ADDR_BITS;
 // Cycles from an accepted request to its result appearing on the output, with
 // no backpressure. The RTL builds this many stages; the SystemC model delays by it.
 inline constexpr int kIsectLatency = 6;
+// Cycles from a traversal unit's exit-test grant to its answer reaching the
+// slot (rt_trav_shell: the grant registered, the operands, two products, the
+// comparison; one wide multiply a stage). The RTL builds these stages; the
+// SystemC shell model delays the answer by them.
+inline constexpr int kExitTestLatency = 5;
 
 }  // namespace lancer::fx

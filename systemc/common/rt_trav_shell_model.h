@@ -64,6 +64,11 @@ class rt_slot_mask {
     return false;
   }
   void clear() { w_.fill(0); }
+  rt_slot_mask without(const rt_slot_mask& other) const {  // this & ~other
+    rt_slot_mask out = *this;
+    for (int i = 0; i < kWords; ++i) out.w_[size_t(i)] &= ~other.w_[size_t(i)];
+    return out;
+  }
   int lowest() const {  // -1 if empty
     for (int i = 0; i < kWords; ++i)
       if (w_[size_t(i)]) return i * 64 + __builtin_ctzll(w_[size_t(i)]);
@@ -201,7 +206,9 @@ struct rt_trav_wants {
 };
 
 // The grants of a cycle: the granted slot of each arbiter whose grant goes, or
-// -1; alloc: the slot that takes the ray offered in this cycle, or -1.
+// -1; alloc: the slot that takes the ray offered in this cycle, or -1; check:
+// the slot whose exit test answers in this cycle (granted EXIT_TEST_LATENCY
+// cycles before), or -1.
 struct rt_trav_grants {
   int alloc = -1, node = -1, visit = -1, idx = -1, check = -1, done = -1;
 };
@@ -283,6 +290,10 @@ class rt_trav_shell_model : public sc_core::sc_module,
     resQ_.clear();
     credits_ = IDX_BUF_DEPTH;
     nodeArb_ = visitArb_ = idxArb_ = checkArb_ = doneArb_ = rt_rr_arb_model<N>{};
+    checkLine_.fill(-1);
+    checkPos_ = 0;
+    checkGrant_ = -1;
+    testing_.clear();
     nodeRsp_.valid = triRsp_.valid = false;
     for (isect_stage& st : pipe_) st.valid = false;
     pipePos_ = 0;
@@ -303,7 +314,10 @@ class rt_trav_shell_model : public sc_core::sc_module,
     g.node = goes(nodeArb_.pick(w.node), !nodeQ_.full());
     g.visit = goes(visitArb_.pick(w.visit), !visitQ_.full());
     g.idx = goes(idxArb_.pick(w.idx), !idxQ_.full() && credits_ != 0);
-    g.check = checkArb_.pick(w.check);
+    // Exit tests (rt_trav_shell, rt_exit_test): this cycle's answer leaves the
+    // delay line; a slot not under test may start one.
+    g.check = checkLine_[checkPos_];
+    checkGrant_ = checkArb_.pick(w.check.without(testing_));
     g.done = goes(doneArb_.pick(w.done), !resQ_.full());
     idxBufPop_ = !idxBuf_.empty() && !triQ_.full();
     if (this->idx_rsp_valid_i.read() && idxBuf_.full()) fail("index response with the index buffer full (credit error)");
@@ -411,7 +425,11 @@ class rt_trav_shell_model : public sc_core::sc_module,
     ack(nodeArb_, g.node);
     ack(visitArb_, g.visit);
     ack(idxArb_, g.idx);
-    ack(checkArb_, g.check);
+    ack(checkArb_, checkGrant_);
+    if (g.check >= 0) testing_.reset(g.check);
+    if (checkGrant_ >= 0) testing_.set(checkGrant_);
+    checkLine_[checkPos_] = checkGrant_;
+    checkPos_ = checkPos_ + 1 == checkLine_.size() ? 0 : checkPos_ + 1;
     ack(doneArb_, g.done);
 
     q_setup_.shift();
@@ -556,6 +574,13 @@ class rt_trav_shell_model : public sc_core::sc_module,
   int credits_ = IDX_BUF_DEPTH;  // index buffer entries not yet claimed by a request
   bool idxBufPop_ = false;       // this cycle's
   rt_rr_arb_model<N> nodeArb_, visitArb_, idxArb_, checkArb_, doneArb_;
+  // The exit tests in flight, a ring of the granted slots (-1: none):
+  // checkLine_[checkPos_] was granted EXIT_TEST_LATENCY cycles ago and answers
+  // in this cycle; this cycle's grant takes its place.
+  std::array<int, fx::kExitTestLatency> checkLine_{};
+  size_t checkPos_ = 0;
+  int checkGrant_ = -1;  // this cycle's grant
+  slot_mask testing_;    // slots whose test is in flight (rt_trav_shell's testing_q)
   boundary_reg<node_data_t> nodeRsp_;  // RegRsp only
   boundary_reg<isect_tri_t> triRsp_;
 

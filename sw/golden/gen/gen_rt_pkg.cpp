@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
       {"RAY_ID_W", kRayIdBits},     {"PRIM_ID_W", kPrimIdBits}, {"REL_W", kRelBits},
       {"SHEAR_W", kShearBits},      {"EDGE_W", kEdgeBits},      {"DET_W", kDetBits},
       {"T_W", kTBits},              {"T_NUM_W", kTNumBits},     {"DET_ABS_W", kDetAbsBits},
-      {"BARY_W", kBaryBits},        {"ISECT_LATENCY", kIsectLatency},
+      {"BARY_W", kBaryBits},        {"ISECT_LATENCY", kIsectLatency}, {"EXIT_TEST_LATENCY", kExitTestLatency},
       {"SEG_FRAC_W", kSegFracBits}, {"SEG_END_W", kSegEndBits},
       {"ISECT_RAY_W", kIsectRayBits}, {"ISECT_TRI_W", kIsectTriBits},
       {"ISECT_RES_W", kIsectResBits}, {"MEM_ADDR_W", kMemAddrBits},
