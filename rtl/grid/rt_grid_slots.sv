@@ -166,68 +166,107 @@ module rt_grid_slots #(
     onehot = valid ? (N'(1) << s) : '0;
   endfunction
 
-  // ---- The DDA step of the granted frontier (fx::GridDda::nextAxis/advance) ---------
+  // ---- The frontier's next DDA step, prepared ahead (fx::GridDda::nextAxis/advance) ----
   // Axis = argmin of N over the stepping axes, exact ties to the lowest; the
   // exit accumulator is N[axis]; the ray leaves if the coordinate is 0 stepping
   // down or R-1 stepping up (or no axis steps); else coordinate +-1, cell id
-  // +- stride, N[axis] += pair[axis] << P.
+  // +- stride, N[axis] += pair[axis] << P. A slot keeps its next step worked
+  // out (step_q): from the setup's values at init, and from the stepped
+  // frontier in the cycle after a cell grant (prep_q; the slot asks for no
+  // cell in that cycle). The grant itself only moves the frontier to the
+  // prepared cell, so no arithmetic follows the cell arbiter.
+  typedef struct packed {
+    logic [1:0]        axis;
+    logic [ACC_W-1:0]  exit_acc;  // N[axis]: the exit accumulator of the frontier cell
+    logic              leaves;    // the ray leaves the grid after the frontier cell
+    logic [CELL_W-1:0] coord;     // the next cell's coordinate on axis
+    logic [ID_W-1:0]   id;        // the next cell's id
+    logic [ACC_W-1:0]  acc;       // N[axis] after the step
+  } step_t;
+  localparam int STEP_W = 2 + ACC_W + 1 + CELL_W + ID_W + ACC_W;  // (Yosys 0.23 takes no $bits of a type)
+
+  // The next step of a frontier (cell, id, N, pair, axes), by the configuration
+  // in cfg_q / stride_*_q. The three axes' sums are formed side by side and
+  // the argmin picks one, so the comparisons and the additions run in parallel.
+  function automatic logic [STEP_W-1:0] next_step(input logic [3*CELL_W-1:0] cel, input logic [ID_W-1:0] id,
+                                                  input logic [3*ACC_W-1:0] acc, input logic [3*PAIR_W-1:0] pair,
+                                                  input logic [2:0] act, input logic [2:0] neg);
+    // (Plain vectors: Yosys 0.23 sizes no struct or unpacked array in a function.)
+    logic [1:0]          axis;
+    logic [ACC_W-1:0]    exit_acc;
+    logic                leaves;
+    logic [3*ID_W-1:0]   next_id;
+    logic [3*ACC_W-1:0]  next_acc;
+    logic [CELL_W-1:0]   coord;
+    logic [ID_W-1:0]     stride;
+    for (int a = 0; a < 3; a++) begin
+      stride = (a == 0) ? ID_W'(1) : ((a == 1) ? stride_y_q : stride_z_q);
+      next_id[a*ID_W +: ID_W]    = neg[a] ? id - stride : id + stride;
+      next_acc[a*ACC_W +: ACC_W] = acc[a*ACC_W +: ACC_W] + (ACC_W'(pair[a*PAIR_W +: PAIR_W]) << POS_W);
+    end
+    // Strict < keeps the lowest axis on exact ties, as fx::GridDda::nextAxis().
+    axis     = 2'd0;
+    exit_acc = acc[0 +: ACC_W];
+    if (!act[0] || (act[1] && acc[ACC_W +: ACC_W] < exit_acc)) begin
+      axis     = 2'd1;
+      exit_acc = acc[ACC_W +: ACC_W];
+    end
+    if (act[2] && (!act[axis] || acc[2*ACC_W +: ACC_W] < exit_acc)) begin
+      axis     = 2'd2;
+      exit_acc = acc[2*ACC_W +: ACC_W];
+    end
+    coord  = cel[axis*CELL_W +: CELL_W];
+    leaves = (act == '0) || (neg[axis] ? (coord == '0) : (RES_W'(coord) == cfg_q[axis*RES_W +: RES_W] - 1'b1));
+    next_step = {axis, exit_acc, leaves, neg[axis] ? coord - 1'b1 : coord + 1'b1, next_id[axis*ID_W +: ID_W],
+                 next_acc[axis*ACC_W +: ACC_W]};
+  endfunction
+
+  logic [STEP_W-1:0] step_q [N];  // each slot's next step
+  logic              prep_q;      // a slot's frontier stepped in the previous cycle:
+  logic [SlotW-1:0]  prep_slot_q; // its next step is prepared in this one
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      prep_q <= 1'b0;
+    end else begin
+      prep_q <= cell_go_i;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (cell_go_i) prep_slot_q <= cell_slot_i;
+  end
+
+  always_ff @(posedge clk_i) begin : p_step
+    if (init_i) begin
+      step_q[init_slot_i] <= next_step(init_cell_i, init_cell_id_i, init_acc_i, init_pair_i, init_active_i,
+                                       init_neg_i);
+    end
+    if (prep_q) begin
+      step_q[prep_slot_q] <= next_step(fcell_q[prep_slot_q], fid_q[prep_slot_q], facc_q[prep_slot_q],
+                                       pair_q[prep_slot_q], act_q[prep_slot_q], neg_q[prep_slot_q]);
+    end
+  end
+
+  // The grant's step: the prepared one, into the frontier's registers.
+  step_t               st;
   logic [ACC_W-1:0]    st_exit;
   logic                st_leaves;
   logic [3*CELL_W-1:0] st_cell;
-  logic [ID_W-1:0]     st_id;
   logic [3*ACC_W-1:0]  st_acc;
-
   always_comb begin : b_step
-    logic [3*ACC_W-1:0]  acc;
-    logic [3*PAIR_W-1:0] pair;
-    logic [3*CELL_W-1:0] cel;
-    logic [2:0]          act, neg;
-    logic [1:0]          axis;
-    logic [CELL_W-1:0]   coord;
-    logic [RES_W-1:0]    res_a;
-    logic [ID_W-1:0]     stride_a;
-    // Defaults for the cycles without a grant (every path assigns every variable).
-    acc       = '0;
-    pair      = '0;
-    cel       = '0;
-    act       = '0;
-    neg       = '0;
-    axis      = '0;
-    coord     = '0;
-    res_a     = '0;
-    stride_a  = '0;
-    st_exit   = '0;
-    st_leaves = 1'b0;
-    st_cell   = '0;
-    st_id     = '0;
-    st_acc    = '0;
+    st      = '0;
+    st_cell = '0;
+    st_acc  = '0;
     if (cell_go_i) begin
-      acc  = facc_q[cell_slot_i];
-      pair = pair_q[cell_slot_i];
-      cel  = fcell_q[cell_slot_i];
-      act  = act_q[cell_slot_i];
-      neg  = neg_q[cell_slot_i];
-      // Strict < keeps the lowest axis on exact ties, as fx::GridDda::nextAxis().
-      st_exit = acc[0 +: ACC_W];
-      if (!act[0] || (act[1] && acc[ACC_W +: ACC_W] < st_exit)) begin
-        axis    = 2'd1;
-        st_exit = acc[ACC_W +: ACC_W];
-      end
-      if (act[2] && (!act[axis] || acc[2*ACC_W +: ACC_W] < st_exit)) begin
-        axis    = 2'd2;
-        st_exit = acc[2*ACC_W +: ACC_W];
-      end
-      coord    = cel[axis*CELL_W +: CELL_W];
-      res_a    = cfg_q[axis*RES_W +: RES_W];
-      stride_a = (axis == 2'd0) ? ID_W'(1) : ((axis == 2'd1) ? stride_y_q : stride_z_q);
-      st_leaves = (act == '0) || (neg[axis] ? (coord == '0) : (RES_W'(coord) == res_a - 1'b1));
-      st_cell   = cel;
-      st_cell[axis*CELL_W +: CELL_W] = neg[axis] ? coord - 1'b1 : coord + 1'b1;
-      st_id     = neg[axis] ? fid_q[cell_slot_i] - stride_a : fid_q[cell_slot_i] + stride_a;
-      st_acc    = acc;
-      st_acc[axis*ACC_W +: ACC_W] = st_exit + (ACC_W'(pair[axis*PAIR_W +: PAIR_W]) << POS_W);
+      st      = step_q[cell_slot_i];
+      st_cell = fcell_q[cell_slot_i];
+      st_acc  = facc_q[cell_slot_i];
+      st_cell[st.axis*CELL_W +: CELL_W] = st.coord;
+      st_acc[st.axis*ACC_W +: ACC_W]    = st.acc;
     end
   end
+  assign st_exit   = st.exit_acc;
+  assign st_leaves = st.leaves;
 
   // ---- The exit accumulator of the tested slot's cell (rt_trav_shell tests it) ------
   // The slot stays in CHECK with the same head cell until the answer.
@@ -401,7 +440,7 @@ module rt_grid_slots #(
       elast_q[{cell_slot_i, g_push}] <= st_leaves;
       if (!st_leaves) begin
         fcell_q[cell_slot_i] <= st_cell;
-        fid_q[cell_slot_i]   <= st_id;
+        fid_q[cell_slot_i]   <= st.id;
         facc_q[cell_slot_i]  <= st_acc;
       end
     end
@@ -422,7 +461,8 @@ module rt_grid_slots #(
 
   // ---- Outputs ----------------------------------------------------------------------------
   assign free_o          = free_q;
-  assign want_cell_o     = (visit_q | wait_q | fetch_q | check_q) & front_q & ~qc_q[(D-1)*N +: N];
+  assign want_cell_o     = (visit_q | wait_q | fetch_q | check_q) & front_q & ~qc_q[(D-1)*N +: N]
+                           & ~onehot(prep_q, prep_slot_q);  // (its next step is being prepared)
   assign want_visit_o    = visit_q & qc_q[0 +: N];
   assign want_idx_o      = iss_q;
   assign want_check_o    = check_q;

@@ -29,6 +29,7 @@ void rt_grid_model::seq() {
   if (loadSlot() >= 0) load(loadSlot());
   fillCell(cell);
   if (g.node >= 0) requestCell(g.node);
+  preparing_ = g.node;
   if (g.visit >= 0) visitCell(g.visit, visitHeadIn);
   if (cell.waiting && cell.slot != g.visit) startCell(cell.slot, cell.data);
   if (g.idx >= 0) issueIndex(g.idx);
@@ -42,6 +43,7 @@ void rt_grid_model::seq() {
 
 void rt_grid_model::reset() {
   for (Slot& s : slots_) s = Slot{};
+  preparing_ = -1;
   resetShell();
 }
 
@@ -67,7 +69,7 @@ rt_grid_model::wants_t rt_grid_model::wants() const {
     }
     const bool inFlight = s.state == State::Visit || s.state == State::WaitCell || s.state == State::Fetch ||
                           s.state == State::Check;
-    if (inFlight && s.frontierValid && s.queued < CELL_QUEUE) w.node.set(k);
+    if (inFlight && s.frontierValid && s.queued < CELL_QUEUE && k != preparing_) w.node.set(k);
   }
   return w;
 }

@@ -108,6 +108,9 @@ class rt_grid_model : public rt_trav_shell_model<rt_grid_unit, /*RegRsp=*/true> 
   fx::GridRes resolution() const;
 
   std::vector<Slot> slots_;
+  // The slot granted a cell in the previous cycle: rt_grid_slots prepares its
+  // frontier's next step in this one (step_q), so it asks for no cell now.
+  int preparing_ = -1;
 };
 
 }  // namespace lancer::sc
