@@ -32,10 +32,11 @@
 // per cycle) and lasts one cycle: one slot at most, the registered response
 // tag. FETCH ends the cycle after the result that completes the leaf (one per
 // cycle): the registered result slot. The advance runs in AdvLanes shared
-// lanes, granted round robin to the slots in NEXT or in CHECK without a bound,
-// and in one more lane for the slot whose exit test fails: AdvLanes + 1
-// advance datapaths, not one per slot; a slot waits only when more than
-// AdvLanes slots want to advance in the same cycle.
+// lanes, granted round robin to the slots in NEXT or in CHECK without a bound
+// (the grant registered: the slot advances in the next cycle), and in one more
+// lane for the slot whose exit test fails, in the cycle of the answer:
+// AdvLanes + 1 advance datapaths, not one per slot; a slot waits only when
+// more than AdvLanes slots want to advance in the same cycle.
 //
 // Storage: one-hot state vectors (N bits each, reset); per-slot registers as
 // arrays written by index (no reset; written before read). The current node's
@@ -233,21 +234,48 @@ module rt_octree_slots #(
   localparam int LANES = AdvLanes + 1;
   localparam int CHECK_LANE = AdvLanes;
 
-  logic [N-1:0]          want_adv;
+  // The round-robin lanes' grants are registered: a slot granted in cycle t
+  // advances in t+1 (its lane's arithmetic then starts from registers, not
+  // from the chained arbiters), and is left out of the arbitration in t+1.
+  logic [N-1:0]          want_adv, in_lane;
   // Requesters left for lane l (split: lane l's element depends on lane l-1's).
   logic [N-1:0]          lane_req [AdvLanes + 1] /* verilator split_var */;
+  logic                  arb_go [AdvLanes];
+  logic [SlotW-1:0]      arb_slot [AdvLanes];
+  logic [AdvLanes-1:0]   lane_go_q;
+  logic [SlotW-1:0]      lane_slot_q [AdvLanes];
   logic                  lane_go [LANES];
   logic [SlotW-1:0]      lane_slot [LANES];
 
   assign want_adv    = next_q | (check_q & ~bound_i);
-  assign lane_req[0] = want_adv;
+  assign lane_req[0] = want_adv & ~in_lane;
   for (genvar l = 0; l < AdvLanes; l++) begin : g_adv_arb
     logic [N-1:0] gnt;
     rt_rr_arb #(.N(N)) u_arb (
-      .clk_i, .rst_ni, .req_i(lane_req[l]), .ack_i(lane_go[l]),
-      .valid_o(lane_go[l]), .gnt_o(gnt), .idx_o(lane_slot[l]));
+      .clk_i, .rst_ni, .req_i(lane_req[l]), .ack_i(arb_go[l]),
+      .valid_o(arb_go[l]), .gnt_o(gnt), .idx_o(arb_slot[l]));
     assign lane_req[l+1] = lane_req[l] & ~gnt;
+    assign lane_go[l]    = lane_go_q[l];
+    assign lane_slot[l]  = lane_slot_q[l];
   end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      lane_go_q <= '0;
+    end else begin
+      for (int l = 0; l < AdvLanes; l++) lane_go_q[l] <= arb_go[l];
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    for (int l = 0; l < AdvLanes; l++) begin
+      if (arb_go[l]) lane_slot_q[l] <= arb_slot[l];
+    end
+  end
+  always_comb begin
+    in_lane = '0;
+    for (int l = 0; l < AdvLanes; l++) in_lane = in_lane | onehot(lane_go_q[l], lane_slot_q[l]);
+  end
+  // The slot whose exit test fails advances in the exit lane in the cycle of
+  // the answer (registers: rt_exit_test's output).
   assign lane_go[CHECK_LANE]   = check_go_i && !check_holds_i;
   assign lane_slot[CHECK_LANE] = check_slot_i;
 

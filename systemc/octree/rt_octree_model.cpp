@@ -44,7 +44,8 @@ rt_octree_model::rt_octree_model(sc_core::sc_module_name name)
 void rt_octree_model::seq() {
   if (!rst_ni.read()) return reset();
   const rt_trav_grants g = grant(wants());
-  const lanes_t lanes = grantLanes();
+  const lanes_t lanes = granted_;  // granted in the previous cycle: they advance now
+  granted_ = grantLanes(lanes);
   const slot_mask self = self_;
   const int nodeSlot = nodeResponseSlot();
   const rt_isect_result res = intersect(fetch_);
@@ -71,6 +72,7 @@ void rt_octree_model::reset() {
   }
   for (int k = 0; k < N; ++k) free_.set(k);
   advArb_.fill(rt_rr_arb_model<N>{});
+  granted_.fill(-1);
   resetShell();
 }
 
@@ -81,12 +83,18 @@ rt_octree_model::wants_t rt_octree_model::wants() const {
 }
 
 // The advance lanes' grants: lane l over what the lanes before it left.
-rt_octree_model::lanes_t rt_octree_model::grantLanes() {
+rt_octree_model::lanes_t rt_octree_model::grantLanes(const lanes_t& advancing) {
   lanes_t lanes{};
   slot_mask left = advWant_;
+  for (const int k : advancing) {
+    if (k >= 0) left.reset(k);
+  }
   for (size_t l = 0; l < lanes.size(); ++l) {
     lanes[l] = advArb_[l].pick(left);
-    if (lanes[l] >= 0) left.reset(lanes[l]);
+    if (lanes[l] >= 0) {
+      left.reset(lanes[l]);
+      advArb_[l].ack(lanes[l]);
+    }
   }
   return lanes;
 }
@@ -158,7 +166,6 @@ void rt_octree_model::advanceLanes(const lanes_t& lanes) {
   for (size_t l = 0; l < lanes.size(); ++l) {
     if (lanes[l] < 0) continue;
     advance(lanes[l]);
-    advArb_[l].ack(lanes[l]);
   }
 }
 

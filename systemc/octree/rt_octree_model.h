@@ -80,7 +80,8 @@ class rt_octree_model : public rt_trav_shell_model<rt_octree_unit, /*RegRsp=*/fa
   void seq();
   void reset();
   wants_t wants() const;
-  lanes_t grantLanes();
+  // This cycle's lane grants (each arbiter's pointer moves past its grant).
+  lanes_t grantLanes(const lanes_t& advancing);
   int nodeResponseSlot();
   void visit(int k);
   void requestGroup(int k);
@@ -104,6 +105,9 @@ class rt_octree_model : public rt_trav_shell_model<rt_octree_unit, /*RegRsp=*/fa
   // self_: DESCEND and FETCH with every result in, acting on their own.
   slot_mask free_, enter_, nodeWant_, idxWant_, checkWant_, advWant_, done_, fetch_, self_;
   std::array<rt_rr_arb_model<N>, octree::ADV_LANES> advArb_{};  // lane l takes what lanes before it left
+  // The lanes' grants of the previous cycle (rt_octree_slots registers them):
+  // those slots advance in this cycle and are left out of its arbitration.
+  lanes_t granted_{};
 };
 
 }  // namespace lancer::sc

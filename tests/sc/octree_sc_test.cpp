@@ -150,22 +150,24 @@ TEST_P(ScOctree, OneRayTimingFollowsTheStateMachine) {
     EXPECT_EQ(oneRayCycles(device, image, miss, 20, &t), 5u) << "root missed";
     EXPECT_TRUE(t.visits.empty());
   }
-  // An empty root leaf: ENTER 3 (visit grant), CHECK 4 (no hit: advance at
-  // depth 0 -> DONE), DONE 5 (done grant), result on the port in 6: 7 cycles.
+  // An empty root leaf: ENTER 3 (visit grant), CHECK 4 (no hit: a lane's
+  // grant), the advance at depth 0 in 5 -> DONE), DONE 6 (done grant), result
+  // on the port in 7: 8 cycles.
   {
     const fx::OctreeImage image = fx::buildOctreeImage({}, 1, 1);
     const QRay ray{0, {side / 2, side / 2, side / 2}, {kDirMax, 0, 0}};
     fx::TraversalTrace t;
-    EXPECT_EQ(oneRayCycles(device, image, ray, 20, &t), 7u) << "empty root leaf";
+    EXPECT_EQ(oneRayCycles(device, image, ray, 20, &t), 8u) << "empty root leaf";
     EXPECT_EQ(t.visits.size(), 1u);
   }
   // Two empty levels: the root interior, its children empty leaves. A ray along
   // x through the lower half on y and z enters the root, then children 0 and 4
   // (mirrored numbering: x lower, then x upper). Cycles per the state machine,
   // with L the latency: root ENTER 3, GROUP_REQ 4, request on the port 5,
-  // response in 5+L, DESCEND 6+L, child ENTER 7+L, CHECK 8+L (sibling, group
-  // valid) -> ENTER 9+L, CHECK 10+L (advance: pop to depth 0 -> DONE), DONE
-  // 11+L, result taken in 12+L: 13 + L cycles; an interior node costs L + 4.
+  // response in 5+L, DESCEND 6+L, child ENTER 7+L, CHECK 8+L (a lane's
+  // grant), the advance in 9+L (sibling, group valid) -> ENTER 10+L, CHECK
+  // 11+L, the advance in 12+L (pop to depth 0 -> DONE), DONE 13+L, result
+  // taken in 14+L: 15 + L cycles; an interior node costs L + 4, an advance 2.
   {
     std::vector<QTriangle> tris;
     for (int i = 0; i < 20; ++i) {  // in the upper y half: the root splits, its lower-y children stay empty
@@ -184,7 +186,7 @@ TEST_P(ScOctree, OneRayTimingFollowsTheStateMachine) {
       ASSERT_EQ(t.visits.size(), 3u) << describe(t);
       ASSERT_TRUE(image.nodes[t.visits[1]].leaf && image.nodes[t.visits[1]].count == 0) << describe(t);
       ASSERT_TRUE(image.nodes[t.visits[2]].leaf && image.nodes[t.visits[2]].count == 0) << describe(t);
-      EXPECT_EQ(cycles, uint64_t(13 + latency)) << "latency " << latency;
+      EXPECT_EQ(cycles, uint64_t(15 + latency)) << "latency " << latency;
     }
   }
 }

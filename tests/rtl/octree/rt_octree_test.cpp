@@ -125,7 +125,8 @@ TEST(RtOctree, OneRayInFlightAllSlotsAndNoStalls) {
 
 // One ray alone, memory latency L, no stalls: the cycle count follows the
 // micro-architecture's timing (docs/octree-unit.md): setup 3 cycles, an
-// interior node L + 4, an empty leaf 2, plus the result.
+// interior node L + 4, an empty leaf 3 (its check, then the advance a lane
+// granted), plus the result.
 TEST(RtOctree, TimingOfOneRayThroughEmptyLeaves) {
   // Two tiny triangles in one corner: the root splits, the ray below crosses
   // empty children of the root only.
@@ -142,10 +143,11 @@ TEST(RtOctree, TimingOfOneRayThroughEmptyLeaves) {
     const TraversalRunStats s = expectSameTraces(image, rays, o);
     // Accepted in cycle 0, ENTER root in 3, GROUP_REQ 4, the request on the
     // port 5, the response 5 + L, DESCEND 6 + L, ENTER child 7 in 7 + L, CHECK
-    // 8 + L (no hit: advance to the sibling), ENTER child 3 in 9 + L, CHECK
-    // 10 + L (advance: pop to the root: DONE), DONE 11 + L (result FIFO), the
-    // result taken in 12 + L: 13 + L cycles.
-    EXPECT_EQ(s.cycles, uint64_t(13 + latency)) << "latency " << latency;
+    // 8 + L (no hit: a lane's grant), the advance to the sibling in 9 + L,
+    // ENTER child 3 in 10 + L, CHECK 11 + L, the advance in 12 + L (pop to the
+    // root: DONE), DONE 13 + L (result FIFO), the result taken in 14 + L:
+    // 15 + L cycles.
+    EXPECT_EQ(s.cycles, uint64_t(15 + latency)) << "latency " << latency;
     EXPECT_EQ(s.nodeReads, 1u);
   }
 }
