@@ -225,13 +225,7 @@ module rt_grid_slots #(
   logic              prep_q;      // a slot's frontier stepped in the previous cycle:
   logic [SlotW-1:0]  prep_slot_q; // its next step is prepared in this one
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      prep_q <= 1'b0;
-    end else begin
-      prep_q <= cell_go_i;
-    end
-  end
+  // (prep_q is reset with the state vectors, below.)
   always_ff @(posedge clk_i) begin
     if (cell_go_i) prep_slot_q <= cell_slot_i;
   end
@@ -406,7 +400,9 @@ module rt_grid_slots #(
       qc_q    <= '0;
       oc_q    <= '0;
       hd_q    <= '0;
+      prep_q  <= 1'b0;
     end else begin
+      prep_q  <= cell_go_i;
       free_q  <= (free_q & ~alloc_oh) | done_oh;
       setup_q <= (setup_q & ~init_oh) | alloc_oh;
       visit_q <= (visit_q & ~vgo_oh) | init_oh | pop_set;

@@ -52,18 +52,22 @@ module rt_setup_front #(
 
   stage_t s1_q, s2_q;
 
-  // Stage 1: the figures are worked out inside the enabled flop rather than
-  // in an always_comb feeding an rt_pipe_reg (the same gates): a simulator then
-  // evaluates them for each ray that passes, not at every change of ray_i.
-  // (Plain variables: Yosys 0.23 writes no bit of a struct's field.)
-  logic s1_valid_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      s1_valid_q <= 1'b0;
-    end else begin
-      s1_valid_q <= valid_i;
-    end
-  end
+  // Stage 1: the valid bit and the slot in an rt_pipe_reg; the ray and its
+  // figures worked out inside an enabled flop rather than in an always_comb
+  // feeding the register (the same gates): a simulator then evaluates them for
+  // each ray that passes, not at every change of ray_i. (Plain variables:
+  // Yosys 0.23 writes no bit of a struct's field.)
+  logic [SlotW-1:0]                              s1_slot;
+  logic [rt_pkg::ISECT_RAY_W + 6 + DIR_W - 1:0] s1_rest_q;  // {ray, active, neg, dom}
+  rt_pipe_reg #(.Width(SlotW)) u_stage1 (
+    .clk_i,
+    .rst_ni,
+    .valid_i,
+    .data_i  (slot_i),
+    .valid_o (s1_valid_o),
+    .data_o  (s1_slot)
+  );
+  assign s1_q = {s1_slot, s1_rest_q};
 
   always_ff @(posedge clk_i) begin
     if (valid_i) begin : b_stage1
@@ -77,10 +81,9 @@ module rt_setup_front #(
         neg[a]    = d[DIR_W-1];
         if (mag > dom) dom = mag;
       end
-      s1_q <= {slot_i, ray_i, active, neg, dom};
+      s1_rest_q <= {ray_i, active, neg, dom};
     end
   end
-  assign s1_valid_o = s1_valid_q;
 
   rt_pipe_reg #(.Width(STAGE_W)) u_stage2 (
     .clk_i,

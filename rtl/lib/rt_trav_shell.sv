@@ -401,14 +401,6 @@ module rt_trav_shell #(
     .holds_o   (check_holds_o)
   );
 
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      testing_q <= '0;
-    end else begin
-      testing_q <= (testing_q | (N'(check_grant) << check_grant_slot)) & ~(N'(check_go_o) << check_slot_o);
-    end
-  end
-
   // ---- The records kept by slot index ---------------------------------------------------
   ray_geom_t init_geom;
   best_t     init_best;  // the segment end as a pseudo hit
@@ -432,12 +424,15 @@ module rt_trav_shell #(
     if (take_o) best_q[isect_slot_o] <= res_new;
   end
 
+  // (testing_q: the slots whose exit test is in flight, above.)
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       has_hit_q <= '0;
       bounded_q <= '0;
       any_hit_q <= '0;
+      testing_q <= '0;
     end else begin
+      testing_q <= (testing_q | (N'(check_grant) << check_grant_slot)) & ~(N'(check_go_o) << check_slot_o);
       if (init_i) begin
         has_hit_q[init_slot_i] <= 1'b0;
         bounded_q[init_slot_i] <= init_ray_i.t_max != '1;
