@@ -6,6 +6,7 @@ committed table of estimated clocks) all read it from here.
 As a command:
   lancer_synth.py sources TOP           the files Yosys reads for TOP, one a line
   lancer_synth.py hash TOP              their SHA-256 (sources_sha256)
+  lancer_synth.py cached TREE TOP       TREE's figures of TOP if they are current (exit 1 if not)
 """
 
 import hashlib
@@ -119,6 +120,24 @@ def critical_path(ltp_text):
     return [{"from": first}] + path + [{"to": last}]
 
 
+def cached_figures(tree, top):
+    """TREE's figures of TOP (TREE/synth/TOP/sweep-synth.json, scripts/sweep-synth)
+    while they were made from TREE's package and this tree's RTL sources, by
+    content; else None. lancer sweep and scripts/clock-table reuse a synthesis
+    only through this."""
+    cache = Path(tree) / "synth" / top / "sweep-synth.json"
+    pkg = Path(tree) / "generated" / "rtl" / "rt_pkg.sv"
+    if not cache.exists() or not pkg.exists():
+        return None
+    try:
+        fig = json.loads(cache.read_text())
+    except json.JSONDecodeError:
+        return None
+    current = (isinstance(fig, dict) and "error" not in fig and "fmax_mhz" in fig
+               and fig.get("pkg_sha256") == file_sha256(pkg) and fig.get("sources_sha256") == sources_sha256(top))
+    return fig if current else None
+
+
 def run_figures(work, top, pkg):
     """The figures of one `scripts/synth` run with LANCER_SYNTH_LTP=1 in WORK."""
     work = Path(work)
@@ -148,6 +167,12 @@ def main(argv):
         return 0
     if len(argv) == 3 and argv[1] == "hash":
         print(sources_sha256(argv[2]))
+        return 0
+    if len(argv) == 4 and argv[1] == "cached":
+        fig = cached_figures(argv[2], argv[3])
+        if fig is None:
+            return 1
+        print(json.dumps(fig))
         return 0
     print(__doc__.split("As a command:")[1].rstrip(), file=sys.stderr)
     return 2
