@@ -106,6 +106,23 @@ struct rt_rr_arb_model {
   void ack(int granted) { ptr = granted + 1 == N ? 0 : granted + 1; }
 };
 
+// A fixed delay of Latency cycles, a ring: out() is what went in Latency
+// cycles ago; push() puts this cycle's value in its place.
+template <class T, size_t Latency>
+struct rt_delay_line {
+  std::array<T, Latency> items{};
+  size_t pos = 0;
+  const T& out() const { return items[pos]; }
+  void push(const T& v) {
+    items[pos] = v;
+    pos = pos + 1 == Latency ? 0 : pos + 1;
+  }
+  void fill(const T& v) {
+    items.fill(v);
+    pos = 0;
+  }
+};
+
 // rt_fifo: Depth entries; in_ready = !full, out_valid = !empty, from the
 // occupancy at the start of the cycle.
 template <class T, size_t Depth>
@@ -291,12 +308,9 @@ class rt_trav_shell_model : public sc_core::sc_module,
     credits_ = IDX_BUF_DEPTH;
     nodeArb_ = visitArb_ = idxArb_ = checkArb_ = doneArb_ = rt_rr_arb_model<N>{};
     checkLine_.fill(-1);
-    checkPos_ = 0;
     checkGrant_ = -1;
-    testing_.clear();
     nodeRsp_.valid = triRsp_.valid = false;
-    for (isect_stage& st : pipe_) st.valid = false;
-    pipePos_ = 0;
+    pipe_.fill(isect_stage{});
     if (isect_) isect_->res_ready_i.write(true);  // rt_trav_shell takes every rt_isect result
     slot_mask all;
     for (int k = 0; k < N; ++k) all.set(k);
@@ -316,8 +330,8 @@ class rt_trav_shell_model : public sc_core::sc_module,
     g.idx = goes(idxArb_.pick(w.idx), !idxQ_.full() && credits_ != 0);
     // Exit tests (rt_trav_shell, rt_exit_test): this cycle's answer leaves the
     // delay line; a slot not under test may start one.
-    g.check = checkLine_[checkPos_];
-    checkGrant_ = checkArb_.pick(w.check.without(testing_));
+    g.check = checkLine_.out();
+    checkGrant_ = checkArb_.pick(w.check.without(underTest()));
     g.done = goes(doneArb_.pick(w.done), !resQ_.full());
     idxBufPop_ = !idxBuf_.empty() && !triQ_.full();
     if (this->idx_rsp_valid_i.read() && idxBuf_.full()) fail("index response with the index buffer full (credit error)");
@@ -356,16 +370,15 @@ class rt_trav_shell_model : public sc_core::sc_module,
         fx::unpackResult(wire, out.res);
       }
     } else {
-      isect_stage& stage = pipe_[pipePos_];
-      out.valid = stage.valid;
-      out.res = stage.res;
-      stage.valid = in.valid;
+      out.valid = pipe_.out().valid;
+      out.res = pipe_.out().res;
+      isect_stage stage{in.valid, {}};
       if (in.valid) {
         std::array<uint32_t, fx::kIsectTriWords> wire{};
         fromPort<ISECT_TRI_W>(*in.data, wire);
         stage.res = fx::intersect(ray_[size_t(in.slot)], unpackTriangle(wire.data()));
       }
-      pipePos_ = pipePos_ + 1 == size_t(ISECT_LATENCY) ? 0 : pipePos_ + 1;
+      pipe_.push(stage);
     }
     if (out.valid) {
       out.slot = int(out.res.rayId & SLOT_MASK);
@@ -426,10 +439,7 @@ class rt_trav_shell_model : public sc_core::sc_module,
     ack(visitArb_, g.visit);
     ack(idxArb_, g.idx);
     ack(checkArb_, checkGrant_);
-    if (g.check >= 0) testing_.reset(g.check);
-    if (checkGrant_ >= 0) testing_.set(checkGrant_);
-    checkLine_[checkPos_] = checkGrant_;
-    checkPos_ = checkPos_ + 1 == checkLine_.size() ? 0 : checkPos_ + 1;
+    checkLine_.push(checkGrant_);
     ack(doneArb_, g.done);
 
     q_setup_.shift();
@@ -519,6 +529,16 @@ class rt_trav_shell_model : public sc_core::sc_module,
     isectFireStale_ = false;
   }
 
+  // The slots whose exit test is in flight (rt_trav_shell's testing_q),
+  // the one answering in this cycle included: they ask for no other.
+  slot_mask underTest() const {
+    slot_mask m;
+    for (const int k : checkLine_.items) {
+      if (k >= 0) m.set(k);
+    }
+    return m;
+  }
+
   bool isectFire(const tri_in& in) const { return in.valid && (!isect_ || isect_->req_ready_o.read()); }
 
   // A flag output is written only when it changes (the signal keeps its value);
@@ -574,18 +594,14 @@ class rt_trav_shell_model : public sc_core::sc_module,
   int credits_ = IDX_BUF_DEPTH;  // index buffer entries not yet claimed by a request
   bool idxBufPop_ = false;       // this cycle's
   rt_rr_arb_model<N> nodeArb_, visitArb_, idxArb_, checkArb_, doneArb_;
-  // The exit tests in flight, a ring of the granted slots (-1: none):
-  // checkLine_[checkPos_] was granted EXIT_TEST_LATENCY cycles ago and answers
-  // in this cycle; this cycle's grant takes its place.
-  std::array<int, fx::kExitTestLatency> checkLine_{};
-  size_t checkPos_ = 0;
+  // The exit tests in flight: the slots granted in the last EXIT_TEST_LATENCY
+  // cycles (-1: none); out() answers in this cycle.
+  rt_delay_line<int, fx::kExitTestLatency> checkLine_;
   int checkGrant_ = -1;  // this cycle's grant
-  slot_mask testing_;    // slots whose test is in flight (rt_trav_shell's testing_q)
   boundary_reg<node_data_t> nodeRsp_;  // RegRsp only
   boundary_reg<isect_tri_t> triRsp_;
 
-  std::array<isect_stage, ISECT_LATENCY> pipe_{};  // u_isect inside (rt_isect_impl::model)
-  size_t pipePos_ = 0;
+  rt_delay_line<isect_stage, ISECT_LATENCY> pipe_;  // u_isect inside (rt_isect_impl::model)
   std::unique_ptr<rt_isect_signals> isect_;  // u_isect on signals (rt_isect_impl::rtl)
   std::unique_ptr<sc_core::sc_module> u_isect;
 
