@@ -21,7 +21,8 @@
 //              triangle response enters it in the cycle it arrives, or in the
 //              next one when RegRsp (registered at the boundary)
 //   closest    one isect result per cycle updates its slot's closest hit
-//              (rt_closest_hit)
+//              (rt_closest_hit, two stages: the walk sees the result and its
+//              verdict one cycle after it leaves rt_isect)
 //   check      one exit test started per cycle (round robin over the slots
 //              that want one and are not under test; rt_exit_test, pipelined,
 //              with the walk's exit parameter against the record: the closest
@@ -44,8 +45,9 @@
 // order; the tag is the slot.
 //
 // Latency: 0 cycles from a want to its grant; each FIFO 1 cycle; the triangle
-// response 0 (RegRsp = 0) or 1 cycle to rt_isect, then ISECT_LATENCY; an exit
-// test EXIT_TEST_LATENCY cycles from its grant to its answer.
+// response 0 (RegRsp = 0) or 1 cycle to rt_isect, then ISECT_LATENCY, then 1
+// cycle to the walk (the closest-hit verdict); an exit test EXIT_TEST_LATENCY
+// cycles from its grant to its answer.
 // Throughput: per cycle at most one ray accepted, one node read, one visit
 // record, one index read, one triangle read, one intersection test, one
 // closest-hit update, one exit test and one result.
@@ -318,7 +320,7 @@ module rt_trav_shell #(
   // 1), so its req_ready_o is always 1 and a triangle enters at once.
   rt_pkg::isect_ray_t isect_ray;
   ray_geom_t          tri_geom;
-  logic               isect_req_ready;
+  logic               isect_req_ready, isect_res_valid;
   rt_pkg::isect_res_t isect_res;
 
   assign tri_geom = geom_q[tri_slot];
@@ -337,37 +339,54 @@ module rt_trav_shell #(
     .req_ready_o (isect_req_ready),
     .req_ray_i   (isect_ray),
     .req_tri_i   (tri_data),
-    .res_valid_o (isect_valid_o),
+    .res_valid_o (isect_res_valid),
     .res_ready_i (1'b1),
     .res_data_o  (isect_res)
   );
   assign perf_isect_fire_o = tri_valid && isect_req_ready;
 
-  // ---- Closest hit: one result per cycle against its slot's best --------------------
+  // ---- Closest hit: two stages (rt_closest_hit) --------------------------------------
+  // A result leaving rt_isect meets its slot's record here; it reaches the
+  // walk (isect_valid_o, isect_slot_o, take_o) one cycle later, with its
+  // verdict, in the cycle the record takes it.
+  logic [SlotW-1:0]            res_slot;
+  logic [31:0]                 take_prim;
+  logic [rt_pkg::T_NUM_W-1:0]  take_t_num;
+  logic [rt_pkg::DET_ABS_W-1:0] take_det;
+  logic [2*rt_pkg::BARY_W-1:0] take_bary;
   best_t res_best, res_new;
-  assign isect_slot_o = isect_res.ray_id[SlotW-1:0];
+  assign res_slot = isect_res.ray_id[SlotW-1:0];
   // (The whole element first: Yosys 0.23 takes no field of an array element.)
-  assign res_best = best_q[isect_slot_o];
-  always_comb begin
-    res_new.prim_id = isect_res.prim_id;
-    res_new.t_num   = isect_res.t_num;
-    res_new.det     = isect_res.det;
-    res_new.u_num   = isect_res.u_num;
-    res_new.v_num   = isect_res.v_num;
-  end
+  assign res_best = best_q[res_slot];
 
-  rt_closest_hit u_closest (
-    .valid_i      (isect_valid_o),
+  rt_closest_hit #(.SlotW(SlotW), .PayloadW(2 * rt_pkg::BARY_W)) u_closest (
+    .clk_i,
+    .rst_ni,
+    .valid_i      (isect_res_valid),
+    .slot_i       (res_slot),
     .hit_i        (isect_res.hit),
     .prim_id_i    (isect_res.prim_id),
     .t_num_i      (isect_res.t_num),
     .det_i        (isect_res.det),
-    .has_best_i   (has_hit_q[isect_slot_o]),
+    .payload_i    ({isect_res.u_num, isect_res.v_num}),
+    .has_best_i   (has_hit_q[res_slot]),
     .best_prim_i  (res_best.prim_id),
     .best_t_num_i (res_best.t_num),
     .best_det_i   (res_best.det),
-    .take_o
+    .valid_o      (isect_valid_o),
+    .slot_o       (isect_slot_o),
+    .take_o,
+    .prim_id_o    (take_prim),
+    .t_num_o      (take_t_num),
+    .det_o        (take_det),
+    .payload_o    (take_bary)
   );
+  always_comb begin
+    res_new.prim_id = take_prim;
+    res_new.t_num   = take_t_num;
+    res_new.det     = take_det;
+    {res_new.u_num, res_new.v_num} = take_bary;
+  end
   assign bound_o = has_hit_q | bounded_q;
 
   // ---- Exit tests, pipelined ---------------------------------------------------------
@@ -482,7 +501,7 @@ module rt_trav_shell #(
   `RT_CHECK_IF(a_idx_buf_room, idx_rsp_valid_i, idxbuf_ready)
   `RT_CHECK_IF(a_isect_ready, tri_valid, isect_req_ready)
   `RT_CHECK_IF(a_tri_rsp_slot, tri_valid, expect_i[tri_slot])
-  `RT_CHECK_IF(a_res_slot, isect_valid_o, expect_i[isect_slot_o])
+  `RT_CHECK_IF(a_res_slot, isect_res_valid, expect_i[res_slot])
   `RT_CHECK(a_cfg_slots, cfg_slots_i != '0 && cfg_slots_i <= CfgSlotsW'(N))
   `RT_CHECK(a_credit_range, credit_q <= CREDIT_W'(IdxBufDepth))
   `RT_ASSERT_STATIC(g_exit_latency_check, rt_pkg::EXIT_TEST_LATENCY == 1 + 4,

@@ -10,8 +10,9 @@
 //   grant()    allocation, the five round-robin arbiters, FIFO room, credits;
 //              the FIFO heads taken in this cycle leave
 //   nodeResponse()   the node/cell response of the cycle (registered when RegRsp)
-//   intersect()      u_isect: the triangle response enters with its slot's ray,
-//              the result leaving updates its slot's closest hit
+//   intersect()      u_isect: the triangle response enters with its slot's ray;
+//              u_closest: the result that left it a cycle ago updates its
+//              slot's closest hit
 //   (events)   the walk's slot updates; at its grants it pushes the node request,
 //              the visit, the index request and the result (push*()), and loads
 //              the ray leaving the setup pipeline (loadRay())
@@ -311,6 +312,7 @@ class rt_trav_shell_model : public sc_core::sc_module,
     checkGrant_ = -1;
     nodeRsp_.valid = triRsp_.valid = false;
     pipe_.fill(isect_stage{});
+    closest_ = {};
     if (isect_) isect_->res_ready_i.write(true);  // rt_trav_shell takes every rt_isect result
     slot_mask all;
     for (int k = 0; k < N; ++k) all.set(k);
@@ -355,23 +357,26 @@ class rt_trav_shell_model : public sc_core::sc_module,
   }
 
   // u_isect in this cycle: the triangle response enters with its slot's ray;
-  // the result leaving updates its slot's closest hit (rt_closest_hit).
+  // the result leaving it enters u_closest (rt_closest_hit), and the one that
+  // left it in the last cycle updates its slot's closest hit and is returned:
+  // the walk sees a result one cycle after rt_isect (the RTL forwards between
+  // back-to-back results of a slot, which is this sequential update).
   rt_isect_result intersect(const slot_mask& expect) {
     const tri_in in = triInput();
     if (in.valid && (in.slot >= N || !expect.test(in.slot))) {
       fail(fmt::format("triangle response for slot {}, which is not fetching", in.slot));
     }
-    rt_isect_result out;
+    rt_isect_result leaving;
     if (isect_) {
-      out.valid = isect_->res_valid_o.read();
-      if (out.valid) {
+      leaving.valid = isect_->res_valid_o.read();
+      if (leaving.valid) {
         std::array<uint32_t, fx::kIsectResWords> wire{};
         fromPort<ISECT_RES_W>(isect_->res_data_o.read(), wire);
-        fx::unpackResult(wire, out.res);
+        fx::unpackResult(wire, leaving.res);
       }
     } else {
-      out.valid = pipe_.out().valid;
-      out.res = pipe_.out().res;
+      leaving.valid = pipe_.out().valid;
+      leaving.res = pipe_.out().res;
       isect_stage stage{in.valid, {}};
       if (in.valid) {
         std::array<uint32_t, fx::kIsectTriWords> wire{};
@@ -380,11 +385,14 @@ class rt_trav_shell_model : public sc_core::sc_module,
       }
       pipe_.push(stage);
     }
-    if (out.valid) {
-      out.slot = int(out.res.rayId & SLOT_MASK);
-      if (out.slot >= N || !expect.test(out.slot)) {
-        fail(fmt::format("rt_isect result for slot {}, which expects none", out.slot));
+    if (leaving.valid) {
+      leaving.slot = int(leaving.res.rayId & SLOT_MASK);
+      if (leaving.slot >= N || !expect.test(leaving.slot)) {
+        fail(fmt::format("rt_isect result for slot {}, which expects none", leaving.slot));
       }
+    }
+    const rt_isect_result out = std::exchange(closest_, leaving);
+    if (out.valid) {
       rt_closest_record& hit = hit_[size_t(out.slot)];
       if (hit.takes(out.res)) hit.take(out.res);
     }
@@ -603,6 +611,7 @@ class rt_trav_shell_model : public sc_core::sc_module,
 
   rt_delay_line<isect_stage, ISECT_LATENCY> pipe_;  // u_isect inside (rt_isect_impl::model)
   std::unique_ptr<rt_isect_signals> isect_;  // u_isect on signals (rt_isect_impl::rtl)
+  rt_isect_result closest_;                  // u_closest's stage Y: the result whose verdict is next
   std::unique_ptr<sc_core::sc_module> u_isect;
 
   // Which FIFO heads changed since the outputs were last written.
