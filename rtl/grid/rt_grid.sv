@@ -34,7 +34,7 @@
 // the tag is the slot. A cell read past the cell where a ray stops (a
 // prefetch) is read and dropped.
 //
-// Latency:    >= 3 (setup) + per cell: cell read (hidden by the prefetch once
+// Latency:    >= 1 + GRID_SETUP_LATENCY (setup) + per cell: cell read (hidden by the prefetch once
 //             the ray is under way) + (index and triangle reads + ISECT_LATENCY
 //             if the cell holds triangles) + 1 (visit) cycles per ray.
 // Throughput: per cycle at most one ray accepted, one cell read (one DDA

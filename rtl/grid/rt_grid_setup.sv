@@ -1,23 +1,25 @@
 // rt_grid_setup: per-ray setup of the integer DDA (fx::GridDda::setup), bit exact.
 //
-// Multiplications only, in two register stages:
+// Multiplications only, in three register stages (GRID_SETUP_LATENCY), one
+// multiplication deep each (issue #23: stage 2 once chained two):
 //   stage 1  X[a] = o[a] * R[a] (scaled origin), |D[a]| = |d[a]| * R[a],
 //            step direction and activity, dominant = max |d[a]|
 //   stage 2  cell[a] = min(X[a] >> P, R[a]-1), dist[a] to the next boundary,
 //            pair[a] = product of the other stepping axes' |D| (1 if none),
-//            then acc[a] = dist[a] * pair[a], triple = pair[x] * |D[x]| (x
-//            stepping), cell id = (z * Ry + y) * Rx + x
-// The outputs are the stage-2 registers; rt_setup_front carries the ray and
-// computes |d|, the step directions and the dominant. A ray with no stepping axis
-// (all-zero direction) gets active = 0; the slot then ends it after its first
-// cell.
+//            cell id = (z * Ry + y) * Rx + x
+//   stage 3  acc[a] = dist[a] * pair[a], triple = pair[x] * |D[x]| (x
+//            stepping)
+// The outputs are the stage-3 registers; rt_setup_front carries the ray and
+// computes |d|, the step directions and the dominant. A ray with no stepping
+// axis (all-zero direction) gets active = 0; the slot then ends it after its
+// first cell.
 //
 // Each stage computes in the block that loads its registers (local variables
 // of an always_ff, i.e. the combinational logic in front of enabled flops), so
 // a simulator evaluates the arithmetic only in the cycle a ray passes.
 //
 // Latency:    a ray accepted at edge t (valid_i high in the cycle before t) is on
-//             valid_o after edge t+1; the slot loads it at edge t+2.
+//             valid_o after edge t+2; the slot loads it at edge t+3.
 // Throughput: one ray per cycle; the pipeline never stalls (the slot is
 //             reserved when the ray is accepted).
 module rt_grid_setup #(
@@ -50,7 +52,7 @@ module rt_grid_setup #(
   // ---- The shared front: valid, slot and ray through both stages, |d|,
   // activity, step direction, dominant ---------------------------------------------
   logic [3*DIR_W-1:0] mag;
-  logic               s1_valid;
+  logic               s1_valid, s2_valid;
   logic [2:0]         s1_active, s1_neg;
 
   // The ray in, and valid, slot, ray, active, neg and dom out, by name.
@@ -59,7 +61,8 @@ module rt_grid_setup #(
     .mag_o       (mag),
     .s1_valid_o  (s1_valid),
     .s1_active_o (s1_active),
-    .s1_neg_o    (s1_neg)
+    .s1_neg_o    (s1_neg),
+    .s2_valid_o  (s2_valid)
   );
 
   // ---- Stage 1: scaled origin and direction ------------------------------------
@@ -80,24 +83,23 @@ module rt_grid_setup #(
   // ---- Stage 2 ---------------------------------------------------------------
   logic [3*CELL_W-1:0]  s2_cell_q;
   logic [ID_W-1:0]      s2_cell_id_q;
-  logic [3*ACC_W-1:0]   s2_acc_q;
+  logic [3*DIST_W-1:0]  s2_dist_q;
   logic [3*PAIR_W-1:0]  s2_pair_q;
-  logic [TRIPLE_W-1:0]  s2_triple_q;
+  logic [GDIR_W-1:0]    s2_mx_q;   // |D[x]|, 1 if x does not step
 
   always_ff @(posedge clk_i) begin
     if (s1_valid) begin : b_stage2
       logic [3*GDIR_W-1:0] m;     // |D| masked to 1 on axes that do not step
       logic [3*CELL_W-1:0] cel;
-      logic [3*PAIR_W-1:0] pair;
       logic [GPOS_W-1:0]   xs, lower;
-      logic [DIST_W-1:0]   dst;
       logic [RES_W-1:0]    r, c;
       for (int a = 0; a < 3; a++) begin
         m[a*GDIR_W +: GDIR_W] = s1_active[a] ? s1_absd_q[a*GDIR_W +: GDIR_W] : GDIR_W'(1);
       end
-      pair[0*PAIR_W +: PAIR_W] = PAIR_W'(m[1*GDIR_W +: GDIR_W]) * PAIR_W'(m[2*GDIR_W +: GDIR_W]);
-      pair[1*PAIR_W +: PAIR_W] = PAIR_W'(m[0*GDIR_W +: GDIR_W]) * PAIR_W'(m[2*GDIR_W +: GDIR_W]);
-      pair[2*PAIR_W +: PAIR_W] = PAIR_W'(m[0*GDIR_W +: GDIR_W]) * PAIR_W'(m[1*GDIR_W +: GDIR_W]);
+      s2_pair_q[0*PAIR_W +: PAIR_W] <= PAIR_W'(m[1*GDIR_W +: GDIR_W]) * PAIR_W'(m[2*GDIR_W +: GDIR_W]);
+      s2_pair_q[1*PAIR_W +: PAIR_W] <= PAIR_W'(m[0*GDIR_W +: GDIR_W]) * PAIR_W'(m[2*GDIR_W +: GDIR_W]);
+      s2_pair_q[2*PAIR_W +: PAIR_W] <= PAIR_W'(m[0*GDIR_W +: GDIR_W]) * PAIR_W'(m[1*GDIR_W +: GDIR_W]);
+      s2_mx_q <= m[0 +: GDIR_W];
       for (int a = 0; a < 3; a++) begin
         xs = s1_x_q[a*GPOS_W +: GPOS_W];
         r  = cfg_res_i[a*RES_W +: RES_W];
@@ -107,25 +109,47 @@ module rt_grid_setup #(
         lower = GPOS_W'(c) << POS_W;
         // Distance to the boundary crossed next: upper - X stepping up, else X - lower.
         if (s1_active[a] && !s1_neg[a]) begin
-          dst = DIST_W'(lower + (GPOS_W'(1) << POS_W) - xs);
+          s2_dist_q[a*DIST_W +: DIST_W] <= DIST_W'(lower + (GPOS_W'(1) << POS_W) - xs);
         end else begin
-          dst = DIST_W'(xs - lower);
+          s2_dist_q[a*DIST_W +: DIST_W] <= DIST_W'(xs - lower);
         end
-        s2_acc_q[a*ACC_W +: ACC_W] <= ACC_W'(dst) * ACC_W'(pair[a*PAIR_W +: PAIR_W]);
       end
       s2_cell_q    <= cel;
       s2_cell_id_q <= (ID_W'(cel[2*CELL_W +: CELL_W]) * ID_W'(cfg_res_i[RES_W +: RES_W]) +
                        ID_W'(cel[CELL_W +: CELL_W])) * ID_W'(cfg_res_i[0 +: RES_W]) +
                       ID_W'(cel[0 +: CELL_W]);
-      s2_pair_q    <= pair;
-      s2_triple_q  <= TRIPLE_W'(pair[0 +: PAIR_W]) * TRIPLE_W'(m[0 +: GDIR_W]);
     end
   end
 
-  assign cell_o    = s2_cell_q;
-  assign cell_id_o = s2_cell_id_q;
-  assign acc_o     = s2_acc_q;
-  assign pair_o    = s2_pair_q;
-  assign triple_o  = s2_triple_q;
+  // ---- Stage 3 ---------------------------------------------------------------
+  logic [3*CELL_W-1:0]  s3_cell_q;
+  logic [ID_W-1:0]      s3_cell_id_q;
+  logic [3*ACC_W-1:0]   s3_acc_q;
+  logic [3*PAIR_W-1:0]  s3_pair_q;
+  logic [TRIPLE_W-1:0]  s3_triple_q;
+
+  always_ff @(posedge clk_i) begin
+    if (s2_valid) begin
+      for (int a = 0; a < 3; a++) begin
+        s3_acc_q[a*ACC_W +: ACC_W] <= ACC_W'(s2_dist_q[a*DIST_W +: DIST_W]) * ACC_W'(s2_pair_q[a*PAIR_W +: PAIR_W]);
+      end
+      s3_cell_q    <= s2_cell_q;
+      s3_cell_id_q <= s2_cell_id_q;
+      s3_pair_q    <= s2_pair_q;
+      s3_triple_q  <= TRIPLE_W'(s2_pair_q[0 +: PAIR_W]) * TRIPLE_W'(s2_mx_q);
+    end
+  end
+
+  assign cell_o    = s3_cell_q;
+  assign cell_id_o = s3_cell_id_q;
+  assign acc_o     = s3_acc_q;
+  assign pair_o    = s3_pair_q;
+  assign triple_o  = s3_triple_q;
+
+`ifdef RT_ASSERT_ON
+`include "rt_assert.svh"
+  `RT_ASSERT_STATIC(g_setup_latency_check, rt_pkg::GRID_SETUP_LATENCY == 3,
+                    "rt_grid_setup: its three stages differ from rt_pkg::GRID_SETUP_LATENCY")
+`endif
 
 endmodule

@@ -1,15 +1,16 @@
 // rt_setup_front: what the per-ray setups of every traversal unit share
-// (rt_grid_setup, rt_octree_setup): the two-stage pipeline that carries the
+// (rt_grid_setup, rt_octree_setup): the three-stage pipeline that carries the
 // ray and its slot, and the direction's arithmetic of stage 1, |d[a]|, the
 // active axes (d[a] != 0), the negative ones and the dominant max |d[a]|.
 //
-// The unit's own stage arithmetic sits beside it: stage 1 loads with valid_i
-// (from ray_i and mag_o), stage 2 with s1_valid_o (from the unit's stage-1
-// registers and s1_active_o / s1_neg_o). Both stages' words load only in the
-// cycle a ray passes (enabled flops; stage 2 is an rt_pipe_reg).
+// The unit's own stage arithmetic sits beside it, one multiplication deep per
+// stage: stage 1 loads with valid_i (from ray_i and mag_o), stage 2 with
+// s1_valid_o (from the unit's stage-1 registers and s1_active_o /
+// s1_neg_o), stage 3 with s2_valid_o. Every stage's word loads only in the
+// cycle a ray passes (enabled flops; stages 2 and 3 are rt_pipe_regs).
 //
 // Latency:    a ray accepted at edge t (valid_i high in the cycle before t) is
-//             on valid_o after edge t+1; the slot loads it at edge t+2.
+//             on valid_o after edge t+2; the slot loads it at edge t+3.
 // Throughput: one ray per cycle; the pipeline never stalls (the slot is
 //             reserved when the ray is accepted).
 module rt_setup_front #(
@@ -22,8 +23,9 @@ module rt_setup_front #(
   output logic                       s1_valid_o,   // stage 1 holds a ray
   output logic [2:0]                 s1_active_o,  // its axes with d != 0
   output logic [2:0]                 s1_neg_o,     // its axes with d < 0
+  output logic                       s2_valid_o,   // stage 2 holds a ray
 
-  output logic [2:0]                 active_o,     // stage 2's
+  output logic [2:0]                 active_o,     // stage 3's
   output logic [2:0]                 neg_o
 );
 
@@ -39,7 +41,7 @@ module rt_setup_front #(
     end
   end
 
-  // ---- Both stages: the ray, its slot and its direction's figures ----------------------
+  // ---- Every stage: the ray, its slot and its direction's figures ----------------------
   // (The ray as plain bits: Yosys 0.23 reads no package type inside a struct.)
   typedef struct packed {
     logic [SlotW-1:0]               slot;
@@ -50,7 +52,7 @@ module rt_setup_front #(
   } stage_t;
   localparam int STAGE_W = SlotW + rt_pkg::ISECT_RAY_W + 6 + DIR_W;  // (Yosys 0.23 takes no $bits of a type)
 
-  stage_t s1_q, s2_q;
+  stage_t s1_q, s2_q, s3_q;
 
   // Stage 1: the valid bit and the slot in an rt_pipe_reg; the ray and its
   // figures worked out inside an enabled flop rather than in an always_comb
@@ -90,12 +92,21 @@ module rt_setup_front #(
     .rst_ni,
     .valid_i (s1_valid_o),
     .data_i  (s1_q),
-    .valid_o,
+    .valid_o (s2_valid_o),
     .data_o  (s2_q)
+  );
+
+  rt_pipe_reg #(.Width(STAGE_W)) u_stage3 (
+    .clk_i,
+    .rst_ni,
+    .valid_i (s2_valid_o),
+    .data_i  (s2_q),
+    .valid_o,
+    .data_o  (s3_q)
   );
 
   assign s1_active_o = s1_q.active;
   assign s1_neg_o    = s1_q.neg;
-  assign {slot_o, ray_o, active_o, neg_o, dom_o} = s2_q;
+  assign {slot_o, ray_o, active_o, neg_o, dom_o} = s3_q;
 
 endmodule

@@ -10,7 +10,7 @@
   input  logic [SlotW-1:0]           slot_i,
   input  rt_pkg::isect_ray_t         ray_i,
 
-  // The ray and its slot after both stages (after edge t+1), and its dominant
+  // The ray and its slot after the three stages (after edge t+2), and its dominant
   // max |d|.
   output logic                       valid_o,
   output logic [SlotW-1:0]           slot_o,

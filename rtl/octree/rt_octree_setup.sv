@@ -1,22 +1,26 @@
 // rt_octree_setup: per-ray setup of the parametric octree walk
 // (fx::OctreeRaySetup::setup), bit exact.
 //
-// Multiplications only, in two register stages plus the output logic:
+// Multiplications only, in three register stages (OCTREE_SETUP_LATENCY, one
+// multiplication deep each; issue #23: the root's parameters and its test once
+// followed stage 2 in one cycle) plus the output logic:
 //   stage 1  mirror bits a (4, 2, 1 for a negative x, y, z), the mirrored
 //            origin o' = 2^P - o on mirrored axes (P+1 bits), |d|, the active
 //            axes (d != 0), dominant = max |d|
 //   stage 2  pair[a] = product of |d_b| over the other active axes (1 if none),
-//            common = product of |d| over all active axes (1 if none)
-//   output   the root's plane parameters over the common denominator,
-//            T0[a] = -o'[a] * pair[a], T1[a] = (2^P - o'[a]) * pair[a]
+//            common = product of |d| over all active axes (1 if none),
+//            2^P - o'[a]
+//   stage 3  the root's plane parameters over the common denominator as
+//            products, o'[a] * pair[a] and (2^P - o'[a]) * pair[a]
+//   output   T0[a] = -o'[a] * pair[a], T1[a] = (2^P - o'[a]) * pair[a]
 //            (inactive axes: -inf / +inf, values 0), and the root test
 //            max t0 < min t1 over the active axes (true with none active)
 //
-// rt_setup_front carries the ray through both stages and computes |d|, the
+// rt_setup_front carries the ray through the stages and computes |d|, the
 // active and negative axes and the dominant.
 //
 // Latency:    a ray accepted at edge t (valid_i high in the cycle before t) is on
-//             valid_o after edge t+1; the slot loads it at edge t+2.
+//             valid_o after edge t+2; the slot loads it at edge t+3.
 // Throughput: one ray per cycle; the pipeline never stalls (the slot is
 //             reserved when the ray is accepted).
 module rt_octree_setup #(
@@ -41,12 +45,12 @@ module rt_octree_setup #(
   localparam int T_W    = rt_pkg::OCTREE_T_W;
   localparam int ORG_W  = P + 1;
 
-  // ---- The shared front: valid, slot and ray through both stages, |d|, the
+  // ---- The shared front: valid, slot and ray through the stages, |d|, the
   // active axes, the mirrored ones, dominant ------------------------------------
   logic [3*DIR_W-1:0] mag;
-  logic               s1_valid;
+  logic               s1_valid, s2_valid;
   logic [2:0]         s1_active, unused_s1_neg;
-  logic [2:0]         s2_active, s2_neg;
+  logic [2:0]         s3_active, s3_neg;
 
   // The ray in, and valid, slot, ray and dom out, by name.
   rt_setup_front #(.SlotW(SlotW)) u_front (
@@ -55,8 +59,9 @@ module rt_octree_setup #(
     .s1_valid_o  (s1_valid),
     .s1_active_o (s1_active),
     .s1_neg_o    (unused_s1_neg),
-    .active_o    (s2_active),
-    .neg_o       (s2_neg)
+    .s2_valid_o  (s2_valid),
+    .active_o    (s3_active),
+    .neg_o       (s3_neg)
   );
 
   // ---- Stage 1: |d| and the mirrored origin ------------------------------------
@@ -81,6 +86,7 @@ module rt_octree_setup #(
 
   // ---- Stage 2 ---------------------------------------------------------------
   logic [3*ORG_W-1:0]   s2_org_q;
+  logic [3*ORG_W-1:0]   s2_org_hi_q;  // 2^P - o'
   logic [3*PAIR_W-1:0]  s2_pair_q;
   logic [COM_W-1:0]     s2_common_q;
 
@@ -90,6 +96,7 @@ module rt_octree_setup #(
       logic [PAIR_W-1:0] pair_x;
       for (int a = 0; a < 3; a++) begin
         m[a] = s1_active[a] ? s1_mag_q[a*MAG_W +: MAG_W] : MAG_W'(1);
+        s2_org_hi_q[a*ORG_W +: ORG_W] <= (ORG_W'(1) << P) - s1_org_q[a*ORG_W +: ORG_W];
       end
       pair_x = PAIR_W'(m[1]) * PAIR_W'(m[2]);
       s2_pair_q[0*PAIR_W +: PAIR_W] <= pair_x;
@@ -100,18 +107,32 @@ module rt_octree_setup #(
     end
   end
 
-  // ---- Output: the root's plane parameters and the root test ------------------
+  // ---- Stage 3: the root's planes as products ---------------------------------
   // |plane - o'| <= 2^P and pair < 2^(2(D-1)): every product fits T_W signed.
+  logic [3*ORG_W-1:0]   s3_org_q;
+  logic [COM_W-1:0]     s3_common_q;
+  logic [3*T_W-1:0]     s3_low_q;     // o' * pair
+  logic [3*T_W-1:0]     s3_high_q;    // (2^P - o') * pair
+
+  always_ff @(posedge clk_i) begin
+    if (s2_valid) begin
+      for (int a = 0; a < 3; a++) begin
+        s3_low_q[a*T_W +: T_W]  <= T_W'(s2_org_q[a*ORG_W +: ORG_W]) * T_W'(s2_pair_q[a*PAIR_W +: PAIR_W]);
+        s3_high_q[a*T_W +: T_W] <= T_W'(s2_org_hi_q[a*ORG_W +: ORG_W]) * T_W'(s2_pair_q[a*PAIR_W +: PAIR_W]);
+      end
+      s3_org_q    <= s2_org_q;
+      s3_common_q <= s2_common_q;
+    end
+  end
+
+  // ---- Output: the root's plane parameters and the root test ------------------
   logic signed [T_W-1:0] t0 [3];
   logic signed [T_W-1:0] t1 [3];
 
   always_comb begin
     for (int a = 0; a < 3; a++) begin
-      logic [T_W-1:0] low, high;
-      low  = T_W'(s2_org_q[a*ORG_W +: ORG_W]) * T_W'(s2_pair_q[a*PAIR_W +: PAIR_W]);
-      high = (T_W'(s2_pair_q[a*PAIR_W +: PAIR_W]) << P) - low;
-      t0[a] = s2_active[a] ? -$signed(low) : '0;
-      t1[a] = s2_active[a] ? $signed(high) : '0;
+      t0[a] = s3_active[a] ? -$signed(s3_low_q[a*T_W +: T_W]) : '0;
+      t1[a] = s3_active[a] ? $signed(s3_high_q[a*T_W +: T_W]) : '0;
       t0_o[a*T_W +: T_W] = t0[a];
       t1_o[a*T_W +: T_W] = t1[a];
     end
@@ -122,14 +143,20 @@ module rt_octree_setup #(
     enter_o = 1'b1;
     for (int a = 0; a < 3; a++) begin
       for (int b = 0; b < 3; b++) begin
-        if (s2_active[a] && s2_active[b] && !(t0[a] < t1[b])) enter_o = 1'b0;
+        if (s3_active[a] && s3_active[b] && !(t0[a] < t1[b])) enter_o = 1'b0;
       end
     end
   end
 
-  assign mirror_o = {s2_neg[0], s2_neg[1], s2_neg[2]};
-  assign active_o = s2_active;
-  assign origin_o = s2_org_q;
-  assign common_o = s2_common_q;
+  assign mirror_o = {s3_neg[0], s3_neg[1], s3_neg[2]};
+  assign active_o = s3_active;
+  assign origin_o = s3_org_q;
+  assign common_o = s3_common_q;
+
+`ifdef RT_ASSERT_ON
+`include "rt_assert.svh"
+  `RT_ASSERT_STATIC(g_setup_latency_check, rt_pkg::OCTREE_SETUP_LATENCY == 3,
+                    "rt_octree_setup: its three stages differ from rt_pkg::OCTREE_SETUP_LATENCY")
+`endif
 
 endmodule

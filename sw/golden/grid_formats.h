@@ -53,6 +53,12 @@ inline constexpr int kGridCellBits = recordBits(kGridCellFields);
 inline constexpr int kGridVisitBits = recordBits(kGridVisitFields);
 inline constexpr int kGridResultBits = recordBits(kGridResFields);
 
+// rt_grid_setup's register stages: a ray accepted at edge t loads its slot at
+// edge t + 1 + kGridSetupLatency (one multiplication deep each: the scaled
+// origin and |D|, the pairs, the accumulators). The RTL builds these stages;
+// the SystemC shell model carries the ray through as many.
+inline constexpr int kGridSetupLatency = 3;
+
 // What rt_pkg holds of the grid's formats.
 inline constexpr PackageParam kGridPkgParams[] = {
     {"GRID_RES_MAX", kGridResMax},       {"GRID_RESOLUTION_W", kGridResolutionBits},
@@ -60,7 +66,7 @@ inline constexpr PackageParam kGridPkgParams[] = {
     {"GRID_DIR_W", kGridDirBits},        {"GRID_PAIR_W", kGridPairBits},
     {"GRID_TRIPLE_W", kGridTripleBits},  {"GRID_ACC_W", kGridAccBits},
     {"GRID_CELL_W", kGridCellBits},      {"GRID_VISIT_W", kGridVisitBits},
-    {"GRID_RESULT_W", kGridResultBits},
+    {"GRID_RESULT_W", kGridResultBits},  {"GRID_SETUP_LATENCY", kGridSetupLatency},
 };
 
 }  // namespace lancer::fx

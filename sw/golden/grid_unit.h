@@ -47,6 +47,7 @@ struct GridUnit {
   static constexpr std::span<const RecordSpec> kRecords = kGridRecords;
   static constexpr std::span<const PackageParam> kPkgParams = kGridPkgParams;
   static constexpr size_t kGroup = 1;  // a node read returns one cell
+  static constexpr int kSetupLatency = kGridSetupLatency;
 
   static const std::vector<Node>& nodes(const Image& image) { return image.cells; }
   static std::array<u128, 2> nodeValues(const Node& cell) { return {cell.first, cell.count}; }

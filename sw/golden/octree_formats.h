@@ -49,12 +49,19 @@ inline constexpr int kOctreeResultBits = recordBits(kOctreeResFields);
 static_assert(kMemAddrBits <= 31, "a leaf's count (up to the index list's size) must fit octree_node_t.count");
 static_assert(kOctreeNodeBits == 64, "a node is one 64-bit word; a child group one 512-bit line");
 
+// rt_octree_setup's register stages: a ray accepted at edge t loads its slot
+// at edge t + 1 + kOctreeSetupLatency (one multiplication deep each: |d| and
+// o', the pairs, the root's planes). The RTL builds these stages; the SystemC
+// shell model carries the ray through as many.
+inline constexpr int kOctreeSetupLatency = 3;
+
 // What rt_pkg holds of the octree's formats.
 inline constexpr PackageParam kOctreePkgParams[] = {
     {"OCTREE_MAX_DEPTH", kOctreeMaxDepth},   {"OCTREE_STACK_DEPTH", kOctreeStackDepth},
     {"OCTREE_T_W", kOctreeTBits},            {"OCTREE_COMMON_W", kOctreeCommonBits},
     {"OCTREE_CHILDREN", kOctreeChildren},    {"OCTREE_NODE_W", kOctreeNodeBits},
     {"OCTREE_VISIT_W", kOctreeVisitBits},    {"OCTREE_RESULT_W", kOctreeResultBits},
+    {"OCTREE_SETUP_LATENCY", kOctreeSetupLatency},
 };
 
 }  // namespace lancer::fx

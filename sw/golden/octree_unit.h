@@ -43,6 +43,7 @@ struct OctreeUnit {
   static constexpr std::span<const RecordSpec> kRecords = kOctreeRecords;
   static constexpr std::span<const PackageParam> kPkgParams = kOctreePkgParams;
   static constexpr size_t kGroup = kOctreeChildren;  // a node read returns a child group
+  static constexpr int kSetupLatency = kOctreeSetupLatency;
 
   static const std::vector<Node>& nodes(const Image& image) { return image.nodes; }
   static std::array<u128, 3> nodeValues(const Node& node) { return {node.leaf ? 1u : 0u, node.count, node.first}; }

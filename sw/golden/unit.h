@@ -16,6 +16,7 @@
 //   kNodeFieldList, kCfgFieldList    themselves, for the compile-time packing
 //   kRecords, kPkgParams             what rt_pkg holds of its records and formats
 //   kGroup                           nodes per node-port response (the octree's child group: 8)
+//   kSetupLatency                    the per-ray setup's register stages (rt_<unit>_setup)
 //   nodes(image)                     the node table
 //   nodeValues(node)                 a node's field values, in kNodeFields order
 //   configValues(image)              the configuration port's field values of a run

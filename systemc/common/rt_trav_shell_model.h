@@ -157,30 +157,37 @@ struct rt_visit_entry {
   uint32_t rayId = 0, id = 0;
 };
 
-// The setup pipeline's valid/slot/ray registers, two stages (the arithmetic
-// happens at the slot load, after the second). Per cycle: shift(), then
-// load() the ray accepted in it.
+// The setup pipeline's valid/slot/ray registers, Stages of them (the unit's
+// SETUP_LATENCY; the arithmetic happens at the slot load, after the last).
+// Per cycle: shift(), then load() the ray accepted in it.
+template <int Stages>
 struct rt_setup_pipe {
+  static_assert(Stages >= 1);
   struct stage {
     bool valid = false;
     int slot = 0;
     isect_ray_t ray{};
   };
-  stage s1, s2;
+  std::array<stage, Stages> s{};
 
-  void clear() { s1.valid = s2.valid = false; }
+  const stage& last() const { return s[Stages - 1]; }
+  void clear() {
+    for (stage& st : s) st.valid = false;
+  }
   void shift() {
-    if (s1.valid) {
-      s2.slot = s1.slot;
-      s2.ray = s1.ray;
+    for (int i = Stages - 1; i > 0; --i) {
+      if (s[i - 1].valid) {
+        s[i].slot = s[i - 1].slot;
+        s[i].ray = s[i - 1].ray;
+      }
+      s[i].valid = s[i - 1].valid;
     }
-    s2.valid = s1.valid;
-    s1.valid = false;
+    s[0].valid = false;
   }
   void load(int slot, const isect_ray_t& ray) {
-    s1.valid = true;
-    s1.slot = slot;
-    s1.ray = ray;
+    s[0].valid = true;
+    s[0].slot = slot;
+    s[0].ray = ray;
   }
 };
 
@@ -400,14 +407,14 @@ class rt_trav_shell_model : public sc_core::sc_module,
   }
 
   // The slot whose ray leaves the setup pipeline in this cycle, or -1.
-  int loadSlot() const { return q_setup_.s2.valid ? q_setup_.s2.slot : -1; }
+  int loadSlot() const { return q_setup_.last().valid ? q_setup_.last().slot : -1; }
 
   // The slot's records from that ray (rt_trav_shell's init): its id, its ray
   // for u_isect (with the slot index as id, returned), its closest hit.
   fx::QRay loadRay(int k) {
     fx::QRay ray;
     std::array<uint32_t, fx::kIsectRayWords> wire{};
-    fromPort<ISECT_RAY_W>(q_setup_.s2.ray, wire);
+    fromPort<ISECT_RAY_W>(q_setup_.last().ray, wire);
     fx::unpackRay(wire, ray);
     rayId_[size_t(k)] = ray.id;
     ray.id = uint32_t(k);
@@ -594,7 +601,7 @@ class rt_trav_shell_model : public sc_core::sc_module,
   std::array<fx::QRay, N> ray_{};
   std::array<rt_closest_record, N> hit_{};
 
-  rt_setup_pipe q_setup_;
+  rt_setup_pipe<Unit::SETUP_LATENCY> q_setup_;
   rt_fifo_model<rt_mem_req, MEMREQ_FIFO_DEPTH> nodeQ_, idxQ_, triQ_;
   rt_fifo_model<rt_mem_req, IDX_BUF_DEPTH> idxBuf_;  // {triangle id, slot}
   rt_fifo_model<rt_visit_entry, VISIT_FIFO_DEPTH> visitQ_;

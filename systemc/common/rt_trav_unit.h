@@ -55,6 +55,7 @@ struct rt_trav_unit {
   static_assert(RaysInFlight >= 1 && RaysInFlight <= 256, "RaysInFlight is 1..256");
   static constexpr const fx::UnitNames& kNames = Desc::kNames;
   static constexpr int RAYS_IN_FLIGHT = RaysInFlight;
+  static constexpr int SETUP_LATENCY = Desc::kSetupLatency;
   static constexpr int SLOT_W = RaysInFlight > 1 ? clog2(RaysInFlight) : 1;
   static constexpr int NODE_W = fx::kNodeBitsOf<Desc>;
   static constexpr int NODE_DATA_W = NODE_W * int(Desc::kGroup);

@@ -109,7 +109,7 @@ fx::GridRes rt_grid_model::resolution() const {
   return {int(cfg & mask), int((cfg >> GRID_RESOLUTION_W) & mask), int((cfg >> (2 * GRID_RESOLUTION_W)) & mask)};
 }
 
-// SETUP -> VISIT at the end of accept + 2: the DDA's setup (rt_grid_setup).
+// SETUP -> VISIT at the end of accept + GRID_SETUP_LATENCY: the DDA's setup (rt_grid_setup).
 void rt_grid_model::load(int k) {
   Slot& s = slots_[size_t(k)];
   s.frontier = fx::GridDda::setup(resolution(), loadRay(k));

@@ -35,10 +35,10 @@ namespace lancer::sc {
 // slot is a C++ record (state, frontier DDA, a ring of CELL_QUEUE cell
 // entries with counts), the RTL's one-hot vectors and thermometer codes are
 // not mirrored: the two are independent formulations of the same contract.
-// Latency and throughput are the RTL's: setup 3 cycles (SETUP -> VISIT), per
-// cycle at most one ray accepted, one cell read (one DDA step), one visit,
-// one index read, one triangle read, one test, one result update, one exit
-// test and one result.
+// Latency and throughput are the RTL's: setup 1 + GRID_SETUP_LATENCY cycles
+// (SETUP -> VISIT), per cycle at most one ray accepted, one cell read (one DDA
+// step), one visit, one index read, one triangle read, one test, one result
+// update, one exit test and one result.
 class rt_grid_model : public rt_trav_shell_model<rt_grid_unit, /*RegRsp=*/true> {
  public:
   // The unit's own ports under their RTL names (the shell's cfg_i and node_*).

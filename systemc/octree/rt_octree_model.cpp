@@ -222,7 +222,7 @@ void rt_octree_model::mark(int k, State st, bool join) {
   }
 }
 
-// SETUP -> ENTER | DONE at the end of accept + 2: the per-ray setup and the root test.
+// SETUP -> ENTER | DONE at the end of accept + OCTREE_SETUP_LATENCY: the per-ray setup and the root test.
 void rt_octree_model::load(int k) {
   Slot& s = slots_[size_t(k)];
   s.setup = fx::OctreeRaySetup::setup(loadRay(k));

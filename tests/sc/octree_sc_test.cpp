@@ -125,7 +125,7 @@ TEST_P(ScOctree, EmptyRunAndInvalidOptions) {
 // ---- The timing the micro-architecture prescribes (docs/octree-unit.md) ---------------
 
 // One ray, latency L, nothing random: the cycle count follows from the state
-// machine: accept in 0, ENTER from 3; per node entered one visit-grant cycle;
+// machine: accept in 0, ENTER from e = 1 + OCTREE_SETUP_LATENCY; per node entered one visit-grant cycle;
 // an interior node then GROUP_REQ, the request on the port, L, DESCEND; ...
 uint64_t oneRayCycles(OctreeDevice& device, const fx::OctreeImage& image, const QRay& ray, int latency,
                       fx::TraversalTrace* trace = nullptr) {
@@ -140,34 +140,36 @@ uint64_t oneRayCycles(OctreeDevice& device, const fx::OctreeImage& image, const 
 TEST_P(ScOctree, OneRayTimingFollowsTheStateMachine) {
   SystemCOctreeDevice device(GetParam());
   const int64_t side = int64_t(1) << kPosBits;
-  // A ray that misses the root: accepted in 0, DONE in 3 (no node), result
-  // pushed at the end of 3, on the port in 4 and taken there: 5 cycles.
+  const uint64_t e = 1 + fx::kOctreeSetupLatency;  // the slot leaves SETUP
+  // A ray that misses the root: accepted in 0, DONE in e (no node), result
+  // pushed at the end of e, on the port in e + 1 and taken there: e + 2 cycles.
   {
     const fx::OctreeImage image = fx::buildOctreeImage({}, 1, 1);
     // Leaves through the corner edge it starts on: t0 = 0 on x (entering), t1 = 0 on y (mirrored, leaving).
     const QRay miss{0, {0, 0, side / 2}, {kDirMax, -kDirMax / 2, 0}};
     fx::TraversalTrace t;
-    EXPECT_EQ(oneRayCycles(device, image, miss, 20, &t), 5u) << "root missed";
+    EXPECT_EQ(oneRayCycles(device, image, miss, 20, &t), e + 2) << "root missed";
     EXPECT_TRUE(t.visits.empty());
   }
-  // An empty root leaf: ENTER 3 (visit grant), CHECK 4 (no hit: a lane's
-  // grant), the advance at depth 0 in 5 -> DONE), DONE 6 (done grant), result
-  // on the port in 7: 8 cycles.
+  // An empty root leaf: ENTER e (visit grant), CHECK e + 1 (no hit: a lane's
+  // grant), the advance at depth 0 in e + 2 -> DONE), DONE e + 3 (done grant),
+  // result on the port in e + 4: e + 5 cycles.
   {
     const fx::OctreeImage image = fx::buildOctreeImage({}, 1, 1);
     const QRay ray{0, {side / 2, side / 2, side / 2}, {kDirMax, 0, 0}};
     fx::TraversalTrace t;
-    EXPECT_EQ(oneRayCycles(device, image, ray, 20, &t), 8u) << "empty root leaf";
+    EXPECT_EQ(oneRayCycles(device, image, ray, 20, &t), e + 5) << "empty root leaf";
     EXPECT_EQ(t.visits.size(), 1u);
   }
   // Two empty levels: the root interior, its children empty leaves. A ray along
   // x through the lower half on y and z enters the root, then children 0 and 4
   // (mirrored numbering: x lower, then x upper). Cycles per the state machine,
-  // with L the latency: root ENTER 3, GROUP_REQ 4, request on the port 5,
-  // response in 5+L, DESCEND 6+L, child ENTER 7+L, CHECK 8+L (a lane's
-  // grant), the advance in 9+L (sibling, group valid) -> ENTER 10+L, CHECK
-  // 11+L, the advance in 12+L (pop to depth 0 -> DONE), DONE 13+L, result
-  // taken in 14+L: 15 + L cycles; an interior node costs L + 4, an advance 2.
+  // with L the latency: root ENTER e, GROUP_REQ e+1, request on the port e+2,
+  // response in e+2+L, DESCEND e+3+L, child ENTER e+4+L, CHECK e+5+L (a
+  // lane's grant), the advance in e+6+L (sibling, group valid) -> ENTER
+  // e+7+L, CHECK e+8+L, the advance in e+9+L (pop to depth 0 -> DONE), DONE
+  // e+10+L, result taken in e+11+L: e + 12 + L cycles; an interior node costs
+  // L + 4, an advance 2.
   {
     std::vector<QTriangle> tris;
     for (int i = 0; i < 20; ++i) {  // in the upper y half: the root splits, its lower-y children stay empty
@@ -186,7 +188,7 @@ TEST_P(ScOctree, OneRayTimingFollowsTheStateMachine) {
       ASSERT_EQ(t.visits.size(), 3u) << describe(t);
       ASSERT_TRUE(image.nodes[t.visits[1]].leaf && image.nodes[t.visits[1]].count == 0) << describe(t);
       ASSERT_TRUE(image.nodes[t.visits[2]].leaf && image.nodes[t.visits[2]].count == 0) << describe(t);
-      EXPECT_EQ(cycles, uint64_t(15 + latency)) << "latency " << latency;
+      EXPECT_EQ(cycles, e + 12 + uint64_t(latency)) << "latency " << latency;
     }
   }
 }

@@ -66,11 +66,11 @@ TEST(RtGrid, OneRayInFlightAndAllSlots) {
 
 // docs/grid-unit.md, "Timing of one ray": through empty cells a slot enters
 // CellQueue cells per L + 3 cycles once under way. One ray along +x through
-// 64 empty cells, offered in cycle 0: cell c0 is entered in cycle 4, cells
-// c(2j-1) and c(2j) in cycles 4 + j(L+3) and 5 + j(L+3) (the read of c1 waits
-// a cycle behind c0's, for the frontier's next step to be prepared); the
-// last, c63, ends the ray in cycle 4 + 32(L+3), whose result is taken two
-// cycles later.
+// 64 empty cells, offered in cycle 0: cell c0 is entered in cycle
+// e = 2 + GRID_SETUP_LATENCY, cells c(2j-1) and c(2j) in cycles e + j(L+3) and
+// e + 1 + j(L+3) (the read of c1 waits a cycle behind c0's, for the
+// frontier's next step to be prepared); the last, c63, ends the ray in cycle
+// e + 32(L+3), whose result is taken two cycles later.
 TEST(RtGrid, TimingOfOneRayThroughEmptyCells) {
   if (test::kGridCellQueue != 2) GTEST_SKIP() << "the cycle counts below are CellQueue = 2's";
   const GridImage image = fx::buildGridImage({}, {64, 1, 1});
@@ -81,7 +81,7 @@ TEST(RtGrid, TimingOfOneRayThroughEmptyCells) {
     const TraversalRunStats s = expectSameTraces(image, rays, o);
     EXPECT_EQ(s.steps, 64u);
     EXPECT_EQ(s.nodeReads, 64u);  // the ray leaves the grid: nothing read past c63
-    EXPECT_EQ(s.cycles, uint64_t(7 + 32 * (latency + 3))) << "latency " << latency;
+    EXPECT_EQ(s.cycles, uint64_t(2 + fx::kGridSetupLatency + 32 * (latency + 3) + 3)) << "latency " << latency;
   }
 }
 

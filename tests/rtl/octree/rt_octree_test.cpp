@@ -124,7 +124,8 @@ TEST(RtOctree, OneRayInFlightAllSlotsAndNoStalls) {
 }
 
 // One ray alone, memory latency L, no stalls: the cycle count follows the
-// micro-architecture's timing (docs/octree-unit.md): setup 3 cycles, an
+// micro-architecture's timing (docs/octree-unit.md): setup
+// 1 + OCTREE_SETUP_LATENCY cycles, an
 // interior node L + 4, an empty leaf 3 (its check, then the advance a lane
 // granted), plus the result.
 TEST(RtOctree, TimingOfOneRayThroughEmptyLeaves) {
@@ -141,13 +142,15 @@ TEST(RtOctree, TimingOfOneRayThroughEmptyLeaves) {
     TraversalRunOptions o;
     o.memLatency = latency;
     const TraversalRunStats s = expectSameTraces(image, rays, o);
-    // Accepted in cycle 0, ENTER root in 3, GROUP_REQ 4, the request on the
-    // port 5, the response 5 + L, DESCEND 6 + L, ENTER child 7 in 7 + L, CHECK
-    // 8 + L (no hit: a lane's grant), the advance to the sibling in 9 + L,
-    // ENTER child 3 in 10 + L, CHECK 11 + L, the advance in 12 + L (pop to the
-    // root: DONE), DONE 13 + L (result FIFO), the result taken in 14 + L:
-    // 15 + L cycles.
-    EXPECT_EQ(s.cycles, uint64_t(15 + latency)) << "latency " << latency;
+    // Accepted in cycle 0, ENTER root in e = 1 + OCTREE_SETUP_LATENCY,
+    // GROUP_REQ e + 1, the request on the port e + 2, the response e + 2 + L,
+    // DESCEND e + 3 + L, ENTER child 7 in e + 4 + L, CHECK e + 5 + L (no hit: a
+    // lane's grant), the advance to the sibling in e + 6 + L, ENTER child 3 in
+    // e + 7 + L, CHECK e + 8 + L, the advance in e + 9 + L (pop to the root:
+    // DONE), DONE e + 10 + L (result FIFO), the result taken in e + 11 + L:
+    // e + 12 + L cycles.
+    const int enterRoot = 1 + fx::kOctreeSetupLatency;
+    EXPECT_EQ(s.cycles, uint64_t(enterRoot + 12 + latency)) << "latency " << latency;
     EXPECT_EQ(s.nodeReads, 1u);
   }
 }
