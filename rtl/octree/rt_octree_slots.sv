@@ -279,6 +279,47 @@ module rt_octree_slots #(
   assign lane_go[CHECK_LANE]   = check_go_i && !check_holds_i;
   assign lane_slot[CHECK_LANE] = check_slot_i;
 
+  // ---- The next advance, prepared ---------------------------------------------------
+  // What an advance compares depends on the slot's parameters only: the exit
+  // axis x, up = 2 t1 - t0 on x (the sibling's t1), and whether the sibling
+  // lies behind the origin (up < 0 on x, or t1 < 0 on another active axis).
+  // Each slot works them out in the cycle after its parameters are written
+  // (fresh_q: a lane's step, DESCEND, init) and keeps them, so a lane starts
+  // from registers rather than from the comparisons (issue #23: the lane step
+  // was rt_octree's critical path). A slot never advances in that cycle: a
+  // written slot next waits for a visit, or in NEXT for a registered lane
+  // grant (a_prepared).
+  logic [N-1:0]          fresh_q, behind_q;
+  logic [1:0]            xa_q [N];
+  logic signed [T_W-1:0] up_q [N];
+
+  always_ff @(posedge clk_i) begin : p_prep
+    for (int k = 0; k < N; k++) begin
+      if (fresh_q[k]) begin : b_prep_slot
+        logic signed [T_W-1:0] t0 [3];
+        logic signed [T_W-1:0] t1 [3];
+        logic [2:0]            active;
+        logic [1:0]            xa;
+        logic signed [T_W-1:0] up;
+        logic                  behind;
+        active = active_q[k];
+        for (int a = 0; a < 3; a++) begin
+          t0[a] = t0_q[k][a*T_W +: T_W];
+          t1[a] = t1_q[k][a*T_W +: T_W];
+        end
+        xa     = exit_axis(active, t1[0], t1[1], t1[2]);
+        up     = (t1[xa] <<< 1) - t0[xa];
+        behind = active[xa] && up < 0;
+        for (int a = 0; a < 3; a++) begin
+          if (32'(a) != 32'(xa) && active[a] && t1[a] < 0) behind = 1'b1;
+        end
+        xa_q[k]     <= xa;
+        up_q[k]     <= up;
+        behind_q[k] <= behind;
+      end
+    end
+  end
+
   // ---- The advance lanes' steps -------------------------------------------------------
   // Each lane reads its slot's registers only; the lanes' slots differ (a slot
   // waits in one arbiter's requests, or holds the exit-test grant), so their
@@ -328,14 +369,12 @@ module rt_octree_slots #(
           t0[a] = t0_q[s][a*T_W +: T_W];
           t1[a] = t1_q[s][a*T_W +: T_W];
         end
-        xa      = exit_axis(active, t1[0], t1[1], t1[2]);
+        // The exit axis, 2 t1 - t0 on it and "behind": prepared (p_prep).
+        xa      = xa_q[s];
+        up      = up_q[s];
+        behind  = behind_q[s];
         bits    = 3'b100 >> xa;
         sibling = (child & bits) == '0;
-        up      = (t1[xa] <<< 1) - t0[xa];
-        behind  = active[xa] && up < 0;
-        for (int a = 0; a < 3; a++) begin
-          if (32'(a) != 32'(xa) && active[a] && t1[a] < 0) behind = 1'b1;
-        end
         parent          = stack_q[stack_addr(s, STK_W'(depth - DEPTH_W'(2)))];
         lane_t0_d[l]    = t0_q[s];
         lane_t1_d[l]    = t1_q[s];
@@ -489,11 +528,14 @@ module rt_octree_slots #(
       desc_slot_q   <= '0;
       fin_q         <= 1'b0;
       fin_slot_q    <= '0;
+      fresh_q       <= '0;
     end else begin : b_next
-      logic [N-1:0] visit_group, visit_fetch, visit_check;
+      logic [N-1:0] visit_group, visit_fetch, visit_check, stepped;
       visit_group   = visit_oh & {N{!visit_leaf}};
       visit_fetch   = visit_oh & {N{visit_leaf && !visit_empty}};
       visit_check   = visit_oh & {N{visit_leaf && visit_empty}};
+      stepped       = '0;
+      for (int l = 0; l < LANES; l++) stepped = stepped | onehot(lane_step[l], lane_slot[l]);
       free_q        <= (free_q & ~alloc_oh) | done_oh;
       setup_q       <= (setup_q & ~init_oh) | alloc_oh;
       enter_q       <= (enter_q & ~visit_oh) | (init_oh & {N{init_enter_i}})
@@ -514,6 +556,8 @@ module rt_octree_slots #(
       // The result that completes the leaf: FETCH ends in the next cycle.
       fin_q         <= res_last;
       fin_slot_q    <= res_slot_i;
+      // The slots whose parameters are written at this edge (p_walk).
+      fresh_q       <= stepped | desc_oh | init_oh;
     end
   end
 
@@ -599,6 +643,10 @@ module rt_octree_slots #(
   `RT_CHECK_IF(a_idx_fetch, idx_go_i, iss_q[idx_slot_i])
   `RT_CHECK_IF(a_res_fetch, res_valid_i, fetch_q[res_slot_i])
   `RT_CHECK_IF(a_check_wants, check_go_i, check_q[check_slot_i] && bound_i[check_slot_i])
+  // A lane's slot has its advance prepared (p_prep).
+  for (genvar l = 0; l < LANES; l++) begin : g_prepared
+    `RT_CHECK_IF(a_prepared, lane_go[l], !fresh_q[lane_slot[l]])
+  end
   // An interior node one lattice unit wide cannot be split: the image is malformed.
   `RT_CHECK_IF(a_stack_depth, desc_q, desc_depth < DEPTH_W'(STACK))
 `endif
