@@ -186,39 +186,40 @@ module rt_grid_slots #(
   localparam int STEP_W = 2 + ACC_W + 1 + CELL_W + ID_W + ACC_W;  // (Yosys 0.23 takes no $bits of a type)
 
   // The next step of a frontier (cell, id, N, pair, axes), by the configuration
-  // in cfg_q / stride_*_q. The three axes' sums are formed side by side and
-  // the argmin picks one, so the comparisons and the additions run in parallel.
+  // in cfg_q / stride_*_q.
   function automatic logic [STEP_W-1:0] next_step(input logic [3*CELL_W-1:0] cel, input logic [ID_W-1:0] id,
                                                   input logic [3*ACC_W-1:0] acc, input logic [3*PAIR_W-1:0] pair,
                                                   input logic [2:0] act, input logic [2:0] neg);
     // (Plain vectors: Yosys 0.23 sizes no struct or unpacked array in a function.)
+    // Every axis's candidates are formed side by side, and the three
+    // comparisons at once; the axis then only selects (issue #23: a chained
+    // second comparison and a per-axis test after the selection were this
+    // preparation's depth).
     logic [1:0]          axis;
-    logic [ACC_W-1:0]    exit_acc;
-    logic                leaves;
+    logic                first_y, lt10, lt20, lt21;
+    logic [2:0]          edge_hit;
+    logic [3*CELL_W-1:0] next_cel;
     logic [3*ID_W-1:0]   next_id;
     logic [3*ACC_W-1:0]  next_acc;
-    logic [CELL_W-1:0]   coord;
+    logic [CELL_W-1:0]   c;
     logic [ID_W-1:0]     stride;
     for (int a = 0; a < 3; a++) begin
       stride = (a == 0) ? ID_W'(1) : ((a == 1) ? stride_y_q : stride_z_q);
-      next_id[a*ID_W +: ID_W]    = neg[a] ? id - stride : id + stride;
-      next_acc[a*ACC_W +: ACC_W] = acc[a*ACC_W +: ACC_W] + (ACC_W'(pair[a*PAIR_W +: PAIR_W]) << POS_W);
+      c      = cel[a*CELL_W +: CELL_W];
+      next_id[a*ID_W +: ID_W]       = neg[a] ? id - stride : id + stride;
+      next_acc[a*ACC_W +: ACC_W]    = acc[a*ACC_W +: ACC_W] + (ACC_W'(pair[a*PAIR_W +: PAIR_W]) << POS_W);
+      next_cel[a*CELL_W +: CELL_W]  = neg[a] ? c - 1'b1 : c + 1'b1;
+      edge_hit[a] = neg[a] ? (c == '0) : (RES_W'(c) == cfg_q[a*RES_W +: RES_W] - 1'b1);
     end
+    lt10 = acc[ACC_W +: ACC_W] < acc[0 +: ACC_W];
+    lt20 = acc[2*ACC_W +: ACC_W] < acc[0 +: ACC_W];
+    lt21 = acc[2*ACC_W +: ACC_W] < acc[ACC_W +: ACC_W];
     // Strict < keeps the lowest axis on exact ties, as fx::GridDda::nextAxis().
-    axis     = 2'd0;
-    exit_acc = acc[0 +: ACC_W];
-    if (!act[0] || (act[1] && acc[ACC_W +: ACC_W] < exit_acc)) begin
-      axis     = 2'd1;
-      exit_acc = acc[ACC_W +: ACC_W];
-    end
-    if (act[2] && (!act[axis] || acc[2*ACC_W +: ACC_W] < exit_acc)) begin
-      axis     = 2'd2;
-      exit_acc = acc[2*ACC_W +: ACC_W];
-    end
-    coord  = cel[axis*CELL_W +: CELL_W];
-    leaves = (act == '0) || (neg[axis] ? (coord == '0) : (RES_W'(coord) == cfg_q[axis*RES_W +: RES_W] - 1'b1));
-    next_step = {axis, exit_acc, leaves, neg[axis] ? coord - 1'b1 : coord + 1'b1, next_id[axis*ID_W +: ID_W],
-                 next_acc[axis*ACC_W +: ACC_W]};
+    first_y = !act[0] || (act[1] && lt10);
+    axis    = first_y ? 2'd1 : 2'd0;
+    if (act[2] && (first_y ? (!act[1] || lt21) : (!act[0] || lt20))) axis = 2'd2;
+    next_step = {axis, acc[axis*ACC_W +: ACC_W], (act == '0) || edge_hit[axis], next_cel[axis*CELL_W +: CELL_W],
+                 next_id[axis*ID_W +: ID_W], next_acc[axis*ACC_W +: ACC_W]};
   endfunction
 
   logic [STEP_W-1:0] step_q [N];  // each slot's next step
