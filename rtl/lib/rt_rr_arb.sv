@@ -6,10 +6,14 @@
 // at least once every N grants. Without ack_i the pointer stays. The grant
 // depends only on req_i and the pointer register.
 //
-// Written as vector operations (mask below the pointer, isolate the lowest set
+// Written as vector operations (mask what was served, isolate the lowest set
 // bit, encode it with one OR-reduction per index bit) rather than a loop over
 // the requesters: the same function, but a few word operations per cycle in a
-// simulator.
+// simulator. The pointer is kept as the mask it implies (served_q: the
+// positions up to the last grant), and the lowest requester is isolated in the
+// masked and the whole request vector side by side, so the grant is one
+// isolation and a select deep (issue #23: the arbiters lead the paths that
+// start at a grant).
 //
 // Latency: 0 cycles (grant in the request cycle). Throughput: one grant per cycle.
 module rt_rr_arb #(
@@ -25,19 +29,16 @@ module rt_rr_arb #(
   output logic [IdxW-1:0] idx_o       // index of the granted requester
 );
 
-  localparam logic [IdxW-1:0] LAST = IdxW'(N - 1);
+  logic [N-1:0] served_q;  // positions at or before the last used grant
+  logic [N-1:0] upper;     // requesters after it
+  logic [N-1:0] gnt_upper, gnt_any;
 
-  logic [IdxW-1:0] ptr_q;
-  logic [N-1:0]    below;   // positions before the pointer
-  logic [N-1:0]    upper;   // requesters at or after the pointer
-  logic [N-1:0]    pick;
-
-  // The lowest requester at or after the pointer, else the lowest overall.
-  assign below   = (N'(1) << ptr_q) - N'(1);
-  assign upper   = req_i & ~below;
-  assign pick    = (upper != '0) ? upper : req_i;
-  assign gnt_o   = pick & (~pick + N'(1));
-  assign valid_o = (req_i != '0);
+  // The lowest requester after the last grant, else the lowest overall.
+  assign upper     = req_i & ~served_q;
+  assign gnt_upper = upper & (~upper + N'(1));
+  assign gnt_any   = req_i & (~req_i + N'(1));
+  assign gnt_o     = (upper != '0) ? gnt_upper : gnt_any;
+  assign valid_o   = (req_i != '0);
 
   // One-hot to index: bit b of the index is set when the grant lies at a
   // position whose bit b is set.
@@ -49,11 +50,13 @@ module rt_rr_arb #(
     assign idx_o[b] = (gnt_o & pos_has_b) != '0;
   end
 
+  // After the last position every requester counts as "after" again (the
+  // mask is all ones, upper is empty): the pointer wrapped to 0.
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      ptr_q <= '0;
+      served_q <= '0;
     end else if (ack_i && valid_o) begin
-      ptr_q <= (idx_o == LAST) ? '0 : idx_o + 1'b1;
+      served_q <= gnt_o | (gnt_o - N'(1));
     end
   end
 
