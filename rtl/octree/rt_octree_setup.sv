@@ -8,10 +8,10 @@
 //            origin o' = 2^P - o on mirrored axes (P+1 bits), |d|, the active
 //            axes (d != 0), dominant = max |d|
 //   stage 2  pair[a] = product of |d_b| over the other active axes (1 if none),
-//            common = product of |d| over all active axes (1 if none),
 //            2^P - o'[a]
-//   stage 3  the root's plane parameters over the common denominator as
-//            products, o'[a] * pair[a] and (2^P - o'[a]) * pair[a]
+//   stage 3  common = pair[x] * |d_x| = product of |d| over all active axes
+//            (1 if none); the root's plane parameters over the common
+//            denominator as products, o'[a] * pair[a] and (2^P - o'[a]) * pair[a]
 //   output   T0[a] = -o'[a] * pair[a], T1[a] = (2^P - o'[a]) * pair[a]
 //            (inactive axes: -inf / +inf, values 0), and the root test
 //            max t0 < min t1 over the active axes (true with none active)
@@ -88,21 +88,19 @@ module rt_octree_setup #(
   logic [3*ORG_W-1:0]   s2_org_q;
   logic [3*ORG_W-1:0]   s2_org_hi_q;  // 2^P - o'
   logic [3*PAIR_W-1:0]  s2_pair_q;
-  logic [COM_W-1:0]     s2_common_q;
+  logic [MAG_W-1:0]     s2_mx_q;      // |d_x|, 1 if x is inactive
 
   always_ff @(posedge clk_i) begin
     if (s1_valid) begin
       logic [MAG_W-1:0]  m [3];       // |d| masked to 1 on inactive axes
-      logic [PAIR_W-1:0] pair_x;
       for (int a = 0; a < 3; a++) begin
         m[a] = s1_active[a] ? s1_mag_q[a*MAG_W +: MAG_W] : MAG_W'(1);
         s2_org_hi_q[a*ORG_W +: ORG_W] <= (ORG_W'(1) << P) - s1_org_q[a*ORG_W +: ORG_W];
       end
-      pair_x = PAIR_W'(m[1]) * PAIR_W'(m[2]);
-      s2_pair_q[0*PAIR_W +: PAIR_W] <= pair_x;
+      s2_pair_q[0*PAIR_W +: PAIR_W] <= PAIR_W'(m[1]) * PAIR_W'(m[2]);
       s2_pair_q[1*PAIR_W +: PAIR_W] <= PAIR_W'(m[0]) * PAIR_W'(m[2]);
       s2_pair_q[2*PAIR_W +: PAIR_W] <= PAIR_W'(m[0]) * PAIR_W'(m[1]);
-      s2_common_q <= COM_W'(pair_x) * COM_W'(m[0]);
+      s2_mx_q     <= m[0];
       s2_org_q    <= s1_org_q;
     end
   end
@@ -121,7 +119,7 @@ module rt_octree_setup #(
         s3_high_q[a*T_W +: T_W] <= T_W'(s2_org_hi_q[a*ORG_W +: ORG_W]) * T_W'(s2_pair_q[a*PAIR_W +: PAIR_W]);
       end
       s3_org_q    <= s2_org_q;
-      s3_common_q <= s2_common_q;
+      s3_common_q <= COM_W'(s2_pair_q[0*PAIR_W +: PAIR_W]) * COM_W'(s2_mx_q);
     end
   end
 
