@@ -6,9 +6,9 @@
 //            step direction and activity, dominant = max |d[a]|
 //   stage 2  cell[a] = min(X[a] >> P, R[a]-1), dist[a] to the next boundary,
 //            pair[a] = product of the other stepping axes' |D| (1 if none),
-//            cell id = (z * Ry + y) * Rx + x
+//            z * Ry + y
 //   stage 3  acc[a] = dist[a] * pair[a], triple = pair[x] * |D[x]| (x
-//            stepping)
+//            stepping), cell id = (z * Ry + y) * Rx + x
 // The outputs are the stage-3 registers; rt_setup_front carries the ray and
 // computes |d|, the step directions and the dominant. A ray with no stepping
 // axis (all-zero direction) gets active = 0; the slot then ends it after its
@@ -82,7 +82,7 @@ module rt_grid_setup #(
 
   // ---- Stage 2 ---------------------------------------------------------------
   logic [3*CELL_W-1:0]  s2_cell_q;
-  logic [ID_W-1:0]      s2_cell_id_q;
+  logic [ID_W-1:0]      s2_zy_q;   // z * Ry + y
   logic [3*DIST_W-1:0]  s2_dist_q;
   logic [3*PAIR_W-1:0]  s2_pair_q;
   logic [GDIR_W-1:0]    s2_mx_q;   // |D[x]|, 1 if x does not step
@@ -115,9 +115,7 @@ module rt_grid_setup #(
         end
       end
       s2_cell_q    <= cel;
-      s2_cell_id_q <= (ID_W'(cel[2*CELL_W +: CELL_W]) * ID_W'(cfg_res_i[RES_W +: RES_W]) +
-                       ID_W'(cel[CELL_W +: CELL_W])) * ID_W'(cfg_res_i[0 +: RES_W]) +
-                      ID_W'(cel[0 +: CELL_W]);
+      s2_zy_q      <= ID_W'(cel[2*CELL_W +: CELL_W]) * ID_W'(cfg_res_i[RES_W +: RES_W]) + ID_W'(cel[CELL_W +: CELL_W]);
     end
   end
 
@@ -134,7 +132,7 @@ module rt_grid_setup #(
         s3_acc_q[a*ACC_W +: ACC_W] <= ACC_W'(s2_dist_q[a*DIST_W +: DIST_W]) * ACC_W'(s2_pair_q[a*PAIR_W +: PAIR_W]);
       end
       s3_cell_q    <= s2_cell_q;
-      s3_cell_id_q <= s2_cell_id_q;
+      s3_cell_id_q <= s2_zy_q * ID_W'(cfg_res_i[0 +: RES_W]) + ID_W'(s2_cell_q[0 +: CELL_W]);
       s3_pair_q    <= s2_pair_q;
       s3_triple_q  <= TRIPLE_W'(s2_pair_q[0 +: PAIR_W]) * TRIPLE_W'(s2_mx_q);
     end
