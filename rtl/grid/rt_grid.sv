@@ -83,7 +83,7 @@ module rt_grid #(
   logic [N-1:0]        free, want_cell, want_visit, want_idx, want_check, want_done, fetching, bound;
   logic                ray_fire, cell_go, visit_go, idx_go, check_go, done_go;
   logic [SlotW-1:0]    alloc_idx, check_sel, cell_idx, visit_idx, idx_idx, check_idx, done_idx;
-  logic                cell_valid, isect_valid, take, check_holds;
+  logic                cell_valid, isect_valid, isect_hit, check_holds;
   logic [SlotW-1:0]    cell_tag, isect_slot;
   rt_pkg::grid_cell_t  cell_data;
   logic [ID_W-1:0]     cell_cell_id, visit_cell_id;
@@ -145,7 +145,7 @@ module rt_grid #(
     .expect_i      (fetching),
     .isect_valid_o (isect_valid),
     .isect_slot_o  (isect_slot),
-    .take_o        (take),
+    .isect_hit_o   (isect_hit),
     .bound_o       (bound),
     .want_check_i  (want_check),
     .check_sel_o   (check_sel),
@@ -216,7 +216,7 @@ module rt_grid #(
     .res_valid_i     (isect_valid),
     .res_slot_i      (isect_slot),
     .bound_i         (bound),
-    .take_i          (take),
+    .res_hit_i       (isect_hit),
     .want_check_o    (want_check),
     .check_sel_i    (check_sel),
     .check_go_i      (check_go),

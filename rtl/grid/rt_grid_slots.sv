@@ -1,8 +1,10 @@
 // rt_grid_slots: the ray slots of rt_grid — per-slot state machines, DDA
 // registers, cell queues and counters — updated by the unit's events, each
 // addressed to one slot by index. The ray, its closest hit and the exit test
-// are rt_trav_shell's: the slots take the exit-test state (bound_i, take_i)
-// and the exit test's answer, and give the exit accumulator of the cell.
+// are rt_trav_shell's: the slots take the exit-test state (bound_i, and
+// res_hit_i: a slot with no hit yet is bound after a hit, which becomes its
+// record) and the exit test's answer, and give the exit accumulator of the
+// cell.
 //
 // Slot state machine (docs/grid-unit.md, "Slot state machine"):
 //   FREE -alloc-> SETUP -init-> VISIT -visit grant-> WAIT_CELL | FETCH | (cell done)
@@ -84,7 +86,7 @@ module rt_grid_slots #(
   input  logic                                   res_valid_i,
   input  logic [SlotW-1:0]                       res_slot_i,
   input  logic [N-1:0]                           bound_i,       // exit-tested: a closest hit so far, or a segment end
-  input  logic                                   take_i,        // the result becomes res_slot_i's closest hit
+  input  logic                                   res_hit_i,     // the result is a hit
 
   // Exit tests of slots with a bound.
   // (rt_trav_shell pipelines the test: it reads check_sel_i's exit accumulator
@@ -267,9 +269,9 @@ module rt_grid_slots #(
   // The slot stays in CHECK with the same head cell until the answer.
   logic [SlotW-1:0] r_slot;
   logic [QW-1:0]    k_hd;
-  logic             take, holds;
+  logic             hit, holds;
   assign r_slot       = res_slot_i;
-  assign take         = take_i;
+  assign hit          = res_hit_i;
   assign holds        = check_holds_i;
   assign k_hd         = head(hd_q, check_slot_i);
   assign check_exit_o = eexit_q[{check_sel_i, head(hd_q, check_sel_i)}];
@@ -319,14 +321,14 @@ module rt_grid_slots #(
     // Bound (a hit so far, or a segment end): CHECK. None: DONE after the last cell, else the next cell.
     check_set = onehot(cv && bound_i[visit_slot_i], visit_slot_i) |
                 onehot(cw && bound_i[cell_rsp_tag_i], cell_rsp_tag_i) |
-                onehot(cr && (bound_i[r_slot] || take), r_slot);
+                onehot(cr && (bound_i[r_slot] || hit), r_slot);
     done_set  = onehot(cv && !bound_i[visit_slot_i] && last_v, visit_slot_i) |
                 onehot(cw && !bound_i[cell_rsp_tag_i] && last_t, cell_rsp_tag_i) |
-                onehot(cr && !(bound_i[r_slot] || take) && last_r, r_slot) |
+                onehot(cr && !(bound_i[r_slot] || hit) && last_r, r_slot) |
                 onehot(check_go_i && (holds || last_k), check_slot_i);
     pop_set   = onehot(cv && !bound_i[visit_slot_i] && !last_v, visit_slot_i) |
                 onehot(cw && !bound_i[cell_rsp_tag_i] && !last_t, cell_rsp_tag_i) |
-                onehot(cr && !(bound_i[r_slot] || take) && !last_r, r_slot) |
+                onehot(cr && !(bound_i[r_slot] || hit) && !last_r, r_slot) |
                 onehot(check_go_i && !(holds || last_k), check_slot_i);
   end
 

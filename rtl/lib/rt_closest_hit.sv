@@ -45,6 +45,7 @@ module rt_closest_hit #(
   // Stage Y: the result, and whether it becomes the slot's record.
   output logic                         valid_o,
   output logic [SlotW-1:0]             slot_o,
+  output logic                         hit_o,         // the result is a hit
   output logic                         take_o,
   output logic [31:0]                  prim_id_o,
   output logic [rt_pkg::T_NUM_W-1:0]   t_num_o,
@@ -64,10 +65,10 @@ module rt_closest_hit #(
   // Two comparisons: REC against the slot's record, AHEAD against the result
   // now in stage Y when it is a hit of the same slot.
   localparam int REC = 0, AHEAD = 1;
-  logic       same_slot, has_best_q, same_slot_q, hit_q;
+  logic       same_slot, has_best_q, same_slot_q;
   logic [1:0] use_cmp, closer;  // per comparison
 
-  assign same_slot         = valid_o && slot_o == slot_i && hit_q;
+  assign same_slot         = valid_o && slot_o == slot_i && hit_o;
   assign use_cmp[REC]      = valid_i && hit_i && has_best_i;
   assign use_cmp[AHEAD]    = valid_i && hit_i && same_slot;
 
@@ -75,7 +76,7 @@ module rt_closest_hit #(
     .clk_i, .rst_ni, .valid_i,
     .data_i ({slot_i, hit_i, prim_id_i, t_num_i, det_i, payload_i}),
     .valid_o,
-    .data_o ({slot_o, hit_q, prim_id_o, t_num_o, det_o, payload_o}));
+    .data_o ({slot_o, hit_o, prim_id_o, t_num_o, det_o, payload_o}));
 
   always_ff @(posedge clk_i) begin
     if (valid_i) begin
@@ -117,7 +118,7 @@ module rt_closest_hit #(
 
   always_comb begin
     take_o = 1'b0;
-    if (valid_o && hit_q) begin
+    if (valid_o && hit_o) begin
       if (same_slot_q && ahead_took_q) take_o = closer[AHEAD];
       else if (has_best_q)             take_o = closer[REC];
       else                             take_o = 1'b1;

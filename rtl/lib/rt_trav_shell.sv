@@ -115,7 +115,8 @@ module rt_trav_shell #(
   input  logic [N-1:0]                  expect_i,         // slots that expect triangles (assertions only)
   output logic                          isect_valid_o,    // a result of slot isect_slot_o
   output logic [SlotW-1:0]              isect_slot_o,
-  output logic                          take_o,           // it becomes the slot's closest hit
+  output logic                          isect_hit_o,      // it is a hit (so the slot is bound after it:
+                                                          // with no hit yet, a hit becomes the record)
   output logic [N-1:0]                  bound_o,          // exit-tested: a closest hit so far, or a segment end
 
   // Exit tests.
@@ -347,9 +348,10 @@ module rt_trav_shell #(
 
   // ---- Closest hit: two stages (rt_closest_hit) --------------------------------------
   // A result leaving rt_isect meets its slot's record here; it reaches the
-  // walk (isect_valid_o, isect_slot_o, take_o) one cycle later, with its
-  // verdict, in the cycle the record takes it.
+  // walk (isect_valid_o, isect_slot_o, isect_hit_o) one cycle later, with
+  // its verdict (take), in the cycle the record takes it.
   logic [SlotW-1:0]            res_slot;
+  logic                        take;        // the result becomes the slot's closest hit
   logic [31:0]                 take_prim;
   logic [rt_pkg::T_NUM_W-1:0]  take_t_num;
   logic [rt_pkg::DET_ABS_W-1:0] take_det;
@@ -375,7 +377,8 @@ module rt_trav_shell #(
     .best_det_i   (res_best.det),
     .valid_o      (isect_valid_o),
     .slot_o       (isect_slot_o),
-    .take_o,
+    .hit_o        (isect_hit_o),
+    .take_o       (take),
     .prim_id_o    (take_prim),
     .t_num_o      (take_t_num),
     .det_o        (take_det),
@@ -440,7 +443,7 @@ module rt_trav_shell #(
       best_q[init_slot_i]   <= init_best;
       seg_q[init_slot_i]    <= init_ray_i.t_max;
     end
-    if (take_o) best_q[isect_slot_o] <= res_new;
+    if (take) best_q[isect_slot_o] <= res_new;
   end
 
   // (testing_q: the slots whose exit test is in flight, above.)
@@ -457,7 +460,7 @@ module rt_trav_shell #(
         bounded_q[init_slot_i] <= init_ray_i.t_max != '1;
         any_hit_q[init_slot_i] <= init_ray_i.any_hit;
       end
-      if (take_o) has_hit_q[isect_slot_o] <= 1'b1;
+      if (take) has_hit_q[isect_slot_o] <= 1'b1;
     end
   end
 

@@ -94,7 +94,7 @@ module rt_octree #(
   logic                ray_fire, visit_go, node_go, idx_go, check_go, done_go;
   logic [SlotW-1:0]    alloc_idx, check_sel, visit_idx, node_idx, idx_idx, check_idx, done_idx;
   logic                node_valid, isect_valid, check_holds;
-  logic                unused_take;  // the slots read the exit-test state from bound
+  logic                unused_hit;   // the slots read the exit-test state from bound
   logic [SlotW-1:0]    node_tag, res_slot;
   logic [GROUP_W-1:0]  node_data;
   logic                visit_at_root;
@@ -154,7 +154,7 @@ module rt_octree #(
     .expect_i      (fetching),
     .isect_valid_o (isect_valid),
     .isect_slot_o  (res_slot),
-    .take_o        (unused_take),
+    .isect_hit_o   (unused_hit),
     .bound_o       (bound),
     .want_check_i  (want_check),
     .check_sel_o   (check_sel),

@@ -430,21 +430,24 @@ module rt_octree_slots #(
     logic signed [T_W-1:0] t0 [3];
     logic signed [T_W-1:0] t1 [3];
     logic signed [T_W-1:0] tm [3];
+    logic signed [T_W+1:0] sum [3];     // t0 + t1 = 2 tm
     logic [ORG_W-1:0]      org [3];
     logic [1:0]            r0 [3];
     logic [1:0]            rm [3];
     logic [2:0]            active;
     logic [DEPTH_W-1:0]    mid_bit;
     logic [1:0]            entry;
+    logic [8:0]            below_entry;      // [3a + e]: tm[a] before t0[e] (t_lt), a != e
+    logic                  lt10, lt20, lt21;  // t0[1] before t0[0], ...
     // Only a slot in DESCEND writes these (desc_q): without one, nothing is computed.
     desc_t0_d    = '0;
     desc_t1_d    = '0;
     desc_child_d = '0;
     desc_depth   = '0;
     desc_behind  = 1'b0;
-    {active, mid_bit, entry} = '0;
+    {active, mid_bit, entry, lt10, lt20, lt21, below_entry} = '0;
     for (int a = 0; a < 3; a++) begin
-      {t0[a], t1[a], tm[a], org[a], r0[a], rm[a]} = '0;
+      {t0[a], t1[a], tm[a], sum[a], org[a], r0[a], rm[a]} = '0;
     end
     if (desc_q) begin : b_descend_slot
       active     = active_q[desc_slot_q];
@@ -455,19 +458,32 @@ module rt_octree_slots #(
         t1[a]  = t1_q[desc_slot_q][a*T_W +: T_W];
         org[a] = org_q[desc_slot_q][a*ORG_W +: ORG_W];
         // (t0 + t1) / 2 without the carry bit: t0 and t1 have the same parity.
-        tm[a] = (t0[a] >>> 1) + (t1[a] >>> 1) + $signed({{(T_W-1){1'b0}}, t0[a][0] & t1[a][0]});
-        r0[a] = active[a] ? FINITE : NEG_INF;
-        rm[a] = active[a] ? FINITE : (org[a][mid_bit] ? NEG_INF : POS_INF);
+        tm[a]  = (t0[a] >>> 1) + (t1[a] >>> 1) + $signed({{(T_W-1){1'b0}}, t0[a][0] & t1[a][0]});
+        sum[a] = (T_W+2)'(t0[a]) + (T_W+2)'(t1[a]);
+        r0[a]  = active[a] ? FINITE : NEG_INF;
+        rm[a]  = active[a] ? FINITE : (org[a][mid_bit] ? NEG_INF : POS_INF);
       end
+      // Every comparison at once, the entry plane then only selects (issue
+      // #23: the entry's comparisons, then the mid-planes' against it, were
+      // rt_octree's critical path). tm[a] < t0[e] is t0[a] + t1[a] < 2 t0[e]
+      // (tm is an exact half).
+      for (int a = 0; a < 3; a++) begin
+        for (int e = 0; e < 3; e++) begin
+          if (a != e) begin
+            below_entry[3*a+e] = (rm[a] < r0[e]) ||
+                                (rm[a] == FINITE && r0[e] == FINITE && sum[a] < ((T_W+2)'(t0[e]) <<< 1));
+          end
+        end
+      end
+      lt10 = t_lt(r0[1], t0[1], r0[0], t0[0]);
+      lt20 = t_lt(r0[2], t0[2], r0[0], t0[0]);
+      lt21 = t_lt(r0[2], t0[2], r0[1], t0[1]);
       // The entry plane: the axis of the largest t0 (fx::firstChild's order).
-      if (t_lt(r0[1], t0[1], r0[0], t0[0])) begin
-        entry = t_lt(r0[2], t0[2], r0[0], t0[0]) ? 2'd0 : 2'd2;
-      end else begin
-        entry = t_lt(r0[2], t0[2], r0[1], t0[1]) ? 2'd1 : 2'd2;
-      end
+      if (lt10) entry = lt20 ? 2'd0 : 2'd2;
+      else      entry = lt21 ? 2'd1 : 2'd2;
       desc_child_d = '0;
       for (int a = 0; a < 3; a++) begin
-        if (32'(a) != 32'(entry) && t_lt(rm[a], tm[a], r0[entry], t0[entry])) desc_child_d[2-a] = 1'b1;
+        if (32'(a) != 32'(entry) && below_entry[3*a+32'(entry)]) desc_child_d[2-a] = 1'b1;
       end
       desc_t0_d   = t0_q[desc_slot_q];
       desc_t1_d   = t1_q[desc_slot_q];
@@ -479,7 +495,7 @@ module rt_octree_slots #(
             if (t1[a] < 0) desc_behind = 1'b1;
           end else begin
             desc_t1_d[a*T_W +: T_W] = tm[a];
-            if (tm[a] < 0) desc_behind = 1'b1;
+            if (sum[a] < 0) desc_behind = 1'b1;
           end
         end
       end
