@@ -181,6 +181,13 @@ module rt_octree_slots #(
   logic [N-1:0] gv_q;       // the child group holding the current node is in the group buffer
   logic         desc_q;     // a slot is in DESCEND: desc_slot_q
   logic [SlotW-1:0] desc_slot_q;
+  // The DESCEND slot's operands, read at its node response (the slot waits in
+  // WAIT_GROUP, its registers still): DESCEND computes from these registers,
+  // not through the slots' read multiplexers (issue #23).
+  logic [3*T_W-1:0]   desc_op_t0_q, desc_op_t1_q;
+  logic [3*ORG_W-1:0] desc_op_org_q;
+  logic [2:0]         desc_op_active_q;
+  logic [DEPTH_W-1:0] desc_op_depth_q;
   logic         fin_q;      // a slot's last result came in the previous cycle: fin_slot_q
   logic [SlotW-1:0] fin_slot_q;
 
@@ -450,13 +457,13 @@ module rt_octree_slots #(
       {t0[a], t1[a], tm[a], sum[a], org[a], r0[a], rm[a]} = '0;
     end
     if (desc_q) begin : b_descend_slot
-      active     = active_q[desc_slot_q];
-      desc_depth = depth_q[desc_slot_q];
+      active     = desc_op_active_q;
+      desc_depth = desc_op_depth_q;
       mid_bit    = DEPTH_W'(P - 1) - desc_depth;
       for (int a = 0; a < 3; a++) begin
-        t0[a]  = t0_q[desc_slot_q][a*T_W +: T_W];
-        t1[a]  = t1_q[desc_slot_q][a*T_W +: T_W];
-        org[a] = org_q[desc_slot_q][a*ORG_W +: ORG_W];
+        t0[a]  = desc_op_t0_q[a*T_W +: T_W];
+        t1[a]  = desc_op_t1_q[a*T_W +: T_W];
+        org[a] = desc_op_org_q[a*ORG_W +: ORG_W];
         // (t0 + t1) / 2 without the carry bit: t0 and t1 have the same parity.
         tm[a]  = (t0[a] >>> 1) + (t1[a] >>> 1) + $signed({{(T_W-1){1'b0}}, t0[a][0] & t1[a][0]});
         sum[a] = (T_W+2)'(t0[a]) + (T_W+2)'(t1[a]);
@@ -485,8 +492,8 @@ module rt_octree_slots #(
       for (int a = 0; a < 3; a++) begin
         if (32'(a) != 32'(entry) && below_entry[3*a+32'(entry)]) desc_child_d[2-a] = 1'b1;
       end
-      desc_t0_d   = t0_q[desc_slot_q];
-      desc_t1_d   = t1_q[desc_slot_q];
+      desc_t0_d   = desc_op_t0_q;
+      desc_t1_d   = desc_op_t1_q;
       desc_behind = 1'b0;
       for (int a = 0; a < 3; a++) begin
         if (active[a]) begin
@@ -628,6 +635,16 @@ module rt_octree_slots #(
 
   always_ff @(posedge clk_i) begin : p_node
     if (visit_go_i) first_q[visit_slot_i] <= visit_rec_i.first;
+  end
+
+  always_ff @(posedge clk_i) begin : p_desc_operands
+    if (node_rsp_valid_i && wait_group_q[node_rsp_slot_i]) begin
+      desc_op_t0_q     <= t0_q[node_rsp_slot_i];
+      desc_op_t1_q     <= t1_q[node_rsp_slot_i];
+      desc_op_org_q    <= org_q[node_rsp_slot_i];
+      desc_op_active_q <= active_q[node_rsp_slot_i];
+      desc_op_depth_q  <= depth_q[node_rsp_slot_i];
+    end
   end
 
   // ---- Outputs ----------------------------------------------------------------------------
