@@ -56,7 +56,7 @@ module rt_grid_setup #(
   logic [2:0]         s1_active, s1_neg;
 
   // The ray in, and valid, slot, ray, active, neg and dom out, by name.
-  rt_setup_front #(.SlotW(SlotW)) u_front (
+  rt_setup_front #(.SlotW(SlotW), .Latency(rt_pkg::GRID_SETUP_LATENCY)) u_front (
     .*,
     .mag_o       (mag),
     .s1_valid_o  (s1_valid),
@@ -143,11 +143,5 @@ module rt_grid_setup #(
   assign acc_o     = s3_acc_q;
   assign pair_o    = s3_pair_q;
   assign triple_o  = s3_triple_q;
-
-`ifdef RT_ASSERT_ON
-`include "rt_assert.svh"
-  `RT_ASSERT_STATIC(g_setup_latency_check, rt_pkg::GRID_SETUP_LATENCY == 3,
-                    "rt_grid_setup: its three stages differ from rt_pkg::GRID_SETUP_LATENCY")
-`endif
 
 endmodule

@@ -14,7 +14,8 @@
 // Throughput: one ray per cycle; the pipeline never stalls (the slot is
 //             reserved when the ray is accepted).
 module rt_setup_front #(
-  parameter int unsigned SlotW = 5  // width of the slot index carried along
+  parameter int unsigned SlotW   = 5,  // width of the slot index carried along
+  parameter int unsigned Latency = 3   // the unit's rt_pkg::<UNIT>_SETUP_LATENCY, checked against the stages here
 ) (
 `include "rt_setup_ports.svh"
 
@@ -108,5 +109,11 @@ module rt_setup_front #(
   assign s1_active_o = s1_q.active;
   assign s1_neg_o    = s1_q.neg;
   assign {slot_o, ray_o, active_o, neg_o, dom_o} = s3_q;
+
+`ifdef RT_ASSERT_ON
+`include "rt_assert.svh"
+  `RT_ASSERT_STATIC(g_setup_latency_check, Latency == 3,
+                    "rt_setup_front: its three stages differ from the unit's rt_pkg::<UNIT>_SETUP_LATENCY")
+`endif
 
 endmodule

@@ -53,7 +53,7 @@ module rt_octree_setup #(
   logic [2:0]         s3_active, s3_neg;
 
   // The ray in, and valid, slot, ray and dom out, by name.
-  rt_setup_front #(.SlotW(SlotW)) u_front (
+  rt_setup_front #(.SlotW(SlotW), .Latency(rt_pkg::OCTREE_SETUP_LATENCY)) u_front (
     .*,
     .mag_o       (mag),
     .s1_valid_o  (s1_valid),
@@ -150,11 +150,5 @@ module rt_octree_setup #(
   assign active_o = s3_active;
   assign origin_o = s3_org_q;
   assign common_o = s3_common_q;
-
-`ifdef RT_ASSERT_ON
-`include "rt_assert.svh"
-  `RT_ASSERT_STATIC(g_setup_latency_check, rt_pkg::OCTREE_SETUP_LATENCY == 3,
-                    "rt_octree_setup: its three stages differ from rt_pkg::OCTREE_SETUP_LATENCY")
-`endif
 
 endmodule
