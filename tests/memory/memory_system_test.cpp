@@ -1,0 +1,320 @@
+// The chip's memory system (memory/): the cache tags against a plain LRU
+// model replaying the same address trace; the hierarchy under contention from
+// many units with random sizes and latencies (every request answered once, in
+// order per port, with its tag; the counters balance); determinism; the
+// fixed model equal to the single-unit ports; the timing of one miss; and the
+// one-line errors of impossible configurations.
+
+#include <gtest/gtest.h>
+
+#include <deque>
+#include <list>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "common/error.h"
+#include "golden/stimulus.h"
+#include "memory/address_map.h"
+#include "memory/cache.h"
+#include "memory/system.h"
+
+namespace lancer::mem {
+namespace {
+
+// The plain model: per set a list, most recently used first.
+class ReferenceLru {
+ public:
+  ReferenceLru(int sets, int ways) : sets_(size_t(sets)), ways_(size_t(ways)) {}
+  bool access(uint64_t line) {
+    std::list<uint64_t>& set = sets_[line % sets_.size()];
+    for (auto it = set.begin(); it != set.end(); ++it) {
+      if (*it == line) {
+        set.splice(set.begin(), set, it);
+        return true;
+      }
+    }
+    set.push_front(line);
+    if (set.size() > ways_) set.pop_back();
+    return false;
+  }
+
+ private:
+  std::vector<std::list<uint64_t>> sets_;
+  size_t ways_;
+};
+
+TEST(CacheTags, HitsAndMissesEqualAPlainLruOnEveryAccess) {
+  struct Shape {
+    int kib, ways, line;
+  };
+  for (const Shape shape : {Shape{1, 1, 64}, Shape{4, 2, 32}, Shape{16, 4, 64}, Shape{8, 8, 128}, Shape{2, 32, 64}}) {
+    CacheTags tags(uint64_t(shape.kib) * 1024, shape.ways, shape.line);
+    ReferenceLru reference(tags.sets(), shape.ways);
+    std::mt19937_64 rng(uint64_t(shape.kib * 131 + shape.ways));
+    // A mix of a hot set of lines (reuse) and a wide range (conflicts, capacity).
+    const uint64_t lines = uint64_t(shape.kib) * 1024 / uint64_t(shape.line);
+    int hits = 0;
+    for (int i = 0; i < 200000; ++i) {
+      const uint64_t line = rng() % 4 == 0 ? rng() % (8 * lines) : rng() % (lines / 2 + 1);
+      const bool expected = reference.access(line);
+      bool hit = tags.lookup(line);
+      if (!hit) tags.insert(line);
+      ASSERT_EQ(hit, expected) << "access " << i << " line " << line << " (" << shape.kib << " KiB, " << shape.ways
+                               << " ways)";
+      hits += hit;
+    }
+    EXPECT_GT(hits, 1000);  // the trace exercised hits, not only misses
+    EXPECT_LT(hits, 199000);
+  }
+}
+
+// Regions of the shapes the units read: 4-byte cells, 4-byte indices, 27-byte triangles.
+AddressMap smallMap(uint64_t records = 5000, uint32_t nodeBytes = 4, uint32_t group = 1) {
+  return AddressMap({Region{"node table", 0, nodeBytes, group, records}, Region{"index list", 0, 4, 1, records},
+                     Region{"triangle table", 0, 27, 1, records}});
+}
+
+MemoryConfig hierarchy() {
+  MemoryConfig c;
+  c.kind = MemoryKind::Hierarchy;
+  c.clockMhz = 700;
+  return c;
+}
+
+struct Outstanding {
+  uint32_t record, tag;
+};
+
+// Drives `units` units that each request on every port with probability
+// `rate` per cycle (when ready) for `cycles` cycles, then drains. Checks every
+// response against the port's oldest outstanding request; returns the cycle
+// of each response, in order, for the determinism test.
+std::vector<uint64_t> drive(MemorySystem& memory, int units, double rate, int cycles, uint64_t records, uint64_t seed,
+                            uint64_t* requests = nullptr) {
+  std::mt19937_64 rng(seed);
+  std::vector<std::array<std::deque<Outstanding>, kPorts>> pending(static_cast<size_t>(units));
+  std::vector<uint64_t> when;
+  uint64_t issued = 0;
+  std::uniform_real_distribution<double> coin(0, 1);
+  for (int c = 0; ; ++c) {
+    bool busy = false;
+    for (int u = 0; u < units; ++u) {
+      for (int p = 0; p < kPorts; ++p) {
+        uint32_t record = 0, tag = 0;
+        if (memory.response(u, Port(p), record, tag)) {
+          auto& q = pending[size_t(u)][size_t(p)];
+          EXPECT_FALSE(q.empty()) << "a response nobody asked for: unit " << u << " port " << p;
+          if (q.empty()) return when;
+          EXPECT_EQ(record, q.front().record) << "unit " << u << " port " << p << " cycle " << c;
+          EXPECT_EQ(tag, q.front().tag);
+          q.pop_front();
+          when.push_back(memory.cycle());
+        }
+        if (c < cycles && coin(rng) < rate) {
+          // Hot records most of the time, so that the caches hit and merge.
+          const uint32_t record = uint32_t(coin(rng) < 0.7 ? rng() % 64 : rng() % records);
+          const uint32_t tag = uint32_t(rng() % 32);
+          if (memory.ready(u, Port(p))) {
+            memory.request(u, Port(p), record, tag);
+            pending[size_t(u)][size_t(p)].push_back({record, tag});
+            ++issued;
+          } else {
+            memory.blocked(u, Port(p));
+          }
+        }
+        busy |= !pending[size_t(u)][size_t(p)].empty();
+      }
+    }
+    memory.tick();
+    if (c >= cycles && !busy) break;
+    if (c > cycles + 2000000) {
+      ADD_FAILURE() << "the memory system did not drain";
+      break;
+    }
+  }
+  EXPECT_TRUE(memory.idle());
+  if (requests) *requests = issued;
+  return when;
+}
+
+TEST(HierarchyMemory, EveryRequestAnsweredOnceInOrderAndTheCountersBalance) {
+  std::mt19937_64 rng(7);
+  MemoryStats all;  // over the trials: every kind of contention happened
+  for (int trial = 0; trial < 12; ++trial) {
+    MemoryConfig c = hierarchy();
+    c.l1.kib = 1 << (rng() % 4);  // 1..8 KiB: plenty of misses
+    c.l1.ways = 1 << (rng() % 3);
+    c.l1.lineBytes = 32 << (rng() % 3);
+    c.l1.mshrs = 4 + int(rng() % 8);
+    c.l1.hitLatency = 1 + int(rng() % 4);
+    c.l2.kib = 16 << (rng() % 4);
+    c.l2.banks = 1 << (rng() % 4);
+    c.l2.latency = 1 + int(rng() % 20);
+    c.l2.mshrs = 1 + int(rng() % 16);
+    c.dram.gbps = 1.0 + double(rng() % 30);
+    c.dram.latencyNs = double(rng() % 100);
+    c.dram.channels = 1 << (rng() % 3);
+    c.dram.queueDepth = 1 + int(rng() % 8);
+    c.validate();
+    const int units = 1 + int(rng() % 16);
+    const AddressMap map = smallMap(20000);
+    auto memory = MemorySystem::make(c, map, units);
+    uint64_t requests = 0;
+    const std::vector<uint64_t> when = drive(*memory, units, 0.6, 3000, 20000, uint64_t(trial), &requests);
+    ASSERT_EQ(when.size(), requests) << "trial " << trial;
+
+    const MemoryStats s = memory->stats();
+    EXPECT_EQ(s.reads, requests);
+    ASSERT_EQ(s.l1.size(), size_t(units));
+    const MemoryStats::Cache l1 = s.l1Total();
+    EXPECT_EQ(l1.accesses, l1.hits + l1.misses + l1.merges);
+    EXPECT_GE(l1.accesses, requests);  // a triangle may span two lines
+    // Every L1 miss is one L2 access; every L2 miss one DRAM line.
+    EXPECT_EQ(s.l2.accesses, l1.misses);
+    EXPECT_EQ(s.l2.accesses, s.l2.hits + s.l2.misses + s.l2.merges);
+    EXPECT_EQ(s.dramLines, s.l2.misses);
+    EXPECT_EQ(s.dramBytes, s.dramLines * uint64_t(c.l1.lineBytes));
+    EXPECT_GT(l1.hits, 0u);
+    EXPECT_GT(s.l2.misses, 0u);
+    all += s;
+  }
+  EXPECT_GT(all.l1FullCycles, 0u);
+  EXPECT_GT(all.l2BankWaitCycles, 0u);
+  EXPECT_GT(all.l2MshrFullCycles, 0u);
+  EXPECT_GT(all.dramQueueFullCycles, 0u);
+  EXPECT_GT(all.dramQueueWaitCycles, 0u);
+  EXPECT_GT(all.l1Total().merges, 0u);
+  EXPECT_GT(all.l2.merges, 0u);
+}
+
+TEST(HierarchyMemory, ASeedlessRunIsTheSameTwice) {
+  MemoryConfig c = hierarchy();
+  c.l1.kib = 2;
+  c.l2.kib = 64;
+  const AddressMap map = smallMap(20000);
+  auto a = MemorySystem::make(c, map, 8);
+  auto b = MemorySystem::make(c, map, 8);
+  const auto first = drive(*a, 8, 0.5, 4000, 20000, 3);
+  const auto second = drive(*b, 8, 0.5, 4000, 20000, 3);
+  EXPECT_EQ(first, second);
+  EXPECT_EQ(nlohmann::json(a->stats()).dump(), nlohmann::json(b->stats()).dump());
+}
+
+// One read, cold: L1 tag check, the L2 bank, DRAM (latency and one line's
+// transfer on its channel), back through the L2, the L1 fill, the response.
+TEST(HierarchyMemory, AColdReadTakesEveryLevelsLatency) {
+  MemoryConfig c = hierarchy();
+  c.clockMhz = 1000;  // 1 ns cycles
+  c.l1.hitLatency = 2;
+  c.l2.latency = 10;
+  c.dram.latencyNs = 40;
+  c.dram.gbps = 64;  // 64-byte line, 1 channel... 2 channels: 2 ns a line
+  c.dram.channels = 2;
+  auto memory = MemorySystem::make(c, smallMap(), 1);
+  memory->request(0, Port::Index, 0, 5);
+  uint32_t record = 0, tag = 0;
+  uint64_t answered = 0;
+  for (int i = 0; i < 200 && answered == 0; ++i) {
+    memory->tick();
+    if (memory->response(0, Port::Index, record, tag)) answered = memory->cycle();
+  }
+  // Lookup in the bank at cycle 2; DRAM done at 2 + 40 + 2 = 44 ns (cycle 44);
+  // the fill reaches the L1 at 44 + 10 = 54 and answers in cycle 55.
+  EXPECT_EQ(answered, 55u);
+  EXPECT_EQ(tag, 5u);
+  // The same line again: an L1 hit, hitLatency cycles.
+  memory->tick();
+  const uint64_t asked = memory->cycle();
+  memory->request(0, Port::Index, 1, 6);  // the next index shares the line
+  for (int i = 0; i < 10; ++i) {
+    memory->tick();
+    if (memory->response(0, Port::Index, record, tag)) break;
+  }
+  EXPECT_EQ(memory->cycle() - asked, 2u);
+  EXPECT_EQ(record, 1u);
+  EXPECT_EQ(memory->stats().l1Total().hits, 1u);
+}
+
+// Unit 0 of the fixed model is the single-unit run's three ports.
+TEST(FixedMemory, UnitZeroIsTheSingleUnitPorts) {
+  MemoryConfig c;
+  c.fixedLatency = 7;
+  c.fixedJitter = 5;
+  c.seed = 11;
+  auto memory = MemorySystem::make(c, smallMap(), 3);
+  std::array<fx::MemoryReadPort, kPorts> single;
+  for (int p = 0; p < kPorts; ++p) single[size_t(p)].restart(7, 5, 11 * 3 + uint64_t(p) + 1);
+  std::mt19937_64 rng(1);
+  for (uint64_t cycle = 0; cycle < 5000; ++cycle) {
+    for (int p = 0; p < kPorts; ++p) {
+      uint32_t a1 = 0, t1 = 0, a2 = 0, t2 = 0;
+      const bool r1 = memory->response(0, Port(p), a1, t1);
+      const bool r2 = single[size_t(p)].respond(cycle, a2, t2);
+      ASSERT_EQ(r1, r2) << "cycle " << cycle << " port " << p;
+      if (r1) EXPECT_EQ(a1, a2);
+      if (rng() % 2) {
+        const uint32_t addr = uint32_t(rng() % 1000);
+        memory->request(0, Port(p), addr, 1);
+        single[size_t(p)].request(cycle, addr, 1);
+        memory->request(1, Port(p), addr, 1);  // another unit's traffic changes nothing of unit 0's
+      }
+    }
+    memory->tick();
+  }
+}
+
+TEST(MemoryConfig, ImpossibleSettingsNameTheirOption) {
+  const auto fails = [](auto edit, const std::string& option) {
+    MemoryConfig c = hierarchy();
+    edit(c);
+    try {
+      c.validate();
+      ADD_FAILURE() << option << ": accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(option + " ", 0), 0u) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+    }
+  };
+  fails([](MemoryConfig& c) { c.l1.kib = 0; }, "--l1-kib");
+  fails([](MemoryConfig& c) { c.l1.lineBytes = 2048; c.l1.kib = 1; }, "--l1-kib");  // smaller than a line
+  fails([](MemoryConfig& c) { c.l1.kib = 12; }, "--l1-kib");                          // 48 sets
+  fails([](MemoryConfig& c) { c.l1.lineBytes = 48; }, "--l1-line-bytes");
+  fails([](MemoryConfig& c) { c.l1.ways = 0; }, "--l1-ways");
+  fails([](MemoryConfig& c) { c.l2.kib = 768; }, "--l2-kib");                         // 1536 sets
+  fails([](MemoryConfig& c) { c.l2.banks = 3; }, "--l2-banks");
+  fails([](MemoryConfig& c) { c.dram.gbps = 0; }, "--dram-gbps");
+  fails([](MemoryConfig& c) { c.dram.gbps = -3; }, "--dram-gbps");
+  fails([](MemoryConfig& c) { c.dram.channels = 6; }, "--dram-channels");
+  fails([](MemoryConfig& c) { c.dram.latencyNs = -1; }, "--dram-latency-ns");
+  fails([](MemoryConfig& c) { c.kind = MemoryKind::Fixed; c.fixedLatency = 0; }, "--mem-latency");
+  EXPECT_THROW(parseMemoryKind("cached"), InputError);
+}
+
+TEST(AddressMap, AnImagePastTheAddressWidthIsAnError) {
+  try {
+    smallMap(uint64_t(1) << 29, 8, 8);  // 4 GiB of nodes
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("32-bit address space"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("node table"), std::string::npos) << e.what();
+  }
+  const AddressMap map = smallMap(1000);
+  EXPECT_EQ(map.region(Port::Node).base, AddressMap::kBase);
+  EXPECT_EQ(map.region(Port::Index).base % AddressMap::kPageBytes, 0u);
+  EXPECT_GE(map.region(Port::Index).base, map.region(Port::Node).base + 4000);
+  EXPECT_EQ(map.span(Port::Triangle, 3).first, map.region(Port::Triangle).base + 81);
+}
+
+TEST(HierarchyMemory, TooFewMshrsForARecordIsAnError) {
+  MemoryConfig c = hierarchy();
+  c.l1.mshrs = 2;
+  c.l1.lineBytes = 32;
+  EXPECT_THROW(MemorySystem::make(c, smallMap(1000, 16, 8), 1), InputError);  // 128-byte groups: 5 lines
+}
+
+}  // namespace
+}  // namespace lancer::mem
