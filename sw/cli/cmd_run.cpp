@@ -18,6 +18,7 @@
 #include "driver/clocks.h"
 #include "driver/job.h"
 #include "driver/report.h"
+#include "driver/traversal_job.h"
 #include "driver/wave_tracer.h"
 #include "effects/ref_tracer.h"
 #include "effects/whitted.h"
@@ -37,6 +38,7 @@ struct Args {
   RaySource source;
   fx::UnitKind accel = fx::UnitKind::Isect;
   JobConfig job;
+  ChipArgs chip;
   EffectsArgs effects;
   std::optional<double> clockMhz;  // --clock-mhz; else the estimated clock (driver/clocks.h)
   int posBits = fx::kPosBits;
@@ -86,6 +88,7 @@ std::string unitOptions(const Args& args) {
     out += fmt::format(" --mem-latency {}", job.memLatency);
     add("--mem-jitter", job.memLatencyJitter);
     add("--rays-in-flight", job.raysInFlight);
+    out += ChipArgs::replayOptions(job);
   }
   return out;
 }
@@ -185,8 +188,24 @@ struct EffectsFigures {
     printCounts();
     fmt::print("  host                {:.2f} s in all; simulated {:.1f} us at {:g} MHz for {} cycles\n", hostSeconds,
                double(cycles()) / clockHz() * 1e6, clock.mhz, cycles());
+    if (const auto c = chip()) fmt::print("{}", c->summary(cycles(), waveRays(), clockHz()));
     fmt::print("  bit-exact vs golden {} rays in {} waves, {} mismatches\n", waveRays(), hw.waveRays.size(),
                tracer.mismatches());
+  }
+
+  // The chip's figures over every class.
+  std::optional<ChipFigures> chip() const {
+    std::optional<ChipFigures> all;
+    for (int c = 0; c < kRayClassCount; ++c) {
+      const auto& mine = tracer.stats(RayClass(c)).chip;
+      if (!mine) continue;
+      if (all) {
+        *all += *mine;
+      } else {
+        all = mine;
+      }
+    }
+    return all;
   }
 
   // What the hardware did per ray class.
@@ -268,6 +287,7 @@ struct EffectsFigures {
                    {"total_internal_reflections", hw.totalInternalReflections},
                    {"refraction_rays_traced", hw.refractionsTraced},
                    {"beyond_bound", tracer.beyondBound()}});
+    if (const auto c = chip()) report.update(c->toJson(cycles(), waveRays(), clockHz()));
     for (const auto& [key, value] : spdCounts(hw)) report[key] = value;
     nlohmann::json refJson;
     for (const auto& [key, value] : spdCounts(ref)) refJson[key] = value;
@@ -361,6 +381,7 @@ struct RunFigures {
     fmt::print("  host                {:.2f} s in all, {:.2f} s in the model ({:.0f} rays/s), {:.2f} s in golden\n",
                hostSeconds, job.modelSeconds, job.modelSeconds > 0 ? double(inLattice()) / job.modelSeconds : 0.0,
                job.goldenSeconds);
+    if (job.chip) fmt::print("{}", job.chip->summary(job.cycles, rays.rays.size(), clockHz()));
     fmt::print("  bit-exact vs golden {} rays ({} entered the lattice, {} hit), {} mismatches\n", rays.rays.size(),
                inLattice(), hits(), job.mismatchedRays);
     printReferenceComparison(cmp);
@@ -385,6 +406,7 @@ struct RunFigures {
                    {"output_stall_probability", args.job.stream.outputStallProbability},
                    {"seed", args.job.stream.seed}});
     report.update(lancer::toJson(cmp));
+    if (job.chip) report.update(job.chip->toJson(job.cycles, rays.rays.size(), clockHz()));
     for (const JobCounter& c : job.counters) {
       report[c.key] = isWhole(c.value) ? nlohmann::json(int64_t(c.value)) : nlohmann::json(c.value);
     }
@@ -400,6 +422,11 @@ void checkRunOptions(const Args& args) {
     throw InputError(fmt::format("--model {}: the {} path has no such model (available: {})", args.job.model,
                                  toString(args.accel), fmt::join(models, ", ")));
   }
+  if (args.accel == fx::UnitKind::Isect && (args.job.units != 1 || args.job.memory.kind != mem::MemoryKind::Fixed)) {
+    throw InputError("--units and --memory hierarchy describe a chip of traversal units: they need --accel grid or "
+                     "octree, not bvh");
+  }
+  if (args.accel != fx::UnitKind::Isect) checkChipOptions(traversalOptionsOf(args.job));
   if (!args.job.dualNarrowBits.empty() && args.accel != fx::UnitKind::Isect) {
     throw InputError(fmt::format("--dual-precision models the intersection pipeline's front end: it needs --accel bvh, "
                                  "not {}", toString(args.accel)));
@@ -442,9 +469,11 @@ void reportFirstFailure(const Args& args, const Scene& scene, const Rays& rays, 
   }
 }
 
-void run(const Args& args) {
+void run(Args args) {
+  args.chip.apply(args.job);
   checkRunOptions(args);
   const RunClock clock = runClock(args.accel, args.clockMhz);
+  args.job.memory.clockMhz = clock.mhz;  // DRAM's nanoseconds in the run's cycles
   const auto hostStart = std::chrono::steady_clock::now();
   const Scene scene = args.scene.load();
   const EffectsPlan plan = planEffects(scene, args.effects.options());
@@ -528,6 +557,7 @@ void addRunCommand(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::Range(2, 24));
   args->effects.add(*cmd);
+  args->chip.add(*cmd, args->job);
   cmd->add_option("--lattice-margin", args->latticeMargin,
                   "Lattice units between the scene's bounds and the lattice cube's faces (0: the faces coincide, "
                   "and a closed object seen from outside shows its inside: docs/number-formats.md)")

@@ -161,4 +161,43 @@ Rays loadRays(const RaySource& source, const Scene& scene) {
   return out;
 }
 
+void ChipArgs::add(CLI::App& app, JobConfig& job) {
+  const auto opt = [&app](const char* name, auto& value, const char* what) {
+    return app.add_option(name, value, what)->capture_default_str()->group("Chip (docs/chip.md)");
+  };
+  opt("--units", job.units, "Traversal units sharing the memory system, 1..64");
+  opt("--memory", memory, "Memory system: fixed (latency and jitter only) or hierarchy (L1s, L2, DRAM)");
+  opt("--l1-kib", job.memory.l1.kib, "hierarchy: KiB of each of a unit's three L1s (node, index, triangle)");
+  opt("--l1-ways", job.memory.l1.ways, "hierarchy: L1 ways");
+  opt("--l1-line-bytes", job.memory.l1.lineBytes, "hierarchy: line size of every level");
+  opt("--l1-mshrs", job.memory.l1.mshrs, "hierarchy: lines in flight per L1");
+  opt("--l1-latency", job.memory.l1.hitLatency, "hierarchy: L1 hit latency, cycles");
+  opt("--l2-kib", job.memory.l2.kib, "hierarchy: KiB of the shared L2");
+  opt("--l2-ways", job.memory.l2.ways, "hierarchy: L2 ways");
+  opt("--l2-banks", job.memory.l2.banks, "hierarchy: L2 banks (one lookup per cycle each)");
+  opt("--l2-latency", job.memory.l2.latency, "hierarchy: L2 latency, cycles");
+  opt("--l2-mshrs", job.memory.l2.mshrs, "hierarchy: lines in flight to DRAM per L2 bank");
+  opt("--dram-gbps", job.memory.dram.gbps, "hierarchy: DRAM bandwidth, GB/s");
+  opt("--dram-latency-ns", job.memory.dram.latencyNs, "hierarchy: DRAM latency, ns");
+  opt("--dram-channels", job.memory.dram.channels, "hierarchy: DRAM channels (lines interleaved)");
+  opt("--dram-queue", job.memory.dram.queueDepth, "hierarchy: requests queued per DRAM channel");
+  opt("--dispatch-batch", job.dispatchBatch, "Consecutive rays the dispatcher hands a unit at once");
+  opt("--host-threads", job.hostThreads, "Host threads clocking the units (0: one per core, at most one per unit; docs/chip.md)");
+}
+
+void ChipArgs::apply(JobConfig& job) const { job.memory.kind = mem::parseMemoryKind(memory); }
+
+std::string ChipArgs::replayOptions(const JobConfig& job) {
+  std::string out;
+  if (job.units != 1) out += fmt::format(" --units {}", job.units);
+  if (job.memory.kind == mem::MemoryKind::Fixed) return out;
+  const mem::MemoryConfig& m = job.memory;
+  return out + fmt::format(" --memory hierarchy --l1-kib {} --l1-ways {} --l1-line-bytes {} --l1-mshrs {} --l1-latency {} "
+                           "--l2-kib {} --l2-ways {} --l2-banks {} --l2-latency {} --l2-mshrs {} --dram-gbps {:g} "
+                           "--dram-latency-ns {:g} --dram-channels {} --dram-queue {}",
+                           m.l1.kib, m.l1.ways, m.l1.lineBytes, m.l1.mshrs, m.l1.hitLatency, m.l2.kib, m.l2.ways,
+                           m.l2.banks, m.l2.latency, m.l2.mshrs, m.dram.gbps, m.dram.latencyNs, m.dram.channels,
+                           m.dram.queueDepth);
+}
+
 }  // namespace lancer::cli

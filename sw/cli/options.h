@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "driver/job.h"
 #include "effects/plan.h"
 #include "ref/accel.h"
 #include "scene/camera.h"
@@ -72,6 +73,19 @@ struct RaySource {
   CameraArgs camera;
   void add(CLI::App& app);
   bool fromCamera() const { return raysFile.empty(); }
+};
+
+// The chip of N traversal units and its memory system (docs/chip.md): --units,
+// --memory fixed|hierarchy, the caches' and DRAM's sizes, the dispatcher and
+// the host threads, written into a JobConfig. Values are checked when the
+// job starts (checkChipOptions), each message naming its option.
+struct ChipArgs {
+  std::string memory = "fixed";
+  void add(CLI::App& app, JobConfig& job);
+  // The memory kind into `job` (InputError for an unknown --memory).
+  void apply(JobConfig& job) const;
+  // The chip's options as typed, for a replay command (empty for one unit on the fixed memory).
+  static std::string replayOptions(const JobConfig& job);
 };
 
 // Writes a JSON report if a path was given (throws InputError if it cannot).

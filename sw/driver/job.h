@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "driver/chip.h"
 #include "driver/isect_device.h"
 #include "driver/quantize.h"
 #include "golden/unit.h"
@@ -48,6 +49,7 @@ struct JobResult {
   std::vector<JobCounter> counters;
   double modelSeconds = 0;   // host time inside the model
   double goldenSeconds = 0;  // host time inside the golden model
+  std::optional<ChipFigures> chip;  // traversal units on a cycle-accurate model
 
   void addCounter(std::string key, std::string label, double value) {
     counters.push_back({std::move(key), std::move(label), value});
@@ -61,6 +63,14 @@ struct JobConfig {
   int memLatency = 20;       // traversal units: memory latency in cycles
   int memLatencyJitter = 0;  // and its random extra per request
   int raysInFlight = 0;      // ray slots; 0 = all the unit was built with
+  // The chip (docs/chip.md): traversal units sharing a memory system. Its
+  // clockMhz is the run's; the fixed model's latency is memLatency's.
+  int units = 1;
+  int dispatchBatch = 32;
+  int hostThreads = 1;
+  mem::MemoryConfig memory;
+  // Rays per model run, per unit: a chip of N units runs N times as many at
+  // once. Each run starts with the memory system empty (cold caches).
   size_t raysPerBatch = 4096;
   // The bvh path: narrow widths at which to model a dual-precision front end
   // (golden/dual.h), reported as the share of tests escalated to full width.

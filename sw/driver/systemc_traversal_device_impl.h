@@ -94,6 +94,12 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
     throw InputError(fmt::format("memory latency {} (jitter {}) is out of range: latency >= 1, jitter >= 0",
                                  options.memLatency, options.memLatencyJitter));
   }
+  checkChipOptions(options);
+  if (options.units != 1 || options.memory.kind != mem::MemoryKind::Fixed) {
+    throw InputError(fmt::format("--model {}: the SystemC models run one unit on the fixed memory so far; a chip "
+                                 "(--units above 1, --memory hierarchy) runs on --model rtl",
+                                 name()));
+  }
   Desc::checkImage(image, rays);
   for (const double p : {options.stream.outputStallProbability, options.stream.inputIdleProbability}) {
     if (!(p >= 0.0 && p < 1.0)) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <string_view>
@@ -8,6 +9,7 @@
 #include "driver/isect_device.h"
 #include "golden/trace.h"
 #include "golden/units.h"
+#include "memory/system.h"
 
 namespace lancer {
 
@@ -17,7 +19,32 @@ struct TraversalRunOptions {
   int memLatency = 20;       // cycles from a memory request to its response (>= 1)
   int memLatencyJitter = 0;  // extra 0..jitter cycles per request, random (seeded); responses stay in order per port
   int raysInFlight = 0;      // ray slots to use; 0 = all the unit was built with
+  // The chip (docs/chip.md): `units` copies of the unit share one memory system.
+  int units = 1;             // 1..kMaxUnits
+  int dispatchBatch = 32;    // consecutive rays the dispatcher hands a unit at once
+  int hostThreads = 1;       // host threads clocking the units; 0: min(cores, units) (docs/chip.md, "How the host runs it")
+  // The memory system: its kind, the hierarchy's sizes and the chip's clock
+  // (for DRAM's nanoseconds). The fixed model's latency and jitter are
+  // memLatency and memLatencyJitter above, its seed the stream's.
+  mem::MemoryConfig memory;
 };
+
+inline constexpr int kMaxUnits = 64;
+
+// InputError naming the option for a chip `options` cannot describe: units
+// outside 1..kMaxUnits, a dispatch batch below 1, negative host threads, or
+// an impossible memory system.
+void checkChipOptions(const TraversalRunOptions& options);
+
+// The memory system `options` describe, complete (the fixed model's latency,
+// jitter and seed filled in from the options' own fields).
+inline mem::MemoryConfig memoryConfigOf(const TraversalRunOptions& options) {
+  mem::MemoryConfig c = options.memory;
+  c.fixedLatency = options.memLatency;
+  c.fixedJitter = options.memLatencyJitter;
+  c.seed = options.stream.seed;
+  return c;
+}
 
 // What the unit did, in clock cycles of the simulated chip.
 struct TraversalRunStats {
@@ -31,8 +58,13 @@ struct TraversalRunStats {
   uint64_t isectTests = 0;       // pairs the intersection pipeline accepted
   uint64_t isectBusyCycles = 0;  // cycles in which it accepted one
   bool cycleAccurate = true;     // false for the golden model (no timing)
+  // The chip: per unit the rays it took and the cycles it had one in flight;
+  // what the memory system did (empty for the golden model).
+  std::vector<uint64_t> unitRays, unitBusyCycles;
+  mem::MemoryStats memory;
 
   uint64_t memoryReads() const { return nodeReads + indexReads + triangleReads; }
+  int units() const { return std::max<int>(1, int(unitRays.size())); }
   // The stats of consecutive runs, as of one.
   TraversalRunStats& operator+=(const TraversalRunStats& o) {
     cycles += o.cycles;
@@ -45,6 +77,15 @@ struct TraversalRunStats {
     isectTests += o.isectTests;
     isectBusyCycles += o.isectBusyCycles;
     cycleAccurate = o.cycleAccurate;
+    if (unitRays.size() < o.unitRays.size()) {
+      unitRays.resize(o.unitRays.size());
+      unitBusyCycles.resize(o.unitRays.size());
+    }
+    for (size_t u = 0; u < o.unitRays.size(); ++u) {
+      unitRays[u] += o.unitRays[u];
+      unitBusyCycles[u] += o.unitBusyCycles[u];
+    }
+    memory += o.memory;
     return *this;
   }
 };

@@ -48,6 +48,19 @@ std::string describeTraversalMismatch(std::string_view unit, std::string_view el
   return out;
 }
 
+TraversalRunOptions traversalOptionsOf(const JobConfig& config) {
+  TraversalRunOptions options;
+  options.stream = config.stream;
+  options.memLatency = config.memLatency;
+  options.memLatencyJitter = config.memLatencyJitter;
+  options.raysInFlight = config.raysInFlight;
+  options.units = config.units;
+  options.dispatchBatch = config.dispatchBatch;
+  options.hostThreads = config.hostThreads;
+  options.memory = config.memory;
+  return options;
+}
+
 template <class Image>
 JobResult runTraversalJob(const Image& image, std::span<const std::optional<QuantizedRay>> rays,
                           TraversalDevice<Image>& model, TraversalDevice<Image>& golden, const JobConfig& config,
@@ -65,16 +78,14 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
   JobResult job;
   job.rays.resize(rays.size());
   job.hits.resize(rays.size());
-  TraversalRunOptions options;
-  options.stream = config.stream;
-  options.memLatency = config.memLatency;
-  options.memLatencyJitter = config.memLatencyJitter;
-  options.raysInFlight = config.raysInFlight;
+  const TraversalRunOptions options = traversalOptionsOf(config);
+  checkChipOptions(options);
   TraversalRunStats total;
   std::vector<fx::QRay> batch;
   std::vector<fx::TraversalTrace> modelTraces, goldenTraces;
-  for (size_t begin = 0; begin < rays.size(); begin += config.raysPerBatch) {
-    const size_t end = std::min(rays.size(), begin + config.raysPerBatch);
+  const size_t raysPerBatch = config.raysPerBatch * size_t(config.units);
+  for (size_t begin = 0; begin < rays.size(); begin += raysPerBatch) {
+    const size_t end = std::min(rays.size(), begin + raysPerBatch);
     batch.clear();
     for (size_t i = begin; i < end; ++i) {
       job.rays[i] = rays[i];
@@ -124,6 +135,9 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
     job.addCounter("mem_latency", "memory latency", config.memLatency);
     job.addCounter("rays_in_flight", "rays in flight",
                    config.raysInFlight ? config.raysInFlight : model.maxRaysInFlight());
+    if (!total.unitRays.empty()) {
+      job.chip = ChipFigures{memoryConfigOf(options), total.unitRays, total.unitBusyCycles, total.memory};
+    }
   }
   return job;
 }

@@ -21,6 +21,9 @@ typename Unit::Image buildImageFor(const Scene& scene, const Quantizer& quantize
   return Unit::build(quantizer.quantize(scene), options);
 }
 
+// The run options of a job's configuration (stream, memory, chip).
+TraversalRunOptions traversalOptionsOf(const JobConfig& config);
+
 // Runs every ray that entered the lattice (rays[k], id k) through `model` and
 // `golden` and compares, per ray, bit for bit: the elements visited in order,
 // the tests issued, and the closest hit record. Throws InputError for a

@@ -153,29 +153,25 @@ inline void checkTraversalOptions(const TraversalRunOptions& options, int maxSlo
     throw InputError(fmt::format("memory latency {} (jitter {}) is out of range: latency >= 1, jitter >= 0",
                                  options.memLatency, options.memLatencyJitter));
   }
+  checkChipOptions(options);
 }
 
-// The seeded stimulus of a traversal-unit run, drawn in the same order by
-// every model: per cycle one draw each for the input bubble (only while no ray
-// is on offer), the result stall and the visit stall; the node/cell, index
-// and triangle ports are fx::MemoryReadPort with seeds seed*3+1, +2, +3.
+// The seeded stream stimulus of one unit of a traversal-unit run, drawn in
+// the same order by every model: per cycle one draw each for the input bubble
+// (only while no ray is on offer), the result stall and the visit stall. Unit
+// 0 draws from the stream's seed, unit u from seed + u * 0x9E3779B97F4A7C15.
+// (The memory ports are the chip's memory system: memory/system.h.)
 struct TraversalStimulus {
-  explicit TraversalStimulus(const TraversalRunOptions& o)
-      : rng(o.stream.seed),
+  TraversalStimulus(const TraversalRunOptions& o, int unit)
+      : rng(o.stream.seed + uint64_t(unit) * 0x9E37'79B9'7F4A'7C15ull),
         idle(o.stream.inputIdleProbability, rng),
         stallRes(o.stream.outputStallProbability, rng),
-        stallVisit(o.stream.outputStallProbability, rng),
-        nodePort(o.memLatency, o.memLatencyJitter, o.stream.seed * 3 + 1),
-        idxPort(o.memLatency, o.memLatencyJitter, o.stream.seed * 3 + 2),
-        triPort(o.memLatency, o.memLatencyJitter, o.stream.seed * 3 + 3) {}
+        stallVisit(o.stream.outputStallProbability, rng) {}
   TraversalStimulus(const TraversalStimulus&) = delete;
   TraversalStimulus& operator=(const TraversalStimulus&) = delete;
 
-  bool memoryIdle() const { return nodePort.idle() && idxPort.idle() && triPort.idle(); }
-
   std::mt19937_64 rng;
   fx::Coin idle, stallRes, stallVisit;
-  fx::MemoryReadPort nodePort, idxPort, triPort;
 };
 
 // No progress (a ray accepted, a test, a visit or a result) for this many cycles ends a run.

@@ -58,7 +58,7 @@ class VerilatorTraversalDevice final : public TraversalDevice<Image> {
                         const TraversalRunOptions& options = {}) override;
 
  private:
-  std::unique_ptr<VerilatedUnit<Top>> unit_;
+  std::vector<std::unique_ptr<VerilatedUnit<Top>>> units_;  // the chip's units, made as a run needs them
 };
 
 }  // namespace lancer

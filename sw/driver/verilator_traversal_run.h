@@ -15,16 +15,23 @@
 //                      req ready, rsp valid, data, tag
 //   configPort(top)    its configuration port besides cfg_slots_i
 
+#include <algorithm>
 #include <array>
+#include <atomic>
+#include <barrier>
 #include <cstdint>
+#include <deque>
+#include <exception>
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <thread>
 #include <type_traits>
 
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "driver/chip.h"
 #include "driver/verilated_port.h"
 #include "driver/verilated_unit.h"
 #include "driver/verilator_traversal_device.h"
@@ -74,9 +81,9 @@ void idleInputs(Top& top) {
 }  // namespace trav_detail
 
 template <class Top, class Image>
-VerilatorTraversalDevice<Top, Image>::VerilatorTraversalDevice()
-    : unit_(std::make_unique<VerilatedUnit<Top>>(VerilatedTraversalUnit<Top>::Desc::kNames.module)) {
-  unit_->reset(trav_detail::idleInputs<Top>);
+VerilatorTraversalDevice<Top, Image>::VerilatorTraversalDevice() {
+  units_.push_back(std::make_unique<VerilatedUnit<Top>>(VerilatedTraversalUnit<Top>::Desc::kNames.module));
+  units_.front()->reset(trav_detail::idleInputs<Top>);
 }
 
 template <class Top, class Image>
@@ -89,13 +96,56 @@ int VerilatorTraversalDevice<Top, Image>::maxRaysInFlight() const {
 
 namespace trav_detail {
 
-// One run of a Verilated traversal unit, cycle by cycle: the image as its
-// ports carry it (packed once; nothing is allocated per cycle), the seeded
-// stimulus, and what came out. Every member is inlined into the loop.
+// The image as the unit's ports carry it, packed once per run and read by
+// every unit of the chip.
 template <class Top, class Image>
-class TraversalRun {
+struct PortImage {
+  using Desc = typename VerilatedTraversalUnit<Top>::Desc;
+  static constexpr size_t kTriWords = fx::kIsectTriWords;
+  static constexpr size_t kNodeWords = size_t(fx::wireWords(fx::kNodeBitsOf<Desc>));
+  static constexpr size_t kGroupWords = Desc::kGroup * kNodeWords;
+
+  explicit PortImage(const Image& im) : image(im), nodes(Desc::nodes(im)) {
+    nodeWire.resize(nodes.size() * kNodeWords);
+    for (size_t i = 0; i < nodes.size(); ++i) {
+      fx::packNode<Desc>(nodes[i], std::span<uint32_t>(nodeWire).subspan(kNodeWords * i, kNodeWords));
+    }
+    triWire.resize(image.triangles.size() * kTriWords);
+    for (size_t i = 0; i < image.triangles.size(); ++i) {
+      fx::packWire(image.triangles[i], std::span<uint32_t>(triWire).subspan(i * kTriWords, kTriWords));
+    }
+  }
+
+  const Image& image;
+  const std::remove_cvref_t<decltype(Desc::nodes(std::declval<const Image&>()))>& nodes;
+  std::vector<uint32_t> nodeWire, triWire;
+};
+
+// What the units of a run share: the rays and their traces (each written only
+// by the unit that took the ray), and the dispatcher.
+struct ChipRays {
+  ChipRays(std::span<const fx::QRay> r, std::vector<fx::TraversalTrace>& t, int units, int batch)
+      : rays(r), traces(t), owner(r.size(), -1), finished(r.size(), 0), resultElements(r.size(), 0),
+        dispatcher(r.size(), units, batch) {}
+  std::span<const fx::QRay> rays;
+  std::vector<fx::TraversalTrace>& traces;
+  std::vector<int> owner;  // the unit that took each ray (-1: none yet)
+  std::vector<uint8_t> finished;
+  std::vector<uint32_t> resultElements;
+  Dispatcher dispatcher;
+};
+
+// One Verilated unit of a chip, cycle by cycle: it offers the rays the
+// dispatcher hands it, serves its three memory ports from the chip's memory
+// system, takes its visits and results. cycle() touches only this unit's
+// state, its own rays' traces and the memory system's calls for this unit,
+// so the units of a chip may run it on threads of their own. Every member is
+// inlined into the loop; nothing is allocated per cycle.
+template <class Top, class Image>
+class UnitRun {
   using Unit = VerilatedTraversalUnit<Top>;
   using Desc = typename Unit::Desc;
+  using Ports = PortImage<Top, Image>;
 
   // The records of the two narrow streams, taken straight from their ports.
   static constexpr auto kVisitFields = Desc::kVisitFields;
@@ -106,140 +156,143 @@ class TraversalRun {
   static_assert(kVisitFields[0].width == 32 && kVisitIdBits <= 32 && kVisitRayLsb + 32 == fx::recordBits(kVisitFields));
   static constexpr uint64_t kVisitIdMask = (uint64_t(1) << kVisitIdBits) - 1;
   static constexpr size_t kResWords = size_t(fx::wireWords(fx::recordBits(Desc::kResFields)));
-  static constexpr size_t kTriWords = fx::kIsectTriWords;
-  static constexpr size_t kNodeWords = size_t(fx::wireWords(fx::kNodeBitsOf<Desc>));
-  static constexpr size_t kGroupWords = Desc::kGroup * kNodeWords;
 
  public:
-  TraversalRun(VerilatedUnit<Top>& unit, const Image& image, std::span<const fx::QRay> rays,
-               std::vector<fx::TraversalTrace>& traces, const TraversalRunOptions& options)
-      : unit_(unit), top_(unit.top()), image_(image), nodes_(Desc::nodes(image)), rays_(rays), traces_(traces),
-        options_(options), stim_(options), finished_(rays.size(), 0), resultElements_(rays.size(), 0) {
-    static_assert(portWords<std::remove_reference_t<decltype(std::get<5>(Unit::nodePort(top_)))>>() == kGroupWords,
+  UnitRun(VerilatedUnit<Top>& unit, int index, const Ports& ports, ChipRays& shared, const TraversalRunOptions& options)
+      : unit_(unit), top_(unit.top()), index_(index), ports_(ports), shared_(shared), options_(options),
+        stim_(options, index) {
+    static_assert(portWords<std::remove_reference_t<decltype(std::get<5>(Unit::nodePort(top_)))>>() ==
+                      Ports::kGroupWords,
                   "the node response port does not carry kGroup nodes of the descriptor: rebuild rt_pkg");
     static_assert(portWords<std::remove_reference_t<decltype(top_.res_data_o)>>() >= kResWords,
                   "res_data_o does not match the unit's result record: rebuild rt_pkg");
-    nodeWire_.resize(nodes_.size() * kNodeWords);
-    for (size_t i = 0; i < nodes_.size(); ++i) {
-      fx::packNode<Desc>(nodes_[i], std::span<uint32_t>(nodeWire_).subspan(kNodeWords * i, kNodeWords));
-    }
-    triWire_.resize(image.triangles.size() * kTriWords);
-    for (size_t i = 0; i < image.triangles.size(); ++i) {
-      fx::packWire(image.triangles[i], std::span<uint32_t>(triWire_).subspan(i * kTriWords, kTriWords));
-    }
-    stats_.rays = rays.size();
   }
 
   // The run's slots and the unit's configuration port.
   void configure() {
     top_.cfg_slots_i = options_.raysInFlight == 0 ? Unit::kMaxSlots : options_.raysInFlight;
-    trav_detail::configure(top_, image_);
+    trav_detail::configure(top_, ports_.image);
   }
 
-  // Clocks the unit until every ray has its result and the ports are quiet.
-  TraversalRunStats run() {
-    lastProgress_ = unit_.cycle();
-    while (results_ < rays_.size() || !stim_.memoryIdle() || top_.visit_valid_o) {
-      const uint64_t cycle = unit_.cycle();
-      offerRay(cycle);
-      const bool resReady = !stim_.stallRes();
-      const bool visitReady = !stim_.stallVisit();
-      top_.res_ready_i = resReady;
-      top_.visit_ready_i = visitReady;
-      driveResponses(cycle);
-      unit_.settle();
-      // Handshakes of this cycle, read with the inputs settled (perf_isect_fire_o
-      // is combinational in tri_rsp_valid_i). The memory ports are always ready.
-      const bool rayFire = offering_ && top_.ray_ready_o;
-      bool progress = takeRequests(cycle) || rayFire;
-      if (top_.visit_valid_o && visitReady) progress = takeVisit(cycle);
-      if (top_.res_valid_o && resReady) progress = takeResult(cycle);
-      unit_.tick();
-      if (rayFire) {
-        offering_ = false;
-        ++offered_;
-      }
-      watchdog(progress);
+  // One cycle of the chip: the memory's responses and this unit's offer, the
+  // inputs settled, the handshakes, the rising edge. True if the unit made
+  // progress (a ray accepted, a test, a visit or a result).
+  bool cycle(mem::MemorySystem& memory) {
+    unit_.select();
+    const uint64_t now = memory.cycle();
+    offerRay(now);
+    const bool resReady = !stim_.stallRes();
+    const bool visitReady = !stim_.stallVisit();
+    top_.res_ready_i = resReady;
+    top_.visit_ready_i = visitReady;
+    driveResponses(memory);
+    unit_.settle();
+    // Handshakes of this cycle, read with the inputs settled (perf_isect_fire_o
+    // is combinational in tri_rsp_valid_i).
+    const bool rayFire = offering_ && top_.ray_ready_o;
+    bool progress = takeRequests(memory) || rayFire;
+    if (top_.visit_valid_o && visitReady) progress = takeVisit(now);
+    if (top_.res_valid_o && resReady) progress = takeResult(now);
+    if (accepted_ > results_) ++busyCycles_;
+    unit_.tick();
+    if (rayFire) {
+      offering_ = false;
+      shared_.owner[offeredRay_] = index_;
+      shared_.dispatcher.taken(index_);
+      ++accepted_;
     }
-    return stats_;
+    return progress;
   }
 
-  // Each ray's result names as many elements as its visit records.
-  void checkResultCounts() const {
-    for (size_t k = 0; k < rays_.size(); ++k) {
-      if (resultElements_[k] != traces_[k].visits.size()) {
-        fail(fmt::format("ray {} reports {} {} but {} visit records came out", k, resultElements_[k],
-                         Desc::kNames.elements, traces_[k].visits.size()));
-      }
-    }
-  }
+  // No ray of this unit in flight, nothing on its visit port.
+  bool drained() const { return accepted_ == results_ && !offering_ && !top_.visit_valid_o; }
+  uint64_t results() const { return results_; }
+  uint64_t accepted() const { return accepted_; }
+  bool started() const { return started_; }
+  uint64_t firstCycle() const { return firstCycle_; }
+  uint64_t lastCycle() const { return lastCycle_; }
+  uint64_t busyCycles() const { return busyCycles_; }
+  const TraversalRunStats& stats() const { return stats_; }
 
  private:
   [[noreturn]] static void fail(const std::string& what) { throw std::runtime_error("rtl: " + what); }
 
-  // Producer: the next ray, unless idling; an offer holds until taken.
-  void offerRay(uint64_t cycle) {
-    if (!offering_ && offered_ < rays_.size() && !stim_.idle()) {
-      fx::QRay wireRay = rays_[offered_];
-      wireRay.id = uint32_t(offered_);
+  // Producer: the next ray the dispatcher handed this unit, unless idling; an
+  // offer holds until taken. The ray crosses the port with its index in the
+  // run as its id.
+  void offerRay(uint64_t now) {
+    if (!offering_ && shared_.dispatcher.holds(index_) && !stim_.idle()) {
+      offeredRay_ = shared_.dispatcher.next(index_);
+      fx::QRay wireRay = shared_.rays[offeredRay_];
+      wireRay.id = uint32_t(offeredRay_);
       fx::packWire(wireRay, rayWire_);
       writePort(top_.ray_data_i, rayWire_.data(), fx::kIsectRayWords);
       offering_ = true;
       if (!started_) {
         started_ = true;
-        firstCycle_ = cycle;
+        firstCycle_ = now;
       }
     }
     top_.ray_valid_i = offering_;
   }
 
-  // The memory responses due in this cycle, on the three ports.
-  void driveResponses(uint64_t cycle) {
+  // The memory responses of this cycle on the three ports, and their readiness.
+  void driveResponses(mem::MemorySystem& memory) {
     auto [reqValid, reqAddr, reqTag, reqReady, rspValid, rspData, rspTag] = Unit::nodePort(top_);
+    const Image& image = ports_.image;
     uint32_t addr = 0, tag = 0;
-    rspValid = stim_.nodePort.respond(cycle, addr, tag);
+    rspValid = memory.response(index_, mem::Port::Node, addr, tag);
     if (rspValid) {
-      if (uint64_t(addr) + Desc::kGroup > nodes_.size()) {
+      if (uint64_t(addr) + Desc::kGroup > ports_.nodes.size()) {
         fail(fmt::format("{} read at {} outside the {} ({} entries)", Desc::kNames.nodeRead, addr,
-                         Desc::kNames.nodeTable, nodes_.size()));
+                         Desc::kNames.nodeTable, ports_.nodes.size()));
       }
-      writePort(rspData, &nodeWire_[size_t(addr) * kNodeWords], kGroupWords);
+      writePort(rspData, &ports_.nodeWire[size_t(addr) * Ports::kNodeWords], Ports::kGroupWords);
       rspTag = tag;
     }
-    top_.idx_rsp_valid_i = stim_.idxPort.respond(cycle, addr, tag);
+    top_.idx_rsp_valid_i = memory.response(index_, mem::Port::Index, addr, tag);
     if (top_.idx_rsp_valid_i) {
-      if (addr >= image_.indices.size()) {
-        fail(fmt::format("index list read at {} outside the image ({} entries)", addr, image_.indices.size()));
+      if (addr >= image.indices.size()) {
+        fail(fmt::format("index list read at {} outside the image ({} entries)", addr, image.indices.size()));
       }
-      top_.idx_rsp_data_i = image_.indices[addr];
+      top_.idx_rsp_data_i = image.indices[addr];
       top_.idx_rsp_tag_i = tag;
     }
-    top_.tri_rsp_valid_i = stim_.triPort.respond(cycle, addr, tag);
+    top_.tri_rsp_valid_i = memory.response(index_, mem::Port::Triangle, addr, tag);
     if (top_.tri_rsp_valid_i) {
-      if (addr >= image_.triangles.size()) {
-        fail(fmt::format("triangle table read at {} outside the image ({} entries)", addr, image_.triangles.size()));
+      if (addr >= image.triangles.size()) {
+        fail(fmt::format("triangle table read at {} outside the image ({} entries)", addr, image.triangles.size()));
       }
-      writePort(top_.tri_rsp_data_i, &triWire_[size_t(addr) * kTriWords], kTriWords);
+      writePort(top_.tri_rsp_data_i, &ports_.triWire[size_t(addr) * Ports::kTriWords], Ports::kTriWords);
       top_.tri_rsp_tag_i = tag;
     }
+    reqReady = memory.ready(index_, mem::Port::Node);
+    top_.idx_req_ready_i = memory.ready(index_, mem::Port::Index);
+    top_.tri_req_ready_i = memory.ready(index_, mem::Port::Triangle);
+  }
+
+  // One port's request of this cycle: to the memory if it is ready.
+  template <class Valid, class Ready>
+  bool request(mem::MemorySystem& memory, mem::Port port, const Valid& valid, const Ready& ready, uint32_t addr,
+               uint32_t tag) {
+    if (!valid) return false;
+    if (!ready) {
+      memory.blocked(index_, port);
+      return false;
+    }
+    memory.request(index_, port, addr, tag);
+    return true;
   }
 
   // The memory requests, the pipeline's test and the step-ready count of this
   // cycle; true if a test entered the pipeline.
-  bool takeRequests(uint64_t cycle) {
+  bool takeRequests(mem::MemorySystem& memory) {
     auto [reqValid, reqAddr, reqTag, reqReady, rspValid, rspData, rspTag] = Unit::nodePort(top_);
-    if (reqValid) {
-      stim_.nodePort.request(cycle, reqAddr, reqTag);
-      ++stats_.nodeReads;
-    }
-    if (top_.idx_req_valid_o) {
-      stim_.idxPort.request(cycle, top_.idx_req_addr_o, top_.idx_req_tag_o);
-      ++stats_.indexReads;
-    }
-    if (top_.tri_req_valid_o) {
-      stim_.triPort.request(cycle, top_.tri_req_addr_o, top_.tri_req_tag_o);
-      ++stats_.triangleReads;
-    }
+    stats_.nodeReads += request(memory, mem::Port::Node, reqValid, reqReady, reqAddr, reqTag);
+    stats_.indexReads += request(memory, mem::Port::Index, top_.idx_req_valid_o, top_.idx_req_ready_i,
+                                 top_.idx_req_addr_o, top_.idx_req_tag_o);
+    stats_.triangleReads += request(memory, mem::Port::Triangle, top_.tri_req_valid_o, top_.tri_req_ready_i,
+                                    top_.tri_req_addr_o, top_.tri_req_tag_o);
     if (started_ && top_.perf_step_ready_o) ++stats_.stepReadyCycles;
     if (!top_.perf_isect_fire_o) return false;
     ++stats_.isectTests;
@@ -247,54 +300,137 @@ class TraversalRun {
     return true;
   }
 
-  bool takeVisit(uint64_t cycle) {
+  // The ray of a visit or result record: one this unit took and has not finished.
+  size_t ownRay(uint64_t id, const char* what) const {
+    const size_t k = size_t(id);
+    if (k >= shared_.rays.size() || shared_.owner[k] != index_ || shared_.finished[k]) {
+      fail(fmt::format("unit {}: a {} for ray {} that is not in flight in it", index_, what, k));
+    }
+    return k;
+  }
+
+  bool takeVisit(uint64_t now) {
     const uint64_t visit = top_.visit_data_o;  // {ray_id, element}
-    const size_t k = size_t(uint32_t(visit >> kVisitRayLsb));
-    if (k >= offered_) fail(fmt::format("a visit record for ray {} that was never accepted", k));
-    traces_[k].visits.push_back(uint32_t((visit >> kVisitIdLsb) & kVisitIdMask));
+    const size_t k = ownRay(uint32_t(visit >> kVisitRayLsb), "visit record");
+    shared_.traces[k].visits.push_back(uint32_t((visit >> kVisitIdLsb) & kVisitIdMask));
     ++stats_.steps;
-    stats_.cycles = cycle - firstCycle_ + 1;
+    lastCycle_ = now;
     return true;
   }
 
-  bool takeResult(uint64_t cycle) {
+  bool takeResult(uint64_t now) {
     readPort(top_.res_data_o, resWire_.data(), kResWords);
     fx::unpackFields(Desc::kResFields, resWire_, res_);
-    const size_t k = size_t(res_[0]);
-    if (k >= offered_ || finished_[k]) fail(fmt::format("a result for ray {} that is not in flight", k));
-    finished_[k] = 1;
-    resultElements_[k] = fx::takeTraversalResult(res_, rays_[k].id, traces_[k]);
+    const size_t k = ownRay(uint64_t(res_[0]), "result");
+    shared_.finished[k] = 1;
+    shared_.resultElements[k] = fx::takeTraversalResult(res_, shared_.rays[k].id, shared_.traces[k]);
     ++results_;
-    stats_.cycles = cycle - firstCycle_ + 1;
+    lastCycle_ = now;
     return true;
-  }
-
-  void watchdog(bool progress) {
-    if (progress) lastProgress_ = unit_.cycle();
-    if (unit_.cycle() - lastProgress_ > kTraversalWatchdogCycles) {
-      fail(fmt::format("no progress for {} cycles ({} of {} rays accepted, {} results)", kTraversalWatchdogCycles,
-                       offered_, rays_.size(), results_));
-    }
   }
 
   VerilatedUnit<Top>& unit_;
   Top& top_;
-  const Image& image_;
-  const std::remove_cvref_t<decltype(Desc::nodes(std::declval<const Image&>()))>& nodes_;
-  std::span<const fx::QRay> rays_;
-  std::vector<fx::TraversalTrace>& traces_;
+  int index_;
+  const Ports& ports_;
+  ChipRays& shared_;
   const TraversalRunOptions& options_;
   TraversalStimulus stim_;
-  std::vector<uint32_t> nodeWire_, triWire_;
-  std::vector<uint8_t> finished_;
-  std::vector<uint32_t> resultElements_;
   std::array<uint32_t, kResWords> resWire_{};
   std::array<fx::u128, fx::valueCount(Desc::kResFields)> res_{};
   fx::RayWire rayWire_{};
   TraversalRunStats stats_;
-  size_t offered_ = 0, results_ = 0;
+  size_t offeredRay_ = 0;
+  uint64_t accepted_ = 0, results_ = 0, busyCycles_ = 0;
   bool offering_ = false, started_ = false;
-  uint64_t firstCycle_ = 0, lastProgress_ = 0;
+  uint64_t firstCycle_ = 0, lastCycle_ = 0;
+};
+
+// A chip's run: its units clocked in lockstep with the memory system, one
+// cycle at a time, until every ray has its result and the memory is quiet.
+// With more than one host thread, each thread clocks its share of the units
+// (unit u on thread u % threads) and a barrier ends each cycle; the memory
+// system's tick and the dispatcher run alone in the barrier's completion, in
+// unit order, so a run is the same whatever the threads.
+template <class Top, class Image>
+class ChipRun {
+ public:
+  ChipRun(std::deque<UnitRun<Top, Image>>& units, mem::MemorySystem& memory, ChipRays& shared, int threads)
+      : units_(units), memory_(memory), shared_(shared), threads_(threads), progress_(units.size(), 0) {}
+
+  void run() {
+    shared_.dispatcher.refill();
+    if (threads_ <= 1) {
+      while (!stop_) {
+        for (size_t u = 0; u < units_.size(); ++u) progress_[u] = units_[u].cycle(memory_);
+        endCycle();
+      }
+      return;
+    }
+    std::barrier sync(threads_, [this]() noexcept { endCycle(); });
+    std::vector<std::exception_ptr> errors(static_cast<size_t>(threads_));
+    const auto work = [&](int t) {
+      while (true) {
+        if (!errors[size_t(t)]) {
+          try {
+            for (size_t u = size_t(t); u < units_.size(); u += size_t(threads_)) progress_[u] = units_[u].cycle(memory_);
+          } catch (...) {
+            errors[size_t(t)] = std::current_exception();
+            failed_.store(true);
+          }
+        }
+        sync.arrive_and_wait();
+        if (stop_) return;
+      }
+    };
+    std::vector<std::jthread> pool;
+    for (int t = 1; t < threads_; ++t) pool.emplace_back(work, t);
+    work(0);
+    pool.clear();
+    for (const std::exception_ptr& e : errors) {
+      if (e) std::rethrow_exception(e);
+    }
+  }
+
+ private:
+  // The end of every cycle, alone: the memory's work, the dispatcher, the
+  // end of the run, the watchdog.
+  void endCycle() {
+    memory_.tick();
+    shared_.dispatcher.refill();
+    bool progress = false;
+    bool drained = memory_.idle();
+    uint64_t results = 0;
+    for (size_t u = 0; u < units_.size(); ++u) {
+      progress |= progress_[u] != 0;
+      drained &= units_[u].drained();
+      results += units_[u].results();
+    }
+    if (progress) lastProgress_ = memory_.cycle();
+    if (failed_.load()) {
+      stop_ = true;
+    } else if (results == shared_.rays.size() && drained) {
+      stop_ = true;
+    } else if (memory_.cycle() - lastProgress_ > kTraversalWatchdogCycles) {
+      stop_ = true;
+      watchdog_ = fmt::format("rtl: no progress for {} cycles ({} of {} rays have results)", kTraversalWatchdogCycles,
+                              results, shared_.rays.size());
+    }
+  }
+
+ public:
+  const std::string& watchdog() const { return watchdog_; }
+
+ private:
+  std::deque<UnitRun<Top, Image>>& units_;
+  mem::MemorySystem& memory_;
+  ChipRays& shared_;
+  int threads_;
+  std::vector<uint8_t> progress_;
+  bool stop_ = false;
+  std::atomic<bool> failed_{false};
+  uint64_t lastProgress_ = 0;
+  std::string watchdog_;
 };
 
 }  // namespace trav_detail
@@ -309,24 +445,61 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
   traces.assign(rays.size(), fx::TraversalTrace{});
   if (rays.empty()) return TraversalRunStats{};
 
-  VerilatedUnit<Top>& unit = *unit_;
-  trav_detail::TraversalRun<Top, Image> run(unit, image, rays, traces, options);
-  unit.reset(trav_detail::idleInputs<Top>);
-  run.configure();
-  unit.settle();
-  unit.openWave(options.stream.wavePath);
-  TraversalRunStats stats;
+  const int units = options.units;
+  while (int(units_.size()) < units) {
+    units_.push_back(std::make_unique<VerilatedUnit<Top>>(Desc::kNames.module));
+  }
+  const std::unique_ptr<mem::MemorySystem> memory =
+      mem::MemorySystem::make(memoryConfigOf(options), addressMapOf<Desc>(image), units);
+  const trav_detail::PortImage<Top, Image> ports(image);
+  trav_detail::ChipRays shared(rays, traces, units, options.dispatchBatch);
+  std::deque<trav_detail::UnitRun<Top, Image>> runs;  // (not movable: a deque grows in place)
+  for (int u = 0; u < units; ++u) {
+    VerilatedUnit<Top>& unit = *units_[size_t(u)];
+    runs.emplace_back(unit, u, ports, shared, options);
+    unit.reset(trav_detail::idleInputs<Top>);
+    runs.back().configure();
+    unit.settle();
+  }
+  // The waveform is unit 0's.
+  units_.front()->openWave(options.stream.wavePath);
+  const int threads = options.hostThreads > 0
+                          ? std::min(options.hostThreads, units)
+                          : std::min(units, std::max(1, int(std::thread::hardware_concurrency())));
+  trav_detail::ChipRun<Top, Image> chip(runs, *memory, shared, threads);
   try {
-    stats = run.run();
+    chip.run();
   } catch (...) {
-    unit.closeWave();
+    units_.front()->closeWave();
     throw;
   }
-  trav_detail::idleInputs(unit.top());
-  run.configure();
-  unit.settle();
-  unit.closeWave();
-  run.checkResultCounts();
+  for (int u = 0; u < units; ++u) {
+    VerilatedUnit<Top>& unit = *units_[size_t(u)];
+    trav_detail::idleInputs(unit.top());
+    runs[size_t(u)].configure();
+    unit.settle();
+  }
+  units_.front()->closeWave();
+  if (!chip.watchdog().empty()) throw std::runtime_error(chip.watchdog());
+
+  TraversalRunStats stats;
+  uint64_t first = UINT64_MAX, last = 0;
+  for (const auto& run : runs) {
+    stats += run.stats();
+    stats.unitRays.push_back(run.accepted());
+    stats.unitBusyCycles.push_back(run.busyCycles());
+    if (run.started()) first = std::min(first, run.firstCycle());
+    last = std::max(last, run.lastCycle());
+  }
+  stats.rays = rays.size();
+  stats.cycles = last - first + 1;
+  stats.memory = memory->stats();
+  for (size_t k = 0; k < rays.size(); ++k) {
+    if (shared.resultElements[k] != traces[k].visits.size()) {
+      throw std::runtime_error(fmt::format("rtl: ray {} reports {} {} but {} visit records came out", k,
+                                           shared.resultElements[k], Desc::kNames.elements, traces[k].visits.size()));
+    }
+  }
   return stats;
 }
 

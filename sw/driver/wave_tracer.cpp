@@ -41,6 +41,13 @@ void ClassHardwareStats::add(const JobResult& job, std::span<const std::optional
   mismatches += job.mismatchedRays;
   modelSeconds += job.modelSeconds;
   goldenSeconds += job.goldenSeconds;
+  if (job.chip) {
+    if (chip) {
+      *chip += *job.chip;
+    } else {
+      chip = job.chip;
+    }
+  }
 }
 
 nlohmann::json ClassHardwareStats::toJson(double clockHz) const {
@@ -56,6 +63,7 @@ nlohmann::json ClassHardwareStats::toJson(double clockHz) const {
                       {"host_seconds", modelSeconds + goldenSeconds},
                       {"model_seconds", modelSeconds},
                       {"golden_seconds", goldenSeconds}};
+  if (chip) j["chip"] = chip->toJson(cycles, rays, clockHz);
   if (closestHitSteps || closestHitTests) {
     j["closest_hit_steps"] = closestHitSteps;
     j["closest_hit_tests"] = closestHitTests;

@@ -52,6 +52,7 @@ struct ClassHardwareStats {
   uint64_t closestHitSteps = 0;  // any-hit rays: steps of the same rays as closest-hit (golden model; grid, octree)
   uint64_t closestHitTests = 0;
   double modelSeconds = 0, goldenSeconds = 0;
+  std::optional<ChipFigures> chip;  // traversal units on a cycle-accurate model
 
   // One job's figures over the class's `rays` (nullopt: outside the lattice).
   void add(const JobResult& job, std::span<const std::optional<QuantizedRay>> rays);

@@ -1,0 +1,85 @@
+#pragma once
+
+// What a chip of N traversal units (docs/chip.md) adds around any model of a
+// unit: where the unit's image lies in memory, and the dispatcher that hands
+// out the rays. The devices (Verilated, SystemC) clock their units and call
+// the memory system (memory/system.h) in the protocol it documents.
+
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "golden/unit.h"
+#include "memory/address_map.h"
+#include "memory/system.h"
+
+namespace lancer {
+
+// The image of descriptor `Desc` in the chip's address space: its node table
+// (records of the node's bits rounded up to bytes, kGroup of them per read),
+// the index list (32-bit triangle ids), the triangle table (the triangle
+// record's bits rounded up to bytes). InputError if it does not fit.
+template <class Desc>
+mem::AddressMap addressMapOf(const typename Desc::Image& image) {
+  const auto bytesOf = [](int bits) { return uint32_t((bits + 7) / 8); };
+  return mem::AddressMap({mem::Region{Desc::kNames.nodeTable, 0, bytesOf(fx::kNodeBitsOf<Desc>), uint32_t(Desc::kGroup),
+                                      uint64_t(Desc::nodes(image).size())},
+                          mem::Region{"index list", 0, 4, 1, uint64_t(image.indices.size())},
+                          mem::Region{"triangle table", 0, bytesOf(fx::kIsectTriBits), 1,
+                                      uint64_t(image.triangles.size())}});
+}
+
+// The dispatcher: every unit holds a batch of consecutive rays (ids) to
+// offer, one at a time; at the end of each cycle, in unit order, each unit
+// whose batch is used up gets the next `batch` rays of the stream. A unit
+// thus takes rays as fast as its slots free up (no unit waits while rays
+// remain), and consecutive rays, which are coherent, go to the same unit and
+// its L1. Only refill() changes what other units see: the units themselves
+// may run on threads of their own.
+class Dispatcher {
+ public:
+  Dispatcher(size_t rays, int units, int batch) : rays_(rays), batch_(size_t(batch)), held_(size_t(units)) {}
+
+  // The ray `unit` offers next, if it holds one.
+  bool holds(int unit) const { return held_[size_t(unit)].next < held_[size_t(unit)].end; }
+  size_t next(int unit) const { return held_[size_t(unit)].next; }
+  // The unit took its ray.
+  void taken(int unit) { ++held_[size_t(unit)].next; }
+  // The end of a cycle: every unit with none left gets a batch.
+  void refill() {
+    for (Batch& b : held_) {
+      if (b.next < b.end || handed_ == rays_) continue;
+      b.next = handed_;
+      b.end = std::min(rays_, handed_ + batch_);
+      handed_ = b.end;
+    }
+  }
+
+ private:
+  struct Batch {
+    size_t next = 0, end = 0;
+  };
+  size_t rays_, batch_, handed_ = 0;
+  std::vector<Batch> held_;
+};
+
+// What a chip did over a job (or the jobs of a ray class, or of a run): its
+// units' share of the work and its memory system's figures, for the summary
+// and the report (docs/chip.md, "Report").
+struct ChipFigures {
+  mem::MemoryConfig memory;
+  std::vector<uint64_t> unitRays, unitBusyCycles;  // per unit
+  mem::MemoryStats stats;
+
+  int units() const { return int(unitRays.size()); }
+  ChipFigures& operator+=(const ChipFigures& o);
+  // `cycles` and `rays` of the same jobs; `clockHz` the run's clock.
+  nlohmann::json toJson(uint64_t cycles, uint64_t rays, double clockHz) const;
+  // The summary's lines, each starting with two spaces.
+  std::string summary(uint64_t cycles, uint64_t rays, double clockHz) const;
+};
+
+}  // namespace lancer
