@@ -48,8 +48,16 @@ class TraversalPath final : public HardwarePath {
   TraversalPath(const Scene& scene, const Quantizer& quantizer, const JobConfig& config)
       : config_(config), model_(makeTraversalDevice<Unit>(config.model)),
         image_(buildImageFor<Unit>(scene, quantizer, config.accel)) {}
+  // The memory hierarchy lives as long as the path: its caches stay warm
+  // from batch to batch and wave to wave. (The fixed memory holds no state
+  // worth keeping: each run makes its own, as a single unit always did.)
   JobResult run(std::span<const std::optional<QuantizedRay>> rays, const ProgressFn& onProgress) override {
-    return runTraversalJob(image_, rays, *model_, golden_, config_, onProgress);
+    if (config_.memory.kind == mem::MemoryKind::Hierarchy && !memory_) {
+      checkChipOptions(traversalOptionsOf(config_));
+      memory_ = mem::MemorySystem::make(memoryConfigOf(traversalOptionsOf(config_)), addressMapOf<Unit>(image_),
+                                        config_.units);
+    }
+    return runTraversalJob(image_, rays, *model_, golden_, config_, onProgress, memory_.get());
   }
 
  private:
@@ -57,6 +65,7 @@ class TraversalPath final : public HardwarePath {
   std::unique_ptr<DeviceOf<Unit>> model_;
   GoldenTraversalDevice<typename Unit::Image> golden_;
   typename Unit::Image image_;
+  std::unique_ptr<mem::MemorySystem> memory_;
 };
 
 }  // namespace

@@ -27,6 +27,10 @@ struct TraversalRunOptions {
   // (for DRAM's nanoseconds). The fixed model's latency and jitter are
   // memLatency and memLatencyJitter above, its seed the stream's.
   mem::MemoryConfig memory;
+  // The hierarchy of the hardware path, kept across its runs so that the
+  // caches stay warm from batch to batch and wave to wave, as on a chip
+  // tracing one frame (driver/job.cpp). Null: the run makes its own, empty.
+  mem::MemorySystem* sharedMemory = nullptr;
 };
 
 inline constexpr int kMaxUnits = 64;

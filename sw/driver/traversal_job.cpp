@@ -64,7 +64,7 @@ TraversalRunOptions traversalOptionsOf(const JobConfig& config) {
 template <class Image>
 JobResult runTraversalJob(const Image& image, std::span<const std::optional<QuantizedRay>> rays,
                           TraversalDevice<Image>& model, TraversalDevice<Image>& golden, const JobConfig& config,
-                          const ProgressFn& onProgress) {
+                          const ProgressFn& onProgress, mem::MemorySystem* sharedMemory) {
   using Unit = fx::UnitFor<Image>;
   if (config.raysInFlight < 0 || config.raysInFlight > model.maxRaysInFlight()) {
     throw InputError(fmt::format("--rays-in-flight {}: the {} {} unit was built with {} ray slots (1..{})",
@@ -78,8 +78,9 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
   JobResult job;
   job.rays.resize(rays.size());
   job.hits.resize(rays.size());
-  const TraversalRunOptions options = traversalOptionsOf(config);
+  TraversalRunOptions options = traversalOptionsOf(config);
   checkChipOptions(options);
+  options.sharedMemory = sharedMemory;
   TraversalRunStats total;
   std::vector<fx::QRay> batch;
   std::vector<fx::TraversalTrace> modelTraces, goldenTraces;

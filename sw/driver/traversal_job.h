@@ -26,13 +26,14 @@ TraversalRunOptions traversalOptionsOf(const JobConfig& config);
 
 // Runs every ray that entered the lattice (rays[k], id k) through `model` and
 // `golden` and compares, per ray, bit for bit: the elements visited in order,
-// the tests issued, and the closest hit record. Throws InputError for a
+// the tests issued, and the closest hit record. `sharedMemory` (the path's
+// memory hierarchy, if any) serves every batch. Throws InputError for a
 // rays-in-flight count or memory latency the model cannot run. Instantiated
 // for every unit of fx::TraversalUnits.
 template <class Image>
 JobResult runTraversalJob(const Image& image, std::span<const std::optional<QuantizedRay>> rays,
                           TraversalDevice<Image>& model, TraversalDevice<Image>& golden, const JobConfig& config,
-                          const ProgressFn& onProgress = {});
+                          const ProgressFn& onProgress = {}, mem::MemorySystem* sharedMemory = nullptr);
 
 // The reproducer text of a mismatch: the ray, both visit sequences from the
 // first difference, both hit records. `unit` is the unit's name ("grid"),

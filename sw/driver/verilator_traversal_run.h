@@ -300,10 +300,11 @@ class UnitRun {
     return true;
   }
 
-  // The ray of a visit or result record: one this unit took and has not finished.
-  size_t ownRay(uint64_t id, const char* what) const {
+  // The ray of a visit or result record: one this unit took (visits may
+  // trail the ray's result; a second result is an error).
+  size_t ownRay(uint64_t id, const char* what, bool result) const {
     const size_t k = size_t(id);
-    if (k >= shared_.rays.size() || shared_.owner[k] != index_ || shared_.finished[k]) {
+    if (k >= shared_.rays.size() || shared_.owner[k] != index_ || (result && shared_.finished[k])) {
       fail(fmt::format("unit {}: a {} for ray {} that is not in flight in it", index_, what, k));
     }
     return k;
@@ -311,7 +312,7 @@ class UnitRun {
 
   bool takeVisit(uint64_t now) {
     const uint64_t visit = top_.visit_data_o;  // {ray_id, element}
-    const size_t k = ownRay(uint32_t(visit >> kVisitRayLsb), "visit record");
+    const size_t k = ownRay(uint32_t(visit >> kVisitRayLsb), "visit record", false);
     shared_.traces[k].visits.push_back(uint32_t((visit >> kVisitIdLsb) & kVisitIdMask));
     ++stats_.steps;
     lastCycle_ = now;
@@ -321,7 +322,7 @@ class UnitRun {
   bool takeResult(uint64_t now) {
     readPort(top_.res_data_o, resWire_.data(), kResWords);
     fx::unpackFields(Desc::kResFields, resWire_, res_);
-    const size_t k = ownRay(uint64_t(res_[0]), "result");
+    const size_t k = ownRay(uint64_t(res_[0]), "result", true);
     shared_.finished[k] = 1;
     shared_.resultElements[k] = fx::takeTraversalResult(res_, shared_.rays[k].id, shared_.traces[k]);
     ++results_;
@@ -449,8 +450,13 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
   while (int(units_.size()) < units) {
     units_.push_back(std::make_unique<VerilatedUnit<Top>>(Desc::kNames.module));
   }
-  const std::unique_ptr<mem::MemorySystem> memory =
-      mem::MemorySystem::make(memoryConfigOf(options), addressMapOf<Desc>(image), units);
+  std::unique_ptr<mem::MemorySystem> own;
+  mem::MemorySystem* memory = options.sharedMemory;
+  if (memory == nullptr || memory->units() != units) {
+    own = mem::MemorySystem::make(memoryConfigOf(options), addressMapOf<Desc>(image), units);
+    memory = own.get();
+  }
+  memory->clearStats();
   const trav_detail::PortImage<Top, Image> ports(image);
   trav_detail::ChipRays shared(rays, traces, units, options.dispatchBatch);
   std::deque<trav_detail::UnitRun<Top, Image>> runs;  // (not movable: a deque grows in place)

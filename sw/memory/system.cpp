@@ -113,6 +113,7 @@ class FixedMemory final : public MemorySystem {
     for (uint64_t r : reads_) s.reads += r;
     return s;
   }
+  void clearStats() override { std::fill(reads_.begin(), reads_.end(), 0); }
 
  private:
   fx::MemoryReadPort& at(int unit, Port port) { return ports_[size_t(unit)][size_t(port)]; }
@@ -214,6 +215,15 @@ class HierarchyMemory final : public MemorySystem {
       if (!ch.requests.empty()) return false;
     }
     return true;
+  }
+
+  void clearStats() override {
+    stats_ = MemoryStats{};
+    stats_.l1.assign(size_t(units_), {});
+    for (L1& c : l1s_) {
+      c.stats = {};
+      c.reads = c.refusedCycles = 0;
+    }
   }
 
   MemoryStats stats() const override {

@@ -80,7 +80,9 @@ class MemorySystem {
   virtual void tick() = 0;
   // Nothing in flight anywhere.
   virtual bool idle() const = 0;
+  // What it did since it was made or since clearStats().
   virtual MemoryStats stats() const = 0;
+  virtual void clearStats() = 0;
 
  protected:
   explicit MemorySystem(int units) : units_(units) {}
