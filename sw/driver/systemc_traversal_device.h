@@ -21,8 +21,9 @@ namespace lancer {
 //                  Verilated with --sc (Vrt_grid_sc, Vrt_octree_sc);
 //   (unnamed)      Impl::ModelRtlIsect: the cycle model with the Verilated
 //                  rt_isect (Vrt_isect_sc) inside, for mixed runs (rt_grid).
-// Each sits on its own testbench and memory model (rt_trav_tb, rt_trav_mem),
-// which drive it as the C++ Verilated devices drive theirs: reset per run, ray
+// Each is a chip of up to kScChipUnits units on the chip's memory system
+// (rt_trav_tb over memory/system.h), driven as the C++ Verilated devices
+// drive theirs, cycle for cycle, in the same unit order: reset per run, ray
 // ids = indices on the port, the same stimulus draws and memory response times
 // for the same TraversalRunOptions, and the same TraversalRunStats: cycles
 // from the first ray offered to the last result or visit taken, reads per

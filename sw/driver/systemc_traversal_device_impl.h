@@ -13,6 +13,7 @@
 
 #include "common/error.h"
 #include "common/rt_trav_top.h"
+#include "driver/chip.h"
 #include "driver/systemc_kernel.h"
 #include "driver/systemc_traversal_device.h"
 
@@ -95,10 +96,10 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
                                  options.memLatency, options.memLatencyJitter));
   }
   checkChipOptions(options);
-  if (options.units != 1 || options.memory.kind != mem::MemoryKind::Fixed) {
-    throw InputError(fmt::format("--model {}: the SystemC models run one unit on the fixed memory so far; a chip "
-                                 "(--units above 1, --memory hierarchy) runs on --model rtl",
-                                 name()));
+  if (options.units > sc::kScChipUnits) {
+    throw InputError(fmt::format("--units {}: the SystemC chip of this build has {} units (CMake "
+                                 "LANCER_SC_CHIP_UNITS; --model rtl takes up to {})",
+                                 options.units, sc::kScChipUnits, kMaxUnits));
   }
   Desc::checkImage(image, rays);
   for (const double p : {options.stream.outputStallProbability, options.stream.inputIdleProbability}) {
@@ -138,44 +139,61 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
   const sc::rt_trav_impl impl = impl_ == Impl::Rtl ? sc::rt_trav_impl::rtl
                                 : impl_ == Impl::ModelRtlIsect ? sc::rt_trav_impl::model_rtl_isect
                                                                : sc::rt_trav_impl::model;
+  job.dispatchBatch = options.dispatchBatch;
+  const int units = options.units;
+  std::unique_ptr<mem::MemorySystem> own;
+  mem::MemorySystem* memory = options.sharedMemory;
+  if (memory == nullptr || memory->units() != units) {
+    own = mem::MemorySystem::make(memoryConfigOf(options), addressMapOf<Desc>(image), units);
+    memory = own.get();
+  }
+  memory->clearStats();
+
   const std::lock_guard<std::mutex> lock(systemc_kernel::mutex());
   sc::rt_trav_top<Unit>& top = systemc_kernel::traversalSystem<Unit>();
   auto& tb = top.tb(impl);
-  auto& mem = top.mem(impl);
   if (wave) top.open_wave(options.stream.wavePath);
   try {
-    mem.start(image, options.memLatency, options.memLatencyJitter, options.stream.seed);
-    tb.start(job, image);
-    // The bench's clock stops after the run's last cycle, so sc_start() returns
+    tb.start(job, image, *memory, units);
+    // The units' clocks stop after the run's last cycle, so sc_start() returns
     // by starvation exactly when the run is over.
     sc_core::sc_start();
   } catch (const sc_core::sc_report& report) {
-    mem.stop();
+    tb.stop();  // the clocks come to rest at the next sc_start
     if (wave) top.close_wave();
     traces.assign(n, fx::TraversalTrace{});
     throw std::runtime_error(fmt::format("{}: SystemC: {}", name(), report.what()));
   }
-  mem.stop();
   if (wave) top.close_wave();
-  const sc::rt_trav_tally& tally = tb.tally();
-  if (!tally.error.empty() || tally.busy || tally.results != n) {
+  if (const std::string error = tb.error(); !error.empty() || !tb.finished()) {
     throw std::runtime_error(fmt::format("{}: run abandoned: {}", name(),
-                                         tally.error.empty() ? "the clock stopped early" : tally.error));
+                                         error.empty() ? "the clock stopped early" : error));
+  }
+  uint64_t first = UINT64_MAX, last = 0;
+  std::vector<uint32_t> resultSteps(n, 0);
+  for (int u = 0; u < units; ++u) {
+    const sc::rt_trav_tally& t = tb.tally(u);
+    for (size_t k = 0; k < n; ++k) resultSteps[k] += t.resultSteps[k];
+    if (t.started) first = std::min(first, t.firstCycle);
+    last = std::max(last, t.lastCycle);
+    stats.steps += t.visits;
+    stats.stepReadyCycles += t.stepReadyCycles;
+    stats.nodeReads += t.nodeReads;
+    stats.indexReads += t.indexReads;
+    stats.triangleReads += t.triangleReads;
+    stats.isectTests += t.isectTests;
+    stats.isectBusyCycles += t.isectTests;  // at most one pair enters a unit per cycle
+    stats.unitRays.push_back(t.accepted);
+    stats.unitBusyCycles.push_back(t.busyCycles);
   }
   for (size_t k = 0; k < n; ++k) {
-    if (tally.resultSteps[k] != traces[k].visits.size()) {
+    if (resultSteps[k] != traces[k].visits.size()) {
       throw std::runtime_error(fmt::format("{}: ray {} reports {} {} but {} visit records came out", name(), k,
-                                           tally.resultSteps[k], Desc::kNames.elements, traces[k].visits.size()));
+                                           resultSteps[k], Desc::kNames.elements, traces[k].visits.size()));
     }
   }
-  stats.cycles = tally.cycles;
-  stats.steps = tally.visits;
-  stats.stepReadyCycles = tally.stepReadyCycles;
-  stats.nodeReads = tally.nodeReads;
-  stats.indexReads = tally.indexReads;
-  stats.triangleReads = tally.triangleReads;
-  stats.isectTests = tally.isectTests;
-  stats.isectBusyCycles = tally.isectTests;  // at most one pair enters per cycle
+  stats.cycles = last - first + 1;
+  stats.memory = memory->stats();
   stats.cycleAccurate = true;
   return stats;
 }

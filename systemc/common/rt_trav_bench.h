@@ -1,60 +1,69 @@
 #pragma once
 
+#include <memory>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include <systemc>
 
-#include "common/rt_trav_mem.h"
 #include "common/rt_trav_ports.h"
 #include "common/rt_trav_tb.h"
 #include "common/rt_trav_unit.h"
 
 namespace lancer::sc {
 
-// rt_trav_bench: one implementation of a traversal unit (Dut: the unit's cycle
-// model or its Verilated class; Unit: its traits, common/rt_trav_unit.h) with
-// its testbench and its memory, on signals named after the RTL ports they
-// carry (common/rt_trav_ports.h). The testbench and the memory have the same
-// port names, so one binding serves both and the DUT's common ports; the DUT's node/cell and
-// configuration ports, whose C++ names are the unit's RTL names, are bound by
-// Unit::bindUnitPorts. The binding below is the wiring diagram (traversal unit
-// <-> memory, rays in, results and visits out).
-template <class Unit, class Dut>
-class rt_trav_bench : public sc_core::sc_module,
+// rt_trav_wires: the signals between one unit and its side of the chip's
+// testbench, named after the RTL ports they carry (common/rt_trav_ports.h).
+template <class Unit>
+class rt_trav_wires : public sc_core::sc_module,
                       public rt_trav_host_ports<Unit, rt_signal, rt_signal>,
                       public rt_trav_node_port<Unit, rt_signal, rt_signal>,
                       public rt_trav_mem_ports<Unit, rt_signal, rt_signal> {
  public:
   sc_core::sc_signal<typename Unit::cfg_t> cfg_i{Unit::kNames.cfgPort};
 
-  rt_trav_tb<Unit> u_tb{"u_tb"};
-  rt_trav_mem<Unit> u_mem{"u_mem"};
-  Dut u_dut;
-
-  template <class... DutArgs>
-  explicit rt_trav_bench(sc_core::sc_module_name name, DutArgs&&... args)
-      : sc_core::sc_module(name), u_dut("u_dut", std::forward<DutArgs>(args)...) {
-    // The DUT: every port; the unit's own (configuration, node/cell port) by its traits.
-    bindHostPorts(u_dut, *this);
-    bindMemPorts(u_dut, *this);
-    Unit::bindUnitPorts(u_dut, *this);
-
-    // The memory: the three read ports.
-    u_mem.clk_i(this->clk_i);
-    bindMemPorts(u_mem, *this);
-    lancer::sc::bindNodePort(u_mem, *this);
-
-    // The testbench: clock, reset, configuration, streams; observes the memory ports.
-    bindHostPorts(u_tb, *this);
-    u_tb.cfg_i(cfg_i);
-    bindMemPorts(u_tb, *this);
-    lancer::sc::bindNodePort(u_tb, *this);
-  }
+  explicit rt_trav_wires(sc_core::sc_module_name name) : sc_core::sc_module(name) {}
 
   // The node/cell port of a module whose C++ port names are the shared ones (node_*).
   template <class M>
   void bindNodePort(M& m) {
     lancer::sc::bindNodePort(m, *this);
+  }
+};
+
+// rt_trav_bench: one implementation of a traversal unit (Dut: the unit's cycle
+// model or its Verilated class; Unit: its traits, common/rt_trav_unit.h) as a
+// chip of `units` copies, each on its own wires to the chip's testbench and
+// memory (rt_trav_tb). The testbench's sides and the wires have the same port
+// names, so one binding serves both and the DUT's common ports; the DUT's
+// node/cell and configuration ports, whose C++ names are the unit's RTL
+// names, are bound by Unit::bindUnitPorts. The binding below is the wiring
+// diagram (traversal units <-> memory, rays in, results and visits out).
+template <class Unit, class Dut>
+class rt_trav_bench : public sc_core::sc_module {
+ public:
+  rt_trav_tb<Unit> u_tb;
+  sc_core::sc_vector<rt_trav_wires<Unit>> wires;
+  std::vector<std::unique_ptr<Dut>> duts;
+
+  template <class... DutArgs>
+  rt_trav_bench(sc_core::sc_module_name name, int units, DutArgs&&... args)
+      : sc_core::sc_module(name), u_tb("u_tb", units), wires("unit", size_t(units)) {
+    for (int u = 0; u < units; ++u) {
+      rt_trav_wires<Unit>& w = wires[size_t(u)];
+      auto& dut = *duts.emplace_back(std::make_unique<Dut>(("u_dut_" + std::to_string(u)).c_str(), args...));
+      // The DUT: every port; the unit's own (configuration, node/cell port) by its traits.
+      bindHostPorts(dut, w);
+      bindMemPorts(dut, w);
+      Unit::bindUnitPorts(dut, w);
+      // Its side of the testbench: clock, reset, configuration, streams, the memory side of the ports.
+      rt_trav_side<Unit>& side = u_tb.sides[size_t(u)];
+      bindHostPorts(side, w);
+      side.cfg_i(w.cfg_i);
+      lancer::sc::bindNodePort(side, w);
+      bindMemPorts(side, w);
+    }
   }
 };
 

@@ -25,74 +25,65 @@ rt_trav_stream::rt_trav_stream(std::span<const fx::FieldSpec> resFields, std::sp
   }
 }
 
-void rt_trav_stream::start(const rt_trav_job& job) {
+void rt_trav_stream::start(const rt_trav_job& job, int unit, Dispatcher& dispatcher, std::vector<int>& owner) {
   job_ = &job;
+  unit_ = unit;
+  dispatcher_ = &dispatcher;
+  owner_ = &owner;
   tally_ = rt_trav_tally{};
-  tally_.busy = true;
   tally_.resultSteps.assign(job.rays.size(), 0);
   finished_.assign(job.rays.size(), 0);
-  rng_.seed(job.seed);
+  rng_.seed(job.seed + uint64_t(unit) * 0x9E37'79B9'7F4A'7C15ull);
   idleThreshold_ = fx::Coin::thresholdFor(job.inputIdleProbability);
   stallThreshold_ = fx::Coin::thresholdFor(job.outputStallProbability);
-  offered_ = 0;
+  current_ = 0;
   offering_ = started_ = false;
-  firstCycle_ = lastProgress_ = 0;
-  for (int p = 0; p < 3; ++p) requests_[p] = responses_[p] = 0;
 }
-
-bool rt_trav_stream::over(bool visitValid) const {
-  bool memoryIdle = true;
-  for (int p = 0; p < 3; ++p) memoryIdle = memoryIdle && requests_[p] == responses_[p];
-  return tally_.results == job_->rays.size() && memoryIdle && !visitValid;
-}
-
-void rt_trav_stream::finish() { tally_.busy = false; }
 
 void rt_trav_stream::abandon(const std::string& why) {
-  tally_.error = why;
-  finish();
+  if (tally_.error.empty()) tally_.error = fmt::format("unit {}: {}", unit_, why);
 }
 
-void rt_trav_stream::sample(uint64_t cycle, const rt_trav_sample& s) {
-  const size_t n = job_->rays.size();
+bool rt_trav_stream::sample(uint64_t cycle, const rt_trav_sample& s) {
   const bool rayFire = offering_ && s.rayReady;
   bool progress = rayFire;
   uint64_t* const reads[3] = {&tally_.nodeReads, &tally_.indexReads, &tally_.triangleReads};
-  for (int p = 0; p < 3; ++p) {
-    if (s.req[p]) {
-      ++requests_[p];
-      ++*reads[p];
-    }
-    responses_[p] += s.rsp[p];
-  }
+  for (int p = 0; p < 3; ++p) *reads[p] += s.req[p] && s.reqReady[p];
   if (s.perfIsectFire) {
     ++tally_.isectTests;
     progress = true;
   }
-  tally_.stepReadyCycles += s.perfStepReady;
+  if (started_) tally_.stepReadyCycles += s.perfStepReady;
   if (s.visitValid && s.visitReady) {
     const size_t k = size_t(getBits64(s.visitWire.data(), visitSlots_[0].lsb, visitSlots_[0].width));
-    if (k >= offered_) return abandon(fmt::format("a visit record for ray {} that is not in flight", k));
+    if (!mine(k, false)) {
+      abandon(fmt::format("a visit record for ray {} that is not in flight", k));
+      return false;
+    }
     (*job_->traces)[k].visits.push_back(
         uint32_t(getBits64(s.visitWire.data(), visitSlots_[1].lsb, visitSlots_[1].width)));
     ++tally_.visits;
-    tally_.cycles = cycle - firstCycle_ + 1;
+    tally_.lastCycle = cycle;
     progress = true;
   }
   if (s.resValid && s.resReady) {
     std::array<fx::u128, kResValues> v{};
     fx::unpackFields(resFields_, s.resWire, v);
     const size_t k = size_t(v[0]);
-    if (k >= offered_ || finished_[k]) return abandon(fmt::format("a result for ray {} that is not in flight", k));
+    if (!mine(k, true)) {
+      abandon(fmt::format("a result for ray {} that is not in flight", k));
+      return false;
+    }
     finished_[k] = 1;
     tally_.resultSteps[k] = fx::takeTraversalResult(v, job_->rayIds[k], (*job_->traces)[k]);
     ++tally_.results;
-    tally_.cycles = cycle - firstCycle_ + 1;
+    tally_.lastCycle = cycle;
     progress = true;
   }
+  if (tally_.accepted > tally_.results) ++tally_.busyCycles;
   if (tracing()) {
     TraversalCycle c;
-    c.cycle = cycle - firstCycle_;
+    c.cycle = cycle - tally_.firstCycle;
     c.rayValid = offering_;
     c.rayReady = s.rayReady;
     c.resValid = s.resValid;
@@ -113,25 +104,23 @@ void rt_trav_stream::sample(uint64_t cycle, const rt_trav_sample& s) {
   }
   if (rayFire) {
     offering_ = false;
-    ++offered_;
+    (*owner_)[current_] = unit_;
+    dispatcher_->taken(unit_);
     ++tally_.accepted;
   }
-  if (progress) lastProgress_ = cycle;
-  if (cycle - lastProgress_ > job_->watchdogCycles) {
-    abandon(fmt::format("no progress for {} cycles ({} of {} rays accepted, {} results)", job_->watchdogCycles,
-                        offered_, n, tally_.results));
-  }
+  return progress;
 }
 
 rt_trav_stream::Drive rt_trav_stream::drive(uint64_t cycle) {
   Drive d;
-  if (!offering_ && offered_ < job_->rays.size() && !coin(idleThreshold_)) {
+  if (!offering_ && dispatcher_->holds(unit_) && !coin(idleThreshold_)) {
     d.newOffer = true;
     offering_ = true;
+    current_ = dispatcher_->next(unit_);
     if (!started_) {
       started_ = true;
-      firstCycle_ = cycle;
-      lastProgress_ = cycle;
+      tally_.started = true;
+      tally_.firstCycle = cycle;
     }
   }
   d.rayValid = offering_;

@@ -6,7 +6,6 @@
 #include <systemc>
 
 #include "base/rt_fst_wave.h"
-#include "common/rt_trav_mem.h"
 #include "common/rt_trav_tb.h"
 
 namespace lancer::sc {
@@ -26,11 +25,20 @@ enum class rt_trav_impl {
 // and before every run (sw/driver/systemc_kernel.cpp). No-op without RTL.
 void use_verilated_context();
 
+// The units a SystemC chip is elaborated with (CMake LANCER_SC_CHIP_UNITS):
+// SystemC elaborates once per process, so every bench holds this many units,
+// and a run clocks only the ones it uses.
+#ifndef LANCER_SC_CHIP_UNITS
+#define LANCER_SC_CHIP_UNITS 16
+#endif
+inline constexpr int kScChipUnits = LANCER_SC_CHIP_UNITS;
+
 // rt_trav_top: the SystemC system of a traversal unit (Unit: its traits,
-// common/rt_trav_unit.h): traversal unit (the intersection pipeline inside, as
-// in the RTL) -> memory (rt_trav_mem), fed and drained by rt_trav_tb. One bench
-// (rt_trav_bench) per implementation, each with its own gated clock, because
-// SystemC elaborates once per process; a run clocks only the bench it uses.
+// common/rt_trav_unit.h): a chip of kScChipUnits traversal units (each with
+// its intersection pipeline inside, as in the RTL) on the chip's memory
+// system, fed and drained by rt_trav_tb. One bench (rt_trav_bench) per
+// implementation, each unit with its own gated clock, because SystemC
+// elaborates once per process; a run clocks only the units it uses.
 // Its members are defined in common/rt_trav_top_impl.h and instantiated by the
 // unit's systemc/<unit>/rt_<unit>_system.cpp, the one file that includes its
 // Verilated class.
@@ -38,7 +46,6 @@ template <class Unit>
 class rt_trav_top : public sc_core::sc_module {
  public:
   using tb_t = rt_trav_tb<Unit>;
-  using mem_t = rt_trav_mem<Unit>;
 
   explicit rt_trav_top(sc_core::sc_module_name name);
   ~rt_trav_top() override;
@@ -49,7 +56,6 @@ class rt_trav_top : public sc_core::sc_module {
 
   // Throws std::runtime_error for an implementation the build lacks.
   tb_t& tb(rt_trav_impl impl);
-  mem_t& mem(rt_trav_impl impl);
 
   // FST waveform of the Verilated bench until close_wave(); call while paused.
   void open_wave(const std::string& path);
@@ -59,7 +65,6 @@ class rt_trav_top : public sc_core::sc_module {
   struct bench_refs {
     std::unique_ptr<sc_core::sc_module> bench;
     tb_t* tb = nullptr;
-    mem_t* mem = nullptr;
   };
   bench_refs& refs(rt_trav_impl impl);
   template <class Dut, class... DutArgs>

@@ -32,9 +32,8 @@ inline constexpr bool kModelTakesIsect =
 template <class Unit>
 template <class Dut, class... DutArgs>
 void rt_trav_top<Unit>::keep(bench_refs& r, const char* name, DutArgs&&... args) {
-  auto bench = std::make_unique<rt_trav_bench<Unit, Dut>>(name, std::forward<DutArgs>(args)...);
+  auto bench = std::make_unique<rt_trav_bench<Unit, Dut>>(name, kScChipUnits, std::forward<DutArgs>(args)...);
   r.tb = &bench->u_tb;
-  r.mem = &bench->u_mem;
   r.bench = std::move(bench);
 }
 
@@ -86,11 +85,6 @@ typename rt_trav_top<Unit>::tb_t& rt_trav_top<Unit>::tb(rt_trav_impl impl) {
 }
 
 template <class Unit>
-typename rt_trav_top<Unit>::mem_t& rt_trav_top<Unit>::mem(rt_trav_impl impl) {
-  return *refs(impl).mem;
-}
-
-template <class Unit>
 void rt_trav_top<Unit>::open_wave([[maybe_unused]] const std::string& path) {
   using rtl_t = typename rt_trav_rtl<Unit>::type;
   if constexpr (std::is_void_v<rtl_t> || !LANCER_SC_RTL_FST) {
@@ -99,7 +93,7 @@ void rt_trav_top<Unit>::open_wave([[maybe_unused]] const std::string& path) {
     // Verilator's trace() needs elaboration complete: the first run of the process
     // may ask for a wave. Zero time with every clock at rest changes nothing.
     if (!sc_core::sc_start_of_simulation_invoked()) sc_core::sc_start(sc_core::SC_ZERO_TIME);
-    auto& dut = static_cast<rt_trav_bench<Unit, rtl_t>*>(rtl_.bench.get())->u_dut;
+    auto& dut = *static_cast<rt_trav_bench<Unit, rtl_t>*>(rtl_.bench.get())->duts.front();  // unit 0's
     wave_.open(path, [&dut](VerilatedFstSc* fst) { dut.trace(fst, 99); });
   }
 }

@@ -1,6 +1,6 @@
 #pragma once
 
-// What the shared SystemC modules of a traversal unit (rt_trav_mem, rt_trav_tb,
+// What the shared SystemC modules of a traversal unit (rt_trav_tb,
 // rt_trav_bench, rt_trav_top, rt_trav_shell_model; systemc/common/) need to
 // know of a unit: its traits class (grid/rt_grid_unit.h, octree/rt_octree_unit.h),
 // which derives from rt_trav_unit<RaysInFlight, Descriptor>. Everything but
