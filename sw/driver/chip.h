@@ -7,11 +7,13 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "driver/traversal_device.h"
 #include "golden/unit.h"
 #include "memory/address_map.h"
 #include "memory/dispatcher.h"
@@ -31,6 +33,21 @@ mem::AddressMap addressMapOf(const typename Desc::Image& image) {
                           mem::Region{"index list", 0, 4, 1, uint64_t(image.indices.size())},
                           mem::Region{"triangle table", 0, bytesOf(fx::kIsectTriBits), 1,
                                       uint64_t(image.triangles.size())}});
+}
+
+// The memory system a run of a device uses: the hardware path's
+// (options.sharedMemory, warm) when it serves the run's units, else a new one
+// kept in `own`; its statistics cleared for the run.
+template <class Desc>
+mem::MemorySystem& memoryFor(const TraversalRunOptions& options, const typename Desc::Image& image,
+                             std::unique_ptr<mem::MemorySystem>& own) {
+  mem::MemorySystem* memory = options.sharedMemory;
+  if (memory == nullptr || memory->units() != options.units) {
+    own = mem::MemorySystem::make(memoryConfigOf(options), addressMapOf<Desc>(image), options.units);
+    memory = own.get();
+  }
+  memory->clearStats();
+  return *memory;
 }
 
 // What a chip did over a job (or the jobs of a ray class, or of a run): its

@@ -142,19 +142,14 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
   job.dispatchBatch = options.dispatchBatch;
   const int units = options.units;
   std::unique_ptr<mem::MemorySystem> own;
-  mem::MemorySystem* memory = options.sharedMemory;
-  if (memory == nullptr || memory->units() != units) {
-    own = mem::MemorySystem::make(memoryConfigOf(options), addressMapOf<Desc>(image), units);
-    memory = own.get();
-  }
-  memory->clearStats();
+  mem::MemorySystem& memory = memoryFor<Desc>(options, image, own);
 
   const std::lock_guard<std::mutex> lock(systemc_kernel::mutex());
   sc::rt_trav_top<Unit>& top = systemc_kernel::traversalSystem<Unit>();
   auto& tb = top.tb(impl);
   if (wave) top.open_wave(options.stream.wavePath);
   try {
-    tb.start(job, image, *memory, units);
+    tb.start(job, image, memory, units);
     // The units' clocks stop after the run's last cycle, so sc_start() returns
     // by starvation exactly when the run is over.
     sc_core::sc_start();
@@ -193,7 +188,7 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
     }
   }
   stats.cycles = last - first + 1;
-  stats.memory = memory->stats();
+  stats.memory = memory.stats();
   stats.cycleAccurate = true;
   return stats;
 }

@@ -451,12 +451,7 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
     units_.push_back(std::make_unique<VerilatedUnit<Top>>(Desc::kNames.module));
   }
   std::unique_ptr<mem::MemorySystem> own;
-  mem::MemorySystem* memory = options.sharedMemory;
-  if (memory == nullptr || memory->units() != units) {
-    own = mem::MemorySystem::make(memoryConfigOf(options), addressMapOf<Desc>(image), units);
-    memory = own.get();
-  }
-  memory->clearStats();
+  mem::MemorySystem& memory = memoryFor<Desc>(options, image, own);
   const trav_detail::PortImage<Top, Image> ports(image);
   trav_detail::ChipRays shared(rays, traces, units, options.dispatchBatch);
   std::deque<trav_detail::UnitRun<Top, Image>> runs;  // (not movable: a deque grows in place)
@@ -472,7 +467,7 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
   const int threads = options.hostThreads > 0
                           ? std::min(options.hostThreads, units)
                           : std::min(units, std::max(1, int(std::thread::hardware_concurrency())));
-  trav_detail::ChipRun<Top, Image> chip(runs, *memory, shared, threads);
+  trav_detail::ChipRun<Top, Image> chip(runs, memory, shared, threads);
   try {
     chip.run();
   } catch (...) {
@@ -499,7 +494,7 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
   }
   stats.rays = rays.size();
   stats.cycles = last - first + 1;
-  stats.memory = memory->stats();
+  stats.memory = memory.stats();
   for (size_t k = 0; k < rays.size(); ++k) {
     if (shared.resultElements[k] != traces[k].visits.size()) {
       throw std::runtime_error(fmt::format("rtl: ray {} reports {} {} but {} visit records came out", k,

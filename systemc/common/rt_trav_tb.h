@@ -128,15 +128,19 @@ class rt_trav_tb : public sc_core::sc_module {
   void finish() {
     finished_ = true;
     for (int u = 0; u < active_; ++u) {
-      rt_trav_side<Unit>& side = sides[size_t(u)];
-      side.u_clk.stop();  // this was the last rising edge of the run
-      side.ray_valid_i.write(false);
-      side.res_ready_i.write(false);
-      side.visit_ready_i.write(false);
-      side.node_rsp_valid_i.write(false);
-      side.idx_rsp_valid_i.write(false);
-      side.tri_rsp_valid_i.write(false);
+      sides[size_t(u)].u_clk.stop();  // this was the last rising edge of the run
+      quiet(sides[size_t(u)]);
     }
+  }
+
+  // Nothing offered, nothing taken, no memory response.
+  static void quiet(rt_trav_side<Unit>& side) {
+    side.ray_valid_i.write(false);
+    side.res_ready_i.write(false);
+    side.visit_ready_i.write(false);
+    side.node_rsp_valid_i.write(false);
+    side.idx_rsp_valid_i.write(false);
+    side.tri_rsp_valid_i.write(false);
   }
 
   // Edges 0 .. RESET_CYCLES-1 drive reset and the configuration; from edge
@@ -174,12 +178,7 @@ class rt_trav_tb : public sc_core::sc_module {
     side.rst_ni.write(false);
     side.cfg_i.write(cfg_);
     side.cfg_slots_i.write(typename Unit::cfg_slots_t(job_->slots));
-    side.ray_valid_i.write(false);
-    side.res_ready_i.write(false);
-    side.visit_ready_i.write(false);
-    side.node_rsp_valid_i.write(false);
-    side.idx_rsp_valid_i.write(false);
-    side.tri_rsp_valid_i.write(false);
+    quiet(side);
     side.node_req_ready_i.write(true);
     side.idx_req_ready_i.write(true);
     side.tri_req_ready_i.write(true);
