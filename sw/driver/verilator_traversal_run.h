@@ -18,7 +18,6 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <barrier>
 #include <cstdint>
 #include <deque>
 #include <exception>
@@ -32,6 +31,7 @@
 
 #include "common/error.h"
 #include "driver/chip.h"
+#include "driver/cycle_barrier.h"
 #include "driver/verilated_port.h"
 #include "driver/verilated_unit.h"
 #include "driver/verilator_traversal_device.h"
@@ -368,7 +368,7 @@ class ChipRun {
       }
       return;
     }
-    std::barrier sync(threads_, [this]() noexcept { endCycle(); });
+    CycleBarrier sync(threads_);
     std::vector<std::exception_ptr> errors(static_cast<size_t>(threads_));
     const auto work = [&](int t) {
       while (true) {
@@ -380,7 +380,7 @@ class ChipRun {
             failed_.store(true);
           }
         }
-        sync.arrive_and_wait();
+        sync.arriveAndWait([this] { endCycle(); });
         if (stop_) return;
       }
     };
