@@ -27,14 +27,8 @@ namespace lancer {
 
 ChipFigures& ChipFigures::operator+=(const ChipFigures& o) {
   memory = o.memory;
-  if (unitRays.size() < o.unitRays.size()) {
-    unitRays.resize(o.unitRays.size());
-    unitBusyCycles.resize(o.unitRays.size());
-  }
-  for (size_t u = 0; u < o.unitRays.size(); ++u) {
-    unitRays[u] += o.unitRays[u];
-    unitBusyCycles[u] += o.unitBusyCycles[u];
-  }
+  addPerUnit(unitRays, o.unitRays);
+  addPerUnit(unitBusyCycles, o.unitBusyCycles);
   stats += o.stats;
   return *this;
 }

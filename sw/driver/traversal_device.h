@@ -50,6 +50,12 @@ inline mem::MemoryConfig memoryConfigOf(const TraversalRunOptions& options) {
   return c;
 }
 
+// Per-unit counts of consecutive runs, unit by unit (the longer list wins).
+inline void addPerUnit(std::vector<uint64_t>& into, const std::vector<uint64_t>& more) {
+  if (into.size() < more.size()) into.resize(more.size());
+  for (size_t u = 0; u < more.size(); ++u) into[u] += more[u];
+}
+
 // What the unit did, in clock cycles of the simulated chip.
 struct TraversalRunStats {
   uint64_t cycles = 0;           // first ray offered to last result taken
@@ -81,14 +87,8 @@ struct TraversalRunStats {
     isectTests += o.isectTests;
     isectBusyCycles += o.isectBusyCycles;
     cycleAccurate = o.cycleAccurate;
-    if (unitRays.size() < o.unitRays.size()) {
-      unitRays.resize(o.unitRays.size());
-      unitBusyCycles.resize(o.unitRays.size());
-    }
-    for (size_t u = 0; u < o.unitRays.size(); ++u) {
-      unitRays[u] += o.unitRays[u];
-      unitBusyCycles[u] += o.unitBusyCycles[u];
-    }
+    addPerUnit(unitRays, o.unitRays);
+    addPerUnit(unitBusyCycles, o.unitBusyCycles);
     memory += o.memory;
     return *this;
   }

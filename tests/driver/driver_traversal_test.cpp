@@ -12,15 +12,11 @@
 #include "driver/traversal_job.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
+#include "support/cornell_rays.h"
 
 namespace lancer {
 namespace {
 
-struct CornellRays {
-  Scene scene = makeCornellBox();
-  std::vector<Ray> rays = frameScene(scene, CameraOptions::sized(24, 24)).generateRays();
-  Quantizer quantizer{scene.bounds};
-};
 
 std::map<std::string, double> counters(const JobResult& job) {
   std::map<std::string, double> out;
@@ -50,7 +46,7 @@ class DropLastVisit final : public TraversalDevice<Image> {
 };
 
 TEST(DriverTraversalJob, EveryUnitIsExactAgainstItselfAndCountsWhatItDid) {
-  CornellRays c;
+  CornellRays c(24);
   for (const fx::UnitKind path : {fx::UnitKind::Grid, fx::UnitKind::Octree}) {
     SCOPED_TRACE(toString(path));
     const JobResult job = runJob(path, c.scene, c.rays, c.quantizer, JobConfig{});
@@ -71,7 +67,7 @@ TEST(DriverTraversalJob, EveryUnitIsExactAgainstItselfAndCountsWhatItDid) {
 }
 
 TEST(DriverTraversalJob, OctreeReadsCountTheChildGroupBuffer) {
-  CornellRays c;
+  CornellRays c(24);
   const fx::OctreeImage image = buildImageFor<fx::OctreeUnit>(c.scene, c.quantizer, AccelOptions{.octreeMaxDepth = 4});
   GoldenOctreeDevice golden;
   std::vector<fx::QRay> rays;
@@ -91,7 +87,7 @@ TEST(DriverTraversalJob, OctreeReadsCountTheChildGroupBuffer) {
 }
 
 TEST(DriverTraversalJob, AWrongVisitSequenceIsReportedWithBothSequences) {
-  CornellRays c;
+  CornellRays c(24);
   const uint32_t victim = 12 * 24 + 12;
   for (const std::string accel : {"grid", "octree"}) {
     SCOPED_TRACE(accel);
@@ -116,7 +112,7 @@ TEST(DriverTraversalJob, AWrongVisitSequenceIsReportedWithBothSequences) {
 }
 
 TEST(DriverTraversalJob, ImpossibleConfigurationsAreInputErrors) {
-  CornellRays c;
+  CornellRays c(24);
   JobConfig config;
   config.raysInFlight = 1 << 20;
   EXPECT_THROW(runJob(fx::UnitKind::Octree, c.scene, c.rays, c.quantizer, config), InputError);

@@ -15,20 +15,13 @@
 
 #include "common/error.h"
 #include "driver/job.h"
-#include "scene/camera.h"
-#include "scene/scene.h"
+#include "support/cornell_rays.h"
 
 namespace lancer {
 namespace {
 
-struct CornellRays {
-  Scene scene = makeCornellBox();
-  std::vector<Ray> rays = frameScene(scene, CameraOptions::sized(48, 48)).generateRays();
-  Quantizer quantizer{scene.bounds};
-};
-
 const CornellRays& cornell() {
-  static const CornellRays c;
+  static const CornellRays c(48);
   return c;
 }
 
