@@ -21,10 +21,6 @@ void checkChipOptions(const TraversalRunOptions& options) {
   memoryConfigOf(options).validate();
 }
 
-}  // namespace lancer
-
-namespace lancer {
-
 ChipFigures& ChipFigures::operator+=(const ChipFigures& o) {
   memory = o.memory;
   addPerUnit(unitRays, o.unitRays);
@@ -37,19 +33,30 @@ namespace {
 
 double ratio(double a, double b) { return b > 0 ? a / b : 0.0; }
 
+// The figures the report and the summary both give, from the counts.
+struct Rates {
+  Rates(const ChipFigures& f, uint64_t cycles, uint64_t rays, double clockHz)
+      : seconds(double(cycles) / clockHz),
+        raysPerSecond(ratio(double(rays), seconds)),
+        dramBytesPerRay(ratio(double(f.stats.dramBytes), double(rays))),
+        dramGbps(ratio(double(f.stats.dramBytes), seconds) / 1e9) {
+    for (uint64_t b : f.unitBusyCycles) busy.push_back(ratio(double(b), double(cycles)));
+  }
+  double seconds, raysPerSecond, dramBytesPerRay, dramGbps;
+  std::vector<double> busy;  // per unit, the share of the cycles it had a ray in flight
+};
+
 }  // namespace
 
 nlohmann::json ChipFigures::toJson(uint64_t cycles, uint64_t rays, double clockHz) const {
-  std::vector<double> busy;
-  for (uint64_t b : unitBusyCycles) busy.push_back(ratio(double(b), double(cycles)));
-  const double seconds = double(cycles) / clockHz;
+  const Rates r(*this, cycles, rays, clockHz);
   nlohmann::json j = {{"units", units()},
                       {"unit_rays", unitRays},
-                      {"unit_busy_fraction", busy},
-                      {"rays_per_second", ratio(double(rays), seconds)},
+                      {"unit_busy_fraction", r.busy},
+                      {"rays_per_second", r.raysPerSecond},
                       {"dram_bytes", stats.dramBytes},
-                      {"dram_bytes_per_ray", ratio(double(stats.dramBytes), double(rays))},
-                      {"dram_gbps_used", ratio(double(stats.dramBytes), seconds) / 1e9},
+                      {"dram_bytes_per_ray", r.dramBytesPerRay},
+                      {"dram_gbps_used", r.dramGbps},
                       {"memory", memory},
                       {"memory_stats", stats}};
   if (memory.kind == mem::MemoryKind::Hierarchy) {
@@ -61,28 +68,25 @@ nlohmann::json ChipFigures::toJson(uint64_t cycles, uint64_t rays, double clockH
 }
 
 std::string ChipFigures::summary(uint64_t cycles, uint64_t rays, double clockHz) const {
+  const Rates r(*this, cycles, rays, clockHz);
   double busySum = 0, busyMin = 1;
-  for (uint64_t b : unitBusyCycles) {
-    const double f = ratio(double(b), double(cycles));
+  for (const double f : r.busy) {
     busySum += f;
     busyMin = std::min(busyMin, f);
   }
-  const double seconds = double(cycles) / clockHz;
   std::string out = fmt::format("  chip                {} unit{}, {:.1f} M rays/s; units busy {:.0f}% on average (least {:.0f}%)\n",
-                                units(), units() == 1 ? "" : "s", ratio(double(rays), seconds) / 1e6,
+                                units(), units() == 1 ? "" : "s", r.raysPerSecond / 1e6,
                                 100.0 * ratio(busySum, double(units())), 100.0 * busyMin);
   if (memory.kind == mem::MemoryKind::Fixed) {
     return out + fmt::format("  memory              fixed, {} cycles (+0..{} jitter)\n", memory.fixedLatency,
                              memory.fixedJitter);
   }
-  const mem::MemoryStats::Cache l1 = stats.l1Total();
   out += fmt::format("  memory              L1 {} KiB x3 per unit, hit rate {:.1f}%; L2 {} KiB, hit rate {:.1f}%; "
                      "DRAM {:g} GB/s\n",
-                     memory.l1.kib, 100.0 * l1.hitRate(), memory.l2.kib, 100.0 * stats.l2.hitRate(), memory.dram.gbps);
+                     memory.l1.kib, 100.0 * stats.l1Total().hitRate(), memory.l2.kib, 100.0 * stats.l2.hitRate(),
+                     memory.dram.gbps);
   out += fmt::format("  DRAM                {:.1f} MB, {:.0f} bytes/ray, {:.2f} GB/s used ({:.0f}% of the bandwidth)\n",
-                     double(stats.dramBytes) / 1e6, ratio(double(stats.dramBytes), double(rays)),
-                     ratio(double(stats.dramBytes), seconds) / 1e9,
-                     100.0 * ratio(double(stats.dramBytes), seconds) / 1e9 / memory.dram.gbps);
+                     double(stats.dramBytes) / 1e6, r.dramBytesPerRay, r.dramGbps, 100.0 * r.dramGbps / memory.dram.gbps);
   out += fmt::format("  stalls (cycles)     L1 full {}, L2 bank {}, L2 MSHRs {}, DRAM queue full {}, DRAM queued {}\n",
                      stats.l1FullCycles, stats.l2BankWaitCycles, stats.l2MshrFullCycles, stats.dramQueueFullCycles,
                      stats.dramQueueWaitCycles);

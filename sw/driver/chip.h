@@ -1,9 +1,11 @@
 #pragma once
 
 // What a chip of N traversal units (docs/chip.md) adds around any model of a
-// unit: where the unit's image lies in memory, and the dispatcher that hands
-// out the rays. The devices (Verilated, SystemC) clock their units and call
-// the memory system (memory/system.h) in the protocol it documents.
+// unit: where the unit's image lies in memory, the memory system a run uses,
+// and the chip's figures for the summary and the report. The devices
+// (Verilated, SystemC) clock their units, take rays from the dispatcher
+// (memory/dispatcher.h) and call the memory system (memory/system.h) in the
+// protocol it documents.
 
 #include <algorithm>
 #include <cstdint>

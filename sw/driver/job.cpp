@@ -53,9 +53,9 @@ class TraversalPath final : public HardwarePath {
   // worth keeping: each run makes its own, as a single unit always did.)
   JobResult run(std::span<const std::optional<QuantizedRay>> rays, const ProgressFn& onProgress) override {
     if (config_.memory.kind == mem::MemoryKind::Hierarchy && !memory_) {
-      checkChipOptions(traversalOptionsOf(config_));
-      memory_ = mem::MemorySystem::make(memoryConfigOf(traversalOptionsOf(config_)), addressMapOf<Unit>(image_),
-                                        config_.units);
+      const TraversalRunOptions options = traversalOptionsOf(config_);
+      checkChipOptions(options);
+      memory_ = mem::MemorySystem::make(memoryConfigOf(options), addressMapOf<Unit>(image_), config_.units);
     }
     return runTraversalJob(image_, rays, *model_, golden_, config_, onProgress, memory_.get());
   }

@@ -70,7 +70,7 @@ struct JobConfig {
   int hostThreads = 1;
   mem::MemoryConfig memory;
   // Rays per model run, per unit: a chip of N units runs N times as many at
-  // once. Each run starts with the memory system empty (cold caches).
+  // once. (The memory hierarchy outlives the runs: driver/job.cpp.)
   size_t raysPerBatch = 4096;
   // The bvh path: narrow widths at which to model a dual-precision front end
   // (golden/dual.h), reported as the share of tests escalated to full width.

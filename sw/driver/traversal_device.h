@@ -1,6 +1,5 @@
 #pragma once
 
-#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <string_view>
@@ -74,7 +73,6 @@ struct TraversalRunStats {
   mem::MemoryStats memory;
 
   uint64_t memoryReads() const { return nodeReads + indexReads + triangleReads; }
-  int units() const { return std::max<int>(1, int(unitRays.size())); }
   // The stats of consecutive runs, as of one.
   TraversalRunStats& operator+=(const TraversalRunStats& o) {
     cycles += o.cycles;

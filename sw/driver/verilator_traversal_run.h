@@ -361,6 +361,8 @@ class ChipRun {
 
   void run() {
     shared_.dispatcher.refill();
+    // The path's memory system counts on from its earlier runs.
+    lastProgress_ = memory_.cycle();
     if (threads_ <= 1) {
       while (!stop_) {
         for (size_t u = 0; u < units_.size(); ++u) progress_[u] = units_[u].cycle(memory_);

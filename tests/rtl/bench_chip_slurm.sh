@@ -8,15 +8,8 @@
 set -euo pipefail
 build=$1; work=$2
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-rm -rf "$work"; mkdir -p "$work"
-cluster=$work/cluster
-trap '"$root/scripts/slurm-cluster" stop "$cluster"' EXIT
-if ! "$root/scripts/slurm-cluster" start "$cluster" >"$work/cluster.out" 2>&1; then
-  cat "$work/cluster.out"
-  echo "FAIL: the Slurm cluster did not start (above); the Slurm executor is untested"
-  exit 1
-fi
-export SLURM_CONF=$cluster/slurm.conf
+source "$root/tests/support/slurm_cluster.sh"
+start_slurm_cluster "$work"
 "$root/scripts/bench-chip" --short --build "$build" --out "$work/local"
 "$root/scripts/bench-chip" --short --build "$build" --out "$work/slurm" --executor slurm --wait
 /usr/bin/python3 - "$work/local/chip.csv" "$work/slurm/chip.csv" <<'PY'

@@ -7,16 +7,8 @@
 # Usage: slurm.sh LANCER TREE WIDTH NARROW_TREE WORKDIR
 set -euo pipefail
 lancer=$1; tree=$2; width=$3; narrow=$4; work=$5
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-rm -rf "$work"; mkdir -p "$work"
-cluster=$work/cluster
-trap '"$root/scripts/slurm-cluster" stop "$cluster"' EXIT
-if ! "$root/scripts/slurm-cluster" start "$cluster" >"$work/cluster.out" 2>&1; then
-  cat "$work/cluster.out"
-  echo "FAIL: the Slurm cluster did not start (above); the Slurm executor is untested"
-  exit 1
-fi
-export SLURM_CONF=$cluster/slurm.conf
+source "$(dirname "${BASH_SOURCE[0]}")/../support/slurm_cluster.sh"
+start_slurm_cluster "$work"
 
 widths=$width; trees=(--tree "$width=$tree")
 if [ "$width" != 10/10 ]; then widths=10/10,$width; trees+=(--tree "10/10=$narrow"); fi
