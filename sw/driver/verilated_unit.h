@@ -159,11 +159,11 @@ inline void checkTraversalOptions(const TraversalRunOptions& options, int maxSlo
 // The seeded stream stimulus of one unit of a traversal-unit run, drawn in
 // the same order by every model: per cycle one draw each for the input bubble
 // (only while no ray is on offer), the result stall and the visit stall. Unit
-// 0 draws from the stream's seed, unit u from seed + u * 0x9E3779B97F4A7C15.
+// u draws from mem::unitSeed(seed, u) (unit 0: the stream's seed).
 // (The memory ports are the chip's memory system: memory/system.h.)
 struct TraversalStimulus {
   TraversalStimulus(const TraversalRunOptions& o, int unit)
-      : rng(o.stream.seed + uint64_t(unit) * 0x9E37'79B9'7F4A'7C15ull),
+      : rng(mem::unitSeed(o.stream.seed, unit)),
         idle(o.stream.inputIdleProbability, rng),
         stallRes(o.stream.outputStallProbability, rng),
         stallVisit(o.stream.outputStallProbability, rng) {}

@@ -62,6 +62,10 @@ struct MemoryConfig {
   void validate() const;
 };
 
+// The seed of unit u's draws (its stream stimulus, its fixed memory ports):
+// unit 0 keeps the run's seed, so a chip of one unit draws as a single unit did.
+inline uint64_t unitSeed(uint64_t seed, int unit) { return seed + uint64_t(unit) * 0x9E37'79B9'7F4A'7C15ull; }
+
 // "fixed" / "hierarchy"; parseMemoryKind throws InputError for anything else.
 const char* memoryKindName(MemoryKind kind);
 MemoryKind parseMemoryKind(const std::string& name);

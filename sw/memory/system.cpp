@@ -85,10 +85,9 @@ class FixedMemory final : public MemorySystem {
  public:
   FixedMemory(const MemoryConfig& c, int units) : MemorySystem(units), ports_(size_t(units)) {
     for (int u = 0; u < units; ++u) {
-      const uint64_t seed = c.seed + uint64_t(u) * 0x9E37'79B9'7F4A'7C15ull;
+      const uint64_t seed = unitSeed(c.seed, u);
       for (int p = 0; p < kPorts; ++p) ports_[size_t(u)][size_t(p)].restart(c.fixedLatency, c.fixedJitter, seed * 3 + uint64_t(p) + 1);
     }
-    stats_.l1.clear();
   }
   bool ready(int, Port) const override { return true; }
   void request(int unit, Port port, uint32_t record, uint32_t tag) override {
@@ -109,7 +108,7 @@ class FixedMemory final : public MemorySystem {
     return true;
   }
   MemoryStats stats() const override {
-    MemoryStats s = stats_;
+    MemoryStats s;  // no caches: reads only
     for (uint64_t r : reads_) s.reads += r;
     return s;
   }
@@ -119,7 +118,6 @@ class FixedMemory final : public MemorySystem {
   fx::MemoryReadPort& at(int unit, Port port) { return ports_[size_t(unit)][size_t(port)]; }
   std::vector<std::array<fx::MemoryReadPort, kPorts>> ports_;
   std::vector<uint64_t> reads_ = std::vector<uint64_t>(ports_.size(), 0);  // per unit: request() runs on the unit's thread
-  MemoryStats stats_;
 };
 
 // The hierarchy (docs/chip.md): per unit and port an L1 (tags, MSHRs, an

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "golden/stimulus.h"
+#include "memory/config.h"
 
 namespace lancer::sc {
 
@@ -33,7 +34,7 @@ void rt_trav_stream::start(const rt_trav_job& job, int unit, Dispatcher& dispatc
   tally_ = rt_trav_tally{};
   tally_.resultSteps.assign(job.rays.size(), 0);
   finished_.assign(job.rays.size(), 0);
-  rng_.seed(job.seed + uint64_t(unit) * 0x9E37'79B9'7F4A'7C15ull);
+  rng_.seed(mem::unitSeed(job.seed, unit));
   idleThreshold_ = fx::Coin::thresholdFor(job.inputIdleProbability);
   stallThreshold_ = fx::Coin::thresholdFor(job.outputStallProbability);
   current_ = 0;

@@ -67,8 +67,8 @@ struct rt_trav_sample {
 //     the memory took; tests from perf_isect_fire_o; step-ready cycles from
 //     perf_step_ready_o; visits and results taken and decoded into the
 //     traces; busy cycles);
-//   - drive(): the next cycle's stimulus from one std::mt19937_64 (the job's
-//     seed, + unit * 0x9E3779B97F4A7C15): the idle draw (only with no ray on
+//   - drive(): the next cycle's stimulus from one std::mt19937_64 (seeded
+//     with mem::unitSeed of the job's seed): the idle draw (only with no ray on
 //     offer and one held from the dispatcher) before the result stall draw
 //     before the visit stall draw, a draw only for a non-zero probability
 //     (fx::Coin).
