@@ -38,7 +38,7 @@ namespace lancer::fx {
 
 // The hardware paths of `lancer run --accel`: the host's BVH feeding the
 // intersection pipeline, and each traversal unit.
-enum class UnitKind { Isect, Grid, Octree };
+enum class UnitKind { Isect, Grid, Octree, Bvh };
 
 // How each layer names a unit.
 struct UnitNames {

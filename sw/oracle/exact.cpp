@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
-#include "scene/aabb.h"
+#include "common/aabb.h"
 
 namespace lancer {
 

@@ -9,15 +9,12 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "common/sah.h"
 #include "ref/triangle.h"
 
 namespace lancer {
 
 namespace {
-
-// SAH cost of one node step relative to one ray-triangle test. The triangle test
-// is an out-of-line call returning std::optional, so a step is comparatively cheap.
-constexpr float kTraversalCost = 1.0f;
 
 // pbrt's gamma(n): bound on the relative error of n float roundings.
 constexpr float gamma(int n) {
@@ -106,15 +103,7 @@ float nextUp(float x) {
 }
 float nextDown(float x) { return -nextUp(-x); }
 
-int ceilLog2(size_t n) { return n <= 1 ? 0 : int(std::bit_width(n - 1)); }
-
 }  // namespace
-
-struct Bvh::BuildPrim {
-  Aabb box;
-  glm::vec3 centroid;
-  uint32_t index;
-};
 
 Bvh::Bvh(const Scene& scene, const AccelOptions& options) : leafSize_(options.bvhLeafSize) {
   if (leafSize_ < 1 || leafSize_ > kMaxLeafSize) {
@@ -122,126 +111,33 @@ Bvh::Bvh(const Scene& scene, const AccelOptions& options) : leafSize_(options.bv
   }
   const size_t n = scene.triangles.size();
   if (n == 0) return;  // no nodes: every query misses
-  std::vector<BuildPrim> prims(n);
+  std::vector<Aabb> boxes(n);
   for (size_t i = 0; i < n; ++i) {
-    prims[i].box = scene.triangles[i].bounds();
-    prims[i].centroid = prims[i].box.center();
-    prims[i].index = uint32_t(i);
-    bounds_.extend(prims[i].box);
+    boxes[i] = scene.triangles[i].bounds();
+    bounds_.extend(boxes[i]);
   }
-  nodes_.reserve(2 * n);
+  // A step is an out-of-line call returning std::optional, comparatively cheap
+  // against a triangle test: traversal cost 1.
+  const SahTree tree = buildSah(boxes, SahOptions{.leafSize = leafSize_, .maxDepth = kMaxDepth});
+  depth_ = tree.depth;
+  leafCount_ = tree.leaves;
+  primIds_ = tree.order;
+  nodes_.resize(tree.nodes.size());
+  for (size_t i = 0; i < tree.nodes.size(); ++i) {
+    const SahNode& from = tree.nodes[i];
+    BvhNode& node = nodes_[i];
+    node.lo = from.box.lo;
+    node.hi = from.box.hi;
+    if (from.leaf) {
+      node.index = from.begin;
+      node.count = uint16_t(from.count());
+    } else {
+      node.index = from.right;
+      node.axis = from.axis;
+    }
+  }
   triangles_.reserve(n);
-  primIds_.reserve(n);
-  build(prims, 0, n, 1);
   for (uint32_t id : primIds_) triangles_.push_back(scene.triangles[id]);
-}
-
-// Builds the subtree over prims[begin, end) at tree level `depth` (root = 1) and
-// returns its node index. Children are emitted right after their parent (left
-// subtree first), which gives the depth-first layout.
-uint32_t Bvh::build(std::vector<BuildPrim>& prims, size_t begin, size_t end, int depth) {
-  const uint32_t nodeIndex = uint32_t(nodes_.size());
-  nodes_.emplace_back();
-  depth_ = std::max(depth_, depth);
-  const size_t n = end - begin;
-
-  Aabb box, centroids;
-  for (size_t i = begin; i < end; ++i) {
-    box.extend(prims[i].box);
-    centroids.extend(prims[i].centroid);
-  }
-  nodes_[nodeIndex].lo = box.lo;
-  nodes_[nodeIndex].hi = box.hi;
-
-  auto makeLeaf = [&] {
-    BvhNode& node = nodes_[nodeIndex];
-    node.index = uint32_t(primIds_.size());
-    node.count = uint16_t(n);
-    for (size_t i = begin; i < end; ++i) primIds_.push_back(prims[i].index);
-    ++leafCount_;
-    return nodeIndex;
-  };
-  if (n == 1) return makeLeaf();
-
-  // Binned SAH over the centroid bounds. Costs are kept multiplied by the node's
-  // area (no division), so flat or point-like nodes compare without NaN.
-  const float area = box.surfaceArea();
-  const float leafCost = float(n) * area;
-  int bestAxis = -1, bestBin = 0;
-  float bestCost = std::numeric_limits<float>::infinity();
-  auto binOf = [&](const glm::vec3& c, int axis, float scale) {
-    const int b = int((c[axis] - centroids.lo[axis]) * scale);
-    return std::clamp(b, 0, kSahBins - 1);
-  };
-  for (int axis = 0; axis < 3; ++axis) {
-    const float extent = centroids.hi[axis] - centroids.lo[axis];
-    if (!(extent > 0.0f)) continue;
-    const float scale = float(kSahBins) / extent;
-    std::array<Aabb, kSahBins> binBox;
-    std::array<size_t, kSahBins> binCount{};
-    for (size_t i = begin; i < end; ++i) {
-      const int b = binOf(prims[i].centroid, axis, scale);
-      ++binCount[b];
-      binBox[b].extend(prims[i].box);
-    }
-    // Sweep from the right to get the area and count right of each split plane.
-    std::array<float, kSahBins> rightArea;
-    std::array<size_t, kSahBins> rightCount;
-    Aabb acc;
-    size_t count = 0;
-    for (int b = kSahBins - 1; b > 0; --b) {
-      acc.extend(binBox[b]);
-      count += binCount[b];
-      rightArea[b] = acc.empty() ? 0.0f : acc.surfaceArea();
-      rightCount[b] = count;
-    }
-    acc = Aabb{};
-    count = 0;
-    for (int b = 0; b < kSahBins - 1; ++b) {  // split between bin b and b + 1
-      acc.extend(binBox[b]);
-      count += binCount[b];
-      if (count == 0 || rightCount[b + 1] == 0) continue;
-      const float cost = kTraversalCost * area + float(count) * acc.surfaceArea() +
-                         float(rightCount[b + 1]) * rightArea[b + 1];
-      if (cost < bestCost) {
-        bestCost = cost;
-        bestAxis = axis;
-        bestBin = b;
-      }
-    }
-  }
-
-  if (n <= size_t(leafSize_) && (bestAxis < 0 || leafCost <= bestCost)) return makeLeaf();
-
-  // Depth guard: an SAH split may peel off one triangle per level. Once the
-  // remaining levels could exceed kMaxDepth, halve instead, which needs only
-  // ceil(log2 n) more levels; SAH keeps the first 30 levels at least.
-  const bool forceMedian = depth + 1 + ceilLog2(n) > kMaxDepth;
-  size_t mid;
-  int splitAxis;
-  if (bestAxis < 0 || forceMedian) {
-    // Median split: also the fallback when every centroid coincides.
-    const glm::vec3 d = centroids.diagonal();
-    splitAxis = (d.x >= d.y && d.x >= d.z) ? 0 : (d.y >= d.z ? 1 : 2);
-    mid = begin + n / 2;
-    std::nth_element(prims.begin() + ptrdiff_t(begin), prims.begin() + ptrdiff_t(mid),
-                     prims.begin() + ptrdiff_t(end), [splitAxis](const BuildPrim& a, const BuildPrim& b) {
-                       return a.centroid[splitAxis] < b.centroid[splitAxis];
-                     });
-  } else {
-    splitAxis = bestAxis;
-    const float scale = float(kSahBins) / (centroids.hi[bestAxis] - centroids.lo[bestAxis]);
-    auto it = std::partition(prims.begin() + ptrdiff_t(begin), prims.begin() + ptrdiff_t(end),
-                             [&](const BuildPrim& p) { return binOf(p.centroid, bestAxis, scale) <= bestBin; });
-    mid = size_t(it - prims.begin());
-  }
-  assert(mid > begin && mid < end);
-
-  build(prims, begin, mid, depth + 1);
-  const uint32_t right = build(prims, mid, end, depth + 1);
-  nodes_[nodeIndex].index = right;
-  nodes_[nodeIndex].axis = uint8_t(splitAxis);
-  return nodeIndex;
 }
 
 template <bool kAnyHit, bool kCount, typename Slab>

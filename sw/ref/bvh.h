@@ -46,7 +46,6 @@ class Bvh final : public Accel {
   static constexpr int kMaxLeafSize = 64;
   // Deepest tree the builder makes; the traversal stack has this many entries.
   static constexpr int kMaxDepth = 64;
-  static constexpr int kSahBins = 32;
 
   // Throws InputError unless 1 <= options.bvhLeafSize <= kMaxLeafSize. Copies
   // the triangles, so `scene` need not outlive the BVH.
@@ -66,9 +65,6 @@ class Bvh final : public Accel {
   const std::vector<uint32_t>& primIds() const { return primIds_; }
 
  private:
-  struct BuildPrim;
-  uint32_t build(std::vector<BuildPrim>& prims, size_t begin, size_t end, int depth);
-
   template <bool kAnyHit, bool kCount, typename Slab>
   std::optional<Hit> traverse(const Ray& ray, const Slab& slab, TraversalStats* stats) const;
   template <bool kAnyHit>

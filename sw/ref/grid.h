@@ -9,7 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "ref/accel.h"
-#include "scene/aabb.h"
+#include "common/aabb.h"
 
 namespace lancer {
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "ref/accel.h"
-#include "scene/aabb.h"
+#include "common/aabb.h"
 
 namespace lancer {
 

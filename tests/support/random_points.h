@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "scene/aabb.h"
+#include "common/aabb.h"
 
 namespace lancer::test {
 

@@ -1,0 +1,264 @@
+#include "golden/bvh.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "common/sah.h"
+#include "golden/isect.h"
+#include "golden/memory_image.h"
+#include "golden/wide.h"
+
+namespace lancer::fx {
+
+namespace {
+
+constexpr int64_t kRootSide = int64_t(1) << kPosBits;
+
+LatticeBox boundsOf(const QTriangle& t) {
+  LatticeBox b;
+  for (int a = 0; a < 3; ++a) {
+    b.lo[a] = std::min({t.v[0][a], t.v[1][a], t.v[2][a]});
+    b.hi[a] = std::max({t.v[0][a], t.v[1][a], t.v[2][a]});
+  }
+  return b;
+}
+
+LatticeBox unite(const LatticeBox& x, const LatticeBox& y) {
+  LatticeBox b;
+  for (int a = 0; a < 3; ++a) {
+    b.lo[a] = std::min(x.lo[a], y.lo[a]);
+    b.hi[a] = std::max(x.hi[a], y.hi[a]);
+  }
+  return b;
+}
+
+// Turns the SAH tree into the image: interior nodes numbered in depth-first
+// order, each holding its children's boxes quantized in its own frame.
+struct Converter {
+  const SahTree& tree;
+  BvhImage& image;
+  std::vector<LatticeBox> boxes;  // exact, per SAH node
+
+  LatticeBox exactBox(uint32_t index) {
+    const SahNode& node = tree.nodes[index];
+    LatticeBox box;
+    if (node.leaf) {
+      box = boundsOf(image.triangles[tree.order[node.begin]]);
+      for (uint32_t k = node.begin + 1; k < node.end; ++k) box = unite(box, boundsOf(image.triangles[tree.order[k]]));
+    } else {
+      box = unite(exactBox(index + 1), exactBox(node.right));
+    }
+    boxes[index] = box;
+    return box;
+  }
+
+  BvhRef convert(uint32_t index) {
+    const SahNode& node = tree.nodes[index];
+    if (node.leaf) return BvhRef{true, node.count(), node.begin};
+    const uint32_t slot = uint32_t(image.nodes.size());
+    image.nodes.emplace_back();
+    BvhNode out;
+    const LatticeBox& box = boxes[index];
+    for (int a = 0; a < 3; ++a) {
+      out.base[a] = box.lo[a];
+      out.shift[a] = bvhShiftFor(box.hi[a] - box.lo[a]);
+    }
+    const std::array<uint32_t, kBvhWidth> children{index + 1, node.right};
+    for (int c = 0; c < kBvhWidth; ++c) {
+      const LatticeBox& cb = boxes[children[c]];
+      for (int a = 0; a < 3; ++a) {
+        out.lo[c][a] = bvhPlaneDown(cb.lo[a], out.base[a], out.shift[a]);
+        out.hi[c][a] = bvhPlaneUp(cb.hi[a], out.base[a], out.shift[a]);
+      }
+      out.child[c] = convert(children[c]);
+    }
+    image.nodes[slot] = out;
+    return BvhRef{false, 0, slot};
+  }
+};
+
+// max / min over the active axes' parameters.
+struct Interval {
+  i128 lo = 0, hi = 0;
+  bool any = false;
+  void meet(i128 t0, i128 t1) {
+    lo = any ? std::max(lo, t0) : t0;
+    hi = any ? std::min(hi, t1) : t1;
+    any = true;
+  }
+};
+
+struct Walker {
+  const BvhImage& image;
+  const QRay& ray;
+  const BvhRaySetup& setup;
+  TraversalTrace& trace;
+
+  struct Entry {
+    BvhRef ref;
+    u128 entry = 0;
+  };
+
+  void run() {
+    std::vector<Entry> stack;
+    stack.reserve(kBvhStackDepth);
+    std::optional<Entry> next = Entry{image.root, 0};
+    while (next) {
+      const Entry current = *next;
+      next.reset();
+      const auto bound = walkBound(ray, trace.hit);
+      if (!(bound && culledBy(*bound, current.entry, setup))) {
+        trace.visits.push_back(current.ref.visitId());
+        if (current.ref.leaf) {
+          if (testLeaf(current.ref)) return;
+        } else {
+          next = descend(image.nodes[current.ref.first], stack);
+        }
+      }
+      if (!next && !stack.empty()) {
+        next = stack.back();
+        stack.pop_back();
+      }
+    }
+  }
+
+  // Tests every triangle of the leaf; true if an any-hit ray is answered.
+  bool testLeaf(const BvhRef& leaf) {
+    for (uint32_t k = 0; k < leaf.count; ++k) {
+      const IsectResult r = intersect(ray, image.triangles[image.indices[leaf.first + k]]);
+      ++trace.tests;
+      if (r.hit && (!trace.hit || closerResult(r, *trace.hit))) trace.hit = r;
+    }
+    return ray.anyHit && trace.hit.has_value();
+  }
+
+  // Both children's box tests; the nearer one entered next (child 0 on a
+  // tie), the farther pushed.
+  std::optional<Entry> descend(const BvhNode& node, std::vector<Entry>& stack) {
+    std::array<BoxHit, kBvhWidth> hits;
+    for (int c = 0; c < kBvhWidth; ++c) hits[c] = boxTest(setup, node.childLo(c), node.childHi(c));
+    if (hits[0].hit && hits[1].hit) {
+      const int near = hits[1].entry < hits[0].entry ? 1 : 0;
+      if (stack.size() == size_t(kBvhStackDepth)) throw std::logic_error("BVH walk: the stack overflows");
+      stack.push_back(Entry{node.child[1 - near], hits[1 - near].entry});
+      return Entry{node.child[near], hits[near].entry};
+    }
+    for (int c = 0; c < kBvhWidth; ++c) {
+      if (hits[c].hit) return Entry{node.child[c], hits[c].entry};
+    }
+    return std::nullopt;
+  }
+};
+
+}  // namespace
+
+std::array<int64_t, 3> BvhNode::childLo(int c) const {
+  std::array<int64_t, 3> p{};
+  for (int a = 0; a < 3; ++a) p[a] = base[a] + (int64_t(lo[c][a]) << shift[a]);
+  return p;
+}
+
+std::array<int64_t, 3> BvhNode::childHi(int c) const {
+  std::array<int64_t, 3> p{};
+  for (int a = 0; a < 3; ++a) p[a] = base[a] + (int64_t(hi[c][a]) << shift[a]);
+  return p;
+}
+
+int bvhShiftFor(int64_t extent) {
+  int shift = 0;
+  while ((int64_t(kBvhPlaneMax) << shift) < extent) ++shift;
+  return shift;
+}
+
+uint32_t bvhPlaneDown(int64_t plane, int64_t base, int shift) { return uint32_t((plane - base) >> shift); }
+
+uint32_t bvhPlaneUp(int64_t plane, int64_t base, int shift) {
+  return uint32_t((plane - base + (int64_t(1) << shift) - 1) >> shift);
+}
+
+BvhImage buildBvhImage(std::vector<QTriangle> triangles, int leafSize) {
+  if (leafSize < 1 || leafSize > kBvhMaxLeafSize) {
+    throw InputError(fmt::format("BVH leaf size {} is out of range: the unit's {}-bit count allows 1..{}", leafSize,
+                                 kBvhCountBits, kBvhMaxLeafSize));
+  }
+  BvhImage image;
+  image.leafSize = leafSize;
+  image.triangles = std::move(triangles);
+  std::vector<Aabb> boxes(image.triangles.size());
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    const LatticeBox b = boundsOf(image.triangles[i]);
+    // Lattice coordinates below 2^24 are exact floats: the SAH sees the unit's boxes.
+    boxes[i].lo = glm::vec3(float(b.lo[0]), float(b.lo[1]), float(b.lo[2]));
+    boxes[i].hi = glm::vec3(float(b.hi[0]), float(b.hi[1]), float(b.hi[2]));
+  }
+  const SahTree tree = buildSah(boxes, SahOptions{.leafSize = leafSize, .maxDepth = kBvhMaxLevels});
+  image.indices = tree.order;
+  image.depth = tree.depth;
+  image.leaves = tree.leaves;
+  if (!tree.nodes.empty()) {
+    Converter converter{tree, image, std::vector<LatticeBox>(tree.nodes.size())};
+    converter.exactBox(0);
+    image.root = converter.convert(0);
+  } else {
+    image.depth = 1;  // the root: an empty leaf
+  }
+  checkRegionFits("bvh", "node table", image.nodes.size(), "use a smaller scene");
+  checkRegionFits("bvh", "index list", image.indices.size(), "use a smaller scene");
+  checkRegionFits("bvh", "triangle table", image.triangles.size(), "use a smaller scene");
+  return image;
+}
+
+BvhRaySetup BvhRaySetup::setup(const QRay& ray) {
+  BvhRaySetup s;
+  std::array<u128, 3> absD{};
+  for (int a = 0; a < 3; ++a) {
+    s.mirrored[a] = ray.dir[a] < 0;
+    s.origin[a] = s.mirrored[a] ? kRootSide - ray.org[a] : ray.org[a];
+    absD[a] = u128(ray.dir[a] < 0 ? -ray.dir[a] : ray.dir[a]);
+    s.active[a] = absD[a] != 0;
+    if (s.active[a]) s.common *= absD[a];
+  }
+  for (int a = 0; a < 3; ++a) {
+    s.pair[a] = 1;
+    for (int b = 0; b < 3; ++b) {
+      if (b != a && s.active[b]) s.pair[a] *= i128(absD[b]);
+    }
+  }
+  s.dominant = absD[dominantAxis(ray.dir)];
+  return s;
+}
+
+BoxHit boxTest(const BvhRaySetup& ray, const std::array<int64_t, 3>& lo, const std::array<int64_t, 3>& hi) {
+  Interval t;
+  for (int a = 0; a < 3; ++a) {
+    // Mirrored: the box [lo, hi] becomes [2^P - hi, 2^P - lo].
+    const int64_t l = ray.mirrored[a] ? kRootSide - hi[a] : lo[a];
+    const int64_t h = ray.mirrored[a] ? kRootSide - lo[a] : hi[a];
+    if (!ray.active[a]) {
+      // The ray stays in the plane x_a = o_a: inside the slab for all t, or never.
+      if (ray.origin[a] < l || ray.origin[a] > h) return {};
+      continue;
+    }
+    t.meet(i128(l - ray.origin[a]) * ray.pair[a], i128(h - ray.origin[a]) * ray.pair[a]);
+  }
+  if (!(t.lo <= t.hi && t.hi > 0)) return {};
+  return BoxHit{true, u128(std::max<i128>(t.lo, 0))};
+}
+
+bool culledBy(const IsectResult& bound, u128 entry, const BvhRaySetup& ray) {
+  if (entry == 0) return false;
+  // t_bound = t_num / (dominant det) <= (entry - 1) / common, all terms non-negative.
+  return !(mul256((entry - 1) * ray.dominant, bound.det) < mul256(bound.tNum, ray.common));
+}
+
+TraversalTrace traverseBvh(const BvhImage& image, const QRay& ray) {
+  TraversalTrace trace;
+  const BvhRaySetup setup = BvhRaySetup::setup(ray);
+  Walker{image, ray, setup, trace}.run();
+  return trace;
+}
+
+}  // namespace lancer::fx

@@ -1,0 +1,106 @@
+#pragma once
+
+// Bit-accurate model of the BVH traversal unit (rt_bvh): the memory image the
+// driver builds from the binned-SAH tree (common/sah.h, the reference's
+// builder) and the walk that defines which nodes each ray enters and which hit
+// it returns. docs/bvh-unit.md has the derivation.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "golden/bvh_formats.h"
+#include "golden/records.h"
+#include "golden/trace.h"
+
+namespace lancer::fx {
+
+// A child as its parent names it (bvh_ref_t); the root's is a configuration input.
+struct BvhRef {
+  bool leaf = true;
+  uint32_t count = 0;  // leaf: triangles; interior: 0
+  uint32_t first = 0;  // leaf: first index-list entry; interior: node-table index
+  bool operator==(const BvhRef&) const = default;
+  // The visit record's id of this node.
+  uint32_t visitId() const { return leaf ? (kBvhLeafVisit | first) : first; }
+};
+
+// An interior node (bvh_node_t): its children's boxes in its own frame.
+struct BvhNode {
+  std::array<int64_t, 3> base{};  // the node's lowest corner
+  std::array<int, 3> shift{};     // plane step 2^shift per axis
+  std::array<std::array<uint32_t, 3>, kBvhWidth> lo{}, hi{};  // [child][axis] plane steps
+  std::array<BvhRef, kBvhWidth> child{};
+  bool operator==(const BvhNode&) const = default;
+  // Child c's box, planes on the lattice (hi may exceed kPosMax by less than 2^shift).
+  std::array<int64_t, 3> childLo(int c) const;
+  std::array<int64_t, 3> childHi(int c) const;
+};
+
+// An integer box, closed: [lo, hi] on each axis.
+struct LatticeBox {
+  std::array<int64_t, 3> lo{}, hi{};
+  bool operator==(const LatticeBox&) const = default;
+};
+
+struct BvhImage {
+  int leafSize = 0;
+  BvhRef root;                       // the tree's root (cfg_root_i)
+  std::vector<BvhNode> nodes;        // interior nodes; the root, if interior, is node 0
+  std::vector<uint32_t> indices;     // triangle ids, leaf by leaf
+  std::vector<QTriangle> triangles;  // by triangle id
+  int depth = 0;                     // levels, root = 1
+  size_t leaves = 0;
+};
+
+inline constexpr int kDefaultBvhLeafSize = 4;
+
+// Builds the image from the binned-SAH tree over the triangles' lattice boxes:
+// each interior node's two children's boxes quantized outwards in its frame.
+// Throws InputError for a leaf size outside 1..kBvhMaxLeafSize, or an image
+// that does not fit kMemAddrBits.
+BvhImage buildBvhImage(std::vector<QTriangle> triangles, int leafSize);
+
+// The smallest shift whose kBvhPlaneBits steps cover `extent`.
+int bvhShiftFor(int64_t extent);
+// Child plane steps of [lo, hi] in a frame (base, shift), rounded outwards.
+uint32_t bvhPlaneDown(int64_t plane, int64_t base, int shift);
+uint32_t bvhPlaneUp(int64_t plane, int64_t base, int shift);
+
+// The per-ray setup of the unit: mirroring (o' = 2^P - o for a negative
+// component), the pair products and the common denominator. Multiplications only.
+struct BvhRaySetup {
+  std::array<int64_t, 3> origin{};  // mirrored origin
+  std::array<bool, 3> mirrored{};
+  std::array<bool, 3> active{};     // the ray crosses planes of this axis
+  std::array<i128, 3> pair{};       // prod |d_b| over active b != a
+  u128 common = 1;                  // prod |d_a| over active a: t = T / common
+  u128 dominant = 1;                // |d[kz]|, the pipeline's t scale
+  static BvhRaySetup setup(const QRay& ray);
+};
+
+// The ray-box test of one child box: exact over the lattice planes, closed
+// boxes. The ray enters iff max(T0) <= min(T1) over the active axes, min(T1) > 0
+// (some point of the box at t > 0), and the origin lies within the box on every
+// axis the ray does not cross. `entry` = max(t_min, 0) * common.
+struct BoxHit {
+  bool hit = false;
+  u128 entry = 0;
+  bool operator==(const BoxHit&) const = default;
+};
+BoxHit boxTest(const BvhRaySetup& ray, const std::array<int64_t, 3>& lo, const std::array<int64_t, 3>& hi);
+
+// The cull rule of a node about to be entered: the closest hit so far (or the
+// segment end) lies before it, t_bound <= (entry - 1) / common. Entry 0 is
+// never culled. Exact (256-bit products), the shell's exit test with
+// exit = entry - 1.
+bool culledBy(const IsectResult& bound, u128 entry, const BvhRaySetup& ray);
+
+// The reference behaviour of the unit for one ray. Throws std::logic_error if
+// the stack would overflow (an image deeper than kBvhMaxLevels: checkImage
+// refuses those).
+TraversalTrace traverseBvh(const BvhImage& image, const QRay& ray);
+
+}  // namespace lancer::fx

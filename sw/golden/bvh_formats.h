@@ -1,0 +1,92 @@
+#pragma once
+
+// The BVH unit's formats and records (docs/bvh-unit.md), as golden/formats.h
+// and golden/records.h are the shared ones: gen_rt_pkg emits them into rt_pkg
+// through the unit's descriptor (kPkgParams, kRecords).
+
+#include <array>
+#include <bit>
+
+#include "golden/records.h"
+
+namespace lancer::fx {
+
+// ---- BVH traversal unit (docs/bvh-unit.md) ------------------------------------------
+// A binary BVH: a node read returns both children's boxes, tested side by side.
+inline constexpr int kBvhWidth = 2;
+// Child planes are kBvhPlaneBits-bit steps of 2^shift from the node's corner
+// `base` (per axis), rounded outwards: lo = base + (q_lo << shift) <= the
+// child's lowest vertex, hi = base + (q_hi << shift) >= its highest.
+inline constexpr int kBvhPlaneBits = 8;
+inline constexpr int kBvhPlaneMax = (1 << kBvhPlaneBits) - 1;
+// shift: 0 .. P - kBvhPlaneBits + 1 (a node's extent is below 2^P).
+inline constexpr int kBvhShiftBits = std::bit_width(unsigned(kPosBits));
+// A leaf lists up to 2^kBvhCountBits - 1 triangles.
+inline constexpr int kBvhCountBits = 8;
+inline constexpr int kBvhMaxLeafSize = (1 << kBvhCountBits) - 1;
+// The per-ray stack: one entry per level below the root at most (the walk
+// pushes the far child of a node whose children it both enters), so a tree of
+// kBvhStackDepth + 1 levels never overflows it; deeper images are refused.
+inline constexpr int kBvhStackDepth = 32;
+inline constexpr int kBvhMaxLevels = kBvhStackDepth + 1;
+// Plane parameters over the common denominator C = prod(|d_a|, active a):
+// T = (plane' - o') * prod(|d_b|, active b != a). A reconstructed plane lies in
+// [0, 2^P + 2^shift) and o' in [0, 2^P], so |plane' - o'| < 2^(P+1); the product
+// below 2^(2(D-1)): P + 2D signed bits ........................................
+inline constexpr int kBvhTBits = kPosBits + 2 * kDirBits;
+// A child's entry parameter max(t_min, 0) * C, unsigned ......................
+inline constexpr int kBvhEntryBits = kBvhTBits - 1;
+// C = prod(|d_a|, active a) < 2^(3(D-1)) ................................ 3D-3 unsigned
+inline constexpr int kBvhCommonBits = 3 * (kDirBits - 1);
+// A visit names an interior node by its node-table index and a leaf by this
+// bit set over its first index-list entry.
+inline constexpr uint32_t kBvhLeafVisit = uint32_t(1) << 31;
+
+// ---- bvh_ref_t: a child as its parent names it (and the root, on cfg_root_i) --------
+inline constexpr FieldSpec kBvhRefFields[] = {
+    {"leaf", 1, 1, false, "1: a leaf; 0: an interior node"},
+    {"count", kBvhCountBits, 1, false, "leaf: triangles listed; interior: 0"},
+    {"first", 32, 1, false, "leaf: first index-list entry; interior: node-table index"},
+};
+// ---- bvh_node_t: one entry of the node table, an interior node's two children -------
+inline constexpr FieldSpec kBvhNodeFields[] = {
+    {"base", kPosBits, 3, false, "the node's lowest corner, [0]=x"},
+    {"shift", kBvhShiftBits, 3, false, "plane step 2^shift per axis"},
+    {"lo", kBvhPlaneBits, 6, false, "child c's lower plane on axis a: element 3c + a"},
+    {"hi", kBvhPlaneBits, 6, false, "child c's upper plane on axis a: element 3c + a"},
+    {"leaf", 1, 2, false, "child c: as bvh_ref_t"},
+    {"count", kBvhCountBits, 2, false, "child c: as bvh_ref_t"},
+    {"first", 32, 2, false, "child c: as bvh_ref_t"},
+};
+// ---- bvh_visit_t: one node entered, on the unit's trace stream ----------------------
+inline constexpr FieldSpec kBvhVisitFields[] = {
+    {"ray_id", kRayIdBits, 1, false, "ray id"},
+    {"node_id", 32, 1, false, "interior: node-table index; leaf: 2^31 + first index-list entry"},
+};
+inline constexpr std::array<FieldSpec, 9> kBvhResFields = traversalResFields("nodes", "nodes entered");
+
+inline constexpr RecordSpec kBvhRef{"bvh_ref_t", "a BVH child reference", kBvhRefFields};
+inline constexpr RecordSpec kBvhNode{"bvh_node_t", "a BVH node table entry", kBvhNodeFields};
+inline constexpr RecordSpec kBvhVisit{"bvh_visit_t", "a BVH unit node step", kBvhVisitFields};
+inline constexpr RecordSpec kBvhRes{"bvh_res_t", "a BVH unit ray result", kBvhResFields};
+inline constexpr RecordSpec kBvhRecords[] = {kBvhRef, kBvhNode, kBvhVisit, kBvhRes};
+inline constexpr int kBvhRefBits = recordBits(kBvhRefFields);
+inline constexpr int kBvhNodeBits = recordBits(kBvhNodeFields);
+inline constexpr int kBvhVisitBits = recordBits(kBvhVisitFields);
+inline constexpr int kBvhResultBits = recordBits(kBvhResFields);
+static_assert(kMemAddrBits <= 31, "a leaf's visit id sets bit 31 over an index-list entry");
+
+// rt_bvh_setup's register stages (docs/bvh-unit.md): |d| and o', the pair
+// products, the common denominator.
+inline constexpr int kBvhSetupLatency = 3;
+
+// What rt_pkg holds of the BVH's formats.
+inline constexpr PackageParam kBvhPkgParams[] = {
+    {"BVH_WIDTH", kBvhWidth},           {"BVH_PLANE_W", kBvhPlaneBits},   {"BVH_SHIFT_W", kBvhShiftBits},
+    {"BVH_COUNT_W", kBvhCountBits},     {"BVH_STACK_DEPTH", kBvhStackDepth}, {"BVH_T_W", kBvhTBits},
+    {"BVH_ENTRY_W", kBvhEntryBits},     {"BVH_COMMON_W", kBvhCommonBits}, {"BVH_REF_W", kBvhRefBits},
+    {"BVH_NODE_W", kBvhNodeBits},       {"BVH_VISIT_W", kBvhVisitBits},   {"BVH_RESULT_W", kBvhResultBits},
+    {"BVH_SETUP_LATENCY", kBvhSetupLatency},
+};
+
+}  // namespace lancer::fx

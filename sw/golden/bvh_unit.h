@@ -1,0 +1,107 @@
+#pragma once
+
+// The BVH unit's descriptor (golden/unit.h lists what a descriptor provides).
+
+#include <array>
+#include <span>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "common/accel_options.h"
+#include "common/error.h"
+#include "golden/bvh.h"
+#include "golden/unit.h"
+
+namespace lancer::fx {
+
+struct BvhUnit {
+  using Image = BvhImage;
+  using Node = BvhNode;
+
+  static constexpr UnitKind kKind = UnitKind::Bvh;
+  static constexpr UnitNames kNames{.unit = "bvh",
+                                    .module = "rt_bvh",
+                                    .elements = "nodes",
+                                    .nodePort = "node",
+                                    .nodeRead = "node",
+                                    .nodeTable = "node table",
+                                    .cfgPort = "cfg_root_i",
+                                    .slotsOption = "LANCER_BVH_RAYS_IN_FLIGHT",
+                                    .rtlSources = "LANCER_RTL_BVH_SOURCES",
+                                    .stepsKey = "node_steps",
+                                    .stepsLabel = "node steps",
+                                    .readsKey = "node_reads",
+                                    .readsLabel = "node reads"};
+  static constexpr const auto& kNodeFieldList = kBvhNodeFields;
+  static constexpr const auto& kCfgFieldList = kBvhRefFields;
+  static constexpr std::span<const FieldSpec> kNodeFields = kBvhNodeFields;
+  static constexpr std::span<const FieldSpec> kVisitFields = kBvhVisitFields;
+  static constexpr std::span<const FieldSpec> kResFields = kBvhResFields;
+  static constexpr std::span<const FieldSpec> kCfgFields = kBvhRefFields;  // cfg_root_i: the root's reference
+  static constexpr std::span<const RecordSpec> kRecords = kBvhRecords;
+  static constexpr std::span<const PackageParam> kPkgParams = kBvhPkgParams;
+  static constexpr size_t kGroup = 1;  // a node read returns one node (both children's boxes)
+  static constexpr int kSetupLatency = kBvhSetupLatency;
+
+  static const std::vector<Node>& nodes(const Image& image) { return image.nodes; }
+  // In kBvhNodeFields order, arrays element 0 first (element 3c + a for the planes).
+  static std::array<u128, 22> nodeValues(const Node& node) {
+    std::array<u128, 22> v{};
+    size_t k = 0;
+    for (int a = 0; a < 3; ++a) v[k++] = u128(node.base[a]);
+    for (int a = 0; a < 3; ++a) v[k++] = u128(node.shift[a]);
+    for (int c = 0; c < kBvhWidth; ++c)
+      for (int a = 0; a < 3; ++a) v[k++] = node.lo[c][a];
+    for (int c = 0; c < kBvhWidth; ++c)
+      for (int a = 0; a < 3; ++a) v[k++] = node.hi[c][a];
+    for (int c = 0; c < kBvhWidth; ++c) v[k++] = node.child[c].leaf ? 1u : 0u;
+    for (int c = 0; c < kBvhWidth; ++c) v[k++] = node.child[c].count;
+    for (int c = 0; c < kBvhWidth; ++c) v[k++] = node.child[c].first;
+    return v;
+  }
+  static std::array<u128, 3> configValues(const Image& image) {
+    return {image.root.leaf ? 1u : 0u, image.root.count, image.root.first};
+  }
+
+  // --bvh-leaf: the largest leaf the SAH builder may make.
+  static Image build(std::vector<QTriangle> triangles, const AccelOptions& options) {
+    return buildBvhImage(std::move(triangles), options.bvhLeafSize ? options.bvhLeafSize : kDefaultBvhLeafSize);
+  }
+
+  static void checkImage(const Image& image, std::span<const QRay> rays) {
+    if (image.depth > kBvhMaxLevels) {
+      throw InputError(fmt::format("BVH depth {} exceeds the unit's stack ({} entries: at most {} levels)",
+                                   image.depth, kBvhStackDepth, kBvhMaxLevels));
+    }
+    if (!image.root.leaf && image.nodes.empty()) {
+      throw InputError("the BVH image has an interior root but no nodes (node 0 is the root)");
+    }
+    for (const QRay& ray : rays) {
+      if (ray.dir[0] == 0 && ray.dir[1] == 0 && ray.dir[2] == 0) {
+        throw InputError(fmt::format("ray {} has a zero direction: the BVH unit needs a non-zero component", ray.id));
+      }
+    }
+  }
+
+  static TraversalTrace traverse(const Image& image, const QRay& ray) { return traverseBvh(image, ray); }
+
+  // One node read per interior node entered (a leaf's reference is in its parent).
+  struct NodeReads {
+    explicit NodeReads(const Image&) {}
+    uint64_t operator()(const TraversalTrace& trace) const {
+      uint64_t reads = 0;
+      for (uint32_t id : trace.visits) reads += (id & kBvhLeafVisit) ? 0 : 1;
+      return reads;
+    }
+  };
+
+  static std::vector<ImageCounter> imageCounters(const Image& image) {
+    return {{"bvh_depth", "BVH depth", double(image.depth)},
+            {"bvh_leaf_size", "BVH leaf size", double(image.leafSize)},
+            {"bvh_nodes", "BVH interior nodes", double(image.nodes.size())},
+            {"bvh_leaves", "BVH leaves", double(image.leaves)}};
+  }
+};
+
+}  // namespace lancer::fx
