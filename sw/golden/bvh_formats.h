@@ -79,6 +79,10 @@ static_assert(kMemAddrBits <= 31, "a leaf's visit id sets bit 31 over an index-l
 // rt_bvh_setup's register stages (docs/bvh-unit.md): |d| and o', the pair
 // products, the common denominator.
 inline constexpr int kBvhSetupLatency = 3;
+// rt_bvh_box's register stages: a node response in cycle r is answered (both
+// children's hits and entries) to its slot in cycle r + kBvhBoxLatency: the
+// planes less the origin, the twelve products, the intervals and the order.
+inline constexpr int kBvhBoxLatency = 3;
 
 // What rt_pkg holds of the BVH's formats.
 inline constexpr PackageParam kBvhPkgParams[] = {
@@ -86,7 +90,7 @@ inline constexpr PackageParam kBvhPkgParams[] = {
     {"BVH_COUNT_W", kBvhCountBits},     {"BVH_STACK_DEPTH", kBvhStackDepth}, {"BVH_T_W", kBvhTBits},
     {"BVH_ENTRY_W", kBvhEntryBits},     {"BVH_COMMON_W", kBvhCommonBits}, {"BVH_REF_W", kBvhRefBits},
     {"BVH_NODE_W", kBvhNodeBits},       {"BVH_VISIT_W", kBvhVisitBits},   {"BVH_RESULT_W", kBvhResultBits},
-    {"BVH_SETUP_LATENCY", kBvhSetupLatency},
+    {"BVH_SETUP_LATENCY", kBvhSetupLatency}, {"BVH_BOX_LATENCY", kBvhBoxLatency},
 };
 
 }  // namespace lancer::fx
