@@ -22,6 +22,7 @@
 #include "driver/wave_tracer.h"
 #include "effects/ref_tracer.h"
 #include "effects/whitted.h"
+#include "golden/bvh.h"
 #include "golden/isect.h"
 #include "golden/octree.h"
 #include "ref/bvh.h"
@@ -83,6 +84,7 @@ std::string unitOptions(const Args& args) {
   add("--grid-res", job.accel.gridResolution);
   add("--octree-depth", job.accel.octreeMaxDepth);
   add("--octree-leaf", job.accel.octreeLeafSize);
+  if (job.accel.bvhLeafSize != fx::kDefaultBvhLeafSize) add("--bvh-leaf", job.accel.bvhLeafSize);
   if (args.latticeMargin != kLatticeMarginUnits) out += fmt::format(" --lattice-margin {}", args.latticeMargin);
   if (args.accel != fx::UnitKind::Isect) {
     out += fmt::format(" --mem-latency {}", job.memLatency);
@@ -537,6 +539,10 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--octree-leaf", args->job.accel.octreeLeafSize,
                   fmt::format("Octree leaf size: split nodes holding more triangles (default {})",
                               fx::kDefaultOctreeLeafSize))
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--bvh-leaf", args->job.accel.bvhLeafSize,
+                  fmt::format("BVH unit's largest leaf, 1..{} triangles (default {})", fx::kBvhMaxLeafSize,
+                              fx::kDefaultBvhLeafSize))
       ->check(CLI::PositiveNumber);
   cmd->add_option("--mem-latency", args->job.memLatency, "Memory latency of the traversal units, in cycles")
       ->capture_default_str();

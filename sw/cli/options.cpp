@@ -76,6 +76,8 @@ void AccelArgs::add(CLI::App& app, const std::vector<std::string>& allowed) {
                  "Grid voxels along the longest axis (default: from the triangle count)");
   app.add_option("--octree-depth", options.octreeMaxDepth, "Octree maximum depth (default: heuristic)");
   app.add_option("--octree-leaf", options.octreeLeafSize, "Octree leaf size in triangles (default: heuristic)");
+  app.add_option("--bvh-leaf", options.bvhLeafSize, "BVH: the largest leaf the SAH builder may make")
+      ->capture_default_str();
 }
 
 void EffectsArgs::add(CLI::App& app, CLI::Option* needs) {

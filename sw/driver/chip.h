@@ -23,17 +23,24 @@
 
 namespace lancer {
 
+// A record's bytes in memory, and the bytes of one read of a unit's node port
+// (kGroup records: the octree's child group).
+constexpr uint32_t recordBytes(int bits) { return uint32_t((bits + 7) / 8); }
+template <class Desc>
+constexpr uint32_t nodeReadBytes() {
+  return recordBytes(fx::kNodeBitsOf<Desc>) * uint32_t(Desc::kGroup);
+}
+
 // The image of descriptor `Desc` in the chip's address space: its node table
 // (records of the node's bits rounded up to bytes, kGroup of them per read),
 // the index list (32-bit triangle ids), the triangle table (the triangle
 // record's bits rounded up to bytes). InputError if it does not fit.
 template <class Desc>
 mem::AddressMap addressMapOf(const typename Desc::Image& image) {
-  const auto bytesOf = [](int bits) { return uint32_t((bits + 7) / 8); };
-  return mem::AddressMap({mem::Region{Desc::kNames.nodeTable, 0, bytesOf(fx::kNodeBitsOf<Desc>), uint32_t(Desc::kGroup),
+  return mem::AddressMap({mem::Region{Desc::kNames.nodeTable, 0, recordBytes(fx::kNodeBitsOf<Desc>), uint32_t(Desc::kGroup),
                                       uint64_t(Desc::nodes(image).size())},
                           mem::Region{"index list", 0, 4, 1, uint64_t(image.indices.size())},
-                          mem::Region{"triangle table", 0, bytesOf(fx::kIsectTriBits), 1,
+                          mem::Region{"triangle table", 0, recordBytes(fx::kIsectTriBits), 1,
                                       uint64_t(image.triangles.size())}});
 }
 

@@ -83,7 +83,7 @@ std::vector<std::string> hardwarePathNames() {
 }
 
 std::string_view toString(fx::UnitKind path) {
-  std::string_view name = "bvh";
+  std::string_view name = "isect";
   fx::forEachTraversalUnit([&](auto unit) {
     if (decltype(unit)::kKind == path) name = decltype(unit)::kNames.unit;
   });

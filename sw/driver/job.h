@@ -46,6 +46,7 @@ struct JobResult {
   uint64_t intersectionTests = 0;
   uint64_t steps = 0;        // traversal units: cells or nodes entered (0 on the bvh path)
   uint64_t memoryReads = 0;  // traversal units: reads of every region
+  uint64_t nodeBytes = 0;    // traversal units: bytes of the node-port reads (cells, child groups, nodes)
   std::vector<JobCounter> counters;
   double modelSeconds = 0;   // host time inside the model
   double goldenSeconds = 0;  // host time inside the golden model

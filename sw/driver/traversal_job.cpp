@@ -119,11 +119,13 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
   job.intersectionTests = total.isectTests;
   job.steps = total.steps;
   job.memoryReads = total.memoryReads();
+  job.nodeBytes = total.nodeReads * nodeReadBytes<Unit>();
   const double cycles = double(std::max<uint64_t>(total.cycles, 1));
   for (const fx::ImageCounter& c : Unit::imageCounters(image)) job.addCounter(c.key, c.label, c.value);
   job.addCounter(Unit::kNames.stepsKey, Unit::kNames.stepsLabel, double(total.steps));
   job.addCounter("memory_reads", "memory reads", double(total.memoryReads()));
   job.addCounter(Unit::kNames.readsKey, Unit::kNames.readsLabel, double(total.nodeReads));
+  job.addCounter("node_bytes", fmt::format("{} bytes", Unit::kNames.nodeTable), double(job.nodeBytes));
   job.addCounter("index_reads", "index list reads", double(total.indexReads));
   job.addCounter("triangle_reads", "triangle reads", double(total.triangleReads));
   if (job.cycleAccurate) {  // timing figures mean nothing for the golden model

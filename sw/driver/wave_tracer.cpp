@@ -37,6 +37,7 @@ void ClassHardwareStats::add(const JobResult& job, std::span<const std::optional
   intersectionTests += job.intersectionTests;
   steps += job.steps;
   memoryReads += job.memoryReads;
+  nodeBytes += job.nodeBytes;
   cycles += job.cycles;
   mismatches += job.mismatchedRays;
   modelSeconds += job.modelSeconds;
@@ -57,6 +58,7 @@ nlohmann::json ClassHardwareStats::toJson(double clockHz) const {
                       {"intersection_tests", intersectionTests},
                       {"steps", steps},
                       {"memory_reads", memoryReads},
+                      {"node_bytes", nodeBytes},
                       {"cycles", cycles},
                       {"simulated_seconds", double(cycles) / clockHz},
                       {"mismatches", mismatches},

@@ -47,6 +47,7 @@ struct ClassHardwareStats {
   uint64_t intersectionTests = 0;
   uint64_t steps = 0;         // cells or nodes entered
   uint64_t memoryReads = 0;
+  uint64_t nodeBytes = 0;     // bytes of the node-port reads
   uint64_t cycles = 0;
   uint64_t mismatches = 0;
   uint64_t closestHitSteps = 0;  // any-hit rays: steps of the same rays as closest-hit (golden model; grid, octree)

@@ -107,9 +107,11 @@ std::string executeJob(const std::string& out, const Spec& spec, const Job& job)
                     z = r.value("grid_resolution_z", 0);
       comparable = x == y && y == z && x > 0;  // the float grid is cubic
       trace.insert(trace.end(), {"--grid-res", std::to_string(x)});
-    } else {
+    } else if (job.unit == "octree") {
       trace.insert(trace.end(), {"--octree-depth", std::to_string(r.value("octree_max_depth", 0)), "--octree-leaf",
                                  std::to_string(r.value("octree_leaf_size", 0))});
+    } else {  // bvh: the same SAH builder, over float boxes instead of lattice ones
+      trace.insert(trace.end(), {"--bvh-leaf", std::to_string(r.value("bvh_leaf_size", 0))});
     }
     if (comparable) {
       if (std::string e = step(trace, "lancer trace"); !e.empty()) return e;

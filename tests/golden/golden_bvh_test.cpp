@@ -257,7 +257,9 @@ TEST(GoldenBvh, NearerChildFirstAndCulledBeyondTheHit) {
       const int near = h1.entry < h0.entry ? 1 : 0;
       if (trace.visits[k + 1] == node.child[near].visitId()) ++orderedPairs;
       // (With a hit, the nearer child may be culled and the farther popped next.)
-      if (!trace.hit) ASSERT_NE(trace.visits[k + 1], node.child[1 - near].visitId()) << "ray " << i;
+      if (!trace.hit) {
+        ASSERT_NE(trace.visits[k + 1], node.child[1 - near].visitId()) << "ray " << i;
+      }
     }
     // Every box the ray enters, against the ones the walk entered.
     uint64_t everyBox = 0;
