@@ -426,11 +426,11 @@ void checkRunOptions(const Args& args) {
   }
   if (args.accel == fx::UnitKind::Isect && (args.job.units != 1 || args.job.memory.kind != mem::MemoryKind::Fixed)) {
     throw InputError("--units and --memory hierarchy describe a chip of traversal units: they need --accel grid or "
-                     "octree, not bvh");
+                     "octree, not isect");
   }
   if (args.accel != fx::UnitKind::Isect) checkChipOptions(traversalOptionsOf(args.job));
   if (!args.job.dualNarrowBits.empty() && args.accel != fx::UnitKind::Isect) {
-    throw InputError(fmt::format("--dual-precision models the intersection pipeline's front end: it needs --accel bvh, "
+    throw InputError(fmt::format("--dual-precision models the intersection pipeline's front end: it needs --accel isect, "
                                  "not {}", toString(args.accel)));
   }
 }
@@ -518,7 +518,7 @@ void addRunCommand(CLI::App& app) {
   const std::vector<std::string> names = hardwarePathNames();
   cmd->add_option_function<std::string>(
          "--accel", [args](const std::string& name) { args->accel = parseHardwarePath(name); },
-         fmt::format("Hardware path: bvh (the host BVH feeding the intersection pipeline) or a traversal unit ({})",
+         fmt::format("Hardware path: isect (the host BVH feeding the intersection pipeline) or a traversal unit ({})",
                      fmt::join(names.begin() + 1, names.end(), ", ")))
       ->check(CLI::IsMember(names))
       ->default_str(std::string(toString(args->accel)));
@@ -558,7 +558,7 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--hits", args->hits, "CSV of the model's hits, with the raw fixed-point fields in hex");
   cmd->add_option("--wave", args->job.stream.wavePath, "FST waveform of the RTL (rtl model only; slow)");
   cmd->add_option("--dual-precision", args->job.dualNarrowBits,
-                  "bvh path: model a narrow front end at these widths (e.g. 8,10,12) and report the share of tests "
+                  "isect path: model a narrow front end at these widths (e.g. 8,10,12) and report the share of tests "
                   "it escalates to full width (docs/accuracy.md)")
       ->delimiter(',')
       ->check(CLI::Range(2, 24));

@@ -6,7 +6,7 @@
 
 namespace lancer {
 
-// The reference BVH as the host-side traversal of `--accel bvh`: every triangle in
+// The reference BVH as the host-side traversal of `--accel isect`: every triangle in
 // every leaf whose box, grown by `margin` scene units on each side, the ray
 // touches. No culling by hits: the float hit may not be the fixed-point one, so
 // the hardware gets every triangle it could possibly hit.

@@ -20,9 +20,9 @@ namespace {
 constexpr float kCandidateMarginUnits = 2.0f;
 
 // The host BVH feeding the intersection pipeline.
-class BvhPath final : public HardwarePath {
+class IsectPath final : public HardwarePath {
  public:
-  BvhPath(const Scene& scene, const Quantizer& quantizer, const JobConfig& config)
+  IsectPath(const Scene& scene, const Quantizer& quantizer, const JobConfig& config)
       : scene_(scene), quantizer_(quantizer), config_(config), model_(makeIsectDevice(config.model)),
         bvh_(scene, AccelOptions{}),
         candidates_(bvhCandidates(bvh_, kCandidateMarginUnits * float(quantizer.unit()))) {}
@@ -119,7 +119,7 @@ std::unique_ptr<HardwarePath> makeHardwarePath(fx::UnitKind path, const Scene& s
     using Unit = decltype(unit);
     if (Unit::kKind == path) made = std::make_unique<TraversalPath<Unit>>(scene, quantizer, config);
   });
-  return made ? std::move(made) : std::make_unique<BvhPath>(scene, quantizer, config);
+  return made ? std::move(made) : std::make_unique<IsectPath>(scene, quantizer, config);
 }
 
 JobResult runJob(fx::UnitKind path, const Scene& scene, std::span<const Ray> rays,

@@ -44,7 +44,7 @@ struct JobResult {
   uint64_t cycles = 0;
   bool cycleAccurate = true;
   uint64_t intersectionTests = 0;
-  uint64_t steps = 0;        // traversal units: cells or nodes entered (0 on the bvh path)
+  uint64_t steps = 0;        // traversal units: cells or nodes entered (0 on the isect path)
   uint64_t memoryReads = 0;  // traversal units: reads of every region
   uint64_t nodeBytes = 0;    // traversal units: bytes of the node-port reads (cells, child groups, nodes)
   std::vector<JobCounter> counters;
@@ -73,7 +73,7 @@ struct JobConfig {
   // Rays per model run, per unit: a chip of N units runs N times as many at
   // once. (The memory hierarchy outlives the runs: driver/job.cpp.)
   size_t raysPerBatch = 4096;
-  // The bvh path: narrow widths at which to model a dual-precision front end
+  // The isect path: narrow widths at which to model a dual-precision front end
   // (golden/dual.h), reported as the share of tests escalated to full width.
   std::vector<int> dualNarrowBits;
 };
@@ -81,7 +81,7 @@ struct JobConfig {
 using ProgressFn = std::function<void(size_t raysDone)>;
 
 // The hardware paths of --accel (fx::UnitKind): the host's BVH feeding the
-// intersection pipeline ("bvh"), then every traversal unit by its descriptor's
+// intersection pipeline ("isect"), then every traversal unit by its descriptor's
 // name ("grid", "octree").
 std::vector<fx::UnitKind> hardwarePaths();
 std::vector<std::string> hardwarePathNames();

@@ -15,7 +15,7 @@ HardwareWaveTracer::HardwareWaveTracer(fx::UnitKind path, const Scene& scene, co
     : quantizer_(quantizer), path_(makeHardwarePath(path, scene, quantizer, config)),
       offset_(offsetUnits), scene_(scene), reference_(reference) {
   if (reference_) candidates_ = exactCandidates(*reference_, scene.bounds);
-  // The bvh path streams every candidate either way: any-hit saves it nothing to measure.
+  // The isect path streams every candidate either way: any-hit saves it nothing to measure.
   if (path != fx::UnitKind::Isect) {
     JobConfig golden = config;
     golden.model = "golden";

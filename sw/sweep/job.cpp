@@ -76,9 +76,8 @@ std::string executeJob(const std::string& out, const Spec& spec, const Job& job)
     rays = cameraRaysPath(out, spec, job.scene, job.chunk);
   }
 
-  const std::string accel = accelOf(job.unit);
   const std::string runReport = work + "/run.json";
-  std::vector<std::string> run{lancer, "run", "--scene", scene, "--rays", rays, "--accel", accel, "--model",
+  std::vector<std::string> run{lancer, "run", "--scene", scene, "--rays", rays, "--accel", job.unit, "--model",
                                job.model, "--pos-bits", std::to_string(job.width.pos), "--dir-bits",
                                std::to_string(job.width.dir), "--report", runReport, "--repro",
                                work + "/mismatch.rays"};
@@ -99,7 +98,7 @@ std::string executeJob(const std::string& out, const Spec& spec, const Job& job)
   // parameters: what the conservative fixed-point walk visits beyond it.
   if (job.unit != "isect") {
     const nlohmann::json& r = result["run"];
-    std::vector<std::string> trace{lancer, "trace", "--scene", scene, "--rays", rays, "--accel", accel,
+    std::vector<std::string> trace{lancer, "trace", "--scene", scene, "--rays", rays, "--accel", job.unit,
                                    "--report", work + "/trace.json", "--hits", "/dev/null"};
     bool comparable = true;
     if (job.unit == "grid") {

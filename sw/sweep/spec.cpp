@@ -55,7 +55,6 @@ const std::vector<std::string>& sweepUnits() {
   return units;
 }
 
-std::string accelOf(const std::string& unit) { return unit == "isect" ? "bvh" : unit; }
 std::string synthTopOf(const std::string& unit) { return "rt_" + unit; }
 
 void Spec::validate() const {

@@ -27,9 +27,8 @@ struct Width {
 // "P/D" (or "P" for P/P); throws InputError naming `where` unless both lie in 4..24.
 Width parseWidth(const std::string& text, const std::string& where);
 
-// The units a sweep can measure, and the `lancer run --accel` and Yosys top of each.
+// The units a sweep can measure (each also its `lancer run --accel`), and the Yosys top of each.
 const std::vector<std::string>& sweepUnits();
-std::string accelOf(const std::string& unit);
 std::string synthTopOf(const std::string& unit);
 
 struct Spec {

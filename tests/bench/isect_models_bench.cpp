@@ -5,7 +5,7 @@
 //  1. Pairs (--pairs camera, the default): the scene's camera rays, quantized
 //     by the driver's Quantizer, each with its candidate triangles from the
 //     host BVH (driver/candidates.h) — exactly the stream `lancer run --accel
-//     bvh` feeds the pipeline. --pairs random: rtltest::randomPairs, the
+//     isect` feeds the pipeline. --pairs random: rtltest::randomPairs, the
 //     distinct random pairs of the RTL tests (43 % hits, every pair a new ray).
 //  2. Check pass: every model (makeIsectDevice) runs the pairs once; every
 //     result must equal golden's bit for bit, or the program exits 1.
@@ -81,7 +81,7 @@ struct Config {
 
 using bench::median;
 
-// The pairs `lancer run --accel bvh` streams for the scene's camera rays.
+// The pairs `lancer run --accel isect` streams for the scene's camera rays.
 std::vector<IsectRequest> cameraPairs(const Scene& scene, const Config& config, size_t* raysInLattice) {
   CameraOptions camera;
   camera.width = config.width;

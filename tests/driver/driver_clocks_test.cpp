@@ -36,7 +36,7 @@ TEST(RunClock, TheSlowestUnitOfTheRunAtTheBuildsWidths) {
             std::string::npos)
       << grid.describe();
 
-  // The bvh path runs the pipeline only.
+  // The isect path runs the pipeline only.
   const RunClock isect = chooseRunClock(kTable, fx::UnitKind::Isect, 10, 10, std::nullopt);
   EXPECT_EQ(isect.mhz, 844);
   EXPECT_EQ(isect.estimate->where(), "rt_isect at 10/10");

@@ -4,6 +4,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -123,6 +124,20 @@ TEST(DriverTraversalJob, ImpossibleConfigurationsAreInputErrors) {
   config.accel.octreeMaxDepth = fx::kOctreeMaxDepth + 1;
   EXPECT_THROW(runJob(fx::UnitKind::Octree, c.scene, c.rays, c.quantizer, config), InputError);
   EXPECT_THROW(parseHardwarePath("kdtree"), InputError);
+}
+
+// --accel names each path by its unit: the pipeline behind the host BVH is
+// "isect"; "bvh" is the reference tracer's structure, no hardware path.
+TEST(DriverJob, HardwarePathsAreNamedByTheirUnits) {
+  EXPECT_EQ(hardwarePathNames(), (std::vector<std::string>{"isect", "grid", "octree"}));
+  EXPECT_EQ(parseHardwarePath("isect"), fx::UnitKind::Isect);
+  EXPECT_EQ(toString(fx::UnitKind::Isect), "isect");
+  try {
+    parseHardwarePath("bvh");
+    ADD_FAILURE() << "bvh should name no hardware path";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "no hardware path for --accel bvh (available: isect, grid, octree)");
+  }
 }
 
 }  // namespace
