@@ -13,6 +13,7 @@
 #include "cli/options.h"
 #include "common/error.h"
 #include "common/progress.h"
+#include "driver/job.h"
 #include "golden/formats.h"
 #include "stress/stress.h"
 #include "sweep/process.h"
@@ -179,7 +180,9 @@ void addStressCommand(CLI::App& app) {
   cmd->add_option("--cases", a->options.cases,
                   fmt::format("Cases (default all: {})", fmt::join(stress::caseNames(), ", ")))
       ->delimiter(',');
-  cmd->add_option("--units", a->options.units, "Hardware paths: isect, grid, octree (default all)")->delimiter(',');
+  cmd->add_option("--units", a->options.units,
+                  fmt::format("Hardware paths: {} (default all)", fmt::join(hardwarePathNames(), ", ")))
+      ->delimiter(',');
   cmd->add_option("--models", a->options.models, "Models (default every model of each path)")->delimiter(',');
   cmd->add_option("--rays", a->options.rays, "Rays per case")->capture_default_str();
   cmd->add_option("--seed", a->options.seed, "Seed of the generated scenes and rays")->capture_default_str();

@@ -129,14 +129,15 @@ TEST(DriverTraversalJob, ImpossibleConfigurationsAreInputErrors) {
 // --accel names each path by its unit: the pipeline behind the host BVH is
 // "isect"; "bvh" is the reference tracer's structure, no hardware path.
 TEST(DriverJob, HardwarePathsAreNamedByTheirUnits) {
-  EXPECT_EQ(hardwarePathNames(), (std::vector<std::string>{"isect", "grid", "octree"}));
+  EXPECT_EQ(hardwarePathNames(), (std::vector<std::string>{"isect", "grid", "octree", "bvh"}));
   EXPECT_EQ(parseHardwarePath("isect"), fx::UnitKind::Isect);
+  EXPECT_EQ(parseHardwarePath("bvh"), fx::UnitKind::Bvh);
   EXPECT_EQ(toString(fx::UnitKind::Isect), "isect");
   try {
-    parseHardwarePath("bvh");
-    ADD_FAILURE() << "bvh should name no hardware path";
+    parseHardwarePath("kdtree");
+    ADD_FAILURE() << "kdtree should name no hardware path";
   } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "no hardware path for --accel bvh (available: isect, grid, octree)");
+    EXPECT_STREQ(e.what(), "no hardware path for --accel kdtree (available: isect, grid, octree, bvh)");
   }
 }
 
