@@ -7,12 +7,13 @@
 #include <type_traits>
 #include <vector>
 
+#include "golden/bvh_unit.h"
 #include "golden/grid_unit.h"
 #include "golden/octree_unit.h"
 
 namespace lancer::fx {
 
-using TraversalUnits = std::tuple<GridUnit, OctreeUnit>;
+using TraversalUnits = std::tuple<GridUnit, OctreeUnit, BvhUnit>;
 
 // Calls fn(U{}) for each descriptor U, in TraversalUnits order.
 template <class Fn>
