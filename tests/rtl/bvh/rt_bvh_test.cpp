@@ -221,6 +221,32 @@ TEST(RtBvh, WritesAnFstWaveformWhenAsked) {
   expectSameTraces(c.image, rays, o);
 }
 
+// Figures, not a check: the BVH unit and the octree unit on the same bunny
+// camera rays, 32 slots, memory latency 20, no jitter or stalls (the defaults
+// of TraversalRunOptions). Run with
+//   build/tests/rtl/rtl_bvh_tests --gtest_also_run_disabled_tests --gtest_filter='*AgainstTheOctree*'
+// LANCER_BVH_SWEEP_SIZE sets the image side (default 256).
+TEST(RtBvh, DISABLED_AgainstTheOctree) {
+  const int side = sweepSide("LANCER_BVH_SWEEP_SIZE");
+  const test::QuantizedScene q = test::quantizedCamera(bunny(), side, side);
+  const BvhImage bvh = defaultImage(q.triangles);
+  const fx::OctreeImage octree =
+      fx::buildOctreeImage(q.triangles, fx::defaultOctreeDepth(q.triangles.size()), fx::kDefaultOctreeLeafSize);
+  fmt::print("bunny {} tris, {} camera rays ({}x{}); bvh depth {}, leaf {}, {} interior nodes; octree depth {}\n",
+             q.triangles.size(), q.rays.size(), side, side, bvh.depth, bvh.leafSize, bvh.nodes.size(), octree.depth);
+  const auto show = [&](const char* unit, const TraversalRunStats& s) {
+    const double c = double(s.cycles);
+    fmt::print("{:<7} cycles {:>9}  steps {:>8} ({:.2f}/ray)  node reads {:>8} ({:.2f}/ray)  tests {:>8} ({:.2f}/ray)"
+               "  isect busy {:.1f}%\n",
+               unit, s.cycles, s.steps, double(s.steps) / double(s.rays), s.nodeReads,
+               double(s.nodeReads) / double(s.rays), s.isectTests, double(s.isectTests) / double(s.rays),
+               100.0 * double(s.isectBusyCycles) / c);
+  };
+  std::vector<fx::TraversalTrace> traces;
+  show("bvh", expectSameTraces(bvh, q.rays, TraversalRunOptions{}));
+  show("octree", makeTraversalDevice<fx::OctreeUnit>("rtl")->run(octree, q.rays, traces, TraversalRunOptions{}));
+}
+
 // Performance sweep, not a check. Run with
 //   build/tests/rtl/rtl_bvh_tests --gtest_also_run_disabled_tests --gtest_filter='*Sweep*'
 // LANCER_BVH_SWEEP_SIZE sets the image side (default 256).
