@@ -110,6 +110,7 @@ class TraversalDevice {
 
 using GridDevice = TraversalDevice<fx::GridImage>;
 using OctreeDevice = TraversalDevice<fx::OctreeImage>;
+using BvhDevice = TraversalDevice<fx::BvhImage>;
 
 // The golden models: each unit's walk (its descriptor's traverse()), no
 // timing. Memory reads are what the hardware would issue (the descriptor's
@@ -142,5 +143,6 @@ class GoldenTraversalDevice final : public TraversalDevice<Image> {
 
 using GoldenGridDevice = GoldenTraversalDevice<fx::GridImage>;
 using GoldenOctreeDevice = GoldenTraversalDevice<fx::OctreeImage>;
+using GoldenBvhDevice = GoldenTraversalDevice<fx::BvhImage>;
 
 }  // namespace lancer

@@ -46,8 +46,8 @@ struct BvhUnit {
 
   static const std::vector<Node>& nodes(const Image& image) { return image.nodes; }
   // In kBvhNodeFields order, arrays element 0 first (element 3c + a for the planes).
-  static std::array<u128, 22> nodeValues(const Node& node) {
-    std::array<u128, 22> v{};
+  static std::array<u128, valueCount(kBvhNodeFields)> nodeValues(const Node& node) {
+    std::array<u128, valueCount(kBvhNodeFields)> v{};
     size_t k = 0;
     for (int a = 0; a < 3; ++a) v[k++] = u128(node.base[a]);
     for (int a = 0; a < 3; ++a) v[k++] = u128(node.shift[a]);

@@ -6,11 +6,13 @@
 
 #include "driver/systemc_traversal_device.h"
 #include "driver/verilator_traversal_device.h"
+#include "bvh/rt_bvh_unit.h"
 #include "grid/rt_grid_unit.h"
 #include "octree/rt_octree_unit.h"
 
 class Vrt_grid;
 class Vrt_octree;
+class Vrt_bvh;
 
 namespace lancer {
 
@@ -26,5 +28,10 @@ using VerilatorGridDevice = VerilatorTraversalDevice<Vrt_grid, fx::GridImage>;
 using SystemCOctreeDevice = SystemCTraversalDevice<fx::OctreeImage, sc::rt_octree_unit>;
 // rt_octree with its rt_isect: a node request at `first` returns the child group first .. first+7.
 using VerilatorOctreeDevice = VerilatorTraversalDevice<Vrt_octree, fx::OctreeImage>;
+
+// "systemc" (rt_bvh_model) and "rtl-systemc" (Vrt_bvh_sc); no mixed implementation.
+using SystemCBvhDevice = SystemCTraversalDevice<fx::BvhImage, sc::rt_bvh_unit>;
+// rt_bvh with its rt_isect: a node request at `addr` returns node addr (both children's boxes).
+using VerilatorBvhDevice = VerilatorTraversalDevice<Vrt_bvh, fx::BvhImage>;
 
 }  // namespace lancer

@@ -1,0 +1,388 @@
+// rt_bvh_slots: the ray slots of rt_bvh — per-slot state machines, the current
+// candidate node {ref, entry}, the stacks and the pop lane — updated by the
+// unit's events, each addressed to one slot by index (docs/bvh-unit.md, "Slot
+// state machine").
+//
+//   FREE -alloc-> SETUP -init-> ENTER (the root, entry 0)
+//   ENTER -visit grant-> NODE_REQ (interior) | FETCH (leaf, count > 0) | POP (empty leaf)
+//   NODE_REQ -node grant-> WAIT_NODE -node response (into rt_bvh_box)-> BOX
+//   BOX -the box answer-> candidate(near) [push far] | candidate(the one) | POP (none)
+//   FETCH: one index read per index grant; once every result is in
+//          -> DONE (an any-hit ray with a hit) | POP
+//   POP -pop-lane grant, acting in the next cycle-> candidate(popped) | DONE (stack empty)
+//   candidate(x): CHECK if the slot is bound and x's entry != 0, else ENTER
+//   CHECK -the exit test's answer-> POP (culled: the bound lies before the node) | ENTER
+//   DONE -done grant-> FREE
+//
+// Which slots act in a cycle. The box answer (one per cycle: one node response
+// a cycle) names one slot. FETCH ends the cycle after the result that
+// completes the leaf (one per cycle): the registered result slot. The pop
+// lane is one round-robin arbiter over the slots in POP whose grant is
+// registered: the granted slot pops in the next cycle (and is left out of the
+// arbitration meanwhile). The exit test's answer names one slot.
+//
+// Storage: one-hot state vectors (N bits each, reset); per-slot registers as
+// arrays written by index (no reset; written before read). The stacks of all
+// slots are one memory of N x BVH_STACK_DEPTH entries {ref, entry}: one write
+// port (the box answer's push), one read port (the pop lane).
+//
+// Latency: every transition takes one clock edge. Throughput: per cycle one
+// allocation, one init, one visit, one node grant, one node response, one box
+// answer, one index grant, one result, one end of FETCH, one pop, one exit
+// test, one result record.
+module rt_bvh_slots #(
+  parameter int unsigned N     = 32,                       // ray slots
+  parameter int unsigned SlotW = (N > 1) ? $clog2(N) : 1   // derived
+) (
+  input  logic                                   clk_i,
+  input  logic                                   rst_ni,
+
+  // Allocation and per-ray setup.
+  output logic [N-1:0]                           free_o,
+  input  logic                                   alloc_i,
+  input  logic [SlotW-1:0]                       alloc_slot_i,
+  input  logic                                   init_i,
+  input  logic [SlotW-1:0]                       init_slot_i,
+  input  logic [rt_pkg::BVH_REF_W-1:0]           init_root_i,    // cfg_root_i as plain bits
+  input  logic                                   init_any_hit_i,
+  input  logic [2:0]                             init_mirror_i,
+  input  logic [2:0]                             init_active_i,
+  input  logic [3*(rt_pkg::POS_W+1)-1:0]         init_origin_i,
+  input  logic [3*2*(rt_pkg::DIR_W-1)-1:0]       init_pair_i,
+
+  // Visits: a granted slot enters its current node.
+  output logic [N-1:0]                           want_visit_o,
+  input  logic                                   visit_go_i,
+  input  logic [SlotW-1:0]                       visit_slot_i,
+  output logic [31:0]                            visit_node_id_o,  // of visit_slot_i
+  output logic                                   visit_leaf_o,
+  output logic [rt_pkg::BVH_COUNT_W-1:0]         visit_count_o,
+
+  // Node reads, and the responses into the box tester.
+  output logic [N-1:0]                           want_node_o,
+  input  logic                                   node_go_i,
+  input  logic [SlotW-1:0]                       node_slot_i,
+  output logic [rt_pkg::MEM_ADDR_W-1:0]          node_addr_o,      // of node_slot_i
+  output logic [N-1:0]                           waiting_node_o,
+  input  logic                                   node_rsp_valid_i,
+  input  logic [SlotW-1:0]                       node_rsp_slot_i,
+  output logic [3*(rt_pkg::POS_W+1)-1:0]         box_origin_o,     // node_rsp_slot_i's ray
+  output logic [2:0]                             box_mirror_o,
+  output logic [2:0]                             box_active_o,
+  output logic [3*2*(rt_pkg::DIR_W-1)-1:0]       box_pair_o,
+
+  // The box tester's answer.
+  input  logic                                   box_valid_i,
+  input  logic [SlotW-1:0]                       box_slot_i,
+  input  logic [1:0]                             box_hit_i,
+  input  logic [2*rt_pkg::BVH_ENTRY_W-1:0]       box_entry_i,
+  input  logic                                   box_near_i,
+  input  logic [2*rt_pkg::BVH_REF_W-1:0]         box_child_i,
+
+  // Index reads of the current leaf, and its intersection results.
+  output logic [N-1:0]                           want_idx_o,
+  input  logic                                   idx_go_i,
+  input  logic [SlotW-1:0]                       idx_slot_i,
+  output logic [rt_pkg::MEM_ADDR_W-1:0]          idx_addr_o,       // first + issued of idx_slot_i
+  output logic [N-1:0]                           fetching_o,
+  input  logic                                   res_valid_i,
+  input  logic [SlotW-1:0]                       res_slot_i,
+  input  logic                                   res_hit_i,
+
+  // Exit tests of candidates (the cull rule, fx::culledBy).
+  input  logic [N-1:0]                           bound_i,          // a closest hit so far, or a segment end
+  output logic [N-1:0]                           want_check_o,
+  input  logic [SlotW-1:0]                       check_sel_i,
+  output logic [rt_pkg::BVH_ENTRY_W-1:0]         check_exit_o,     // entry - 1 of check_sel_i's candidate
+  input  logic                                   check_go_i,       // the answer for check_slot_i
+  input  logic [SlotW-1:0]                       check_slot_i,
+  input  logic                                   check_holds_i,
+
+  // Results.
+  output logic [N-1:0]                           want_done_o,
+  input  logic                                   done_go_i,
+  input  logic [SlotW-1:0]                       done_slot_i
+);
+
+  localparam int P       = rt_pkg::POS_W;
+  localparam int ORG_W   = P + 1;
+  localparam int PAIR_W  = 2 * (rt_pkg::DIR_W - 1);
+  localparam int ADDR_W  = rt_pkg::MEM_ADDR_W;
+  localparam int REF_W   = rt_pkg::BVH_REF_W;
+  localparam int ENTRY_W = rt_pkg::BVH_ENTRY_W;
+  localparam int COUNT_W = rt_pkg::BVH_COUNT_W;
+  localparam int STACK   = rt_pkg::BVH_STACK_DEPTH;
+  localparam int SP_W    = $clog2(STACK + 1);                    // 0 .. STACK
+  localparam int STK_W   = (STACK > 1) ? $clog2(STACK) : 1;
+  localparam int STK_AW  = $clog2(N * STACK);                    // stack memory address
+  localparam int CAND_W  = REF_W + ENTRY_W;                      // {ref, entry}
+
+  // bvh_ref_t as plain bits, read into a local struct (Yosys 0.23 reads a
+  // package type only outside a struct).
+  typedef struct packed {
+    logic               leaf;
+    logic [COUNT_W-1:0] count;
+    logic [31:0]        first;
+  } ref_t;
+
+  // Where slot s keeps its stack entry k.
+  function automatic logic [STK_AW-1:0] stack_addr(input logic [SlotW-1:0] s, input logic [STK_W-1:0] k);
+    stack_addr = STK_AW'(s) * STK_AW'(STACK) + STK_AW'(k);
+  endfunction
+
+  function automatic logic [N-1:0] onehot(input logic valid, input logic [SlotW-1:0] s);
+    onehot = valid ? (N'(1) << s) : '0;
+  endfunction
+
+  // ---- State vectors (bit s = slot s) -------------------------------------------
+  logic [N-1:0] free_q, setup_q, enter_q, node_req_q, wait_node_q, box_q, fetch_q, pop_q, check_q, done_q;
+  logic [N-1:0] iss_q;       // FETCH with index reads left to issue
+  logic [N-1:0] any_hit_q;   // the ray is an any-hit ray
+  logic [N-1:0] hit_seen_q;  // a result of the ray was a hit
+  logic         fin_q;       // a slot's last result came in the previous cycle: fin_slot_q
+  logic [SlotW-1:0] fin_slot_q;
+
+  // ---- Per-slot registers -------------------------------------------------------------
+  logic [2:0]             mirror_q [N];
+  logic [2:0]             active_q [N];
+  logic [3*ORG_W-1:0]     org_q    [N];   // o' {z, y, x}
+  logic [3*PAIR_W-1:0]    pair_q   [N];
+  logic [REF_W-1:0]       cur_ref_q   [N];  // the candidate: its reference and entry
+  logic [ENTRY_W-1:0]     cur_entry_q [N];
+  logic [SP_W-1:0]        sp_q     [N];
+  logic [CAND_W-1:0]      stack_q  [N * STACK];
+
+  // ---- Events ----------------------------------------------------------------------------
+  logic [N-1:0] alloc_oh, init_oh, visit_oh, node_oh, rsp_oh, box_oh, check_oh, done_oh, fin_oh, pop_oh;
+  assign alloc_oh = onehot(alloc_i, alloc_slot_i);
+  assign init_oh  = onehot(init_i, init_slot_i);
+  assign visit_oh = onehot(visit_go_i, visit_slot_i);
+  assign node_oh  = onehot(node_go_i, node_slot_i);
+  assign rsp_oh   = onehot(node_rsp_valid_i, node_rsp_slot_i);
+  assign box_oh   = onehot(box_valid_i, box_slot_i);
+  assign check_oh = onehot(check_go_i, check_slot_i);
+  assign done_oh  = onehot(done_go_i, done_slot_i);
+  assign fin_oh   = onehot(fin_q, fin_slot_q);
+
+  // The visited node's reference decides where the slot goes.
+  ref_t             visit_ref;
+  logic             visit_empty;
+  assign visit_ref   = cur_ref_q[visit_slot_i];
+  assign visit_empty = visit_ref.count == '0;
+
+  // ---- The pop lane ----------------------------------------------------------------------
+  // A round robin over the slots in POP, its grant registered: the granted slot
+  // pops in the next cycle, out of the arbitration meanwhile.
+  logic             pop_arb_go, pop_go_q;
+  logic [SlotW-1:0] pop_arb_slot, pop_slot_q;
+  logic [N-1:0]     unused_pop_gnt;
+
+  rt_rr_arb #(.N(N)) u_pop_arb (
+    .clk_i, .rst_ni, .req_i(pop_q & ~onehot(pop_go_q, pop_slot_q)), .ack_i(pop_arb_go),
+    .valid_o(pop_arb_go), .gnt_o(unused_pop_gnt), .idx_o(pop_arb_slot));
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      pop_go_q <= 1'b0;
+    end else begin
+      pop_go_q <= pop_arb_go;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (pop_arb_go) pop_slot_q <= pop_arb_slot;
+  end
+  assign pop_oh = onehot(pop_go_q, pop_slot_q);
+
+  // The pop: the top of the stack becomes the candidate, or DONE when it is empty.
+  logic [SP_W-1:0]   pop_sp;
+  logic              pop_empty;
+  logic [CAND_W-1:0] pop_top;
+  assign pop_sp    = sp_q[pop_slot_q];
+  assign pop_empty = pop_sp == '0;
+  assign pop_top   = stack_q[stack_addr(pop_slot_q, STK_W'(pop_sp - 1'b1))];
+
+  // ---- The box answer --------------------------------------------------------------------
+  // Both children entered: the nearer (child 0 on a tie) is the candidate, the
+  // farther is pushed; one: it is the candidate; none: POP.
+  logic              box_both, box_none, box_pick;   // box_pick: the candidate is child 1
+  logic [REF_W-1:0]  box_ref [2];
+  logic [ENTRY_W-1:0] box_entry [2];
+  assign box_ref[0]   = box_child_i[0 +: REF_W];
+  assign box_ref[1]   = box_child_i[REF_W +: REF_W];
+  assign box_entry[0] = box_entry_i[0 +: ENTRY_W];
+  assign box_entry[1] = box_entry_i[ENTRY_W +: ENTRY_W];
+  assign box_both     = box_hit_i == 2'b11;
+  assign box_none     = box_hit_i == 2'b00;
+  assign box_pick     = box_both ? box_near_i : box_hit_i[1];
+
+  // The new candidates' next states (the candidate rule): CHECK if the slot is
+  // bound and the entry is not 0, else ENTER.
+  logic box_check, pop_check;
+  assign box_check = bound_i[box_slot_i] && box_entry[box_pick] != '0;
+  assign pop_check = bound_i[pop_slot_q] && pop_top[ENTRY_W-1:0] != '0;
+
+  // ---- The leaf's index reads and results, counted from the visit ----------------------
+  logic [31:0] idx_issued;
+  logic        idx_last, res_last;
+  rt_idx_count #(.N(N), .Starts(1), .SlotW(SlotW)) u_idx_count (
+    .clk_i,
+    .rst_ni,
+    .start_i       (visit_go_i),
+    .start_slot_i  (visit_slot_i),
+    .start_count_i (visit_ref.leaf ? 32'(visit_ref.count) : 32'd0),
+    .idx_go_i,
+    .idx_slot_i,
+    .idx_issued_o  (idx_issued),
+    .idx_last_o    (idx_last),
+    .res_valid_i,
+    .res_slot_i,
+    .res_last_o    (res_last)
+  );
+
+  // ---- State (reset) ---------------------------------------------------------------------
+  // Each vector loses the slots whose event leaves its state and gains those
+  // whose event enters it.
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_state
+    if (!rst_ni) begin
+      free_q      <= '1;
+      setup_q     <= '0;
+      enter_q     <= '0;
+      node_req_q  <= '0;
+      wait_node_q <= '0;
+      box_q       <= '0;
+      fetch_q     <= '0;
+      pop_q       <= '0;
+      check_q     <= '0;
+      done_q      <= '0;
+      iss_q       <= '0;
+      hit_seen_q  <= '0;
+      fin_q       <= 1'b0;
+      fin_slot_q  <= '0;
+    end else begin : b_next
+      logic [N-1:0] visit_node, visit_fetch, visit_pop, box_to_check, box_to_enter, box_to_pop;
+      logic [N-1:0] pop_to_done, pop_to_check, pop_to_enter, fin_to_done;
+      logic         fin_done;
+      visit_node   = visit_oh & {N{!visit_ref.leaf}};
+      visit_fetch  = visit_oh & {N{visit_ref.leaf && !visit_empty}};
+      visit_pop    = visit_oh & {N{visit_ref.leaf && visit_empty}};
+      box_to_pop   = box_oh & {N{box_none}};
+      box_to_check = box_oh & {N{!box_none && box_check}};
+      box_to_enter = box_oh & {N{!box_none && !box_check}};
+      pop_to_done  = pop_oh & {N{pop_empty}};
+      pop_to_check = pop_oh & {N{!pop_empty && pop_check}};
+      pop_to_enter = pop_oh & {N{!pop_empty && !pop_check}};
+      fin_done     = any_hit_q[fin_slot_q] && hit_seen_q[fin_slot_q];
+      fin_to_done  = fin_oh & {N{fin_done}};
+      free_q      <= (free_q & ~alloc_oh) | done_oh;
+      setup_q     <= (setup_q & ~init_oh) | alloc_oh;
+      enter_q     <= (enter_q & ~visit_oh) | init_oh | box_to_enter | pop_to_enter
+                     | (check_oh & {N{!check_holds_i}});
+      node_req_q  <= (node_req_q & ~node_oh) | visit_node;
+      wait_node_q <= (wait_node_q & ~rsp_oh) | node_oh;
+      box_q       <= (box_q & ~box_oh) | rsp_oh;
+      fetch_q     <= (fetch_q & ~fin_oh) | visit_fetch;
+      pop_q       <= (pop_q & ~pop_oh) | visit_pop | box_to_pop | (fin_oh & ~fin_to_done)
+                     | (check_oh & {N{check_holds_i}});
+      check_q     <= (check_q & ~check_oh) | box_to_check | pop_to_check;
+      done_q      <= (done_q & ~done_oh) | pop_to_done | fin_to_done;
+      iss_q       <= (iss_q & ~onehot(idx_last, idx_slot_i)) | visit_fetch;
+      hit_seen_q  <= (hit_seen_q & ~init_oh) | onehot(res_valid_i && res_hit_i, res_slot_i);
+      // The result that completes the leaf: FETCH ends in the next cycle.
+      fin_q       <= res_last;
+      fin_slot_q  <= res_slot_i;
+    end
+  end
+
+  // ---- Per-slot registers (no reset: written before read) ------------------------------
+  // The candidate and the stack pointer: init, the box answer, the pop (their
+  // slots differ: SETUP, BOX and POP).
+  always_ff @(posedge clk_i) begin : p_walk
+    if (box_valid_i && !box_none) begin
+      cur_ref_q[box_slot_i]   <= box_ref[box_pick];
+      cur_entry_q[box_slot_i] <= box_entry[box_pick];
+      if (box_both) sp_q[box_slot_i] <= sp_q[box_slot_i] + 1'b1;
+    end
+    if (pop_go_q && !pop_empty) begin
+      cur_ref_q[pop_slot_q]   <= pop_top[ENTRY_W +: REF_W];
+      cur_entry_q[pop_slot_q] <= pop_top[ENTRY_W-1:0];
+      sp_q[pop_slot_q]        <= pop_sp - 1'b1;
+    end
+    if (init_i) begin
+      cur_ref_q[init_slot_i]   <= init_root_i;
+      cur_entry_q[init_slot_i] <= '0;
+      sp_q[init_slot_i]        <= '0;
+    end
+  end
+
+  // The stack: the box answer pushes the farther child.
+  always_ff @(posedge clk_i) begin : p_stack
+    if (box_valid_i && box_both) begin
+      stack_q[stack_addr(box_slot_i, STK_W'(sp_q[box_slot_i]))] <= {box_ref[!box_pick], box_entry[!box_pick]};
+    end
+  end
+
+  // The ray's setup.
+  always_ff @(posedge clk_i) begin : p_ray
+    if (init_i) begin
+      mirror_q[init_slot_i] <= init_mirror_i;
+      active_q[init_slot_i] <= init_active_i;
+      org_q[init_slot_i]    <= init_origin_i;
+      pair_q[init_slot_i]   <= init_pair_i;
+    end
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      any_hit_q <= '0;
+    end else if (init_i) begin
+      any_hit_q[init_slot_i] <= init_any_hit_i;
+    end
+  end
+
+  // ---- Outputs ----------------------------------------------------------------------------
+  // (Whole references read by index: the address takes their first field.)
+  ref_t             node_ref, idx_ref;
+  logic [REF_W-1-32:0] unused_node_ref, unused_idx_ref;
+  assign node_ref        = cur_ref_q[node_slot_i];
+  assign idx_ref         = cur_ref_q[idx_slot_i];
+  assign unused_node_ref = {node_ref.leaf, node_ref.count};
+  assign unused_idx_ref  = {idx_ref.leaf, idx_ref.count};
+  assign visit_node_id_o = visit_ref.first | {visit_ref.leaf, 31'd0};
+  assign visit_leaf_o    = visit_ref.leaf;
+  assign visit_count_o   = visit_ref.count;
+  assign node_addr_o     = ADDR_W'(node_ref.first);
+  assign idx_addr_o      = ADDR_W'(idx_ref.first + idx_issued);
+  assign check_exit_o    = cur_entry_q[check_sel_i] - 1'b1;
+  assign box_origin_o    = org_q[node_rsp_slot_i];
+  assign box_mirror_o    = mirror_q[node_rsp_slot_i];
+  assign box_active_o    = active_q[node_rsp_slot_i];
+  assign box_pair_o      = pair_q[node_rsp_slot_i];
+
+  assign free_o         = free_q;
+  assign want_visit_o   = enter_q;
+  assign want_node_o    = node_req_q;
+  assign want_idx_o     = iss_q;
+  assign want_check_o   = check_q;
+  assign want_done_o    = done_q;
+  assign fetching_o     = fetch_q;
+  assign waiting_node_o = wait_node_q;
+
+`ifdef RT_ASSERT_ON
+`include "rt_assert.svh"
+  // Events meet slots in the states that expect them.
+  `RT_CHECK_IF(a_alloc_free, alloc_i, free_q[alloc_slot_i])
+  `RT_CHECK_IF(a_init_setup, init_i, setup_q[init_slot_i])
+  `RT_CHECK_IF(a_visit_enter, visit_go_i, enter_q[visit_slot_i])
+  `RT_CHECK_IF(a_node_req, node_go_i, node_req_q[node_slot_i])
+  `RT_CHECK_IF(a_box_slot, box_valid_i, box_q[box_slot_i])
+  `RT_CHECK_IF(a_idx_fetch, idx_go_i, iss_q[idx_slot_i])
+  `RT_CHECK_IF(a_res_fetch, res_valid_i, fetch_q[res_slot_i])
+  `RT_CHECK_IF(a_pop_slot, pop_go_q, pop_q[pop_slot_q])
+  `RT_CHECK_IF(a_check_wants, check_go_i, check_q[check_slot_i] && bound_i[check_slot_i])
+  // A candidate tested is bound (it asked in CHECK; bounds never go away).
+  `RT_CHECK(a_check_bound, (check_q & ~bound_i) == '0)
+  // The stack never overflows: a push happens below the levels limit
+  // (kBvhMaxLevels; checkImage refuses deeper images).
+  `RT_CHECK_IF(a_stack_depth, box_valid_i && box_both, sp_q[box_slot_i] < SP_W'(STACK))
+`endif
+
+endmodule

@@ -1,0 +1,5 @@
+# rt_bvh's build (read by lancer_rtl_traversal_unit, rtl/CMakeLists.txt):
+# its sources in compile order after the package and the shell.
+set(unit_sources rt_bvh_setup.sv rt_bvh_box.sv rt_bvh_slots.sv rt_bvh.sv)
+set(unit_params)
+set(unit_definitions)

@@ -1,0 +1,264 @@
+#include "bvh/rt_bvh_model.h"
+
+#include <array>
+
+#include <fmt/format.h>
+
+#include "common/rt_record_bits.h"
+
+namespace lancer::sc {
+
+using namespace bvh;
+
+namespace {
+
+constexpr size_t kNodeWords = size_t(fx::wireWords(NODE_W));
+constexpr size_t kRefWords = size_t(fx::wireWords(fx::kBvhRefBits));
+static_assert(fx::valueCount(fx::kBvhNodeFields) == 24, "bvh_node_t layout changed");
+static_assert(fx::valueCount(fx::kBvhRefFields) == 3, "bvh_ref_t layout changed");
+
+// bvh_node_t from its wire image: values in kBvhNodeFields order, arrays element 0 first.
+fx::BvhNode unpackNode(const uint32_t* wire) {
+  fx::BvhNode n;
+  const auto f = [&]<size_t I>() { return getField<fx::kBvhNodeFields, I>(wire); };
+  [&]<size_t... A>(std::index_sequence<A...>) {
+    ((n.base[A] = f.template operator()<A>()), ...);
+    ((n.shift[A] = int(f.template operator()<3 + A>())), ...);
+    ((n.lo[0][A] = uint32_t(f.template operator()<6 + A>())), ...);
+    ((n.lo[1][A] = uint32_t(f.template operator()<9 + A>())), ...);
+    ((n.hi[0][A] = uint32_t(f.template operator()<12 + A>())), ...);
+    ((n.hi[1][A] = uint32_t(f.template operator()<15 + A>())), ...);
+  }(std::make_index_sequence<3>{});
+  [&]<size_t... C>(std::index_sequence<C...>) {
+    ((n.child[C] = fx::BvhRef{f.template operator()<18 + C>() != 0, uint32_t(f.template operator()<20 + C>()),
+                              uint32_t(f.template operator()<22 + C>())}),
+     ...);
+  }(std::make_index_sequence<2>{});
+  return n;
+}
+
+fx::BvhRef unpackRef(const uint32_t* wire) {  // {leaf, count, first}
+  return fx::BvhRef{getField<fx::kBvhRefFields, 0>(wire) != 0, uint32_t(getField<fx::kBvhRefFields, 1>(wire)),
+                    uint32_t(getField<fx::kBvhRefFields, 2>(wire))};
+}
+
+}  // namespace
+
+rt_bvh_model::rt_bvh_model(sc_core::sc_module_name name) : rt_trav_shell_model(name, rt_isect_impl::model) {
+  SC_METHOD(seq);
+  sensitive << clk_i.pos() << rst_ni.neg();
+  dont_initialize();
+}
+
+// One cycle: the shell's grants and responses, then the walk's events — at
+// most one state-changing event per slot, each reading that slot's registers
+// as they were at the start of the cycle —, then the shell's registers and outputs.
+void rt_bvh_model::seq() {
+  if (!rst_ni.read()) return reset();
+  const rt_trav_grants g = grant(wants());
+  const int popping = popGranted_;  // granted in the previous cycle: it pops now
+  popGranted_ = grantPop(popping);
+  const slot_mask finishing = fin_;
+  const BoxAnswer answer = boxLine_.out();
+  boxLine_.push(testNode());
+  const rt_isect_result res = intersect(fetch_);
+
+  if (g.visit >= 0) visit(g.visit);
+  if (g.node >= 0) requestNode(g.node);
+  if (res.valid) absorbResult(res);
+  if (g.idx >= 0) issueIndex(g.idx);
+  if (g.check >= 0) check(g.check);
+  if (answer.valid) takeBoxAnswer(answer);
+  if (popping >= 0) pop(popping);
+  finishLeaves(finishing);
+  if (g.done >= 0) finish(g.done);
+  if (loadSlot() >= 0) load(loadSlot());
+  if (g.alloc >= 0) setState(g.alloc, State::Setup);
+
+  endCycle(g, free_, enter_.any());
+}
+
+void rt_bvh_model::reset() {
+  for (Slot& s : slots_) s.state = State::Free;
+  for (slot_mask* m : {&free_, &enter_, &nodeWant_, &idxWant_, &checkWant_, &pop_, &done_, &fetch_, &fin_}) m->clear();
+  for (int k = 0; k < N; ++k) free_.set(k);
+  popArb_ = rt_rr_arb_model<N>{};
+  popGranted_ = -1;
+  boxLine_.fill(BoxAnswer{});
+  resetShell();
+}
+
+// rt_bvh_slots' want vectors: the state masks.
+rt_bvh_model::wants_t rt_bvh_model::wants() const {
+  return wants_t{.free = free_, .node = nodeWant_, .visit = enter_, .idx = idxWant_, .check = checkWant_,
+                 .done = done_, .expect = fetch_};
+}
+
+// The pop lane's grant (registered: the slot pops in the next cycle), over the
+// slots in POP less the one popping now.
+int rt_bvh_model::grantPop(int popping) {
+  slot_mask want = pop_;
+  if (popping >= 0) want.reset(popping);
+  const int k = popArb_.pick(want);
+  if (k >= 0) popArb_.ack(k);
+  return k;
+}
+
+// u_box: the node response of this cycle, both children tested with the
+// responding slot's ray; the answer leaves the delay line BVH_BOX_LATENCY cycles later.
+rt_bvh_model::BoxAnswer rt_bvh_model::testNode() {
+  const node_rsp rsp = nodeResponse();
+  if (!rsp.valid) return {};
+  if (rsp.slot >= N || slots_[size_t(rsp.slot)].state != State::WaitNode) {
+    fail(fmt::format("node response for slot {}, which does not wait for one", rsp.slot));
+  }
+  std::array<uint32_t, kNodeWords> wire{};
+  fromPort<NODE_W>(*rsp.data, wire);
+  const fx::BvhNode node = unpackNode(wire.data());
+  BoxAnswer a;
+  a.valid = true;
+  a.slot = rsp.slot;
+  const fx::BvhRaySetup& ray = slots_[size_t(rsp.slot)].setup;
+  for (int c = 0; c < fx::kBvhWidth; ++c) {
+    a.hit[size_t(c)] = fx::boxTest(ray, node.childLo(c), node.childHi(c));
+    a.child[size_t(c)] = node.child[size_t(c)];
+  }
+  setState(rsp.slot, State::Box);
+  return a;
+}
+
+// ENTER on the visit grant: the visit record, then the node's kind decides.
+void rt_bvh_model::visit(int k) {
+  Slot& s = slots_[size_t(k)];
+  pushVisit(k, s.cur.ref.visitId());
+  ++s.nodes;
+  if (!s.cur.ref.leaf) {
+    setState(k, State::NodeReq);
+  } else if (s.cur.ref.count > 0) {
+    s.tests += s.cur.ref.count;
+    s.issued = s.received = 0;
+    setState(k, State::Fetch);
+  } else {
+    setState(k, State::Pop);
+  }
+}
+
+// NODE_REQ: the interior node's record.
+void rt_bvh_model::requestNode(int k) {
+  pushNode(k, slots_[size_t(k)].cur.ref.first);
+  setState(k, State::WaitNode);
+}
+
+// One rt_isect result (the shell took it into the closest hit); the last one:
+// FETCH ends in the next cycle.
+void rt_bvh_model::absorbResult(const rt_isect_result& res) {
+  Slot& s = slots_[size_t(res.slot)];
+  if (s.received == s.issued) fail(fmt::format("rt_isect result for slot {}, which expects none", res.slot));
+  if (res.res.hit) s.hitSeen = true;
+  if (++s.received == s.cur.ref.count) fin_.set(res.slot);
+}
+
+void rt_bvh_model::issueIndex(int k) {
+  Slot& s = slots_[size_t(k)];
+  pushIdx(k, s.cur.ref.first + s.issued);
+  if (++s.issued == s.cur.ref.count) idxWant_.reset(k);
+}
+
+// The exit test's answer: culled (the bound lies before the candidate) -> POP, else ENTER.
+void rt_bvh_model::check(int k) {
+  const Slot& s = slots_[size_t(k)];
+  const rt_closest_record& h = hit(k);
+  const bool holds = h.settled() || fx::culledBy(h.best, s.cur.entry, s.setup);
+  setState(k, holds ? State::Pop : State::Enter);
+}
+
+// BOX: both children entered -> the nearer is the candidate, the farther
+// pushed; one -> it; none -> POP.
+void rt_bvh_model::takeBoxAnswer(const BoxAnswer& a) {
+  Slot& s = slots_[size_t(a.slot)];
+  const bool both = a.hit[0].hit && a.hit[1].hit;
+  if (!a.hit[0].hit && !a.hit[1].hit) {
+    setState(a.slot, State::Pop);
+    return;
+  }
+  const size_t pick = both ? (a.hit[1].entry < a.hit[0].entry ? 1 : 0) : (a.hit[1].hit ? 1 : 0);
+  if (both) {
+    if (s.sp >= STACK_DEPTH) fail(fmt::format("slot {}: the stack overflows ({} entries)", a.slot, STACK_DEPTH));
+    s.stack[size_t(s.sp++)] = Candidate{a.child[1 - pick], a.hit[1 - pick].entry};
+  }
+  candidate(a.slot, Candidate{a.child[pick], a.hit[pick].entry});
+}
+
+// POP, granted in the previous cycle: the top of the stack, or DONE.
+void rt_bvh_model::pop(int k) {
+  Slot& s = slots_[size_t(k)];
+  if (s.sp == 0) {
+    setState(k, State::Done);
+    return;
+  }
+  candidate(k, s.stack[size_t(--s.sp)]);
+}
+
+// FETCH with every result in (as the cycle began): DONE for an any-hit ray with a hit, else POP.
+void rt_bvh_model::finishLeaves(const slot_mask& finishing) {
+  finishing.forEach([&](int k) {
+    const Slot& s = slots_[size_t(k)];
+    setState(k, s.anyHit && s.hitSeen ? State::Done : State::Pop);
+  });
+}
+
+void rt_bvh_model::finish(int k) {
+  const Slot& s = slots_[size_t(k)];
+  pushResult(k, s.nodes, s.tests);
+  setState(k, State::Free);
+}
+
+// The candidate rule: CHECK if the slot is bound and the entry is not 0, else ENTER.
+void rt_bvh_model::candidate(int k, const Candidate& c) {
+  slots_[size_t(k)].cur = c;
+  setState(k, hit(k).wantsCheck() && c.entry != 0 ? State::Check : State::Enter);
+}
+
+// The state register with the request vectors derived from it.
+void rt_bvh_model::setState(int k, State next) {
+  mark(k, slots_[size_t(k)].state, false);
+  slots_[size_t(k)].state = next;
+  mark(k, next, true);
+}
+
+// The sets a slot in state `st` belongs to, joined or left.
+void rt_bvh_model::mark(int k, State st, bool join) {
+  const Slot& s = slots_[size_t(k)];
+  const auto put = [&](slot_mask& m) { join ? m.set(k) : m.reset(k); };
+  switch (st) {
+    case State::Free: put(free_); break;
+    case State::Enter: put(enter_); break;
+    case State::NodeReq: put(nodeWant_); break;
+    case State::Fetch:
+      put(fetch_);
+      if (!join || s.issued != s.cur.ref.count) put(idxWant_);
+      if (!join) fin_.reset(k);
+      break;
+    case State::Pop: put(pop_); break;
+    case State::Check: put(checkWant_); break;
+    case State::Done: put(done_); break;
+    default: break;
+  }
+}
+
+// SETUP -> ENTER at the end of accept + BVH_SETUP_LATENCY: the per-ray setup, the root with entry 0.
+void rt_bvh_model::load(int k) {
+  Slot& s = slots_[size_t(k)];
+  const fx::QRay ray = loadRay(k);
+  s.setup = fx::BvhRaySetup::setup(ray);
+  s.anyHit = ray.anyHit;
+  s.hitSeen = false;
+  std::array<uint32_t, kRefWords> root{};
+  fromPort<fx::kBvhRefBits>(cfg_root_i.read(), root);
+  s.cur = Candidate{unpackRef(root.data()), 0};
+  s.sp = 0;
+  s.nodes = s.tests = s.issued = s.received = 0;
+  setState(k, State::Enter);
+}
+
+}  // namespace lancer::sc

@@ -1,0 +1,100 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include <systemc>
+
+#include "bvh/rt_bvh_types.h"
+#include "bvh/rt_bvh_unit.h"
+#include "common/rt_trav_shell_model.h"
+#include "golden/bvh.h"
+
+namespace lancer::sc {
+
+// rt_bvh_model: hand-written cycle model of rtl/bvh/rt_bvh.sv, meant to match
+// it cycle for cycle and bit for bit at its ports; docs/bvh-unit.md,
+// "Micro-architecture of rt_bvh", is the contract (slot registers and state
+// machine, the box tester's stages, the pop lane). The shell's work
+// (rt_trav_shell: allocation, arbiters, FIFOs, credits, u_isect, closest hits,
+// exit tests, results) is rt_trav_shell_model's, without RegRsp (node and
+// triangle responses are used in the cycle they arrive); this model holds the
+// walk of rt_bvh_slots.sv, the box tester rt_bvh_box.sv as a delay line of
+// BVH_BOX_LATENCY cycles, and the setup of rt_bvh_setup.sv.
+//
+//   seq()   SC_METHOD on clk_i.posedge (and rst_ni.negedge, the RTL's async
+//           reset): the cycle as an outline of named steps, each deciding from
+//           the registers at the start of the cycle and the inputs.
+//
+// No arithmetic is duplicated: the per-ray setup is fx::BvhRaySetup, the box
+// test fx::boxTest, the cull rule fx::culledBy, the closest-hit order
+// fx::closerResult, the test fx::intersect — the golden model's code,
+// scheduled as the RTL schedules it.
+class rt_bvh_model : public rt_trav_shell_model<rt_bvh_unit, /*RegRsp=*/false> {
+ public:
+  // The unit's configuration port under its RTL name (the node port is the shell's node_*).
+  sc_core::sc_in<cfg_t>& cfg_root_i = cfg_i;
+
+  SC_HAS_PROCESS(rt_bvh_model);
+  explicit rt_bvh_model(sc_core::sc_module_name name);
+
+ private:
+  enum class State : uint8_t { Free, Setup, Enter, NodeReq, WaitNode, Box, Fetch, Pop, Check, Done };
+
+  // A candidate node: its reference and its entry parameter.
+  struct Candidate {
+    fx::BvhRef ref;
+    fx::u128 entry = 0;
+  };
+
+  // One slot's registers (docs/bvh-unit.md, "Slot registers"; the ray and its
+  // closest hit are the shell's).
+  struct Slot {
+    State state = State::Free;
+    fx::BvhRaySetup setup;  // o', mirror, active, pair, C, dominant
+    bool anyHit = false;
+    bool hitSeen = false;   // a result of the ray was a hit
+    Candidate cur;
+    int sp = 0;
+    std::array<Candidate, bvh::STACK_DEPTH> stack{};
+    uint32_t nodes = 0, tests = 0, issued = 0, received = 0;
+  };
+
+  // rt_bvh_box's answer for one node response, BVH_BOX_LATENCY cycles later.
+  struct BoxAnswer {
+    bool valid = false;
+    int slot = -1;
+    std::array<fx::BoxHit, fx::kBvhWidth> hit{};
+    std::array<fx::BvhRef, fx::kBvhWidth> child{};
+  };
+
+  // The steps of a cycle (seq), each named for what it does.
+  void seq();
+  void reset();
+  wants_t wants() const;
+  int grantPop(int popping);
+  BoxAnswer testNode();
+  void visit(int k);
+  void requestNode(int k);
+  void absorbResult(const rt_isect_result& res);
+  void issueIndex(int k);
+  void check(int k);
+  void takeBoxAnswer(const BoxAnswer& a);
+  void pop(int k);
+  void finishLeaves(const slot_mask& finishing);
+  void finish(int k);
+  void load(int k);
+  void candidate(int k, const Candidate& c);
+  void setState(int k, State s);
+  void mark(int k, State st, bool join);
+
+  std::array<Slot, N> slots_{};
+  // Slots by what they wait for: the want vectors, and fin_ (FETCH with every
+  // result in: it ends in the next cycle).
+  slot_mask free_, enter_, nodeWant_, idxWant_, checkWant_, pop_, done_, fetch_, fin_;
+  rt_rr_arb_model<N> popArb_{};
+  int popGranted_ = -1;  // the pop lane's grant of the previous cycle: that slot pops now
+  rt_delay_line<BoxAnswer, size_t(bvh::BOX_LATENCY)> boxLine_;  // u_box
+};
+
+}  // namespace lancer::sc
