@@ -10,16 +10,18 @@
 //            (signed, |plane' - o'| < 2^(P+1)); on an inactive axis whether o'
 //            lies in [lo, hi]
 //   stage 2 (r+1) the twelve products T = (plane' - o') * pair[a]
-//   stage 3 (r+2) per child max T0 and min T1 over the active axes, the hit
-//            (max T0 <= min T1, min T1 > 0, o' inside on every inactive axis),
-//            the entry max(max T0, 0), the order near = (both hit and
-//            entry1 < entry0)
+//   stage 3 (r+2) per child max T0 and min T1 over the active axes (two
+//            levels of comparison each)
+//   stage 4 (r+3) the hit (max T0 <= min T1, min T1 > 0, o' inside on every
+//            inactive axis), the entry max(max T0, 0), the order near = (both
+//            hit and entry1 < entry0); stages 3 and 4 were one until synthesis
+//            put the unit's longest path there (66 gates, issue #25)
 // The answer leaves registers in cycle r + BVH_BOX_LATENCY with the slot and
 // the two child references.
 //
 // Every stage loads only with a node in it (enabled flops).
 //
-// Latency:    BVH_BOX_LATENCY = 3 cycles (valid_i in r, valid_o in r+3).
+// Latency:    BVH_BOX_LATENCY = 4 cycles (valid_i in r, valid_o in r+4).
 // Throughput: one node per cycle.
 module rt_bvh_box #(
   parameter int unsigned SlotW = 5
@@ -131,20 +133,18 @@ module rt_bvh_box #(
     end
   end
 
-  // ---- Stage 3: the intervals, the hits, the entries and the order --------------------
-  logic [1:0]              hit3_q;
-  logic [2*ENTRY_W-1:0]    entry3_q;
-  logic                    near3_q;
+  // ---- Stage 3: the intervals over the active axes --------------------------------------
   logic                    v3_q;
   logic [SlotW-1:0]        slot3_q;
+  logic [2*T_W-1:0]        tmax3_q, tmin3_q;  // child c: max T0, min T1
+  logic [1:0]              any3_q;           // child c: some axis active (the same for both)
+  logic [1:0]              inside3_q;
   logic [2*REF_W-1:0]      child3_q;
 
   always_ff @(posedge clk_i) begin
     if (v2_q) begin : b_stage3
       logic signed [T_W-1:0] t0, t1, tmin, tmax;
       logic                  any;
-      logic [1:0]            hit;
-      logic [ENTRY_W-1:0]    entry [2];
       for (int c = 0; c < 2; c++) begin
         tmin = '0;
         tmax = '0;
@@ -158,14 +158,40 @@ module rt_bvh_box #(
             any = 1'b1;
           end
         end
-        hit[c]   = inside2_q[c] && any && tmax <= tmin && tmin > 0;
+        tmax3_q[c*T_W +: T_W] <= tmax;
+        tmin3_q[c*T_W +: T_W] <= tmin;
+        any3_q[c]             <= any;
+      end
+      slot3_q   <= slot2_q;
+      inside3_q <= inside2_q;
+      child3_q  <= child2_q;
+    end
+  end
+
+  // ---- Stage 4: the hits, the entries and the order ------------------------------------
+  logic [1:0]              hit4_q;
+  logic [2*ENTRY_W-1:0]    entry4_q;
+  logic                    near4_q;
+  logic                    v4_q;
+  logic [SlotW-1:0]        slot4_q;
+  logic [2*REF_W-1:0]      child4_q;
+
+  always_ff @(posedge clk_i) begin
+    if (v3_q) begin : b_stage4
+      logic signed [T_W-1:0] tmin, tmax;
+      logic [1:0]            hit;
+      logic [ENTRY_W-1:0]    entry [2];
+      for (int c = 0; c < 2; c++) begin
+        tmax     = tmax3_q[c*T_W +: T_W];
+        tmin     = tmin3_q[c*T_W +: T_W];
+        hit[c]   = inside3_q[c] && any3_q[c] && tmax <= tmin && tmin > 0;
         entry[c] = tmax > 0 ? ENTRY_W'(tmax) : '0;
       end
-      hit3_q   <= hit;
-      entry3_q <= {entry[1], entry[0]};
-      near3_q  <= hit[0] && hit[1] && entry[1] < entry[0];
-      slot3_q  <= slot2_q;
-      child3_q <= child2_q;
+      hit4_q   <= hit;
+      entry4_q <= {entry[1], entry[0]};
+      near4_q  <= hit[0] && hit[1] && entry[1] < entry[0];
+      slot4_q  <= slot3_q;
+      child4_q <= child3_q;
     end
   end
 
@@ -174,26 +200,28 @@ module rt_bvh_box #(
       v1_q <= 1'b0;
       v2_q <= 1'b0;
       v3_q <= 1'b0;
+      v4_q <= 1'b0;
     end else begin
       v1_q <= valid_i;
       v2_q <= v1_q;
       v3_q <= v2_q;
+      v4_q <= v3_q;
     end
   end
 
-  assign valid_o = v3_q;
-  assign slot_o  = slot3_q;
-  assign hit_o   = hit3_q;
-  assign entry_o = entry3_q;
-  assign near_o  = near3_q;
-  assign child_o = child3_q;
+  assign valid_o = v4_q;
+  assign slot_o  = slot4_q;
+  assign hit_o   = hit4_q;
+  assign entry_o = entry4_q;
+  assign near_o  = near4_q;
+  assign child_o = child4_q;
 
 `ifdef RT_ASSERT_ON
 `include "rt_assert.svh"
   `RT_ASSERT_STATIC(g_node_layout_check, OFF_BASE + 3 * P == rt_pkg::BVH_NODE_W,
                     "rt_bvh_box: bvh_node_t's layout differs from rt_pkg::BVH_NODE_W")
-  `RT_ASSERT_STATIC(g_box_latency_check, rt_pkg::BVH_BOX_LATENCY == 3,
-                    "rt_bvh_box: its three stages differ from rt_pkg::BVH_BOX_LATENCY")
+  `RT_ASSERT_STATIC(g_box_latency_check, rt_pkg::BVH_BOX_LATENCY == 4,
+                    "rt_bvh_box: its four stages differ from rt_pkg::BVH_BOX_LATENCY")
 `endif
 
 endmodule

@@ -81,8 +81,9 @@ static_assert(kMemAddrBits <= 31, "a leaf's visit id sets bit 31 over an index-l
 inline constexpr int kBvhSetupLatency = 3;
 // rt_bvh_box's register stages: a node response in cycle r is answered (both
 // children's hits and entries) to its slot in cycle r + kBvhBoxLatency: the
-// planes less the origin, the twelve products, the intervals and the order.
-inline constexpr int kBvhBoxLatency = 3;
+// planes less the origin, the twelve products, the intervals, the hits and
+// the order.
+inline constexpr int kBvhBoxLatency = 4;
 
 // What rt_pkg holds of the BVH's formats.
 inline constexpr PackageParam kBvhPkgParams[] = {

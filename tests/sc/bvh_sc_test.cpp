@@ -120,9 +120,9 @@ TEST_P(ScBvh, EmptyRunAndInvalidOptions) {
 // One ray through a root whose two children are empty leaves spanning the
 // lattice, from inside both (entries 0: child 0 first, child 1 pushed):
 // accept in 0, ENTER root e = 1 + BVH_SETUP_LATENCY, NODE_REQ e+1, the request
-// e+2, the response e+2+L, the box answer e+5+L, ENTER e+6+L, POP e+7+L (pop
-// grant), the pop e+8+L, ENTER e+9+L, POP e+10+L, the pop e+11+L (DONE),
-// DONE e+12+L, result taken e+13+L: e + 14 + L cycles.
+// e+2, the response e+2+L, the box answer a = e+2+L+BVH_BOX_LATENCY, ENTER a+1,
+// POP a+2 (pop grant), the pop a+3, ENTER a+4, POP a+5, the pop a+6 (DONE),
+// DONE a+7, result taken a+8: e + 11 + BVH_BOX_LATENCY + L cycles.
 TEST_P(ScBvh, OneRayTimingFollowsTheStateMachine) {
   SystemCBvhDevice device(GetParam());
   fx::BvhImage image;
@@ -142,7 +142,7 @@ TEST_P(ScBvh, OneRayTimingFollowsTheStateMachine) {
     std::vector<fx::TraversalTrace> traces;
     const TraversalRunStats s = device.run(image, std::vector<QRay>{QRay{0, {5, 5, 5}, {kDirMax, 3, 7}}}, traces, o);
     ASSERT_EQ(traces.at(0).visits.size(), 3u);
-    EXPECT_EQ(s.cycles, e + 14 + uint64_t(latency)) << "latency " << latency;
+    EXPECT_EQ(s.cycles, e + 11 + uint64_t(fx::kBvhBoxLatency + latency)) << "latency " << latency;
   }
   // An empty root leaf: ENTER e, POP e+1 (grant), the pop e+2 (DONE), DONE
   // e+3, the result taken e+4: e + 5 cycles.

@@ -150,12 +150,13 @@ TEST(RtBvh, TimingOfOneRayThroughTwoEmptyLeaves) {
     const TraversalRunStats s = expectSameTraces(image, rays, o);
     // Accepted in cycle 0, ENTER root in e = 1 + BVH_SETUP_LATENCY, NODE_REQ
     // e + 1, the request on the port e + 2, the response e + 2 + L (into
-    // u_box), the answer e + 5 + L (push child 1), ENTER child 0 in e + 6 + L,
-    // POP e + 7 + L (the pop lane's grant), the pop e + 8 + L, ENTER child 1
-    // e + 9 + L, POP e + 10 + L, the pop e + 11 + L (stack empty: DONE), DONE
-    // e + 12 + L (result FIFO), the result taken in e + 13 + L: e + 14 + L cycles.
+    // u_box), the answer a = e + 2 + L + BVH_BOX_LATENCY (push child 1), ENTER
+    // child 0 in a + 1, POP a + 2 (the pop lane's grant), the pop a + 3, ENTER
+    // child 1 a + 4, POP a + 5, the pop a + 6 (stack empty: DONE), DONE a + 7
+    // (result FIFO), the result taken in a + 8: e + 11 + BVH_BOX_LATENCY + L
+    // cycles (e + 15 + L).
     const int enterRoot = 1 + fx::kBvhSetupLatency;
-    EXPECT_EQ(s.cycles, uint64_t(enterRoot + 14 + latency)) << "latency " << latency;
+    EXPECT_EQ(s.cycles, uint64_t(enterRoot + 11 + fx::kBvhBoxLatency + latency)) << "latency " << latency;
     EXPECT_EQ(s.nodeReads, 1u);
     EXPECT_EQ(s.steps, 3u);
   }
