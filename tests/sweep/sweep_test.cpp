@@ -49,7 +49,7 @@ TEST(Sweep, SpecRejectsUnknownUnitsAndModels) {
   Spec s;
   s.widths = {{8, 8}};
   s.scenes = {"builtin:cornell"};
-  s.units = {"isect", "bvh"};
+  s.units = {"isect", "kdtree"};
   EXPECT_THROW(s.validate(), InputError);
   s.units = {"grid"};
   s.models = {"golden", "verilog"};
