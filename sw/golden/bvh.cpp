@@ -15,24 +15,22 @@ namespace lancer::fx {
 
 namespace {
 
-constexpr int64_t kRootSide = int64_t(1) << kPosBits;
+// Lattice coordinates are below 2^24, so exact floats: the SAH builder's boxes
+// of the triangles' lattice boxes, and their unions, are lattice boxes too.
+static_assert(kPosBits <= 24, "the SAH builder's float boxes must hold lattice coordinates exactly");
 
-LatticeBox boundsOf(const QTriangle& t) {
-  LatticeBox b;
-  for (int a = 0; a < 3; ++a) {
-    b.lo[a] = std::min({t.v[0][a], t.v[1][a], t.v[2][a]});
-    b.hi[a] = std::max({t.v[0][a], t.v[1][a], t.v[2][a]});
-  }
-  return b;
+Aabb toAabb(const LatticeBox& b) {
+  return Aabb{glm::vec3(float(b.lo[0]), float(b.lo[1]), float(b.lo[2])),
+              glm::vec3(float(b.hi[0]), float(b.hi[1]), float(b.hi[2]))};
 }
 
-LatticeBox unite(const LatticeBox& x, const LatticeBox& y) {
-  LatticeBox b;
+LatticeBox toLattice(const Aabb& b) {
+  LatticeBox l;
   for (int a = 0; a < 3; ++a) {
-    b.lo[a] = std::min(x.lo[a], y.lo[a]);
-    b.hi[a] = std::max(x.hi[a], y.hi[a]);
+    l.lo[a] = int64_t(b.lo[a]);
+    l.hi[a] = int64_t(b.hi[a]);
   }
-  return b;
+  return l;
 }
 
 // Turns the SAH tree into the image: interior nodes numbered in depth-first
@@ -40,20 +38,6 @@ LatticeBox unite(const LatticeBox& x, const LatticeBox& y) {
 struct Converter {
   const SahTree& tree;
   BvhImage& image;
-  std::vector<LatticeBox> boxes;  // exact, per SAH node
-
-  LatticeBox exactBox(uint32_t index) {
-    const SahNode& node = tree.nodes[index];
-    LatticeBox box;
-    if (node.leaf) {
-      box = boundsOf(image.triangles[tree.order[node.begin]]);
-      for (uint32_t k = node.begin + 1; k < node.end; ++k) box = unite(box, boundsOf(image.triangles[tree.order[k]]));
-    } else {
-      box = unite(exactBox(index + 1), exactBox(node.right));
-    }
-    boxes[index] = box;
-    return box;
-  }
 
   BvhRef convert(uint32_t index) {
     const SahNode& node = tree.nodes[index];
@@ -61,14 +45,14 @@ struct Converter {
     const uint32_t slot = uint32_t(image.nodes.size());
     image.nodes.emplace_back();
     BvhNode out;
-    const LatticeBox& box = boxes[index];
+    const LatticeBox box = toLattice(node.box);
     for (int a = 0; a < 3; ++a) {
       out.base[a] = box.lo[a];
       out.shift[a] = bvhShiftFor(box.hi[a] - box.lo[a]);
     }
     const std::array<uint32_t, kBvhWidth> children{index + 1, node.right};
     for (int c = 0; c < kBvhWidth; ++c) {
-      const LatticeBox& cb = boxes[children[c]];
+      const LatticeBox cb = toLattice(tree.nodes[children[c]].box);
       for (int a = 0; a < 3; ++a) {
         out.lo[c][a] = bvhPlaneDown(cb.lo[a], out.base[a], out.shift[a]);
         out.hi[c][a] = bvhPlaneUp(cb.hi[a], out.base[a], out.shift[a]);
@@ -188,20 +172,13 @@ BvhImage buildBvhImage(std::vector<QTriangle> triangles, int leafSize) {
   image.leafSize = leafSize;
   image.triangles = std::move(triangles);
   std::vector<Aabb> boxes(image.triangles.size());
-  for (size_t i = 0; i < boxes.size(); ++i) {
-    const LatticeBox b = boundsOf(image.triangles[i]);
-    // Lattice coordinates below 2^24 are exact floats: the SAH sees the unit's boxes.
-    boxes[i].lo = glm::vec3(float(b.lo[0]), float(b.lo[1]), float(b.lo[2]));
-    boxes[i].hi = glm::vec3(float(b.hi[0]), float(b.hi[1]), float(b.hi[2]));
-  }
+  for (size_t i = 0; i < boxes.size(); ++i) boxes[i] = toAabb(latticeBounds(image.triangles[i]));
   const SahTree tree = buildSah(boxes, SahOptions{.leafSize = leafSize, .maxDepth = kBvhMaxLevels});
   image.indices = tree.order;
   image.depth = tree.depth;
   image.leaves = tree.leaves;
   if (!tree.nodes.empty()) {
-    Converter converter{tree, image, std::vector<LatticeBox>(tree.nodes.size())};
-    converter.exactBox(0);
-    image.root = converter.convert(0);
+    image.root = Converter{tree, image}.convert(0);
   } else {
     image.depth = 1;  // the root: an empty leaf
   }
@@ -211,32 +188,12 @@ BvhImage buildBvhImage(std::vector<QTriangle> triangles, int leafSize) {
   return image;
 }
 
-BvhRaySetup BvhRaySetup::setup(const QRay& ray) {
-  BvhRaySetup s;
-  std::array<u128, 3> absD{};
-  for (int a = 0; a < 3; ++a) {
-    s.mirrored[a] = ray.dir[a] < 0;
-    s.origin[a] = s.mirrored[a] ? kRootSide - ray.org[a] : ray.org[a];
-    absD[a] = u128(ray.dir[a] < 0 ? -ray.dir[a] : ray.dir[a]);
-    s.active[a] = absD[a] != 0;
-    if (s.active[a]) s.common *= absD[a];
-  }
-  for (int a = 0; a < 3; ++a) {
-    s.pair[a] = 1;
-    for (int b = 0; b < 3; ++b) {
-      if (b != a && s.active[b]) s.pair[a] *= i128(absD[b]);
-    }
-  }
-  s.dominant = absD[dominantAxis(ray.dir)];
-  return s;
-}
-
 BoxHit boxTest(const BvhRaySetup& ray, const std::array<int64_t, 3>& lo, const std::array<int64_t, 3>& hi) {
   Interval t;
   for (int a = 0; a < 3; ++a) {
     // Mirrored: the box [lo, hi] becomes [2^P - hi, 2^P - lo].
-    const int64_t l = ray.mirrored[a] ? kRootSide - hi[a] : lo[a];
-    const int64_t h = ray.mirrored[a] ? kRootSide - lo[a] : hi[a];
+    const int64_t l = ray.mirrored(a) ? kLatticeSide - hi[a] : lo[a];
+    const int64_t h = ray.mirrored(a) ? kLatticeSide - lo[a] : hi[a];
     if (!ray.active[a]) {
       // The ray stays in the plane x_a = o_a: inside the slab for all t, or never.
       if (ray.origin[a] < l || ray.origin[a] > h) return {};

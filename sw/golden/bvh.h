@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "golden/bvh_formats.h"
+#include "golden/lattice.h"
 #include "golden/records.h"
 #include "golden/trace.h"
 
@@ -39,12 +40,6 @@ struct BvhNode {
   std::array<int64_t, 3> childHi(int c) const;
 };
 
-// An integer box, closed: [lo, hi] on each axis.
-struct LatticeBox {
-  std::array<int64_t, 3> lo{}, hi{};
-  bool operator==(const LatticeBox&) const = default;
-};
-
 struct BvhImage {
   int leafSize = 0;
   BvhRef root;                       // the tree's root (cfg_root_i)
@@ -69,16 +64,10 @@ int bvhShiftFor(int64_t extent);
 uint32_t bvhPlaneDown(int64_t plane, int64_t base, int shift);
 uint32_t bvhPlaneUp(int64_t plane, int64_t base, int shift);
 
-// The per-ray setup of the unit: mirroring (o' = 2^P - o for a negative
-// component), the pair products and the common denominator. Multiplications only.
-struct BvhRaySetup {
-  std::array<int64_t, 3> origin{};  // mirrored origin
-  std::array<bool, 3> mirrored{};
-  std::array<bool, 3> active{};     // the ray crosses planes of this axis
-  std::array<i128, 3> pair{};       // prod |d_b| over active b != a
-  u128 common = 1;                  // prod |d_a| over active a: t = T / common
-  u128 dominant = 1;                // |d[kz]|, the pipeline's t scale
-  static BvhRaySetup setup(const QRay& ray);
+// The per-ray setup of the unit: the mirrored ray (o' = 2^P - o for a negative
+// component), its pair products and common denominator. Multiplications only.
+struct BvhRaySetup : MirroredRay {
+  static BvhRaySetup setup(const QRay& ray) { return {MirroredRay::of(ray)}; }
 };
 
 // The ray-box test of one child box: exact over the lattice planes, closed

@@ -77,11 +77,7 @@ struct BvhUnit {
     if (!image.root.leaf && image.nodes.empty()) {
       throw InputError("the BVH image has an interior root but no nodes (node 0 is the root)");
     }
-    for (const QRay& ray : rays) {
-      if (ray.dir[0] == 0 && ray.dir[1] == 0 && ray.dir[2] == 0) {
-        throw InputError(fmt::format("ray {} has a zero direction: the BVH unit needs a non-zero component", ray.id));
-      }
-    }
+    checkNonZeroDirections(rays, "BVH");
   }
 
   static TraversalTrace traverse(const Image& image, const QRay& ray) { return traverseBvh(image, ray); }

@@ -15,12 +15,11 @@ namespace lancer::fx {
 
 namespace {
 
-constexpr int64_t kRootSide = int64_t(1) << kPosBits;
 constexpr OctT kMinusInf{0, -1}, kPlusInf{0, 1};
 
 struct Box {
   std::array<int64_t, 3> lo{};
-  int64_t side = kRootSide;
+  int64_t side = kLatticeSide;
   Box child(int i) const {  // i = 4x + 2y + z: the upper half on each set axis
     const int64_t half = side / 2;
     return Box{{lo[0] + ((i >> 2) & 1) * half, lo[1] + ((i >> 1) & 1) * half, lo[2] + (i & 1) * half}, half};
@@ -58,10 +57,9 @@ struct Builder {
   }
   // The triangle's integer bounding box meets the closed box.
   static bool touches(const QTriangle& t, const Box& b) {
+    const LatticeBox tb = latticeBounds(t);
     for (int a = 0; a < 3; ++a) {
-      const int64_t lo = std::min({t.v[0][a], t.v[1][a], t.v[2][a]});
-      const int64_t hi = std::max({t.v[0][a], t.v[1][a], t.v[2][a]});
-      if (hi < b.lo[a] || lo > b.lo[a] + b.side) return false;
+      if (tb.hi[a] < b.lo[a] || tb.lo[a] > b.lo[a] + b.side) return false;
     }
     return true;
   }
@@ -159,16 +157,7 @@ OctreeImage buildOctreeImage(std::vector<QTriangle> triangles, int maxDepth, int
 }
 
 OctreeRaySetup OctreeRaySetup::setup(const QRay& ray) {
-  OctreeRaySetup s;
-  std::array<u128, 3> absD{};
-  for (int a = 0; a < 3; ++a) {
-    const bool mirrored = ray.dir[a] < 0;
-    if (mirrored) s.mirror |= 4 >> a;
-    s.origin[a] = mirrored ? kRootSide - ray.org[a] : ray.org[a];  // min + max - o
-    absD[a] = u128(std::llabs(ray.dir[a]));
-    s.active[a] = absD[a] != 0;
-    if (s.active[a]) s.common *= absD[a];
-  }
+  OctreeRaySetup s{MirroredRay::of(ray)};
   for (int a = 0; a < 3; ++a) {
     if (!s.active[a]) {
       // Quantized origins lie in the lattice, so inside the slab: the ray is in
@@ -177,14 +166,9 @@ OctreeRaySetup OctreeRaySetup::setup(const QRay& ray) {
       s.t1[a] = kPlusInf;
       continue;
     }
-    i128 pair = 1;
-    for (int b = 0; b < 3; ++b) {
-      if (b != a && s.active[b]) pair *= i128(absD[b]);
-    }
-    s.t0[a] = OctT{i128(0 - s.origin[a]) * pair, 0};
-    s.t1[a] = OctT{i128(kRootSide - s.origin[a]) * pair, 0};
+    s.t0[a] = OctT{i128(0 - s.origin[a]) * s.pair[a], 0};
+    s.t1[a] = OctT{i128(kLatticeSide - s.origin[a]) * s.pair[a], 0};
   }
-  s.dominant = u128(std::llabs(ray.dir[dominantAxis(ray.dir)]));
   return s;
 }
 

@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "golden/lattice.h"
 #include "golden/octree_formats.h"
 #include "golden/records.h"
 #include "golden/trace.h"
@@ -64,16 +65,11 @@ struct OctT {
 
 using OctreeTrace = TraversalTrace;
 
-// The per-ray setup of the unit: mirroring (origin o' = min + max - o, i.e.
-// 2^P - o, for a negative component; `mirror` gets 4/2/1 for x/y/z) and the
-// root's six plane parameters. Multiplications only.
-struct OctreeRaySetup {
+// The per-ray setup of the unit: the mirrored ray (origin o' = min + max - o,
+// i.e. 2^P - o, for a negative component; `mirror` gets 4/2/1 for x/y/z) and
+// the root's six plane parameters. Multiplications only.
+struct OctreeRaySetup : MirroredRay {
   std::array<OctT, 3> t0{}, t1{};  // root plane parameters per axis
-  std::array<int64_t, 3> origin{}; // mirrored origin
-  std::array<bool, 3> active{};    // the ray crosses planes of this axis
-  int mirror = 0;                  // a = 4 sx + 2 sy + sz
-  u128 common = 1;                 // prod |d_b| over active axes: t = T / common
-  u128 dominant = 1;               // |d[kz]|, the pipeline's t scale
   static OctreeRaySetup setup(const QRay& ray);
 };
 

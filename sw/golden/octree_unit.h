@@ -65,11 +65,7 @@ struct OctreeUnit {
       throw InputError(
           fmt::format("octree depth {} exceeds the unit's stack ({} levels)", image.depth, kOctreeMaxDepth));
     }
-    for (const QRay& ray : rays) {
-      if (ray.dir[0] == 0 && ray.dir[1] == 0 && ray.dir[2] == 0) {
-        throw InputError(fmt::format("ray {} has a zero direction: the octree unit needs a non-zero component", ray.id));
-      }
-    }
+    checkNonZeroDirections(rays, "octree");
   }
 
   static TraversalTrace traverse(const Image& image, const QRay& ray) { return traverseOctree(image, ray); }

@@ -16,8 +16,6 @@ namespace lancer::fx {
 namespace {
 using namespace lancer::test;  // quantizeScene, bruteForce, randomRay (golden_test_support.h)
 
-constexpr int64_t kSide = int64_t(1) << kPosBits;
-
 // ---- The exact answer of a ray-box test, by rationals on the unmirrored ray ---------
 // t in [max t0, min t1] over the axes the ray crosses, each t = num / den with
 // den > 0; compared by cross-multiplication.
@@ -78,7 +76,7 @@ TEST(GoldenBvhBoxTest, EqualsExactArithmeticOnRandomBoxesAndRays) {
     std::array<int64_t, 3> lo{}, hi{};
     for (int a = 0; a < 3; ++a) {
       lo[a] = pos(rng);
-      hi[a] = i % 7 == 0 ? lo[a] : std::min<int64_t>(kSide + 100, lo[a] + pos(rng) / 8);  // flat boxes too
+      hi[a] = i % 7 == 0 ? lo[a] : std::min<int64_t>(kLatticeSide + 100, lo[a] + pos(rng) / 8);  // flat boxes too
     }
     expectSameAsExact(ray, lo, hi, "ray " + std::to_string(i));
   }
@@ -117,15 +115,6 @@ TEST(GoldenBvhBoxTest, EqualsExactArithmeticOnHardRays) {
 }
 
 // ---- The image --------------------------------------------------------------------------
-LatticeBox triangleBox(const QTriangle& t) {
-  LatticeBox b;
-  for (int a = 0; a < 3; ++a) {
-    b.lo[a] = std::min({t.v[0][a], t.v[1][a], t.v[2][a]});
-    b.hi[a] = std::max({t.v[0][a], t.v[1][a], t.v[2][a]});
-  }
-  return b;
-}
-
 // Calls fn(triangle id, quantized boxes of every ancestor's child on the path) for each triangle.
 void forEachLeafTriangle(const BvhImage& image, const BvhRef& ref, std::vector<LatticeBox>& path,
                          const std::function<void(uint32_t, const std::vector<LatticeBox>&)>& fn) {
@@ -148,7 +137,7 @@ TEST(GoldenBvhImage, QuantizedChildBoxesHoldEveryTriangleBelowThem) {
   size_t listed = 0;
   forEachLeafTriangle(image, image.root, path, [&](uint32_t id, const std::vector<LatticeBox>& boxes) {
     ++listed;
-    const LatticeBox t = triangleBox(tris[id]);
+    const LatticeBox t = latticeBounds(tris[id]);
     for (const LatticeBox& b : boxes) {
       for (int a = 0; a < 3; ++a) {
         ASSERT_LE(b.lo[a], t.lo[a]) << "triangle " << id;
@@ -203,7 +192,7 @@ INSTANTIATE_TEST_SUITE_P(LeafSizes, GoldenBvhLeaves, ::testing::Values(1, 2, 4, 
 TEST(GoldenBvh, AxisParallelOctantAndCornerRaysOnTheCornellBox) {
   const auto tris = quantizeScene(makeCornellBox());
   const BvhImage image = buildBvhImage(tris, 2);
-  const int64_t mid = kSide / 2;
+  const int64_t mid = kLatticeSide / 2;
   for (int octant = 0; octant < 8; ++octant) {
     const QRay ray{uint32_t(octant), {mid - 77, mid + 31, mid + 5},
                    {(octant & 4) ? -kDirMax : kDirMax, (octant & 2) ? -kDirMax / 3 : kDirMax / 3,
@@ -282,7 +271,7 @@ TEST(GoldenBvh, AnyHitAndSegmentEnds) {
   const auto tris = quantizeScene(loadScene(test::kBunny));
   const BvhImage image = buildBvhImage(tris, 4);
   std::mt19937_64 rng(11);
-  std::uniform_int_distribution<uint64_t> end(0, uint64_t(kSide) << kSegFracBits);
+  std::uniform_int_distribution<uint64_t> end(0, uint64_t(kLatticeSide) << kSegFracBits);
   uint64_t closestTests = 0, anyTests = 0, hits = 0;
   for (uint32_t i = 0; i < 600; ++i) {
     QRay ray = randomRay(rng, i);
@@ -342,7 +331,7 @@ BvhImage chainImage(int levels) {
   image.leafSize = 1;
   image.triangles = tris;
   image.indices = {0};
-  const int shift = bvhShiftFor(kSide);
+  const int shift = bvhShiftFor(kLatticeSide);
   for (int k = 0; k + 1 < levels; ++k) {
     BvhNode node;
     node.shift = {shift, shift, shift};

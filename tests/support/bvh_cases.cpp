@@ -17,13 +17,12 @@ namespace {
 
 using fx::BvhImage;
 using fx::kDirMax;
-using fx::kPosBits;
 using fx::kPosMax;
 using fx::QRay;
 using fx::QTriangle;
 using Vec = std::array<int64_t, 3>;
 
-constexpr int64_t kSide = int64_t(1) << kPosBits;
+constexpr int64_t kSide = fx::kLatticeSide;
 
 int64_t clampPos(int64_t v) { return std::clamp<int64_t>(v, 0, kPosMax); }
 Vec clampVec(const Vec& v) { return {clampPos(v[0]), clampPos(v[1]), clampPos(v[2])}; }
