@@ -9,12 +9,12 @@
 #include "golden/isect.h"
 #include "golden/wide.h"
 #include "scene/scene.h"
-#include "golden_test_support.h"
 #include "support/test_paths.h"
+#include "support/traversal_cases.h"
 
 namespace lancer::fx {
 namespace {
-using namespace lancer::test;  // quantizeScene, bruteForce, randomRay (golden_test_support.h)
+using namespace lancer::test;  // quantizeScene, bruteForceHit, randomLatticeRay (support/traversal_cases.h)
 
 // ---- The exact answer of a ray-box test, by rationals on the unmirrored ray ---------
 // t in [max t0, min t1] over the axes the ray crosses, each t = num / den with
@@ -67,7 +67,7 @@ TEST(GoldenBvhBoxTest, EqualsExactArithmeticOnRandomBoxesAndRays) {
   std::mt19937_64 rng(5);
   std::uniform_int_distribution<int64_t> pos(0, kPosMax);
   for (uint32_t i = 0; i < 20000; ++i) {
-    QRay ray = randomRay(rng, i);
+    QRay ray = randomLatticeRay(rng, i);
     if (i % 4 == 1) ray.dir[(i / 4) % 3] = 0;  // a slab the ray never crosses
     if (i % 4 == 2) {                           // axis-parallel
       const int k = dominantAxis(ray.dir);
@@ -180,9 +180,9 @@ TEST_P(GoldenBvhLeaves, ClosestHitEqualsBruteForceOnTheBunny) {
   const BvhImage image = buildBvhImage(tris, GetParam());
   std::mt19937_64 rng{uint64_t(GetParam())};
   for (uint32_t i = 0; i < 400; ++i) {
-    const QRay ray = randomRay(rng, i);
+    const QRay ray = randomLatticeRay(rng, i);
     const TraversalTrace trace = traverseBvh(image, ray);
-    ASSERT_EQ(trace.hit, bruteForce(tris, ray)) << "ray " << i << " leaf " << GetParam();
+    ASSERT_EQ(trace.hit, bruteForceHit(tris, ray)) << "ray " << i << " leaf " << GetParam();
     ASSERT_FALSE(trace.visits.empty());
     EXPECT_EQ(trace.visits.front(), image.root.visitId()) << "the walk starts at the root";
   }
@@ -197,7 +197,7 @@ TEST(GoldenBvh, AxisParallelOctantAndCornerRaysOnTheCornellBox) {
     const QRay ray{uint32_t(octant), {mid - 77, mid + 31, mid + 5},
                    {(octant & 4) ? -kDirMax : kDirMax, (octant & 2) ? -kDirMax / 3 : kDirMax / 3,
                     (octant & 1) ? -kDirMax / 5 : kDirMax / 5}};
-    EXPECT_EQ(traverseBvh(image, ray).hit, bruteForce(tris, ray)) << "octant " << octant;
+    EXPECT_EQ(traverseBvh(image, ray).hit, bruteForceHit(tris, ray)) << "octant " << octant;
   }
   // From every vertex and box corner of the scene towards others: rays through
   // triangle corners and edges, box corners, in box faces.
@@ -222,7 +222,7 @@ TEST(GoldenBvh, AxisParallelOctantAndCornerRaysOnTheCornellBox) {
     const int64_t m = std::llabs(d[k]);
     for (int a = 0; a < 3; ++a) d[a] = d[a] * kDirMax / m;
     const QRay ray{i, from, d};
-    ASSERT_EQ(traverseBvh(image, ray).hit, bruteForce(tris, ray)) << "ray " << i;
+    ASSERT_EQ(traverseBvh(image, ray).hit, bruteForceHit(tris, ray)) << "ray " << i;
   }
 }
 
@@ -232,7 +232,7 @@ TEST(GoldenBvh, NearerChildFirstAndCulledBeyondTheHit) {
   std::mt19937_64 rng(9);
   uint64_t culledRays = 0, orderedPairs = 0;
   for (uint32_t i = 0; i < 300; ++i) {
-    const QRay ray = randomRay(rng, i);
+    const QRay ray = randomLatticeRay(rng, i);
     const TraversalTrace trace = traverseBvh(image, ray);
     const BvhRaySetup setup = BvhRaySetup::setup(ray);
     // After an interior node, the walk enters the child nearer by entry
@@ -274,9 +274,9 @@ TEST(GoldenBvh, AnyHitAndSegmentEnds) {
   std::uniform_int_distribution<uint64_t> end(0, uint64_t(kLatticeSide) << kSegFracBits);
   uint64_t closestTests = 0, anyTests = 0, hits = 0;
   for (uint32_t i = 0; i < 600; ++i) {
-    QRay ray = randomRay(rng, i);
+    QRay ray = randomLatticeRay(rng, i);
     ray.tMax = end(rng);
-    const auto want = bruteForce(tris, ray);  // intersect() honours the segment end
+    const auto want = bruteForceHit(tris, ray);  // intersect() honours the segment end
     const TraversalTrace closest = traverseBvh(image, ray);
     ASSERT_EQ(closest.hit, want) << "ray " << i;
     ray.anyHit = true;
@@ -299,7 +299,7 @@ TEST(GoldenBvh, NodeReadsAreTheInteriorNodesEntered) {
   std::mt19937_64 rng(2);
   const BvhUnit::NodeReads reads(image);
   for (uint32_t i = 0; i < 100; ++i) {
-    const TraversalTrace trace = traverseBvh(image, randomRay(rng, i));
+    const TraversalTrace trace = traverseBvh(image, randomLatticeRay(rng, i));
     uint64_t interior = 0;
     for (uint32_t id : trace.visits) interior += (id & kBvhLeafVisit) == 0;
     EXPECT_EQ(reads(trace), interior);
@@ -318,8 +318,8 @@ TEST(GoldenBvh, EmptySceneAndRootLeaf) {
   const BvhImage leaf = buildBvhImage(two, 4);
   std::mt19937_64 rng(1);
   for (uint32_t i = 0; i < 50; ++i) {
-    const QRay r = randomRay(rng, i);
-    EXPECT_EQ(traverseBvh(leaf, r).hit, bruteForce(two, r));
+    const QRay r = randomLatticeRay(rng, i);
+    EXPECT_EQ(traverseBvh(leaf, r).hit, bruteForceHit(two, r));
   }
 }
 

@@ -7,12 +7,12 @@
 #include "golden/grid.h"
 #include "golden/isect.h"
 #include "scene/scene.h"
-#include "golden_test_support.h"
 #include "support/test_paths.h"
+#include "support/traversal_cases.h"
 
 namespace lancer::fx {
 namespace {
-using namespace lancer::test;  // quantizeScene, bruteForce, randomRay (golden_test_support.h)
+using namespace lancer::test;  // quantizeScene, bruteForceHit, randomLatticeRay (support/traversal_cases.h)
 
 // Consecutive cells differ by one step on exactly one axis: the DDA never jumps
 // diagonally past a cell the ray touches.
@@ -37,9 +37,9 @@ TEST_P(GoldenGridScenes, ClosestHitEqualsBruteForceOnTheBunny) {
   const GridImage image = buildGridImage(tris, r ? GridRes{r, r, r} : chooseGridResolution(tris));
   std::mt19937_64 rng(uint64_t(r) + 3);
   for (uint32_t i = 0; i < 400; ++i) {
-    const QRay ray = randomRay(rng, i);
+    const QRay ray = randomLatticeRay(rng, i);
     const GridTrace trace = traverseGrid(image, ray);
-    ASSERT_EQ(trace.hit, bruteForce(tris, ray)) << "ray " << i << " at resolution " << r;
+    ASSERT_EQ(trace.hit, bruteForceHit(tris, ray)) << "ray " << i << " at resolution " << r;
     expectFaceConnected(image, trace.visits);
   }
 }
@@ -63,7 +63,7 @@ TEST(GoldenGrid, AxisParallelRaysStepOnOneAxisOnly) {
       QRay ray{0, {mid, mid, mid}, {0, 0, 0}};
       ray.dir[axis] = sign * kDirMax;
       const GridTrace trace = traverseGrid(image, ray);
-      EXPECT_EQ(trace.hit, bruteForce(tris, ray));
+      EXPECT_EQ(trace.hit, bruteForceHit(tris, ray));
       expectFaceConnected(image, trace.visits);
       // Only `axis` changes along the walk.
       for (uint32_t id : trace.visits) {
@@ -100,7 +100,7 @@ TEST(GoldenGrid, RayInThePlaneBetweenCellsAndAlongAnEdge) {
                           QRay{1, {boundary, boundary, 0}, {0, 0, kDirMax}},
                           QRay{2, {boundary, boundary, kPosMax}, {0, -0, -kDirMax}}}) {
     const GridTrace trace = traverseGrid(image, ray);
-    EXPECT_EQ(trace.hit, bruteForce(tris, ray)) << ray.id;
+    EXPECT_EQ(trace.hit, bruteForceHit(tris, ray)) << ray.id;
     expectFaceConnected(image, trace.visits);
   }
 }
@@ -111,7 +111,7 @@ TEST(GoldenGrid, TinyComponentCrossesTheGridWithoutSteppingOnItsAxis) {
   const QRay ray{0, {0, 10, 10}, {kDirMax, 1, 0}};
   const GridTrace trace = traverseGrid(image, ray);
   ASSERT_EQ(trace.visits.size(), 16u);  // straight along x
-  EXPECT_EQ(trace.hit, bruteForce(tris, ray));
+  EXPECT_EQ(trace.hit, bruteForceHit(tris, ray));
   ASSERT_TRUE(trace.hit.has_value());
 }
 
@@ -125,7 +125,7 @@ TEST(GoldenGrid, EarlyTerminationWaitsForACloserHitInTheNextCell) {
   // Along +x at y, z inside the first z-slab: crosses the small triangle at x = s/8 + 10.
   const QRay ray{0, {0, 100, s / 8}, {kDirMax, 0, kDirMax / 64}};
   const GridTrace trace = traverseGrid(image, ray);
-  const auto expected = bruteForce({big, small}, ray);
+  const auto expected = bruteForceHit(std::vector<QTriangle>{big, small}, ray);
   ASSERT_TRUE(expected.has_value());
   EXPECT_EQ(trace.hit, expected);
 }
@@ -139,9 +139,9 @@ TEST(GoldenGrid, ExtremeResolutionsAndCrowdedCells) {
   EXPECT_EQ(fine.cells.size(), size_t(256) * 256 * 256);
   std::mt19937_64 rng(9);
   for (uint32_t i = 0; i < 50; ++i) {
-    const QRay ray = randomRay(rng, i);
-    EXPECT_EQ(traverseGrid(fine, ray).hit, bruteForce(tris, ray));
-    EXPECT_EQ(traverseGrid(one, ray).hit, bruteForce(tris, ray));
+    const QRay ray = randomLatticeRay(rng, i);
+    EXPECT_EQ(traverseGrid(fine, ray).hit, bruteForceHit(tris, ray));
+    EXPECT_EQ(traverseGrid(one, ray).hit, bruteForceHit(tris, ray));
   }
   // Thousands of triangles in one cell (the lower z half; at narrow formats
   // several share a plane, and the tie goes to the lowest id).

@@ -8,13 +8,13 @@
 #include "golden/memory_image.h"
 #include "golden/octree.h"
 #include "scene/scene.h"
-#include "golden_test_support.h"
 #include "support/structure_test_support.h"
 #include "support/test_paths.h"
+#include "support/traversal_cases.h"
 
 namespace lancer::fx {
 namespace {
-using namespace lancer::test;  // quantizeScene, bruteForce, randomRay (golden_test_support.h)
+using namespace lancer::test;  // quantizeScene, bruteForceHit, randomLatticeRay (support/traversal_cases.h)
 
 struct Config {
   int depth, leaf;
@@ -28,9 +28,9 @@ TEST_P(GoldenOctreeConfigs, ClosestHitEqualsBruteForceOnTheBunny) {
   const OctreeImage image = buildOctreeImage(tris, c.depth, c.leaf);
   std::mt19937_64 rng(uint64_t(c.depth * 100 + c.leaf));
   for (uint32_t i = 0; i < 400; ++i) {
-    const QRay ray = randomRay(rng, i);
+    const QRay ray = randomLatticeRay(rng, i);
     const OctreeTrace trace = traverseOctree(image, ray);
-    ASSERT_EQ(trace.hit, bruteForce(tris, ray)) << "ray " << i << " depth " << c.depth << " leaf " << c.leaf;
+    ASSERT_EQ(trace.hit, bruteForceHit(tris, ray)) << "ray " << i << " depth " << c.depth << " leaf " << c.leaf;
     ASSERT_FALSE(trace.visits.empty());
     EXPECT_EQ(trace.visits.front(), 0u) << "the walk starts at the root";
   }
@@ -47,7 +47,7 @@ TEST(GoldenOctree, AllEightOctantsAndAxisParallelRays) {
     const QRay ray{uint32_t(octant), {mid - 77, mid + 31, mid + 5},
                    {(octant & 4) ? -kDirMax : kDirMax, (octant & 2) ? -kDirMax / 3 : kDirMax / 3,
                     (octant & 1) ? -kDirMax / 5 : kDirMax / 5}};
-    EXPECT_EQ(traverseOctree(image, ray).hit, bruteForce(tris, ray)) << "octant " << octant;
+    EXPECT_EQ(traverseOctree(image, ray).hit, bruteForceHit(tris, ray)) << "octant " << octant;
   }
   for (int axis = 0; axis < 3; ++axis) {
     for (int sign : {1, -1}) {
@@ -55,7 +55,7 @@ TEST(GoldenOctree, AllEightOctantsAndAxisParallelRays) {
         QRay ray{0, {at, at, at}, {0, 0, 0}};
         ray.dir[axis] = sign * kDirMax;
         const OctreeTrace trace = traverseOctree(image, ray);
-        EXPECT_EQ(trace.hit, bruteForce(tris, ray)) << "axis " << axis << " sign " << sign << " at " << at;
+        EXPECT_EQ(trace.hit, bruteForceHit(tris, ray)) << "axis " << axis << " sign " << sign << " at " << at;
       }
     }
   }
@@ -76,13 +76,13 @@ TEST(GoldenOctree, RaysThroughTheCentreAndNodeCornersAndEdges) {
     std::array<int64_t, 3> dir{kDirMax, (i % 3 == 0) ? 0 : kDirMax, (i % 2) ? kDirMax : -kDirMax};
     if (i % 5 == 0) dir = {-kDirMax, -kDirMax, -kDirMax};
     const QRay ray{i, corner, dir};
-    ASSERT_EQ(traverseOctree(image, ray).hit, bruteForce(tris, ray)) << "ray " << i;
+    ASSERT_EQ(traverseOctree(image, ray).hit, bruteForceHit(tris, ray)) << "ray " << i;
   }
   // Through the centre of the root along the main diagonal, both ways.
   const int64_t c = s / 2;
   for (int64_t sign : {1, -1}) {
     const QRay ray{0, {c, c, c}, {sign * kDirMax, sign * kDirMax, sign * kDirMax}};
-    EXPECT_EQ(traverseOctree(image, ray).hit, bruteForce(tris, ray));
+    EXPECT_EQ(traverseOctree(image, ray).hit, bruteForceHit(tris, ray));
   }
 }
 
@@ -94,9 +94,9 @@ TEST(GoldenOctree, SceneNotCentredOnTheOriginMirrorsCorrectly) {
   const OctreeImage image = buildOctreeImage(tris, 7, 4);
   std::mt19937_64 rng(23);
   for (uint32_t i = 0; i < 500; ++i) {
-    QRay ray = randomRay(rng, i);
+    QRay ray = randomLatticeRay(rng, i);
     for (auto& d : ray.dir) d = -std::llabs(d);  // all negative: every axis mirrored
-    ASSERT_EQ(traverseOctree(image, ray).hit, bruteForce(tris, ray)) << "ray " << i;
+    ASSERT_EQ(traverseOctree(image, ray).hit, bruteForceHit(tris, ray)) << "ray " << i;
   }
 }
 
@@ -113,9 +113,9 @@ TEST(GoldenOctree, MaximumDepthWithTinyNodesAndExactHalvings) {
   std::mt19937_64 rng(29);
   std::uniform_int_distribution<int64_t> near(base - 3, base + 8);
   for (uint32_t i = 0; i < 400; ++i) {
-    QRay ray = randomRay(rng, i);
+    QRay ray = randomLatticeRay(rng, i);
     ray.org = {near(rng), near(rng), near(rng)};
-    ASSERT_EQ(traverseOctree(image, ray).hit, bruteForce(tris, ray)) << "ray " << i;
+    ASSERT_EQ(traverseOctree(image, ray).hit, bruteForceHit(tris, ray)) << "ray " << i;
   }
 }
 
@@ -125,14 +125,14 @@ TEST(GoldenOctree, DeepSparseAndFullTrees) {
   const OctreeImage sparse = buildOctreeImage(one, 10, 0 + 1);
   const QRay toward{0, {kPosMax, kPosMax, 11}, {-kDirMax, -kDirMax, 0}};
   const OctreeTrace t = traverseOctree(sparse, toward);
-  EXPECT_EQ(t.hit, bruteForce(one, toward));
+  EXPECT_EQ(t.hit, bruteForceHit(one, toward));
   // Full: the Cornell box subdivided, split as deep as the triangles allow.
   const auto tris = quantizeScene(subdivide(makeCornellBox(), 3));
   const OctreeImage full = buildOctreeImage(tris, 9, 1);
   std::mt19937_64 rng(31);
   for (uint32_t i = 0; i < 200; ++i) {
-    const QRay ray = randomRay(rng, i);
-    ASSERT_EQ(traverseOctree(full, ray).hit, bruteForce(tris, ray)) << "ray " << i;
+    const QRay ray = randomLatticeRay(rng, i);
+    ASSERT_EQ(traverseOctree(full, ray).hit, bruteForceHit(tris, ray)) << "ray " << i;
   }
 }
 
@@ -145,7 +145,7 @@ TEST(GoldenOctree, EarlyTerminationStopsInTheLeafHoldingTheHit) {
   const QRay ray{0, {mid, mid, 0}, {0, 0, kDirMax}};
   const OctreeTrace trace = traverseOctree(image, ray);
   ASSERT_TRUE(trace.hit.has_value());
-  EXPECT_EQ(trace.hit, bruteForce(tris, ray));
+  EXPECT_EQ(trace.hit, bruteForceHit(tris, ray));
 }
 
 TEST(GoldenOctree, TablesFollowThePaper) {

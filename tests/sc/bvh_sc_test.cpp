@@ -164,44 +164,19 @@ std::vector<BvhCase> cycleCases() {
 }
 
 TEST(ScBvhCycleAccuracy, ModelMatchesVerilatedRtlCycleForCycle) {
-  if (!SystemCBvhDevice::rtlAvailable()) GTEST_SKIP() << "no Verilated rt_bvh in this build";
-  SystemCBvhDevice model(Impl::Model), rtl(Impl::Rtl);
-  for (const BvhCase& c : cycleCases()) {
-    for (const TraversalRunOptions& o : timingSettings()) {
-      test::expectSamePortTraces(model, rtl, c.image, c.rays, o, c.name + ", " + optionsText(o));
-    }
-  }
+  test::expectModelMatchesRtlCycleForCycle<SystemCBvhDevice>(cycleCases(), timingSettings());
 }
 
 TEST(ScBvhCycleAccuracy, StatsEqualTheCxxVerilatedDevice) {
-  const std::vector<std::string> names = traversalDeviceNames<fx::BvhUnit>();
-  if (std::find(names.begin(), names.end(), "rtl") == names.end()) {
-    GTEST_SKIP() << "no C++ Verilated bvh device (\"rtl\") in this build";
-  }
-  const auto cxx = makeTraversalDevice<fx::BvhUnit>("rtl");
   const std::vector<TraversalRunOptions> settings = timingSettings();
-  SystemCBvhDevice model(Impl::Model);
-  for (const BvhCase& c : cycleCases()) {
-    for (const TraversalRunOptions& o : {settings[0], settings[2], settings[4]}) {
-      std::vector<fx::TraversalTrace> want, got;
-      const TraversalRunStats ref = cxx->run(c.image, c.rays, want, o);
-      const TraversalRunStats s = model.run(c.image, c.rays, got, o);
-      const std::string what = fmt::format("systemc vs rtl, {}, {}", c.name, optionsText(o));
-      expectSameStats(s, ref, what);
-      EXPECT_EQ(got, want) << what;
-    }
-  }
+  test::expectStatsEqualTheCxxVerilatedDevice<fx::BvhUnit, SystemCBvhDevice>(
+      cycleCases(), {settings[0], settings[2], settings[4]}, {Impl::Model});
 }
 
 // ---- The device in the process ------------------------------------------------------------
 
 TEST(ScBvhDevice, NamesAndFactory) {
-  const std::vector<std::string> names = traversalDeviceNames<fx::BvhUnit>();
-  EXPECT_NE(std::find(names.begin(), names.end(), "systemc"), names.end());
-  EXPECT_EQ(std::find(names.begin(), names.end(), "rtl-systemc") != names.end(), SystemCBvhDevice::rtlAvailable());
-  for (const std::string& n : names) EXPECT_EQ(makeTraversalDevice<fx::BvhUnit>(n)->name(), n);
-  EXPECT_EQ(makeTraversalDevice<fx::BvhUnit>("systemc")->maxRaysInFlight(), LANCER_BVH_RAYS_IN_FLIGHT);
-  EXPECT_THROW(makeTraversalDevice<fx::BvhUnit>("nope"), InputError);
+  test::expectNamesAndFactory<fx::BvhUnit, SystemCBvhDevice>(LANCER_BVH_RAYS_IN_FLIGHT);
 }
 
 TEST(ScBvhDevice, SharesTheKernelWithTheOctreeUnit) {

@@ -97,52 +97,28 @@ TEST_P(ScGrid, EmptyRunAndInvalidOptions) {
 
 std::vector<TraversalRunOptions> timingSettings() { return test::timingSettings(roughGridOptions, 31, 32, 33); }
 
-TEST(ScGridCycleAccuracy, ModelMatchesVerilatedRtlCycleForCycle) {
-  if (!SystemCGridDevice::rtlAvailable()) GTEST_SKIP() << "no Verilated rt_grid in this build";
+test::GridCase bunnyCase() {
   const test::GridScene q = test::bunnyCamera(16, 16);
-  const fx::GridImage image = fx::buildGridImage(q.triangles, fx::chooseGridResolution(q.triangles));
-  std::vector<test::GridCase> cases{{"bunny 16x16", image, q.rays}};
+  return {"bunny 16x16", fx::buildGridImage(q.triangles, fx::chooseGridResolution(q.triangles)), q.rays};
+}
+
+TEST(ScGridCycleAccuracy, ModelMatchesVerilatedRtlCycleForCycle) {
+  std::vector<test::GridCase> cases{bunnyCase()};
   for (test::GridCase& c : test::gridHardCases()) {
     if (c.name.rfind("crowded", 0) == 0 || c.name.rfind("planes", 0) == 0) cases.push_back(std::move(c));
   }
-  SystemCGridDevice model(Impl::Model), rtl(Impl::Rtl);
-  for (const test::GridCase& c : cases) {
-    for (const TraversalRunOptions& o : timingSettings()) {
-      test::expectSamePortTraces(model, rtl, c.image, c.rays, o, c.name + ", " + optionsText(o));
-    }
-  }
+  test::expectModelMatchesRtlCycleForCycle<SystemCGridDevice>(cases, timingSettings());
 }
 
 TEST(ScGridCycleAccuracy, StatsEqualTheCxxVerilatedDevice) {
-  const test::GridScene q = test::bunnyCamera(16, 16);
-  const fx::GridImage image = fx::buildGridImage(q.triangles, fx::chooseGridResolution(q.triangles));
-  VerilatorGridDevice cxx;
-  std::vector<Impl> impls{Impl::Model};
-  if (SystemCGridDevice::rtlAvailable()) impls.push_back(Impl::Rtl);
-  if (SystemCGridDevice::rtlIsectAvailable()) impls.push_back(Impl::ModelRtlIsect);
-  for (const TraversalRunOptions& o : timingSettings()) {
-    std::vector<fx::GridTrace> want, got;
-    const TraversalRunStats ref = cxx.run(image, q.rays, want, o);
-    for (Impl impl : impls) {
-      SystemCGridDevice device(impl);
-      const TraversalRunStats s = device.run(image, q.rays, got, o);
-      const std::string what = fmt::format("{} vs rtl, {}", device.name(), optionsText(o));
-      expectSameStats(s, ref, what);
-      EXPECT_EQ(got, want) << what;
-    }
-  }
+  test::expectStatsEqualTheCxxVerilatedDevice<fx::GridUnit, SystemCGridDevice>(
+      {bunnyCase()}, timingSettings(), {Impl::Model, Impl::Rtl, Impl::ModelRtlIsect});
 }
 
 // ---- The device in the process --------------------------------------------------
 
 TEST(ScGridDevice, NamesAndFactory) {
-  const std::vector<std::string> names = traversalDeviceNames<fx::GridUnit>();
-  EXPECT_NE(std::find(names.begin(), names.end(), "systemc"), names.end());
-  EXPECT_NE(std::find(names.begin(), names.end(), "rtl"), names.end());
-  EXPECT_EQ(std::find(names.begin(), names.end(), "rtl-systemc") != names.end(), SystemCGridDevice::rtlAvailable());
-  for (const std::string& n : names) EXPECT_EQ(makeTraversalDevice<fx::GridUnit>(n)->name(), n);
-  EXPECT_EQ(makeTraversalDevice<fx::GridUnit>("systemc")->maxRaysInFlight(), VerilatorGridDevice().maxRaysInFlight());
-  EXPECT_THROW(makeTraversalDevice<fx::GridUnit>("nope"), InputError);
+  test::expectNamesAndFactory<fx::GridUnit, SystemCGridDevice>(VerilatorGridDevice().maxRaysInFlight());
 }
 
 TEST(ScGridDevice, GridAndIsectDevicesShareOneKernel) {

@@ -205,48 +205,19 @@ std::vector<OctreeCase> cycleCases() {
 }
 
 TEST(ScOctreeCycleAccuracy, ModelMatchesVerilatedRtlCycleForCycle) {
-  if (!SystemCOctreeDevice::rtlAvailable()) GTEST_SKIP() << "no Verilated rt_octree in this build";
-  SystemCOctreeDevice model(Impl::Model), rtl(Impl::Rtl);
-  for (const OctreeCase& c : cycleCases()) {
-    for (const TraversalRunOptions& o : timingSettings()) {
-      test::expectSamePortTraces(model, rtl, c.image, c.rays, o, c.name + ", " + optionsText(o));
-    }
-  }
+  test::expectModelMatchesRtlCycleForCycle<SystemCOctreeDevice>(cycleCases(), timingSettings());
 }
 
 TEST(ScOctreeCycleAccuracy, StatsEqualTheCxxVerilatedDevice) {
-  const std::vector<std::string> names = traversalDeviceNames<fx::OctreeUnit>();
-  if (std::find(names.begin(), names.end(), "rtl") == names.end()) {
-    GTEST_SKIP() << "no C++ Verilated octree device (\"rtl\") in this build";
-  }
-  // The cycle model against the C++-driven RTL ("rtl-systemc" equals the model
-  // cycle for cycle, above): the same stimulus and memory timing give the same
-  // counters, cycles included.
-  const auto cxx = makeTraversalDevice<fx::OctreeUnit>("rtl");
   const std::vector<TraversalRunOptions> settings = timingSettings();
-  SystemCOctreeDevice model(Impl::Model);
-  for (const OctreeCase& c : cycleCases()) {
-    for (const TraversalRunOptions& o : {settings[0], settings[2], settings[4]}) {
-      std::vector<fx::TraversalTrace> want, got;
-      const TraversalRunStats ref = cxx->run(c.image, c.rays, want, o);
-      const TraversalRunStats s = model.run(c.image, c.rays, got, o);
-      const std::string what = fmt::format("systemc vs rtl, {}, {}", c.name, optionsText(o));
-      expectSameStats(s, ref, what);
-      EXPECT_EQ(got, want) << what;
-    }
-  }
+  test::expectStatsEqualTheCxxVerilatedDevice<fx::OctreeUnit, SystemCOctreeDevice>(
+      cycleCases(), {settings[0], settings[2], settings[4]}, {Impl::Model});
 }
 
 // ---- The device in the process ------------------------------------------------------------
 
 TEST(ScOctreeDevice, NamesAndFactory) {
-  const std::vector<std::string> names = traversalDeviceNames<fx::OctreeUnit>();
-  EXPECT_NE(std::find(names.begin(), names.end(), "systemc"), names.end());
-  EXPECT_EQ(std::find(names.begin(), names.end(), "rtl-systemc") != names.end(),
-            SystemCOctreeDevice::rtlAvailable());
-  for (const std::string& n : names) EXPECT_EQ(makeTraversalDevice<fx::OctreeUnit>(n)->name(), n);
-  EXPECT_EQ(makeTraversalDevice<fx::OctreeUnit>("systemc")->maxRaysInFlight(), LANCER_OCTREE_RAYS_IN_FLIGHT);
-  EXPECT_THROW(makeTraversalDevice<fx::OctreeUnit>("nope"), InputError);
+  test::expectNamesAndFactory<fx::OctreeUnit, SystemCOctreeDevice>(LANCER_OCTREE_RAYS_IN_FLIGHT);
 }
 
 TEST(ScOctreeDevice, SharesTheKernelWithTheGridUnit) {

@@ -1,11 +1,13 @@
 #pragma once
 
 // What the SystemC tests of every traversal unit share (grid_sc_test.cpp,
-// octree_sc_test.cpp): printing a port cycle, the counters two runs must agree
-// on, a run against the golden model, the cycle model against the Verilated
-// RTL port trace for port trace, the option checks, repeatability and the
-// waveform of the Verilated RTL. Each unit adds its own expectations (the
-// grid's cell prefetch, the octree's timing) around these.
+// octree_sc_test.cpp, bvh_sc_test.cpp): printing a port cycle, the counters
+// two runs must agree on, a run against the golden model, the cycle model
+// against the Verilated RTL port trace for port trace and against the C++
+// Verilated device counter for counter, the option checks, the device names,
+// repeatability and the waveform of the Verilated RTL. Each unit adds its own
+// expectations (the grid's cell prefetch, each unit's one-ray timing) around
+// these.
 
 #include <gtest/gtest.h>
 
@@ -21,6 +23,7 @@
 
 #include "common/error.h"
 #include "common/rt_trav_cycle.h"
+#include "driver/devices.h"
 #include "driver/traversal_device.h"
 
 namespace lancer {
@@ -174,6 +177,62 @@ void expectSamePortTraces(Device& model, Device& rtl, const Image& image, const 
     }
   }
   EXPECT_EQ(differing, 0u) << what << ": cycles whose port activity differs";
+}
+
+// Every case under every timing setting, the cycle model against the Verilated
+// RTL (expectSamePortTraces). Skipped without the Verilated unit.
+template <class Device, class Case>
+void expectModelMatchesRtlCycleForCycle(const std::vector<Case>& cases,
+                                        const std::vector<TraversalRunOptions>& settings) {
+  if (!Device::rtlAvailable()) GTEST_SKIP() << "no Verilated unit in this build";
+  Device model(Device::Impl::Model), rtl(Device::Impl::Rtl);
+  for (const Case& c : cases) {
+    for (const TraversalRunOptions& o : settings) {
+      expectSamePortTraces(model, rtl, c.image, c.rays, o, c.name + ", " + optionsText(o));
+    }
+  }
+}
+
+// The SystemC devices of `impls` (those this build has) against the unit's C++
+// Verilated device ("rtl") on the same stimulus and memory timing: the same
+// counters, cycles included, and the same traces. Skipped without "rtl".
+template <class Unit, class Device, class Case>
+void expectStatsEqualTheCxxVerilatedDevice(const std::vector<Case>& cases,
+                                           const std::vector<TraversalRunOptions>& settings,
+                                           const std::vector<typename Device::Impl>& impls) {
+  const std::vector<std::string> names = traversalDeviceNames<Unit>();
+  if (std::find(names.begin(), names.end(), "rtl") == names.end()) {
+    GTEST_SKIP() << "no C++ Verilated device (\"rtl\") in this build";
+  }
+  const auto cxx = makeTraversalDevice<Unit>("rtl");
+  for (const Case& c : cases) {
+    for (const TraversalRunOptions& o : settings) {
+      std::vector<fx::TraversalTrace> want, got;
+      const TraversalRunStats ref = cxx->run(c.image, c.rays, want, o);
+      for (const auto impl : impls) {
+        if (!implAvailable<Device>(impl)) continue;
+        Device device(impl);
+        const TraversalRunStats s = device.run(c.image, c.rays, got, o);
+        const std::string what = fmt::format("{} vs rtl, {}, {}", device.name(), c.name, optionsText(o));
+        expectSameStats(s, ref, what);
+        EXPECT_EQ(got, want) << what;
+      }
+    }
+  }
+}
+
+// The unit's device names: "systemc" always, "rtl-systemc" exactly when the
+// build has the Verilated unit; each name makes the device of that name, the
+// SystemC one with the unit's `raysInFlight` slots; an unknown name is an
+// InputError.
+template <class Unit, class Device>
+void expectNamesAndFactory(int raysInFlight) {
+  const std::vector<std::string> names = traversalDeviceNames<Unit>();
+  EXPECT_NE(std::find(names.begin(), names.end(), "systemc"), names.end());
+  EXPECT_EQ(std::find(names.begin(), names.end(), "rtl-systemc") != names.end(), Device::rtlAvailable());
+  for (const std::string& n : names) EXPECT_EQ(makeTraversalDevice<Unit>(n)->name(), n);
+  EXPECT_EQ(makeTraversalDevice<Unit>("systemc")->maxRaysInFlight(), raysInFlight);
+  EXPECT_THROW(makeTraversalDevice<Unit>("nope"), InputError);
 }
 
 // Every option outside its range is an InputError, the slot count's naming

@@ -27,39 +27,6 @@ constexpr int64_t kSide = fx::kLatticeSide;
 int64_t clampPos(int64_t v) { return std::clamp<int64_t>(v, 0, kPosMax); }
 Vec clampVec(const Vec& v) { return {clampPos(v[0]), clampPos(v[1]), clampPos(v[2])}; }
 
-std::vector<QTriangle> quantizeScene(const Scene& scene) { return Quantizer(scene.bounds).quantize(scene); }
-
-const std::vector<QTriangle>& cornell() {
-  static const std::vector<QTriangle> tris = quantizeScene(makeCornellBox());
-  return tris;
-}
-
-Vec randomPos(std::mt19937_64& rng) {
-  std::uniform_int_distribution<int64_t> pos(0, kPosMax);
-  return {pos(rng), pos(rng), pos(rng)};
-}
-
-// From `org` towards `target`, scaled so the dominant component is +-kDirMax.
-QRay aimed(const Vec& org, const Vec& target) {
-  Vec d{};
-  int64_t big = 0;
-  for (int a = 0; a < 3; ++a) big = std::max(big, std::abs(target[a] - org[a]));
-  if (big == 0) return QRay{0, org, {kDirMax, 0, 0}};
-  for (int a = 0; a < 3; ++a) d[a] = std::llround(double(target[a] - org[a]) * double(kDirMax) / double(big));
-  return normalizedDirection(QRay{0, org, d});
-}
-
-// The eight sign combinations of `dir` (components of 0 stay 0: fewer distinct rays).
-void addOctants(std::vector<QRay>& rays, const Vec& org, const Vec& dir) {
-  for (int octant = 0; octant < 8; ++octant) {
-    Vec d = dir;
-    for (int a = 0; a < 3; ++a) {
-      if (octant & (4 >> a)) d[a] = -d[a];
-    }
-    rays.push_back(normalizedDirection(QRay{0, org, d}));
-  }
-}
-
 // The child boxes of an image's interior nodes (lattice planes, clamped to the lattice).
 std::vector<std::array<Vec, 2>> childBoxes(const BvhImage& image) {
   std::vector<std::array<Vec, 2>> boxes;
@@ -70,24 +37,14 @@ std::vector<std::array<Vec, 2>> childBoxes(const BvhImage& image) {
 }
 
 BvhCase makeCase(std::string name, BvhImage image, std::vector<QRay> rays) {
-  for (uint32_t i = 0; i < rays.size(); ++i) {
-    QRay& r = rays[i];
-    r.id = i;
-    for (int a = 0; a < 3; ++a) {
-      if (r.org[a] < 0 || r.org[a] > kPosMax || std::abs(r.dir[a]) > kDirMax) {
-        throw std::logic_error(fmt::format("bvh case {}: ray {} is off the lattice", name, i));
-      }
-    }
-    if (r.dir == Vec{0, 0, 0}) throw std::logic_error(fmt::format("bvh case {}: ray {} has no direction", name, i));
-  }
-  return BvhCase{std::move(name), std::move(image), std::move(rays)};
+  return makeTraversalCase("bvh", std::move(name), std::move(image), std::move(rays));
 }
 
 // ---- The cases ------------------------------------------------------------------
 
 BvhCase axisParallel() {
   std::mt19937_64 rng(201);
-  const BvhImage image = fx::buildBvhImage(cornell(), 2);
+  const BvhImage image = fx::buildBvhImage(quantizedCornell(), 2);
   std::vector<std::array<Vec, 2>> boxes = childBoxes(image);
   std::shuffle(boxes.begin(), boxes.end(), rng);
   std::vector<QRay> rays;
@@ -124,15 +81,15 @@ BvhCase boxCorners() {
     // From each corner along the diagonals (through the opposite corner when the box is a cube) ...
     for (int corner = 0; corner < 8; ++corner) {
       const Vec at{(corner & 4) ? hi[0] : lo[0], (corner & 2) ? hi[1] : lo[1], (corner & 1) ? hi[2] : lo[2]};
-      addOctants(rays, at, {kDirMax, kDirMax, kDirMax});
+      addOctantRays(rays, at, {kDirMax, kDirMax, kDirMax});
       // ... along its edges (two zero components) ...
       rays.push_back(QRay{0, at, {(corner & 4) ? -kDirMax : kDirMax, 0, 0}});
       rays.push_back(QRay{0, at, {0, (corner & 2) ? -kDirMax : kDirMax, 0}});
       // ... and aimed at the other corners.
       const int other = 7 - corner;
       const Vec to{(other & 4) ? hi[0] : lo[0], (other & 2) ? hi[1] : lo[1], (other & 1) ? hi[2] : lo[2]};
-      rays.push_back(aimed(at, to));
-      rays.push_back(aimed(clampVec({2 * at[0] - to[0], 2 * at[1] - to[1], 2 * at[2] - to[2]}), to));
+      rays.push_back(aimedRay(at, to));
+      rays.push_back(aimedRay(clampVec({2 * at[0] - to[0], 2 * at[1] - to[1], 2 * at[2] - to[2]}), to));
     }
   }
   return makeCase("box_corners", image, std::move(rays));
@@ -140,7 +97,7 @@ BvhCase boxCorners() {
 
 BvhCase boxFaces() {
   std::mt19937_64 rng(203);
-  const BvhImage image = fx::buildBvhImage(cornell(), 1);
+  const BvhImage image = fx::buildBvhImage(quantizedCornell(), 1);
   std::vector<std::array<Vec, 2>> boxes = childBoxes(image);
   std::shuffle(boxes.begin(), boxes.end(), rng);
   std::uniform_int_distribution<int64_t> dir(-kDirMax, kDirMax);
@@ -179,12 +136,12 @@ BvhCase octants() {
   std::vector<QRay> rays;
   const int64_t m = kSide / 2;
   for (const Vec& org : {Vec{m, m, m}, Vec{0, 0, 0}, Vec{kPosMax, kPosMax, kPosMax}, Vec{m / 3, m + m / 2, m / 5},
-                         randomPos(rng), randomPos(rng)}) {
-    addOctants(rays, org, {kDirMax, kDirMax / 3, kDirMax / 7});
-    addOctants(rays, org, {kDirMax / 5, kDirMax, 11});
-    addOctants(rays, org, {kDirMax, kDirMax, kDirMax});
+                         randomLatticePoint(rng), randomLatticePoint(rng)}) {
+    addOctantRays(rays, org, {kDirMax, kDirMax / 3, kDirMax / 7});
+    addOctantRays(rays, org, {kDirMax / 5, kDirMax, 11});
+    addOctantRays(rays, org, {kDirMax, kDirMax, kDirMax});
   }
-  return makeCase("octants", fx::buildBvhImage(cornell(), 4), std::move(rays));
+  return makeCase("octants", fx::buildBvhImage(quantizedCornell(), 4), std::move(rays));
 }
 
 BvhCase crowdedLeaf() {
@@ -209,7 +166,7 @@ BvhCase crowdedLeaf() {
   std::vector<QRay> rays;
   std::uniform_int_distribution<int64_t> near(c - s * 2 / 3, c + s * 2 / 3);
   for (int i = 0; i < 24; ++i) {
-    rays.push_back(aimed({near(rng), near(rng), i % 2 ? 0 : kPosMax}, {near(rng), near(rng), c}));
+    rays.push_back(aimedRay({near(rng), near(rng), i % 2 ? 0 : kPosMax}, {near(rng), near(rng), c}));
   }
   for (int i = 0; i < 8; ++i) rays.push_back(randomLatticeRay(rng, 0));
   return makeCase("crowded_leaf", std::move(image), std::move(rays));
@@ -217,7 +174,7 @@ BvhCase crowdedLeaf() {
 
 BvhCase rootLeaf() {
   // One triangle three times (one box: the SAH cannot split them): a root leaf of 3, ties by id.
-  std::vector<QTriangle> tris(3, cornell()[5]);
+  std::vector<QTriangle> tris(3, quantizedCornell()[5]);
   for (uint32_t i = 0; i < 3; ++i) tris[i].id = i;
   std::mt19937_64 rng(206);
   std::vector<QRay> rays;
@@ -225,7 +182,7 @@ BvhCase rootLeaf() {
     for (int i = 0; i < 4; ++i) {
       const Vec to{(t.v[0][0] + t.v[1][0] + t.v[2][0]) / 3, (t.v[0][1] + t.v[1][1] + t.v[2][1]) / 3,
                    (t.v[0][2] + t.v[1][2] + t.v[2][2]) / 3};
-      rays.push_back(aimed(randomPos(rng), to));
+      rays.push_back(aimedRay(randomLatticePoint(rng), to));
     }
   }
   for (int i = 0; i < 8; ++i) rays.push_back(randomLatticeRay(rng, 0));
@@ -251,40 +208,40 @@ BvhCase tinyComponents() {
   std::mt19937_64 rng(208);
   std::vector<QRay> rays;
   for (int i = 0; i < 48; ++i) {
-    QRay r{0, randomPos(rng), {kDirMax, 1, -1}};
+    QRay r{0, randomLatticePoint(rng), {kDirMax, 1, -1}};
     std::shuffle(r.dir.begin(), r.dir.end(), rng);
     if (i % 2) r.dir[size_t(i % 3)] = -r.dir[size_t(i % 3)];
     if (i % 5 == 0) r.dir[size_t((i + 1) % 3)] = r.dir[size_t((i + 1) % 3)] == 1 ? 0 : r.dir[size_t((i + 1) % 3)];
     rays.push_back(normalizedDirection(r));
   }
-  return makeCase("tiny_components", fx::buildBvhImage(cornell(), 2), std::move(rays));
+  return makeCase("tiny_components", fx::buildBvhImage(quantizedCornell(), 2), std::move(rays));
 }
 
 BvhCase cornellRandom() {
   std::mt19937_64 rng(209);
   std::vector<QRay> rays;
-  std::uniform_int_distribution<size_t> pick(0, cornell().size() - 1);
+  std::uniform_int_distribution<size_t> pick(0, quantizedCornell().size() - 1);
   for (int i = 0; i < 120; ++i) {
-    const QTriangle& t = cornell()[pick(rng)];
+    const QTriangle& t = quantizedCornell()[pick(rng)];
     const Vec to{(t.v[0][0] + t.v[1][0] + t.v[2][0]) / 3, (t.v[0][1] + t.v[1][1] + t.v[2][1]) / 3,
                  (t.v[0][2] + t.v[1][2] + t.v[2][2]) / 3};
-    rays.push_back(aimed(randomPos(rng), to));
+    rays.push_back(aimedRay(randomLatticePoint(rng), to));
   }
   for (int i = 0; i < 80; ++i) rays.push_back(randomLatticeRay(rng, 0));
-  return makeCase("cornell_random", fx::buildBvhImage(cornell(), fx::kDefaultBvhLeafSize), std::move(rays));
+  return makeCase("cornell_random", fx::buildBvhImage(quantizedCornell(), fx::kDefaultBvhLeafSize), std::move(rays));
 }
 
 BvhCase cornellSegments() {
   std::mt19937_64 rng(210);
   std::vector<QRay> base;
-  std::uniform_int_distribution<size_t> pick(0, cornell().size() - 1);
+  std::uniform_int_distribution<size_t> pick(0, quantizedCornell().size() - 1);
   for (int i = 0; i < 30; ++i) {
-    const QTriangle& t = cornell()[pick(rng)];
+    const QTriangle& t = quantizedCornell()[pick(rng)];
     const Vec to{(t.v[0][0] + t.v[1][0] + t.v[2][0]) / 3, (t.v[0][1] + t.v[1][1] + t.v[2][1]) / 3,
                  (t.v[0][2] + t.v[1][2] + t.v[2][2]) / 3};
-    base.push_back(aimed(randomPos(rng), to));
+    base.push_back(aimedRay(randomLatticePoint(rng), to));
   }
-  return makeCase("cornell_segments", fx::buildBvhImage(cornell(), 2), segmentVariants(cornell(), base, base.size()));
+  return makeCase("cornell_segments", fx::buildBvhImage(quantizedCornell(), 2), segmentVariants(quantizedCornell(), base, base.size()));
 }
 
 }  // namespace
@@ -292,7 +249,7 @@ BvhCase cornellSegments() {
 BvhImage bvhChainImage(int levels) {
   BvhImage image;
   image.leafSize = 1;
-  image.triangles = cornell();
+  image.triangles = quantizedCornell();
   image.indices = {0};
   const int shift = fx::bvhShiftFor(kSide);
   for (int k = 0; k + 1 < levels; ++k) {

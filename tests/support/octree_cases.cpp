@@ -37,30 +37,7 @@ Vec randomDir(std::mt19937_64& rng) {
   return {dir(rng), dir(rng), dir(rng)};
 }
 
-Vec randomPos(std::mt19937_64& rng) {
-  std::uniform_int_distribution<int64_t> pos(0, kPosMax);
-  return {pos(rng), pos(rng), pos(rng)};
-}
-
 QRay randomRay(std::mt19937_64& rng) { return randomLatticeRay(rng, 0); }
-
-// From `org` towards `target`, scaled so the dominant component is +-kDirMax
-// (rounded elsewhere: the ray passes near the target, not exactly through it).
-QRay aimed(const Vec& org, const Vec& target) {
-  Vec d{};
-  int64_t big = 0;
-  for (int a = 0; a < 3; ++a) big = std::max(big, std::abs(target[a] - org[a]));
-  if (big == 0) return QRay{0, org, {kDirMax, 0, 0}};
-  for (int a = 0; a < 3; ++a) d[a] = std::llround(double(target[a] - org[a]) * double(kDirMax) / double(big));
-  return normalizedDirection(QRay{0, org, d});
-}
-
-std::vector<QTriangle> quantizeScene(const Scene& scene) { return Quantizer(scene.bounds).quantize(scene); }
-
-const std::vector<QTriangle>& cornell() {
-  static const std::vector<QTriangle> tris = quantizeScene(makeCornellBox());
-  return tris;
-}
 
 Vec centroid(const QTriangle& t) {
   Vec c{};
@@ -72,36 +49,15 @@ Vec centroid(const QTriangle& t) {
 void addAimedRays(std::vector<QRay>& rays, const std::vector<QTriangle>& tris, std::mt19937_64& rng, int count) {
   if (tris.empty()) return;
   std::uniform_int_distribution<size_t> pick(0, tris.size() - 1);
-  for (int i = 0; i < count; ++i) rays.push_back(aimed(randomPos(rng), centroid(tris[pick(rng)])));
+  for (int i = 0; i < count; ++i) rays.push_back(aimedRay(randomLatticePoint(rng), centroid(tris[pick(rng)])));
 }
 
 void addRandomRays(std::vector<QRay>& rays, std::mt19937_64& rng, int count) {
   for (int i = 0; i < count; ++i) rays.push_back(randomRay(rng));
 }
 
-// The eight sign combinations of `dir`.
-void addOctants(std::vector<QRay>& rays, const Vec& org, const Vec& dir) {
-  for (int octant = 0; octant < 8; ++octant) {
-    Vec d = dir;
-    for (int a = 0; a < 3; ++a) {
-      if (octant & (4 >> a)) d[a] = -d[a];
-    }
-    rays.push_back(normalizedDirection(QRay{0, org, d}));
-  }
-}
-
 OctreeCase makeCase(std::string name, OctreeImage image, std::vector<QRay> rays) {
-  for (uint32_t i = 0; i < rays.size(); ++i) {
-    QRay& r = rays[i];
-    r.id = i;
-    for (int a = 0; a < 3; ++a) {
-      if (r.org[a] < 0 || r.org[a] > kPosMax || std::abs(r.dir[a]) > kDirMax) {
-        throw std::logic_error(fmt::format("octree case {}: ray {} is off the lattice", name, i));
-      }
-    }
-    if (r.dir == Vec{0, 0, 0}) throw std::logic_error(fmt::format("octree case {}: ray {} has no direction", name, i));
-  }
-  return OctreeCase{std::move(name), std::move(image), std::move(rays)};
+  return makeTraversalCase("octree", std::move(name), std::move(image), std::move(rays));
 }
 
 // ---- The cases ------------------------------------------------------------------
@@ -127,7 +83,7 @@ OctreeCase axisParallel() {
       }
     }
   }
-  return makeCase("axis_parallel", fx::buildOctreeImage(cornell(), depthAtMost(6), 2), std::move(rays));
+  return makeCase("axis_parallel", fx::buildOctreeImage(quantizedCornell(), depthAtMost(6), 2), std::move(rays));
 }
 
 OctreeCase midPlanes() {
@@ -136,7 +92,7 @@ OctreeCase midPlanes() {
   std::vector<QRay> rays;
   for (int i = 0; i < 240; ++i) {
     const int axis = i % 3;
-    QRay r{0, randomPos(rng), randomDir(rng)};
+    QRay r{0, randomLatticePoint(rng), randomDir(rng)};
     // The mid-plane of a node at depth k - 1: an odd multiple of 2^(P-k).
     const int k = (i % 4 == 0) ? 1 : level(rng);
     const int64_t step = kSide >> k;
@@ -154,10 +110,10 @@ OctreeCase centreAndCorners() {
   std::mt19937_64 rng(103);
   std::vector<QRay> rays;
   // Through the centre of the root along every diagonal (exact ties on all axes).
-  addOctants(rays, {kMid, kMid, kMid}, {kDirMax, kDirMax, kDirMax});
-  addOctants(rays, {kMid, kMid, kMid}, {kDirMax, kDirMax, 0});
-  addOctants(rays, {kMid, 0, kMid}, {kDirMax, 0, kDirMax});
-  addOctants(rays, {kMid - 1, kMid - 1, kMid - 1}, {kDirMax, kDirMax, kDirMax});
+  addOctantRays(rays, {kMid, kMid, kMid}, {kDirMax, kDirMax, kDirMax});
+  addOctantRays(rays, {kMid, kMid, kMid}, {kDirMax, kDirMax, 0});
+  addOctantRays(rays, {kMid, 0, kMid}, {kDirMax, 0, kDirMax});
+  addOctantRays(rays, {kMid - 1, kMid - 1, kMid - 1}, {kDirMax, kDirMax, kDirMax});
   std::uniform_int_distribution<int> level(1, std::min(8, kPosBits)), cell(0, 255), sign(0, 1);
   for (int i = 0; i < 300; ++i) {
     // A node corner at some depth; a direction through the next corners
@@ -183,13 +139,13 @@ OctreeCase octants() {
   std::mt19937_64 rng(104);
   std::vector<QRay> rays;
   const Vec origins[] = {{kMid, kMid, kMid}, {kMid - 77, kMid + 31, kMid + 5}, {1, 2, 3},
-                         {kPosMax, kPosMax - 3, kPosMax}, randomPos(rng), randomPos(rng)};
+                         {kPosMax, kPosMax - 3, kPosMax}, randomLatticePoint(rng), randomLatticePoint(rng)};
   for (const Vec& org : origins) {
-    addOctants(rays, org, {kDirMax, kDirMax / 3, kDirMax / 5});
-    addOctants(rays, org, {kDirMax / 7, kDirMax, kDirMax / 2});
-    addOctants(rays, org, {kDirMax / 4, kDirMax / 9, kDirMax});
+    addOctantRays(rays, org, {kDirMax, kDirMax / 3, kDirMax / 5});
+    addOctantRays(rays, org, {kDirMax / 7, kDirMax, kDirMax / 2});
+    addOctantRays(rays, org, {kDirMax / 4, kDirMax / 9, kDirMax});
   }
-  return makeCase("octants", fx::buildOctreeImage(cornell(), depthAtMost(6), 2), std::move(rays));
+  return makeCase("octants", fx::buildOctreeImage(quantizedCornell(), depthAtMost(6), 2), std::move(rays));
 }
 
 OctreeCase nodeFaces() {
@@ -197,7 +153,7 @@ OctreeCase nodeFaces() {
   std::uniform_int_distribution<int> level(1, std::min(9, kPosBits)), cell(0, 511);
   std::vector<QRay> rays;
   for (int i = 0; i < 300; ++i) {
-    QRay r{0, randomPos(rng), randomDir(rng)};
+    QRay r{0, randomLatticePoint(rng), randomDir(rng)};
     const int64_t step = kSide >> level(rng);
     const int axis = i % 3;
     r.org[axis] = clampPos(int64_t(cell(rng)) % (kSide / step + 1) * step);  // on a face of a node
@@ -216,7 +172,7 @@ OctreeCase rootFaces() {
   std::uniform_int_distribution<int> bit(0, 1);
   std::vector<QRay> rays;
   for (int i = 0; i < 200; ++i) {
-    QRay r{0, randomPos(rng), randomDir(rng)};
+    QRay r{0, randomLatticePoint(rng), randomDir(rng)};
     // On one, two (an edge) or three (a corner) faces of the root.
     for (int a = 0; a < 1 + i % 3; ++a) r.org[(i + a) % 3] = bit(rng) ? kPosMax : 0;
     if (i % 7 == 0) r.dir[i % 3] = 0;
@@ -229,7 +185,7 @@ OctreeCase rootFaces() {
   for (int a = 0; a < 3; ++a) {
     for (int b = 0; b < 3; ++b) {
       if (a == b) continue;
-      QRay r{0, randomPos(rng), {kDirMax / 2, kDirMax / 3, kDirMax / 5}};
+      QRay r{0, randomLatticePoint(rng), {kDirMax / 2, kDirMax / 3, kDirMax / 5}};
       r.org[a] = 0;
       r.dir[a] = -kDirMax;
       rays.push_back(normalizedDirection(r));  // leaves at t = 0 on a, inside on the others
@@ -243,7 +199,7 @@ OctreeCase rootFaces() {
   rays.push_back(QRay{0, {0, 0, 0}, {kDirMax, kDirMax, kDirMax}});
   rays.push_back(QRay{0, {kPosMax, kPosMax, kPosMax}, {kDirMax, kDirMax, kDirMax}});
   rays.push_back(QRay{0, {kPosMax, kPosMax, kPosMax}, {-kDirMax, -kDirMax, -kDirMax}});
-  return makeCase("root_faces", fx::buildOctreeImage(cornell(), depthAtMost(6), 2), std::move(rays));
+  return makeCase("root_faces", fx::buildOctreeImage(quantizedCornell(), depthAtMost(6), 2), std::move(rays));
 }
 
 // A cluster of tiny triangles forces leaves one lattice unit wide.
@@ -286,7 +242,7 @@ OctreeCase maxDepth() {
 
 // The Cornell box squeezed into one corner of the lattice (a quarter of it).
 std::vector<QTriangle> cornellInCorner(bool high) {
-  std::vector<QTriangle> tris = cornell();
+  std::vector<QTriangle> tris = quantizedCornell();
   for (QTriangle& t : tris) {
     for (auto& v : t.v)
       for (auto& c : v) c = high ? clampPos(kSide - kSide / 4 + c / 4) : c / 4;
@@ -303,9 +259,9 @@ OctreeCase offCentre(bool high) {
   for (int i = 0; i < 200; ++i) {
     // The low scene seen from above it: every axis mirrored. The high scene
     // from below and from above.
-    const Vec org = high ? (i % 2 ? Vec{close(rng), close(rng), close(rng)} : randomPos(rng))
+    const Vec org = high ? (i % 2 ? Vec{close(rng), close(rng), close(rng)} : randomLatticePoint(rng))
                          : Vec{far(rng), far(rng), far(rng)};
-    QRay r = aimed(org, centroid(tris[pick(rng)]));
+    QRay r = aimedRay(org, centroid(tris[pick(rng)]));
     if (!high && i % 3 == 0) {
       r = randomRay(rng);
       r.org = org;
@@ -327,7 +283,7 @@ OctreeCase deepSparse() {
                                     QTriangle{1, {{{3, 2, 2}, {4, 7, 2}, {2, 4, 6}}}},
                                     QTriangle{2, {{{2, 5, 4}, {7, 6, 1}, {3, 1, 3}}}}};
   std::vector<QRay> rays{QRay{0, {kPosMax, kPosMax, 3}, {-kDirMax, -kDirMax, 0}}};
-  for (int i = 0; i < 100; ++i) rays.push_back(aimed(randomPos(rng), {2 + i % 5, 2 + i % 4, 1 + i % 3}));
+  for (int i = 0; i < 100; ++i) rays.push_back(aimedRay(randomLatticePoint(rng), {2 + i % 5, 2 + i % 4, 1 + i % 3}));
   addRandomRays(rays, rng, 40);
   // Inside [0, 8]^3 the triangles separate no sooner than at depth P - 3.
   OctreeImage image = fx::buildOctreeImage(tris, depthAtMost(10), 1);
@@ -414,7 +370,7 @@ OctreeCase tinyComponents() {
   std::uniform_int_distribution<int64_t> small(-2, 2);
   std::vector<QRay> rays;
   for (int i = 0; i < 150; ++i) {
-    QRay r{0, randomPos(rng), {small(rng), small(rng), small(rng)}};
+    QRay r{0, randomLatticePoint(rng), {small(rng), small(rng), small(rng)}};
     r.dir[i % 3] = (i & 8) ? -kDirMax : kDirMax;
     if (i % 4 == 0) r.dir[(i + 1) % 3] = (i & 16) ? -1 : 1;
     rays.push_back(r);
@@ -466,7 +422,7 @@ std::vector<OctreeCase> segmentEnds() {
     QuantizedScene wall = segmentScene(zWall, zOrigin);
     cases.push_back(makeCase(name, fx::buildOctreeImage(wall.triangles, depthAtMost(5), 1), std::move(wall.rays)));
   }
-  std::vector<QTriangle> tris = cornell();
+  std::vector<QTriangle> tris = quantizedCornell();
   std::mt19937_64 rng(29);
   std::vector<QRay> rays;
   addRandomRays(rays, rng, 60);

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -34,6 +37,52 @@ QRay normalizedDirection(QRay r) {
   const int k = fx::dominantAxis(r.dir);
   r.dir[k] = r.dir[k] < 0 ? -kDirMax : kDirMax;
   return r;
+}
+
+std::vector<QTriangle> quantizeScene(const Scene& scene) { return Quantizer(scene.bounds).quantize(scene); }
+
+const std::vector<QTriangle>& quantizedCornell() {
+  static const std::vector<QTriangle> tris = quantizeScene(makeCornellBox());
+  return tris;
+}
+
+LatticePoint randomLatticePoint(std::mt19937_64& rng) {
+  std::uniform_int_distribution<int64_t> pos(0, kPosMax);
+  return {pos(rng), pos(rng), pos(rng)};
+}
+
+QRay aimedRay(const LatticePoint& org, const LatticePoint& target) {
+  LatticePoint d{};
+  int64_t big = 0;
+  for (int a = 0; a < 3; ++a) big = std::max(big, std::abs(target[a] - org[a]));
+  if (big == 0) return QRay{0, org, {kDirMax, 0, 0}};
+  for (int a = 0; a < 3; ++a) d[a] = std::llround(double(target[a] - org[a]) * double(kDirMax) / double(big));
+  return normalizedDirection(QRay{0, org, d});
+}
+
+void addOctantRays(std::vector<QRay>& rays, const LatticePoint& org, const LatticePoint& dir) {
+  for (int octant = 0; octant < 8; ++octant) {
+    LatticePoint d = dir;
+    for (int a = 0; a < 3; ++a) {
+      if (octant & (4 >> a)) d[a] = -d[a];
+    }
+    rays.push_back(normalizedDirection(QRay{0, org, d}));
+  }
+}
+
+void numberCaseRays(std::string_view unit, const std::string& name, std::vector<QRay>& rays) {
+  for (uint32_t i = 0; i < rays.size(); ++i) {
+    QRay& r = rays[i];
+    r.id = i;
+    for (int a = 0; a < 3; ++a) {
+      if (r.org[a] < 0 || r.org[a] > kPosMax || std::abs(r.dir[a]) > kDirMax) {
+        throw std::logic_error(fmt::format("{} case {}: ray {} is off the lattice", unit, name, i));
+      }
+    }
+    if (r.dir == LatticePoint{0, 0, 0}) {
+      throw std::logic_error(fmt::format("{} case {}: ray {} has no direction", unit, name, i));
+    }
+  }
 }
 
 QRay randomLatticeRay(std::mt19937_64& rng, uint32_t id) {

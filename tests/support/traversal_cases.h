@@ -5,11 +5,14 @@
 // the adverse run conditions for a cycle model, and one-line descriptions for
 // mismatch reports.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <random>
 #include <span>
+#include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "driver/traversal_device.h"
@@ -27,6 +30,30 @@ struct TraversalCase {
   std::vector<fx::QRay> rays;
 };
 
+// A unit's hard cases (`Build`: bvhHardCases, octreeHardCases, ...) built once
+// for the test program, and found by name: a value-parameterized test runs
+// over caseNames<Build>() and looks its case up with caseNamed<Build>(name).
+template <auto Build>
+const auto& casesOnce() {
+  static const auto cases = Build();
+  return cases;
+}
+
+template <auto Build>
+std::vector<std::string> caseNames() {
+  std::vector<std::string> names;
+  for (const auto& c : casesOnce<Build>()) names.push_back(c.name);
+  return names;
+}
+
+template <auto Build>
+const auto& caseNamed(const std::string& name) {
+  for (const auto& c : casesOnce<Build>()) {
+    if (c.name == name) return c;
+  }
+  throw std::logic_error("no hard case named " + name);
+}
+
 // Quantized triangles of a scene (lancer::Quantizer over its bounds, id = index)
 // and its camera rays (frameScene, width x height) through the same quantizer;
 // rays that miss the lattice cube are dropped, ids stay the pixel index.
@@ -38,6 +65,36 @@ QuantizedScene quantizedCamera(const Scene& scene, int width, int height);
 
 // The quantizer's direction rule: the dominant component is exactly +-DIR_MAX.
 fx::QRay normalizedDirection(fx::QRay ray);
+
+// ---- What the hard cases are built from ----------------------------------------
+using LatticePoint = std::array<int64_t, 3>;
+
+// Triangles of a scene through lancer::Quantizer over its bounds (id = index),
+// and the built-in Cornell box so, built once.
+std::vector<fx::QTriangle> quantizeScene(const Scene& scene);
+const std::vector<fx::QTriangle>& quantizedCornell();
+
+// A uniformly random lattice point.
+LatticePoint randomLatticePoint(std::mt19937_64& rng);
+
+// From `org` towards `target`, scaled so the dominant component is +-kDirMax
+// (rounded elsewhere: the ray passes near the target, not exactly through it).
+fx::QRay aimedRay(const LatticePoint& org, const LatticePoint& target);
+
+// The eight sign combinations of `dir` from `org` (a component of 0 stays 0:
+// fewer distinct rays).
+void addOctantRays(std::vector<fx::QRay>& rays, const LatticePoint& org, const LatticePoint& dir);
+
+// Numbers the rays 0..n-1; a logic_error names the unit's case and the ray
+// unless every ray starts on the lattice with a non-zero direction in range.
+void numberCaseRays(std::string_view unit, const std::string& name, std::vector<fx::QRay>& rays);
+
+template <class Image>
+TraversalCase<Image> makeTraversalCase(std::string_view unit, std::string name, Image image,
+                                       std::vector<fx::QRay> rays) {
+  numberCaseRays(unit, name, rays);
+  return {std::move(name), std::move(image), std::move(rays)};
+}
 
 // A random lattice ray (direction normalized as the quantizer does), and random
 // triangles (ids 0..count-1) with vertices within `spread` lattice units of a

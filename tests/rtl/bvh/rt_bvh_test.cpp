@@ -42,24 +42,7 @@ TraversalRunStats expectSameTraces(const BvhImage& image, const std::vector<QRay
   return r;
 }
 
-// The hard cases, built once.
-const std::vector<BvhCase>& hardCases() {
-  static const std::vector<BvhCase> cases = test::bvhHardCases();
-  return cases;
-}
-
-std::vector<std::string> hardCaseNames() {
-  std::vector<std::string> names;
-  for (const BvhCase& c : hardCases()) names.push_back(c.name);
-  return names;
-}
-
-const BvhCase& hardCase(const std::string& name) {
-  for (const BvhCase& c : hardCases()) {
-    if (c.name == name) return c;
-  }
-  throw std::logic_error("no bvh case " + name);
-}
+const BvhCase& hardCase(const std::string& name) { return test::caseNamed<test::bvhHardCases>(name); }
 
 class RtBvhHardCases : public ::testing::TestWithParam<std::string> {};
 
@@ -73,7 +56,7 @@ TEST_P(RtBvhHardCases, MatchGolden) {
   expectSameTraces(c.image, some, test::roughTraversalOptions(seed + 1, 1));
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, RtBvhHardCases, ::testing::ValuesIn(hardCaseNames()),
+INSTANTIATE_TEST_SUITE_P(Cases, RtBvhHardCases, ::testing::ValuesIn(test::caseNames<test::bvhHardCases>()),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 const Scene& bunny() {

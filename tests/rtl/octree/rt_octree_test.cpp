@@ -43,24 +43,7 @@ TraversalRunStats expectSameTraces(const OctreeImage& image, const std::vector<Q
   return r;
 }
 
-// The hard cases, built once.
-const std::vector<OctreeCase>& hardCases() {
-  static const std::vector<OctreeCase> cases = test::octreeHardCases();
-  return cases;
-}
-
-std::vector<std::string> hardCaseNames() {
-  std::vector<std::string> names;
-  for (const OctreeCase& c : hardCases()) names.push_back(c.name);
-  return names;
-}
-
-const OctreeCase& hardCase(const std::string& name) {
-  for (const OctreeCase& c : hardCases()) {
-    if (c.name == name) return c;
-  }
-  throw std::logic_error("no octree case " + name);
-}
+const OctreeCase& hardCase(const std::string& name) { return test::caseNamed<test::octreeHardCases>(name); }
 
 class RtOctreeHardCases : public ::testing::TestWithParam<std::string> {};
 
@@ -74,7 +57,7 @@ TEST_P(RtOctreeHardCases, MatchGolden) {
   expectSameTraces(c.image, some, test::roughOctreeOptions(seed + 1, 1));
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, RtOctreeHardCases, ::testing::ValuesIn(hardCaseNames()),
+INSTANTIATE_TEST_SUITE_P(Cases, RtOctreeHardCases, ::testing::ValuesIn(test::caseNames<test::octreeHardCases>()),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 const Scene& bunny() {
