@@ -182,10 +182,16 @@ BvhImage buildBvhImage(std::vector<QTriangle> triangles, int leafSize) {
   } else {
     image.depth = 1;  // the root: an empty leaf
   }
-  checkRegionFits("bvh", "node table", image.nodes.size(), "use a smaller scene");
-  checkRegionFits("bvh", "index list", image.indices.size(), "use a smaller scene");
-  checkRegionFits("bvh", "triangle table", image.triangles.size(), "use a smaller scene");
+  checkBvhImageFits(image);
   return image;
+}
+
+void checkBvhImageFits(const BvhImage& image, int addrBits) {
+  // The index list and the triangle table hold an entry a triangle, the node
+  // table fewer: no leaf size helps, only a smaller scene.
+  checkRegionFits("bvh", "node table", image.nodes.size(), "use a smaller scene", addrBits);
+  checkRegionFits("bvh", "index list", image.indices.size(), "use a smaller scene", addrBits);
+  checkRegionFits("bvh", "triangle table", image.triangles.size(), "use a smaller scene", addrBits);
 }
 
 BoxHit boxTest(const BvhRaySetup& ray, const std::array<int64_t, 3>& lo, const std::array<int64_t, 3>& hi) {

@@ -58,6 +58,11 @@ inline constexpr int kDefaultBvhLeafSize = 4;
 // that does not fit kMemAddrBits.
 BvhImage buildBvhImage(std::vector<QTriangle> triangles, int leafSize);
 
+// Throws InputError, naming the first region that overflows, unless the node
+// table, the index list and the triangle table each fit `addrBits` address
+// bits. buildBvhImage checks the unit's kMemAddrBits.
+void checkBvhImageFits(const BvhImage& image, int addrBits = kMemAddrBits);
+
 // The smallest shift whose kBvhPlaneBits steps cover `extent`.
 int bvhShiftFor(int64_t extent);
 // Child plane steps of [lo, hi] in a frame (base, shift), rounded outwards.

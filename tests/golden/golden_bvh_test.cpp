@@ -3,6 +3,8 @@
 #include <functional>
 #include <random>
 
+#include <fmt/format.h>
+
 #include "common/error.h"
 #include "golden/bvh.h"
 #include "golden/bvh_unit.h"
@@ -371,6 +373,32 @@ TEST(GoldenBvh, BadConfigurationsAreErrors) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("ray 7"), std::string::npos) << e.what();
   }
+}
+
+TEST(GoldenBvh, AnImageBeyondTheAddressWidthIsOneLineError) {
+  // No scene a test can build reaches kMemAddrBits (2^24 nodes), so the check
+  // buildBvhImage runs is run at widths the Cornell box's 32 triangles exceed.
+  const BvhImage image = buildBvhImage(quantizeScene(makeCornellBox()), 4);
+  ASSERT_EQ(image.triangles.size(), 32u);
+  EXPECT_NO_THROW(checkBvhImageFits(image, 5));
+  auto messageAt = [&](int addrBits) {
+    try {
+      checkBvhImageFits(image, addrBits);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string indices = messageAt(4);
+  EXPECT_NE(indices.find("the bvh's memory image does not fit the 4-bit address width: the index list needs 32 "
+                         "entries (at most 16); use a smaller scene"),
+            std::string::npos)
+      << indices;
+  EXPECT_EQ(indices.find('\n'), std::string::npos) << "one line";
+  const std::string nodes = messageAt(1);
+  EXPECT_NE(nodes.find(fmt::format("the node table needs {} entries (at most 2)", image.nodes.size())),
+            std::string::npos)
+      << nodes;
 }
 
 }  // namespace
