@@ -2,12 +2,8 @@
 // exact.
 //
 // Multiplications only, in three register stages (BVH_SETUP_LATENCY, one
-// multiplication deep each):
-//   stage 1  the mirrored origin o' = 2^P - o on axes with a negative
-//            component (P+1 bits), |d|
-//   stage 2  pair[a] = product of |d_b| over the other active axes (1 if none)
-//   stage 3  the common denominator C = pair[x] * |d_x| = product of |d| over
-//            the active axes (1 if none)
+// multiplication deep each): rt_mirror_pairs's mirrored origin o', pair
+// products and common denominator C, the octree's setup's too.
 // rt_setup_front carries the ray through the stages and computes |d|, the
 // active axes (d != 0), the negative ones (mirror) and the dominant max |d|.
 //
@@ -50,57 +46,38 @@ module rt_bvh_setup #(
     .neg_o       (mirror_o)
   );
 
-  // ---- Stage 1: |d| and the mirrored origin ------------------------------------
-  logic [3*MAG_W-1:0]   s1_mag_q;
-  logic [3*ORG_W-1:0]   s1_org_q;
+  // ---- Stages 1 to 3: o', the pair products, C ----------------------------------
+  logic [3*ORG_W-1:0]   unused_s1_org;
+  logic [3*PAIR_W-1:0]  s2_pair;
+  logic [3*ORG_W-1:0]   unused_s2_org;
+  logic [3*ORG_W-1:0]   s3_org;
+  logic [COM_W-1:0]     s3_common;
 
-  always_ff @(posedge clk_i) begin
-    if (valid_i) begin
-      for (int a = 0; a < 3; a++) begin
-        logic [DIR_W-1:0] d;
-        logic [ORG_W-1:0] o;
-        d = ray_i.dir[a];
-        o = ORG_W'(ray_i.org[a]);
-        s1_mag_q[a*MAG_W +: MAG_W] <= mag[a*DIR_W +: MAG_W];
-        s1_org_q[a*ORG_W +: ORG_W] <= d[DIR_W-1] ? (ORG_W'(1) << P) - o : o;
-      end
-    end
-  end
+  rt_mirror_pairs #(.ComW(COM_W)) u_pairs (
+    .clk_i,
+    .valid_i,
+    .org_i       (ray_i.org),
+    .dir_i       (ray_i.dir),
+    .mag_i       (mag),
+    .s1_valid_i  (s1_valid),
+    .s1_active_i (s1_active),
+    .s2_valid_i  (s2_valid),
+    .s1_org_o    (unused_s1_org),
+    .s2_org_o    (unused_s2_org),
+    .s2_pair_o   (s2_pair),
+    .s3_org_o    (s3_org),
+    .s3_common_o (s3_common)
+  );
 
-  // ---- Stage 2: the pair products -----------------------------------------------
-  logic [3*ORG_W-1:0]   s2_org_q;
-  logic [3*PAIR_W-1:0]  s2_pair_q;
-  logic [MAG_W-1:0]     s2_mx_q;      // |d_x|, 1 if x is inactive
-
-  always_ff @(posedge clk_i) begin
-    if (s1_valid) begin
-      logic [MAG_W-1:0]  m [3];       // |d| masked to 1 on inactive axes
-      for (int a = 0; a < 3; a++) begin
-        m[a] = s1_active[a] ? s1_mag_q[a*MAG_W +: MAG_W] : MAG_W'(1);
-      end
-      s2_pair_q[0*PAIR_W +: PAIR_W] <= PAIR_W'(m[1]) * PAIR_W'(m[2]);
-      s2_pair_q[1*PAIR_W +: PAIR_W] <= PAIR_W'(m[0]) * PAIR_W'(m[2]);
-      s2_pair_q[2*PAIR_W +: PAIR_W] <= PAIR_W'(m[0]) * PAIR_W'(m[1]);
-      s2_mx_q  <= m[0];
-      s2_org_q <= s1_org_q;
-    end
-  end
-
-  // ---- Stage 3: the common denominator -----------------------------------------
-  logic [3*ORG_W-1:0]   s3_org_q;
+  // Stage 3 also holds the pair products, which the box tester scales by.
   logic [3*PAIR_W-1:0]  s3_pair_q;
-  logic [COM_W-1:0]     s3_common_q;
 
   always_ff @(posedge clk_i) begin
-    if (s2_valid) begin
-      s3_org_q    <= s2_org_q;
-      s3_pair_q   <= s2_pair_q;
-      s3_common_q <= COM_W'(s2_pair_q[0*PAIR_W +: PAIR_W]) * COM_W'(s2_mx_q);
-    end
+    if (s2_valid) s3_pair_q <= s2_pair;
   end
 
-  assign origin_o = s3_org_q;
+  assign origin_o = s3_org;
   assign pair_o   = s3_pair_q;
-  assign common_o = s3_common_q;
+  assign common_o = s3_common;
 
 endmodule

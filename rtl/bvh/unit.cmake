@@ -1,5 +1,7 @@
 # rt_bvh's build (read by lancer_rtl_traversal_unit, rtl/CMakeLists.txt):
-# its sources in compile order after the package and the shell.
+# its sources in compile order after the package and the shell: the modules
+# of rtl/lib it shares with some other units, then its own.
+set(unit_lib_sources rt_mirror_pairs.sv)
 set(unit_sources rt_bvh_setup.sv rt_bvh_box.sv rt_bvh_slots.sv rt_bvh.sv)
 set(unit_params)
 set(unit_definitions)

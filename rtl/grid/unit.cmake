@@ -6,6 +6,7 @@ set(LANCER_GRID_CELL_QUEUE 2 CACHE STRING
 if(NOT LANCER_GRID_CELL_QUEUE MATCHES "^(2|4|8)$")
   message(FATAL_ERROR "LANCER_GRID_CELL_QUEUE must be 2, 4 or 8 (got ${LANCER_GRID_CELL_QUEUE})")
 endif()
+set(unit_lib_sources)
 set(unit_sources rt_grid_setup.sv rt_grid_slots.sv rt_grid.sv)
 set(unit_params CellQueue=${LANCER_GRID_CELL_QUEUE})
 set(unit_definitions LANCER_GRID_CELL_QUEUE=${LANCER_GRID_CELL_QUEUE})

@@ -17,7 +17,8 @@
 //            max t0 < min t1 over the active axes (true with none active)
 //
 // rt_setup_front carries the ray through the stages and computes |d|, the
-// active and negative axes and the dominant.
+// active and negative axes and the dominant; rt_mirror_pairs computes o', the
+// pair products and common, as for rt_bvh_setup.
 //
 // Latency:    a ray accepted at edge t (valid_i high in the cycle before t) is on
 //             valid_o after edge t+2; the slot loads it at edge t+3.
@@ -64,62 +65,51 @@ module rt_octree_setup #(
     .neg_o       (s3_neg)
   );
 
-  // ---- Stage 1: |d| and the mirrored origin ------------------------------------
-  logic [3*MAG_W-1:0]   s1_mag_q;
-  logic [3*ORG_W-1:0]   s1_org_q;
+  // ---- Stages 1 to 3: o', the pair products, C ----------------------------------
+  logic [3*ORG_W-1:0]   s1_org, s2_org, s3_org;
+  logic [3*PAIR_W-1:0]  s2_pair;
+  logic [COM_W-1:0]     s3_common;
+
+  rt_mirror_pairs #(.ComW(COM_W)) u_pairs (
+    .clk_i,
+    .valid_i,
+    .org_i       (ray_i.org),
+    .dir_i       (ray_i.dir),
+    .mag_i       (mag),
+    .s1_valid_i  (s1_valid),
+    .s1_active_i (s1_active),
+    .s2_valid_i  (s2_valid),
+    .s1_org_o    (s1_org),
+    .s2_org_o    (s2_org),
+    .s2_pair_o   (s2_pair),
+    .s3_org_o    (s3_org),
+    .s3_common_o (s3_common)
+  );
+
+  // ---- Stage 2: the far plane's distance 2^P - o' --------------------------------
+  logic [3*ORG_W-1:0]   s2_org_hi_q;
 
   // The stage's arithmetic only in the cycles it loads (as in rt_isect: a
   // simulator then evaluates it once per ray, not in every cycle).
   always_ff @(posedge clk_i) begin
-    if (valid_i) begin
-      for (int a = 0; a < 3; a++) begin
-        logic [DIR_W-1:0] d;
-        logic [ORG_W-1:0] o;
-        d = ray_i.dir[a];
-        o = ORG_W'(ray_i.org[a]);
-        s1_mag_q[a*MAG_W +: MAG_W] <= mag[a*DIR_W +: MAG_W];
-        // min + max - o: mirrored about the root's centre, not about 0.
-        s1_org_q[a*ORG_W +: ORG_W] <= d[DIR_W-1] ? (ORG_W'(1) << P) - o : o;
-      end
-    end
-  end
-
-  // ---- Stage 2 ---------------------------------------------------------------
-  logic [3*ORG_W-1:0]   s2_org_q;
-  logic [3*ORG_W-1:0]   s2_org_hi_q;  // 2^P - o'
-  logic [3*PAIR_W-1:0]  s2_pair_q;
-  logic [MAG_W-1:0]     s2_mx_q;      // |d_x|, 1 if x is inactive
-
-  always_ff @(posedge clk_i) begin
     if (s1_valid) begin
-      logic [MAG_W-1:0]  m [3];       // |d| masked to 1 on inactive axes
       for (int a = 0; a < 3; a++) begin
-        m[a] = s1_active[a] ? s1_mag_q[a*MAG_W +: MAG_W] : MAG_W'(1);
-        s2_org_hi_q[a*ORG_W +: ORG_W] <= (ORG_W'(1) << P) - s1_org_q[a*ORG_W +: ORG_W];
+        s2_org_hi_q[a*ORG_W +: ORG_W] <= (ORG_W'(1) << P) - s1_org[a*ORG_W +: ORG_W];
       end
-      s2_pair_q[0*PAIR_W +: PAIR_W] <= PAIR_W'(m[1]) * PAIR_W'(m[2]);
-      s2_pair_q[1*PAIR_W +: PAIR_W] <= PAIR_W'(m[0]) * PAIR_W'(m[2]);
-      s2_pair_q[2*PAIR_W +: PAIR_W] <= PAIR_W'(m[0]) * PAIR_W'(m[1]);
-      s2_mx_q     <= m[0];
-      s2_org_q    <= s1_org_q;
     end
   end
 
   // ---- Stage 3: the root's planes as products ---------------------------------
   // |plane - o'| <= 2^P and pair < 2^(2(D-1)): every product fits T_W signed.
-  logic [3*ORG_W-1:0]   s3_org_q;
-  logic [COM_W-1:0]     s3_common_q;
   logic [3*T_W-1:0]     s3_low_q;     // o' * pair
   logic [3*T_W-1:0]     s3_high_q;    // (2^P - o') * pair
 
   always_ff @(posedge clk_i) begin
     if (s2_valid) begin
       for (int a = 0; a < 3; a++) begin
-        s3_low_q[a*T_W +: T_W]  <= T_W'(s2_org_q[a*ORG_W +: ORG_W]) * T_W'(s2_pair_q[a*PAIR_W +: PAIR_W]);
-        s3_high_q[a*T_W +: T_W] <= T_W'(s2_org_hi_q[a*ORG_W +: ORG_W]) * T_W'(s2_pair_q[a*PAIR_W +: PAIR_W]);
+        s3_low_q[a*T_W +: T_W]  <= T_W'(s2_org[a*ORG_W +: ORG_W]) * T_W'(s2_pair[a*PAIR_W +: PAIR_W]);
+        s3_high_q[a*T_W +: T_W] <= T_W'(s2_org_hi_q[a*ORG_W +: ORG_W]) * T_W'(s2_pair[a*PAIR_W +: PAIR_W]);
       end
-      s3_org_q    <= s2_org_q;
-      s3_common_q <= COM_W'(s2_pair_q[0*PAIR_W +: PAIR_W]) * COM_W'(s2_mx_q);
     end
   end
 
@@ -148,7 +138,7 @@ module rt_octree_setup #(
 
   assign mirror_o = {s3_neg[0], s3_neg[1], s3_neg[2]};
   assign active_o = s3_active;
-  assign origin_o = s3_org_q;
-  assign common_o = s3_common_q;
+  assign origin_o = s3_org;
+  assign common_o = s3_common;
 
 endmodule
