@@ -112,7 +112,7 @@ TEST(ScGridCycleAccuracy, ModelMatchesVerilatedRtlCycleForCycle) {
 
 TEST(ScGridCycleAccuracy, StatsEqualTheCxxVerilatedDevice) {
   test::expectStatsEqualTheCxxVerilatedDevice<fx::GridUnit, SystemCGridDevice>(
-      {bunnyCase()}, timingSettings(), {Impl::Model, Impl::Rtl, Impl::ModelRtlIsect});
+      std::vector<test::GridCase>{bunnyCase()}, timingSettings(), {Impl::Model, Impl::Rtl, Impl::ModelRtlIsect});
 }
 
 // ---- The device in the process --------------------------------------------------
