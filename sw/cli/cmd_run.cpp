@@ -70,8 +70,10 @@ void writeHardwareHits(const std::string& path, const JobResult& job) {
   if (std::ferror(out.get())) throw InputError(fmt::format("{}: write failed", path));
 }
 
-// Counts print and serialize as integers, ratios as decimals.
+// Counts print and serialize as integers, ratios as decimals (four digits).
 bool isWhole(double v) { return v == std::floor(v) && std::fabs(v) < 1e15; }
+std::string wholeOrShort(double v) { return isWhole(v) ? fmt::format("{}", int64_t(v)) : fmt::format("{:.4g}", v); }
+nlohmann::json counterJson(double v) { return isWhole(v) ? nlohmann::json(int64_t(v)) : nlohmann::json(v); }
 
 // The options of the hardware path that shape what it computes or how it is
 // timed, as they would be typed: what a replay must repeat.
@@ -184,6 +186,7 @@ struct EffectsFigures {
                scene.name, scene.size(), eyeRays, toString(sampling), camera.width(), camera.height(),
                args.job.model, toString(args.accel), fx::kPosBits, fx::kDirBits);
     fmt::print("  clock               {}\n", clock.describe());
+    printStructure();
     printClasses();
     printComparisons();
     printAnyHitSaving();
@@ -208,6 +211,15 @@ struct EffectsFigures {
       }
     }
     return all;
+  }
+
+  // The structure the unit walks, as built for the scene.
+  void printStructure() const {
+    const std::vector<JobCounter> figures = tracer.structure();
+    if (figures.empty()) return;
+    std::vector<std::string> items;
+    for (const JobCounter& c : figures) items.push_back(fmt::format("{} {}", c.label, wholeOrShort(c.value)));
+    fmt::print("  structure           {}\n", fmt::join(items, ", "));
   }
 
   // What the hardware did per ray class.
@@ -289,6 +301,9 @@ struct EffectsFigures {
                    {"total_internal_reflections", hw.totalInternalReflections},
                    {"refraction_rays_traced", hw.refractionsTraced},
                    {"beyond_bound", tracer.beyondBound()}});
+    nlohmann::json structure = nlohmann::json::object();
+    for (const JobCounter& c : tracer.structure()) structure[c.key] = counterJson(c.value);
+    report["structure"] = structure;
     if (const auto c = chip()) report.update(c->toJson(cycles(), waveRays(), clockHz()));
     for (const auto& [key, value] : spdCounts(hw)) report[key] = value;
     nlohmann::json refJson;
@@ -377,8 +392,7 @@ struct RunFigures {
                  job.cycles ? fmt::format(", ideal pipeline {} cycles", job.cycles) : "");
     }
     for (const JobCounter& c : job.counters) {
-      fmt::print("  {:<19} {}\n", c.label,
-                 isWhole(c.value) ? fmt::format("{}", int64_t(c.value)) : fmt::format("{:.4g}", c.value));
+      fmt::print("  {:<19} {}\n", c.label, wholeOrShort(c.value));
     }
     fmt::print("  host                {:.2f} s in all, {:.2f} s in the model ({:.0f} rays/s), {:.2f} s in golden\n",
                hostSeconds, job.modelSeconds, job.modelSeconds > 0 ? double(inLattice()) / job.modelSeconds : 0.0,
@@ -410,7 +424,7 @@ struct RunFigures {
     report.update(lancer::toJson(cmp));
     if (job.chip) report.update(job.chip->toJson(job.cycles, rays.rays.size(), clockHz()));
     for (const JobCounter& c : job.counters) {
-      report[c.key] = isWhole(c.value) ? nlohmann::json(int64_t(c.value)) : nlohmann::json(c.value);
+      report[c.key] = counterJson(c.value);
     }
     return report;
   }

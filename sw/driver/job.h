@@ -104,6 +104,10 @@ class HardwarePath {
  public:
   virtual ~HardwarePath() = default;
   virtual JobResult run(std::span<const std::optional<QuantizedRay>> rays, const ProgressFn& onProgress = {}) = 0;
+  // The figures of the structure the path built for the scene (a traversal
+  // unit's memory image: the grid's resolution, the octree's depth and nodes,
+  // the BVH's); none for the pipeline fed by the host.
+  virtual std::vector<JobCounter> structure() const { return {}; }
 };
 
 // Throws InputError for an unknown model, or a configuration the model cannot run.

@@ -98,6 +98,8 @@ class HardwareWaveTracer final : public WaveTracer {
   // lattice ray would have met it again from the loop's side.
   uint64_t sideFlips() const { return sideFlips_; }
   double offsetUnits() const { return offset_; }
+  // The structure the hardware path built (HardwarePath::structure).
+  std::vector<JobCounter> structure() const { return path_->structure(); }
 
  private:
   std::optional<QuantizedRay> latticeRay(const WaveRay& ray, uint32_t index);
