@@ -59,11 +59,7 @@ class TraversalPath final : public HardwarePath {
     }
     return runTraversalJob(image_, rays, *model_, golden_, config_, onProgress, memory_.get());
   }
-  std::vector<JobCounter> structure() const override {
-    std::vector<JobCounter> figures;
-    for (const fx::ImageCounter& c : Unit::imageCounters(image_)) figures.push_back({c.key, c.label, c.value});
-    return figures;
-  }
+  std::vector<JobCounter> structure() const override { return imageFigures<Unit>(image_); }
 
  private:
   JobConfig config_;

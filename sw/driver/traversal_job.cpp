@@ -121,7 +121,7 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
   job.memoryReads = total.memoryReads();
   job.nodeBytes = total.nodeReads * nodeReadBytes<Unit>();
   const double cycles = double(std::max<uint64_t>(total.cycles, 1));
-  for (const fx::ImageCounter& c : Unit::imageCounters(image)) job.addCounter(c.key, c.label, c.value);
+  job.counters = imageFigures<Unit>(image);
   job.addCounter(Unit::kNames.stepsKey, Unit::kNames.stepsLabel, double(total.steps));
   job.addCounter("memory_reads", "memory reads", double(total.memoryReads()));
   job.addCounter(Unit::kNames.readsKey, Unit::kNames.readsLabel, double(total.nodeReads));

@@ -7,6 +7,7 @@
 // (golden/unit.h).
 
 #include <string>
+#include <vector>
 
 #include "driver/job.h"
 #include "driver/traversal_device.h"
@@ -19,6 +20,16 @@ namespace lancer {
 template <class Unit>
 typename Unit::Image buildImageFor(const Scene& scene, const Quantizer& quantizer, const AccelOptions& options) {
   return Unit::build(quantizer.quantize(scene), options);
+}
+
+// The descriptor's figures of a unit's image (Unit::imageCounters: the grid's
+// resolution, the octree's depth and nodes, ...) as counters for the summary
+// and the report.
+template <class Unit>
+std::vector<JobCounter> imageFigures(const typename Unit::Image& image) {
+  std::vector<JobCounter> figures;
+  for (const fx::ImageCounter& c : Unit::imageCounters(image)) figures.push_back({c.key, c.label, c.value});
+  return figures;
 }
 
 // The run options of a job's configuration (stream, memory, chip).

@@ -7,6 +7,7 @@
 
 #include "common/error.h"
 #include "golden/isect.h"
+#include "golden/lattice.h"
 #include "golden/memory_image.h"
 #include "golden/wide.h"
 
@@ -60,10 +61,8 @@ GridImage buildGridImage(std::vector<QTriangle> triangles, const GridRes& res) {
   // Two passes (count, then fill) so a 256^3 grid needs no per-cell containers.
   auto forEachCell = [&](uint32_t id, auto&& visit) {
     std::array<std::pair<int, int>, 3> span{};
-    const auto& v = triangles[id].v;
-    for (int a = 0; a < 3; ++a) {
-      span[a] = range(std::min({v[0][a], v[1][a], v[2][a]}), std::max({v[0][a], v[1][a], v[2][a]}), res[a]);
-    }
+    const LatticeBox box = latticeBounds(triangles[id]);
+    for (int a = 0; a < 3; ++a) span[a] = range(box.lo[a], box.hi[a], res[a]);
     for (int z = span[2].first; z <= span[2].second; ++z)
       for (int y = span[1].first; y <= span[1].second; ++y)
         for (int x = span[0].first; x <= span[0].second; ++x) visit(image.cellId({x, y, z}));
