@@ -1,0 +1,138 @@
+"""The silicon flow's pieces on small hand-made inputs (scripts/lancer_silicon.py):
+the netlist reader's refusals, fan-out buffering, the power view, the names
+activity is matched by, the memories of a Yosys dump, the clock a macro's
+asynchronous read sets, and the link check naming the cells."""
+
+import sys
+import unittest
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
+import lancer_silicon as si  # noqa: E402
+
+PINS = {
+    "sky130_fd_sc_hd__inv_1": {"in": ["A"], "out": ["Y"], "area": 3.75, "ff": False},
+    "sky130_fd_sc_hd__buf_8": {"in": ["A"], "out": ["X"], "area": 11.26, "ff": False},
+    "sky130_fd_sc_hd__dfxtp_1": {"in": ["CLK", "D"], "out": ["Q"], "area": 20.02, "ff": True},
+}
+
+
+def netlist_text(loads):
+    cells = "\n".join(f"  sky130_fd_sc_hd__inv_1 _{k}_ (\n    .A(\\r_q[0] ),\n    .Y(o_{k})\n  );"
+                      for k in range(loads))
+    outs = "".join(f"  output o_{k};\n" for k in range(loads))
+    return f"""module top(clk_i, d_i, {', '.join(f'o_{k}' for k in range(loads))});
+  input clk_i;
+  input d_i;
+{outs}  wire \\r_q[0] ;
+  sky130_fd_sc_hd__dfxtp_1 _ff_ (
+    .CLK(clk_i),
+    .D(d_i),
+    .Q(\\r_q[0] )
+  );
+{cells}
+endmodule
+"""
+
+
+class NetlistTest(unittest.TestCase):
+    def test_reads_cells_ports_and_escaped_names(self):
+        n = si.Netlist(netlist_text(3))
+        self.assertEqual(n.top, "top")
+        self.assertEqual(n.inputs, ["clk_i", "d_i"])
+        self.assertEqual(len(n.instances), 4)
+        self.assertEqual(n.instances[0][2]["Q"], "\\r_q[0]")
+
+    def test_refuses_assigns_and_concatenations(self):
+        with self.assertRaisesRegex(si.FlowError, "assign"):
+            si.Netlist(netlist_text(1).replace("endmodule", "  assign o_0 = d_i;\nendmodule"))
+        with self.assertRaisesRegex(si.FlowError, "constant or concatenation"):
+            si.Netlist(netlist_text(1).replace(".D(d_i)", ".D(1'h0)"))
+
+    def test_fanout_is_buffered_to_the_limit(self):
+        n = si.Netlist(netlist_text(100))
+        added = si.buffer_fanout(n, PINS)
+        self.assertGreater(added, 0)
+        fanout = {}
+        for cell, _, pins in n.instances:
+            for pin, net in pins.items():
+                if pin in PINS[cell]["in"]:
+                    fanout[net] = fanout.get(net, 0) + 1
+        self.assertLessEqual(max(fanout.values()), si.MAX_FANOUT)
+        # the written netlist reads back with the same cells
+        self.assertEqual(len(si.Netlist(n.text()).instances), len(n.instances))
+
+    def test_power_view_drives_register_loads_from_a_port(self):
+        view, registers = si.power_view(si.Netlist(netlist_text(2)), PINS)
+        self.assertEqual(list(registers.values()), ["\\r_q[0]"])
+        port = next(iter(registers))
+        self.assertIn(port, view.inputs)
+        loads = [p["A"] for c, _, p in view.instances if c.endswith("inv_1")]
+        self.assertEqual(loads, [port, port])
+
+
+class NamesTest(unittest.TestCase):
+    def test_netlist_and_fst_names_meet(self):
+        self.assertEqual(si.signal_base("u_shell.g_cmp[0].old_hi_q_3_"), "u_shell.g_cmp.old_hi_q")
+        self.assertEqual(si.signal_base("\\u_slots.mirror_q[5]_2_ "), "u_slots.mirror_q")
+        self.assertEqual(si.signal_base("u_slots.mirror_q(5)"), "u_slots.mirror_q")
+
+    def test_port_activity_matches_registers_and_defaults_the_rest(self):
+        view, registers = si.power_view(si.Netlist(netlist_text(1)), PINS)
+        activity = {"cycles": 10, "signals": {"TOP.top.r_q": {"per_bit_per_cycle": 0.25},
+                                              "TOP.d_i": {"per_bit_per_cycle": 0.5}}}
+        rates, counts = si.port_activity(view, registers, activity, "top")
+        self.assertEqual(rates[next(iter(registers))], 0.25)
+        self.assertEqual(rates["d_i"], 0.5)
+        self.assertEqual(counts["registers_measured"], 1)
+        self.assertEqual(counts["default"], 0.25)
+
+
+DUMP = r"""
+  cell $mem_v2 \u_slots.stack_q
+    parameter \RD_CLK_ENABLE 3'010
+    parameter \RD_PORTS 3
+    parameter \SIZE 512
+    parameter \WIDTH 35
+    parameter \WR_PORTS 1
+  end
+"""
+
+
+class MacroTest(unittest.TestCase):
+    def test_memories_of_a_dump(self):
+        m = si.parse_memories(DUMP)["u_slots.stack_q"]
+        self.assertEqual((m["words"], m["width"], m["read_ports"], m["write_ports"], m["sync_reads"]),
+                         (512, 35, 3, 1, 1))
+
+    def test_an_asynchronous_read_is_one_path_through_the_array(self):
+        groups = {"reg2reg": {"delay_ns": 3.0, "from": "a", "to": "b"},
+                  "macro:m:to_read_addr": {"delay_ns": 2.0, "from": "p", "to": "m.macro_rd_addr_0_"},
+                  "macro:m:from_read": {"delay_ns": 1.5, "from": "m.macro_rd_data_0_", "to": "q"}}
+        macros = {"m": {"read_ports": 1, "sync_reads": 0,
+                        "model": {"access_time_ns": 1.0, "cycle_time_ns": 1.2}}}
+        period, path = si.clock_period(groups, macros)
+        self.assertAlmostEqual(period, 4.5)
+        self.assertEqual(path["kind"], "macro read (asynchronous)")
+        macros["m"]["sync_reads"] = 1
+        period, path = si.clock_period(groups, macros)
+        self.assertAlmostEqual(period, 3.0)  # synchronous: access + 1.5 < 3.0
+
+    def test_replicated_ports_cost_banks(self):
+        one = si.price_macro({"words": 512, "width": 35, "read_ports": 1, "write_ports": 1})
+        three = si.price_macro({"words": 512, "width": 35, "read_ports": 3, "write_ports": 1})
+        self.assertEqual(three["banks"], 3)
+        self.assertAlmostEqual(three["area_mm2"], 3 * one["area_mm2"])
+        self.assertAlmostEqual(three["write_energy_pj"], 3 * one["write_energy_pj"])
+
+
+class LinkTest(unittest.TestCase):
+    def test_unlinked_cells_are_named(self):
+        log = "Warning: netlist.v line 12, module sky130_fd_sc_hd__dlxtp_1 not found.\n"
+        with self.assertRaisesRegex(si.FlowError, "dlxtp_1"):
+            si.check_linked(log, "work")
+        si.check_linked("Startpoint: a\n", "work")
+
+
+if __name__ == "__main__":
+    unittest.main()
