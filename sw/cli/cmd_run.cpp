@@ -18,6 +18,7 @@
 #include "driver/clocks.h"
 #include "driver/job.h"
 #include "driver/report.h"
+#include "driver/silicon.h"
 #include "driver/traversal_job.h"
 #include "driver/wave_tracer.h"
 #include "effects/ref_tracer.h"
@@ -146,6 +147,17 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 // What every report of lancer run starts with: the command, the scene, the
 // path and model, the formats, the clock and where it came from.
+// A chip run's area and energy at the library's node, or why there are none.
+void printSilicon(const RunClock& clock, const ChipFigures& chip, uint64_t cycles, uint64_t rays) {
+  if (const auto si = chipSilicon(clock, chip, cycles, rays)) {
+    fmt::print("{}", si->summary());
+  } else {
+    fmt::print("  silicon             no standard-cell figures of this unit at {}/{} (scripts/silicon, "
+               "scripts/clock-table --silicon)\n",
+               clock.posBits, clock.dirBits);
+  }
+}
+
 nlohmann::json reportHeader(const Args& args, const Scene& scene, const RunClock& clock) {
   return {{"command", "run"},         {"scene", scene.name},          {"triangles", scene.size()},
           {"accel", toString(args.accel)}, {"model", args.job.model}, {"pos_bits", fx::kPosBits},
@@ -193,7 +205,10 @@ struct EffectsFigures {
     printCounts();
     fmt::print("  host                {:.2f} s in all; simulated {:.1f} us at {:g} MHz for {} cycles\n", hostSeconds,
                double(cycles()) / clockHz() * 1e6, clock.mhz, cycles());
-    if (const auto c = chip()) fmt::print("{}", c->summary(cycles(), waveRays(), clockHz()));
+    if (const auto c = chip()) {
+      fmt::print("{}", c->summary(cycles(), waveRays(), clockHz()));
+      printSilicon(clock, *c, cycles(), waveRays());
+    }
     fmt::print("  bit-exact vs golden {} rays in {} waves, {} mismatches\n", waveRays(), hw.waveRays.size(),
                tracer.mismatches());
   }
@@ -304,7 +319,10 @@ struct EffectsFigures {
     nlohmann::json structure = nlohmann::json::object();
     for (const JobCounter& c : tracer.structure()) structure[c.key] = counterJson(c.value);
     report["structure"] = structure;
-    if (const auto c = chip()) report.update(c->toJson(cycles(), waveRays(), clockHz()));
+    if (const auto c = chip()) {
+      report.update(c->toJson(cycles(), waveRays(), clockHz()));
+      if (const auto si = chipSilicon(clock, *c, cycles(), waveRays())) report.update(si->toJson());
+    }
     for (const auto& [key, value] : spdCounts(hw)) report[key] = value;
     nlohmann::json refJson;
     for (const auto& [key, value] : spdCounts(ref)) refJson[key] = value;
@@ -397,7 +415,10 @@ struct RunFigures {
     fmt::print("  host                {:.2f} s in all, {:.2f} s in the model ({:.0f} rays/s), {:.2f} s in golden\n",
                hostSeconds, job.modelSeconds, job.modelSeconds > 0 ? double(inLattice()) / job.modelSeconds : 0.0,
                job.goldenSeconds);
-    if (job.chip) fmt::print("{}", job.chip->summary(job.cycles, rays.rays.size(), clockHz()));
+    if (job.chip) {
+      fmt::print("{}", job.chip->summary(job.cycles, rays.rays.size(), clockHz()));
+      printSilicon(clock, *job.chip, job.cycles, rays.rays.size());
+    }
     fmt::print("  bit-exact vs golden {} rays ({} entered the lattice, {} hit), {} mismatches\n", rays.rays.size(),
                inLattice(), hits(), job.mismatchedRays);
     printReferenceComparison(cmp);
@@ -422,7 +443,10 @@ struct RunFigures {
                    {"output_stall_probability", args.job.stream.outputStallProbability},
                    {"seed", args.job.stream.seed}});
     report.update(lancer::toJson(cmp));
-    if (job.chip) report.update(job.chip->toJson(job.cycles, rays.rays.size(), clockHz()));
+    if (job.chip) {
+      report.update(job.chip->toJson(job.cycles, rays.rays.size(), clockHz()));
+      if (const auto si = chipSilicon(clock, *job.chip, job.cycles, rays.rays.size())) report.update(si->toJson());
+    }
     for (const JobCounter& c : job.counters) {
       report[c.key] = counterJson(c.value);
     }
