@@ -1,4 +1,5 @@
 #include "driver/systemc_isect_device.h"
+#include "driver/wave_file.h"
 
 #include <cstdlib>
 #include <mutex>
@@ -69,7 +70,7 @@ StreamStats SystemCIsectDevice::run(std::span<const IsectRequest> requests,
   const std::lock_guard<std::mutex> lock(kernelMutex());
   sc::rt_isect_top& top = isectSystem();
   sc::rt_isect_tb& tb = top.tb(impl_ == Impl::Model ? sc::rt_isect_impl::model : sc::rt_isect_impl::rtl);
-  if (wave) top.open_wave(options.wavePath);
+  if (wave) top.open_wave(nextWaveFile(options.wavePath));
   try {
     tb.start(job);
     // The bench's clock stops after the last result, so sc_start() returns by

@@ -16,6 +16,7 @@
 #include "driver/chip.h"
 #include "driver/systemc_kernel.h"
 #include "driver/systemc_traversal_device.h"
+#include "driver/wave_file.h"
 
 namespace lancer {
 
@@ -147,7 +148,7 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
   const std::lock_guard<std::mutex> lock(systemc_kernel::mutex());
   sc::rt_trav_top<Unit>& top = systemc_kernel::traversalSystem<Unit>();
   auto& tb = top.tb(impl);
-  if (wave) top.open_wave(options.stream.wavePath);
+  if (wave) top.open_wave(nextWaveFile(options.stream.wavePath));
   try {
     tb.start(job, image, memory, units);
     // The units' clocks stop after the run's last cycle, so sc_start() returns

@@ -1,4 +1,5 @@
 #include "driver/verilator_isect_device.h"
+#include "driver/wave_file.h"
 
 #include <algorithm>
 #include <cstring>
@@ -70,7 +71,7 @@ StreamStats VerilatorIsectDevice::run(std::span<const IsectRequest> requests,
   VerilatedUnit<Vrt_isect>& unit = *unit_;
   Vrt_isect& top = unit.top();
   unit.select();  // a run does not reset the model: select its context here
-  unit.openWave(options.wavePath);
+  unit.openWave(nextWaveFile(options.wavePath));
 
   std::mt19937_64 rng(options.seed);
   fx::Coin idle(options.inputIdleProbability, rng);

@@ -35,6 +35,7 @@
 #include "driver/verilated_port.h"
 #include "driver/verilated_unit.h"
 #include "driver/verilator_traversal_device.h"
+#include "driver/wave_file.h"
 
 namespace lancer {
 
@@ -465,7 +466,7 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
     unit.settle();
   }
   // The waveform is unit 0's.
-  units_.front()->openWave(options.stream.wavePath);
+  units_.front()->openWave(nextWaveFile(options.stream.wavePath));
   const int threads = options.hostThreads > 0
                           ? std::min(options.hostThreads, units)
                           : std::min(units, std::max(1, int(std::thread::hardware_concurrency())));
