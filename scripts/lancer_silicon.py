@@ -160,17 +160,23 @@ def cell_pins(liberty_path):
 
 # ---- Yosys ----------------------------------------------------------------------------
 
-# The mapping after reading the sources: generic synthesis to the memories, the
-# macro cut (each large $mem_v2 becomes ports of the top: read data in;
-# addresses, enables and write data out), the rest of synthesis, flip-flops and
-# logic onto cells, tie cells, one-bit ports and nets (this OpenSTA reads no
-# concatenated assigns), and the netlist. {top}, {macro_cut} and {lib} are filled in.
-YOSYS_STEPS = """synth -top {top} -flatten -run :fine
+# Two Yosys runs with a decision between them. The first reads the sources
+# and runs generic synthesis up to the memories, which it lists; the flow then
+# chooses the arrays that become macros (choose_macros); the second cuts those
+# out (each becomes ports of the top: read data in; addresses, enables and
+# write data out), finishes synthesis, maps flip-flops and logic onto cells,
+# ties constants, makes every port and net one bit (this OpenSTA reads no
+# concatenated assigns) and writes the netlist.
+YOSYS_ELAB = """synth -top {top} -flatten -run :fine
 tee -q -o memories.txt dump t:$mem_v2
-techmap -D LANCER_MACRO_MIN_BITS={min_bits} -D LANCER_MACRO_MAX_RD={max_rd} -D LANCER_MACRO_MAX_WR={max_wr} -map {macro_cut} t:$mem_v2
+write_rtlil coarse.il
+"""
+YOSYS_CUT = """techmap -map {macro_cut} {cells}
 expose -input w:*.macro_rd_data
 expose w:*.macro_rd_addr w:*.macro_rd_en w:*.macro_wr_addr w:*.macro_wr_en w:*.macro_wr_data
-synth -top {top} -flatten -run fine:
+"""
+YOSYS_MAP = """read_rtlil coarse.il
+{cut}synth -top {top} -flatten -run fine:
 dfflibmap -liberty {lib}
 abc -liberty {lib} -script abc.script
 opt_clean -purge
@@ -183,14 +189,45 @@ opt_clean -purge
 tee -q -o stat.txt stat -liberty {lib}
 write_verilog -noattr -noexpr -nohex -nodec netlist_mapped.v
 """
+YOSYS_STEPS = YOSYS_ELAB + YOSYS_CUT + YOSYS_MAP  # the flow's identity (flow_sha256)
 
 
-def yosys_script(top, pkg, modules, mapping_lib, chparams=""):
+def elab_script(top, pkg, modules, chparams=""):
     """TOP's sources read (the package first, rtl/lib for includes), its
-    parameters set, then YOSYS_STEPS."""
-    steps = YOSYS_STEPS.format(top=top, min_bits=MACRO_MIN_BITS, max_rd=MACRO_MAX_READ_PORTS,
-                               max_wr=MACRO_MAX_WRITE_PORTS, macro_cut=MACRO_CUT, lib=mapping_lib, tie=TIE_CELL)
-    return f"read_verilog -sv -I{ROOT / 'rtl' / 'lib'} {pkg} {' '.join(str(m) for m in modules)}\n{chparams}{steps}"
+    parameters set, then YOSYS_ELAB."""
+    return (f"read_verilog -sv -I{ROOT / 'rtl' / 'lib'} {pkg} {' '.join(str(m) for m in modules)}\n{chparams}"
+            + YOSYS_ELAB.format(top=top))
+
+
+def map_script(top, macros, mapping_lib):
+    cut = YOSYS_CUT.format(macro_cut=MACRO_CUT, cells=" ".join(f"{top}/{name}" for name in sorted(macros))) \
+        if macros else ""
+    return YOSYS_MAP.format(top=top, cut=cut, lib=mapping_lib, tie=TIE_CELL)
+
+
+def flop_array_um2(mem, pins):
+    """What an array costs as flip-flops: a flip-flop a bit with a multiplexer a
+    write port in front, and a (words:1) multiplexer tree a read port and bit."""
+    ff = pins["sky130_fd_sc_hd__dfxtp_1"]["area"]
+    mux = pins["sky130_fd_sc_hd__mux2_1"]["area"]
+    bits = mem["words"] * mem["width"]
+    return bits * (ff + mem["write_ports"] * mux) + mem["read_ports"] * mem["width"] * (mem["words"] - 1) * mux
+
+
+def choose_macros(memories, pins, table):
+    """The arrays that become memory macros: at least MACRO_MIN_BITS, at most
+    MACRO_MAX_READ/WRITE_PORTS, and smaller as a macro (CACTI) than as flip-flops
+    (a small array with many ports is a register file of flip-flops on a real
+    chip too). {name: {flop_um2, macro_um2}} of every candidate, with "macro" set."""
+    choice = {}
+    for name, mem in memories.items():
+        if mem["words"] * mem["width"] < MACRO_MIN_BITS or mem["read_ports"] > MACRO_MAX_READ_PORTS \
+                or mem["write_ports"] > MACRO_MAX_WRITE_PORTS:
+            continue
+        flops = flop_array_um2(mem, pins)
+        macro = price_macro(mem, table)["area_mm2"] * 1e6
+        choice[name] = {"flop_um2": round(flops), "macro_um2": round(macro), "macro": macro < flops}
+    return choice
 
 
 def parse_memories(dump_text):
@@ -206,9 +243,11 @@ def parse_memories(dump_text):
 
         rd = num("RD_PORTS")
         clk_en = params.get("RD_CLK_ENABLE", "0")
-        bits = clk_en.split("'")[1] if "'" in clk_en else bin(int(clk_en))[2:]
-        mems[name] = {"words": num("SIZE"), "width": num("WIDTH"), "read_ports": rd,
-                      "write_ports": num("WR_PORTS"), "sync_reads": bits.count("1")}
+        bits = (clk_en.split("'")[1] if "'" in clk_en else bin(int(clk_en))[2:]).rjust(rd, "0")
+        mems[name] = {"words": num("SIZE"), "width": num("WIDTH"), "abits": num("ABITS"), "read_ports": rd,
+                      "write_ports": num("WR_PORTS"), "sync_reads": bits.count("1"),
+                      # read port k is synchronous when bit k (from the right) of RD_CLK_ENABLE is set
+                      "sync": [bits[-1 - k] == "1" for k in range(rd)]}
     return mems
 
 
@@ -337,20 +376,24 @@ create_clock -name clk -period {period_ns} [get_ports clk_i]
 """
 
 
-def macro_ports(netlist):
-    """{memory name: {"rd_data": [...], "rd_addr": [...], "out": [...]}} of the cut macros' ports."""
+def macro_ports(netlist, memories=None):
+    """{memory: {"rd_data": {port: [...]}, "rd_addr": {port: [...]}, "out": [...]}} of the
+    cut macros' ports; a read port's bits are told apart by their index (the
+    cut concatenates the ports, port 0 lowest) when `memories` gives widths."""
     macros = {}
     for port in netlist.inputs + netlist.outputs:
-        m = re.match(r"\\?(.+)\.macro_(rd_data|rd_addr|rd_en|wr_addr|wr_en|wr_data)(?:_\d+_)?$", port.strip())
+        m = re.match(r"\\?(.+)\.macro_(rd_data|rd_addr|rd_en|wr_addr|wr_en|wr_data)(?:_(\d+)_)?$", port.strip())
         if not m:
             continue
-        entry = macros.setdefault(m.group(1), {"rd_data": [], "rd_addr": [], "out": []})
-        if m.group(2) == "rd_data":
-            entry["rd_data"].append(port)
+        name, kind, bit = m.group(1), m.group(2), int(m.group(3) or 0)
+        entry = macros.setdefault(name, {"rd_data": {}, "rd_addr": {}, "out": []})
+        mem = (memories or {}).get(name)
+        if kind == "rd_data":
+            entry["rd_data"].setdefault(bit // mem["width"] if mem else 0, []).append(port)
         else:
             entry["out"].append(port)
-            if m.group(2) == "rd_addr":
-                entry["rd_addr"].append(port)
+            if kind == "rd_addr":
+                entry["rd_addr"].setdefault(bit // mem["abits"] if mem else 0, []).append(port)
     return macros
 
 
@@ -358,12 +401,14 @@ def _tcl_ports(ports):
     return "[get_ports {" + " ".join(p.strip().lstrip("\\") for p in ports) + "}]"
 
 
-def timing_script(timing_lib, netlist_path, netlist, clock="clk_i"):
+def timing_script(timing_lib, netlist_path, netlist, memories, clock="clk_i"):
     """OpenSTA on a long clock, so each path group's worst slack gives its delay:
     flip-flop to flip-flop, the unit's own inputs and outputs (external delay 0),
-    and for each memory macro the paths from its read data and to its pins."""
-    macros = macro_ports(netlist)
-    macro_set = {p for m in macros.values() for p in m["rd_data"] + m["out"]}
+    and for each memory macro the paths from each read port's data, to each
+    read port's address, and to all its pins."""
+    macros = macro_ports(netlist, memories)
+    macro_set = {p for m in macros.values() for ports in m["rd_data"].values() for p in ports}
+    macro_set |= {p for m in macros.values() for p in m["out"]}
     ins = [p for p in netlist.inputs if p != clock and p not in macro_set]
     outs = [p for p in netlist.outputs if p not in macro_set]
     s = _sta_header(timing_lib, netlist_path, netlist.top, STA_PERIOD_NS)
@@ -381,12 +426,12 @@ def timing_script(timing_lib, netlist_path, netlist, clock="clk_i"):
     if ins and outs:
         groups.append(("in2out", f"-from {_tcl_ports(ins)} -to {_tcl_ports(outs)}"))
     for name, ports in sorted(macros.items()):
-        if ports["rd_data"]:
-            groups.append((f"macro:{name}:from_read", f"-from {_tcl_ports(ports['rd_data'])}"))
+        for k, data in sorted(ports["rd_data"].items()):
+            groups.append((f"macro:{name}:rd{k}:from_data", f"-from {_tcl_ports(data)}"))
+        for k, addr in sorted(ports["rd_addr"].items()):
+            groups.append((f"macro:{name}:rd{k}:to_addr", f"-to {_tcl_ports(addr)}"))
         if ports["out"]:
             groups.append((f"macro:{name}:to_pins", f"-to {_tcl_ports(ports['out'])}"))
-        if ports["rd_addr"]:
-            groups.append((f"macro:{name}:to_read_addr", f"-to {_tcl_ports(ports['rd_addr'])}"))
     for name, args in groups:
         s += f'puts "=== group {name}"\nreport_checks -path_delay max {args} -digits 4\n'
     return s
@@ -419,11 +464,11 @@ def parse_timing(report, netlist):
 
 def clock_period(groups, macros):
     """The shortest clock period every path meets, and the path that sets it.
-    A macro's synchronous read delivers data its access time after the edge; an
-    asynchronous read (a register file read in the cycle) lies on one path from
-    the address logic through the array to the data's loads; a macro's input
-    pins need its setup (taken as its cycle time less its access time, at least
-    zero: CACTI gives no setup)."""
+    A macro's synchronous read port delivers data its access time after the
+    edge; an asynchronous one (a register file read in the cycle) lies on one
+    path from its address logic through the array to its data's loads; a
+    macro's input pins need its setup (taken as its cycle time less its access
+    time, at least zero: CACTI gives no setup)."""
     candidates = []
     for name in ("reg2reg", "in2reg", "reg2out", "in2out"):
         if name in groups:
@@ -432,21 +477,22 @@ def clock_period(groups, macros):
     for name, m in macros.items():
         access = m["model"]["access_time_ns"]
         setup = max(0.0, m["model"]["cycle_time_ns"] - access)
-        from_read = groups.get(f"macro:{name}:from_read")
-        to_pins = groups.get(f"macro:{name}:to_pins")
-        to_addr = groups.get(f"macro:{name}:to_read_addr")
-        if from_read:
-            after = from_read["delay_ns"]
-            if m["sync_reads"] < m["read_ports"] and to_addr:
-                candidates.append((to_addr["delay_ns"] + access + after,
-                                   {"kind": "macro read (asynchronous)", "macro": name, "from": to_addr["from"],
-                                    "to": from_read["to"], "access_ns": access}))
+        for k in range(m["read_ports"]):
+            data = groups.get(f"macro:{name}:rd{k}:from_data")
+            addr = groups.get(f"macro:{name}:rd{k}:to_addr")
+            if not data:
+                continue
+            if not m["sync"][k] and addr:
+                candidates.append((addr["delay_ns"] + access + data["delay_ns"],
+                                   {"kind": "macro read (asynchronous)", "macro": name, "port": k,
+                                    "from": addr["from"], "to": data["to"], "access_ns": access}))
             else:
-                candidates.append((access + after, {"kind": "macro read", "macro": name, "from": name,
-                                                    "to": from_read["to"], "access_ns": access}))
-        if to_pins:
-            candidates.append((to_pins["delay_ns"] + setup, {"kind": "macro input", "macro": name,
-                                                             "from": to_pins["from"], "to": name}))
+                candidates.append((access + data["delay_ns"], {"kind": "macro read", "macro": name, "port": k,
+                                                               "from": name, "to": data["to"], "access_ns": access}))
+        pins = groups.get(f"macro:{name}:to_pins")
+        if pins:
+            candidates.append((pins["delay_ns"] + setup, {"kind": "macro input", "macro": name,
+                                                          "from": pins["from"], "to": name}))
     delay, path = max(candidates, key=lambda c: c[0])
     return round(delay, 4), path
 
@@ -584,7 +630,8 @@ def port_activity(view, registers, activity, top):
     signals = {}
     for full, entry in activity["signals"].items():
         parts = full.split(".")
-        rest = parts[parts.index(top) + 1:] if top in parts else parts[1:]
+        # Verilator names the root scope after the top, and the top inside it: "rt_isect.rt_isect.det4_q"
+        rest = parts[len(parts) - 1 - parts[::-1].index(top) + 1:] if top in parts else parts[1:]
         if rest:
             signals.setdefault(signal_base(".".join(rest)), entry)
     rates, reg_bits, reg_toggles = {}, 0, 0.0

@@ -1,7 +1,8 @@
-// Cuts each large memory out of the netlist (scripts/silicon): its read data
-// become inputs and its addresses, enables and write data outputs of the top
-// (expose), so the netlist is the logic alone and STA times the paths into and
-// out of the macro against its access time.
+// Cuts a memory out of the netlist (scripts/silicon maps the $mem_v2 cells it
+// chose as macros with this): its read data become inputs and its addresses,
+// enables and write data outputs of the top (expose), so the netlist is the
+// logic alone and STA times the paths into and out of the macro against its
+// access time.
 module \$mem_v2 (RD_CLK, RD_EN, RD_ARST, RD_SRST, RD_ADDR, RD_DATA, WR_CLK, WR_EN, WR_ADDR, WR_DATA);
   parameter MEMID = "";
   parameter SIZE = 0;
@@ -31,7 +32,6 @@ module \$mem_v2 (RD_CLK, RD_EN, RD_ARST, RD_SRST, RD_ADDR, RD_DATA, WR_CLK, WR_E
   input  [WR_PORTS*WIDTH-1:0] WR_EN;
   input  [WR_PORTS*ABITS-1:0] WR_ADDR;
   input  [WR_PORTS*WIDTH-1:0] WR_DATA;
-  wire _TECHMAP_FAIL_ = SIZE * WIDTH < `LANCER_MACRO_MIN_BITS || RD_PORTS > `LANCER_MACRO_MAX_RD || WR_PORTS > `LANCER_MACRO_MAX_WR;
   (* keep *) wire [RD_PORTS*WIDTH-1:0] macro_rd_data;
   (* keep *) wire [RD_PORTS*ABITS-1:0] macro_rd_addr = RD_ADDR;
   (* keep *) wire [RD_PORTS-1:0] macro_rd_en = RD_EN;

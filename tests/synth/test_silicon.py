@@ -90,6 +90,7 @@ class NamesTest(unittest.TestCase):
 
 DUMP = r"""
   cell $mem_v2 \u_slots.stack_q
+    parameter \ABITS 9
     parameter \RD_CLK_ENABLE 3'010
     parameter \RD_PORTS 3
     parameter \SIZE 512
@@ -104,19 +105,39 @@ class MacroTest(unittest.TestCase):
         m = si.parse_memories(DUMP)["u_slots.stack_q"]
         self.assertEqual((m["words"], m["width"], m["read_ports"], m["write_ports"], m["sync_reads"]),
                          (512, 35, 3, 1, 1))
+        self.assertEqual(m["sync"], [False, True, False])
 
     def test_an_asynchronous_read_is_one_path_through_the_array(self):
         groups = {"reg2reg": {"delay_ns": 3.0, "from": "a", "to": "b"},
-                  "macro:m:to_read_addr": {"delay_ns": 2.0, "from": "p", "to": "m.macro_rd_addr_0_"},
-                  "macro:m:from_read": {"delay_ns": 1.5, "from": "m.macro_rd_data_0_", "to": "q"}}
-        macros = {"m": {"read_ports": 1, "sync_reads": 0,
+                  "macro:m:rd0:to_addr": {"delay_ns": 2.0, "from": "p", "to": "m.macro_rd_addr_0_"},
+                  "macro:m:rd0:from_data": {"delay_ns": 1.5, "from": "m.macro_rd_data_0_", "to": "q"},
+                  "macro:m:rd1:to_addr": {"delay_ns": 2.5, "from": "p", "to": "m.macro_rd_addr_5_"},
+                  "macro:m:rd1:from_data": {"delay_ns": 0.5, "from": "m.macro_rd_data_9_", "to": "q"}}
+        macros = {"m": {"read_ports": 2, "sync": [False, True],
                         "model": {"access_time_ns": 1.0, "cycle_time_ns": 1.2}}}
         period, path = si.clock_period(groups, macros)
-        self.assertAlmostEqual(period, 4.5)
-        self.assertEqual(path["kind"], "macro read (asynchronous)")
-        macros["m"]["sync_reads"] = 1
+        self.assertAlmostEqual(period, 4.5)  # port 0: 2.0 + 1.0 + 1.5; port 1 is synchronous: 1.0 + 0.5
+        self.assertEqual((path["kind"], path["port"]), ("macro read (asynchronous)", 0))
+        macros["m"]["sync"] = [True, True]
         period, path = si.clock_period(groups, macros)
         self.assertAlmostEqual(period, 3.0)  # synchronous: access + 1.5 < 3.0
+
+    def test_ports_are_told_apart_by_bit(self):
+        text = netlist_text(1).replace("input d_i;", "input d_i;\n  input \\m.macro_rd_data_0_ ;\n"
+                                       "  input \\m.macro_rd_data_9_ ;\n  output \\m.macro_rd_addr_5_ ;")
+        ports = si.macro_ports(si.Netlist(text), {"m": {"width": 8, "abits": 3}})["m"]
+        self.assertEqual(sorted(ports["rd_data"]), [0, 1])
+        self.assertEqual(sorted(ports["rd_addr"]), [1])
+
+    def test_a_small_many_ported_array_stays_flip_flops(self):
+        pins = {"sky130_fd_sc_hd__dfxtp_1": {"area": 20.02}, "sky130_fd_sc_hd__mux2_1": {"area": 11.26}}
+        mems = {"best": {"words": 32, "width": 312, "read_ports": 3, "write_ports": 2},
+                "stack": {"words": 1024, "width": 88, "read_ports": 1, "write_ports": 1},
+                "tiny": {"words": 4, "width": 8, "read_ports": 1, "write_ports": 1}}
+        choice = si.choose_macros(mems, pins, None)
+        self.assertFalse(choice["best"]["macro"])
+        self.assertTrue(choice["stack"]["macro"])
+        self.assertNotIn("tiny", choice)
 
     def test_replicated_ports_cost_banks(self):
         one = si.price_macro({"words": 512, "width": 35, "read_ports": 1, "write_ports": 1})
