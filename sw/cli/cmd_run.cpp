@@ -147,7 +147,7 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 // What every report of lancer run starts with: the command, the scene, the
 // path and model, the formats, the clock and where it came from.
 nlohmann::json reportHeader(const Args& args, const Scene& scene, const RunClock& clock) {
-  return {{"command", "run"},         {"scene", scene.name},          {"triangles", scene.size()},
+  return {{"command", "run"},         {"scene", scene.name},          {"scene_numbers", toString(scene.numbers)}, {"triangles", scene.size()},
           {"accel", toString(args.accel)}, {"model", args.job.model}, {"pos_bits", fx::kPosBits},
           {"dir_bits", fx::kDirBits},  {"clock_mhz", clock.mhz},      {"clock_source", clock.toJson()}};
 }

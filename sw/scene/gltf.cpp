@@ -449,6 +449,23 @@ GltfExtras readGltfExtras(const std::string& path) {
   return Reader(path, std::move(doc)).read();
 }
 
+int gltfMajorVersion(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(8, '\0');
+  if (!in.read(head.data(), 8)) return 2;
+  if (readU32(head, 0) == kGlbMagic) return int(readU32(head, 4));
+  in.seekg(0);
+  const Json doc = Json::parse(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()),
+                               nullptr, /*allow_exceptions=*/false);
+  if (!doc.is_object() || !doc.contains("asset") || !doc["asset"].is_object() || !doc["asset"].contains("version")) {
+    return 2;
+  }
+  // glTF 1.0 files wrote the version as a string or a number.
+  const Json& version = doc["asset"]["version"];
+  if (version.is_number()) return version.get<double>() < 2.0 ? 1 : 2;
+  return version.is_string() && version.get<std::string>().starts_with("1") ? 1 : 2;
+}
+
 Scene loadGltf(const std::string& path) {
   // Read first, so that its errors name the light, camera, node or material
   // rather than assimp's parse.
@@ -575,6 +592,11 @@ Scene loadGltf(const std::string& path) {
     }
   }
   if (scene.triangles.empty()) throw InputError(fmt::format("{}: scene has no triangles", path));
+  // The buffers' floats are exact; a node's transform is decimal text, read
+  // correctly rounded.
+  const bool placedAsStored = std::all_of(gltf.meshInstances.begin(), gltf.meshInstances.end(),
+                                          [](const auto& instance) { return instance.world == glm::mat4(1.0f); });
+  scene.numbers = placedAsStored ? SceneNumbers::Exact : SceneNumbers::CorrectlyRounded;
   scene.lights = std::move(gltf.lights);
   scene.view = gltf.view;
   scene.computeBounds();

@@ -17,6 +17,12 @@ namespace lancer {
 // out of range, "scene has no triangles").
 Scene loadGltf(const std::string& path);
 
+// The major version a glTF file declares: a .glb container's header, or a
+// .gltf's "asset": {"version": "1.0"}. 2 when it says nothing readable
+// (loadGltf then reports what is wrong with the file). assimp reads glTF 1.0
+// itself (loadScene).
+int gltfMajorVersion(const std::string& path);
+
 // What Lancer reads from a glTF 2.0 file's JSON itself, because assimp 5.2
 // drops or mangles it: the punctual lights with their names and their nodes'
 // world transforms, the scene's camera, the per-material factors assimp does

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "scene/assimp_scene.h"
 #include "scene/gltf.h"
 #include "scene/nff.h"
 #include "scene/obj.h"
@@ -25,6 +26,15 @@ namespace lancer {
 void Scene::computeBounds() {
   bounds = Aabb{};
   for (const Triangle& t : triangles) bounds.extend(t.bounds());
+}
+
+const char* toString(SceneNumbers numbers) {
+  switch (numbers) {
+    case SceneNumbers::Exact: return "exact";
+    case SceneNumbers::CorrectlyRounded: return "correctly_rounded";
+    case SceneNumbers::AssimpText: return "assimp_text";
+  }
+  return "unknown";
 }
 
 std::vector<uint32_t> Scene::emissiveTriangles() const {
@@ -43,14 +53,19 @@ Scene loadScene(const std::string& nameOrPath) {
     throw InputError(fmt::format("unknown built-in scene '{}' (available: {}, builtin:cube, builtin:spd-tetra, builtin:spd-gears)", nameOrPath,
                                  kDefaultSceneName));
   }
-  // Every format by a reader of Lancer's own, whose numbers are correctly
-  // rounded (docs/scenes.md, "Numbers"); glTF's binary buffers through assimp.
+  // The formats Lancer reads itself, whose numbers are correctly rounded
+  // (docs/scenes.md, "Numbers"); glTF 2.0's binary buffers through assimp.
   const std::string extension = lowercase(std::filesystem::path(nameOrPath).extension().string());
   if (extension == ".obj") return loadObj(nameOrPath);
   if (extension == ".ply") return loadPly(nameOrPath);
   if (extension == ".stl") return loadStl(nameOrPath);
   if (extension == ".nff") return loadNff(nameOrPath);
-  if (extension == ".gltf" || extension == ".glb") return loadGltf(nameOrPath);
+  if ((extension == ".gltf" || extension == ".glb") && gltfMajorVersion(nameOrPath) == 2) return loadGltf(nameOrPath);
+  // Every other format assimp imports (glTF 1.0 among them), through assimp.
+  if (const std::optional<SceneNumbers> numbers = assimpSceneNumbers(nameOrPath)) {
+    if (!std::filesystem::exists(nameOrPath)) throw InputError(fmt::format("{}: cannot open file", nameOrPath));
+    return loadAssimpScene(nameOrPath, *numbers);
+  }
   throw InputError(fmt::format("{}: {} is not a scene format Lancer reads: {} (convert the scene to one of them)",
                                nameOrPath, extension.empty() ? "a file without an extension" : "'" + extension + "'",
                                kSceneFormats));

@@ -600,15 +600,19 @@ TEST(Scene, BadFilesAreClearErrors) {
 // Lancer reads the formats whose numbers it reads correctly rounded
 // (docs/scenes.md); any other extension is one line listing them. Extensions
 // are read in any case.
-TEST(Scene, ReadsOnlyItsOwnFormats) {
-  for (const std::string& file : {test::kAssimpModels + "/Collada/COLLADA.dae", test::kAssimpModels + "/OFF/Cube.off",
-                                   std::string("/nonexistent/scene")}) {
+TEST(Scene, ReadsEveryFormatAssimpImports) {
+  // Through assimp: a COLLADA file (text: flagged) and an OFF file.
+  EXPECT_EQ(loadScene(test::kAssimpModels + "/Collada/COLLADA.dae").numbers, SceneNumbers::AssimpText);
+  EXPECT_EQ(loadScene(test::kAssimpModels + "/OFF/Cube.off").size(), 12u);
+  // A format neither reads, by its extension.
+  for (const std::string& file : {test::kAssimpModels + "/JT/conrod.jt", test::kAssimpModels + "/invalid/readme.txt"}) {
     const std::string error = loadError(file);
     EXPECT_TRUE(contains(error, file + ": ")) << error;
     EXPECT_TRUE(contains(error, "is not a scene format Lancer reads: OBJ (.obj, with its .mtl), PLY (.ply), STL (.stl), "
-                                "glTF 2.0 (.gltf, .glb), NFF (.nff)"))
+                                "glTF 2.0 (.gltf, .glb), NFF (.nff), every other format assimp 5.2 imports"))
         << error;
   }
+  EXPECT_EQ(loadError("/nonexistent/scene"), "/nonexistent/scene: cannot open file");
   const auto dir = std::filesystem::temp_directory_path();
   std::ofstream(dir / "lancer_upper.OBJ") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   EXPECT_EQ(loadScene((dir / "lancer_upper.OBJ").string()).size(), 1u);
