@@ -4,9 +4,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <tuple>
 #include <utility>
 
 #include <fmt/format.h>
@@ -129,25 +127,6 @@ Scene subdivide(const Scene& scene, int times) {
   }
   out.computeBounds();
   return out;
-}
-
-void writeObj(const Scene& scene, const std::filesystem::path& path) {
-  std::ofstream out(path);
-  if (!out) throw InputError(fmt::format("{}: cannot write file", path.string()));
-  // Deduplicate vertices so the OBJ keeps the mesh's connectivity.
-  std::map<std::tuple<float, float, float>, size_t> index;
-  std::vector<glm::vec3> vertices;
-  auto vertexId = [&](const glm::vec3& v) {
-    auto [it, inserted] = index.try_emplace({v.x, v.y, v.z}, vertices.size() + 1);
-    if (inserted) vertices.push_back(v);
-    return it->second;
-  };
-  std::vector<std::array<size_t, 3>> faces;
-  for (const Triangle& t : scene.triangles) faces.push_back({vertexId(t.v0), vertexId(t.v1), vertexId(t.v2)});
-  out << "# written by lancer from " << scene.name << "\n";
-  for (const glm::vec3& v : vertices) out << fmt::format("v {:.9g} {:.9g} {:.9g}\n", v.x, v.y, v.z);
-  for (const auto& f : faces) out << fmt::format("f {} {} {}\n", f[0], f[1], f[2]);
-  if (!out) throw InputError(fmt::format("{}: write failed", path.string()));
 }
 
 }  // namespace lancer

@@ -152,7 +152,4 @@ Scene makeIcosphere(int levels);
 // bit-identical, so the mesh stays watertight). Used to build large test meshes.
 Scene subdivide(const Scene& scene, int times);
 
-// Writes a Wavefront OBJ (positions and faces only), e.g. for generated scenes.
-void writeObj(const Scene& scene, const std::filesystem::path& path);
-
 }  // namespace lancer
