@@ -63,23 +63,34 @@ void finish(std::ofstream& out, const std::filesystem::path& path) {
 // itself through a correctly rounded reader.
 std::string exact(float value) { return fmt::format("{:.9g}", value); }
 
-// An MTL material name must be one token to other readers; Lancer's reader
-// takes the rest of the line, so only line breaks are replaced.
-std::string mtlName(std::string name) {
-  std::replace_if(name.begin(), name.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
-  return name.empty() ? "unnamed" : name;
+// Each material's MTL name: its own where Lancer's reader gives it back
+// as it is (the rest of the line, blanks trimmed) and no other material has
+// it, else m<index>.
+std::vector<std::string> mtlNames(const std::vector<Material>& materials) {
+  std::map<std::string, int> uses;
+  for (const Material& m : materials) ++uses[m.name];
+  std::vector<std::string> out;
+  for (size_t i = 0; i < materials.size(); ++i) {
+    const std::string& name = materials[i].name;
+    const bool generated = name.size() > 1 && name[0] == 'm' &&
+                           std::all_of(name.begin() + 1, name.end(), [](char c) { return c >= '0' && c <= '9'; });
+    const bool plain = !name.empty() && trimmed(name) == name && name.find_first_of("\n\r") == std::string::npos &&
+                       !generated && uses[name] == 1;
+    out.push_back(plain ? name : fmt::format("m{}", i));
+  }
+  return out;
 }
 
 void writeObj(const Scene& scene, const std::filesystem::path& path) {
   const IndexedMesh mesh = indexed(scene);
   const std::filesystem::path mtlPath = std::filesystem::path(path).replace_extension(".mtl");
+  const std::vector<std::string> names = mtlNames(scene.materials);
   {
     std::ofstream mtl = openOutput(mtlPath);
     mtl << "# written by lancer convert from " << scene.name << "\n";
-    // Materials are named by their index (names may repeat), the name kept in a comment.
     for (size_t m = 0; m < scene.materials.size(); ++m) {
       const Material& mat = scene.materials[m];
-      mtl << fmt::format("\n# {}\nnewmtl m{}\n", mtlName(mat.name), m);
+      mtl << fmt::format("\nnewmtl {}\n", names[m]);
       mtl << fmt::format("Kd {} {} {}\n", exact(mat.diffuse.r), exact(mat.diffuse.g), exact(mat.diffuse.b));
       mtl << fmt::format("Ke {} {} {}\n", exact(mat.emission.r), exact(mat.emission.g), exact(mat.emission.b));
       // illum 3 reflects with Ks's weight; 2 is a highlight only.
@@ -96,7 +107,7 @@ void writeObj(const Scene& scene, const std::filesystem::path& path) {
   for (size_t t = 0; t < mesh.faces.size(); ++t) {
     if (scene.materialOf[t] != current) {
       current = scene.materialOf[t];
-      out << "usemtl m" << *current << '\n';
+      out << "usemtl " << names[*current] << '\n';
     }
     const auto& f = mesh.faces[t];
     out << "f " << f[0] + 1 << ' ' << f[1] + 1 << ' ' << f[2] + 1 << '\n';

@@ -2,6 +2,7 @@
 // same floats, bit for bit, in the same order.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <filesystem>
 #include <limits>
@@ -65,6 +66,12 @@ void expectRoundTrip(const Scene& scene, const std::string& label) {
       }
       EXPECT_EQ(b.transmittance > 0.0f, a.transmittance > 0.0f) << where;
       if (std::string(extension) == ".obj") {
+        // Its own name, when no other material has it (else m<index>).
+        const auto same = std::count_if(scene.materials.begin(), scene.materials.end(),
+                                        [&](const Material& other) { return other.name == a.name; });
+        if (same == 1 && !a.name.empty()) {
+          EXPECT_EQ(b.name, a.name) << where;
+        }
         EXPECT_EQ(b.emission, a.emission) << where;
         EXPECT_EQ(b.ks, a.ks) << where;
         EXPECT_EQ(b.shine, a.shine) << where;
