@@ -50,6 +50,7 @@ void addBenchCommand(CLI::App& app) {
                "cpu Mr/s", "build s", "hits", "agree");
     nlohmann::json report = {{"command", "bench"},
                              {"scene", scene.name},
+                             {"scene_numbers", toString(scene.numbers)},
                              {"triangles", bench.triangles},
                              {"rays", bench.rays},
                              {"repetitions", bench.repetitions},

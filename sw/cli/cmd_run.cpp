@@ -159,7 +159,7 @@ void printSilicon(const RunClock& clock, const ChipFigures& chip, uint64_t cycle
 }
 
 nlohmann::json reportHeader(const Args& args, const Scene& scene, const RunClock& clock) {
-  return {{"command", "run"},         {"scene", scene.name},          {"triangles", scene.size()},
+  return {{"command", "run"},         {"scene", scene.name},          {"scene_numbers", toString(scene.numbers)}, {"triangles", scene.size()},
           {"accel", toString(args.accel)}, {"model", args.job.model}, {"pos_bits", fx::kPosBits},
           {"dir_bits", fx::kDirBits},  {"clock_mhz", clock.mhz},      {"clock_source", clock.toJson()}};
 }

@@ -175,7 +175,7 @@ void addCrackRays(CLI::App& app) {
                scene.name, scene.size(), c.rays.size(), c.edgeRays, c.sharedEdges, c.vertexRays, c.closedVertices,
                c.rejected, fx::kPosBits, fx::kDirBits);
     if (c.rays.empty()) throw InputError(fmt::format("{}: no shared edge or closed vertex to aim at", scene.name));
-    writeReport(a->report, {{"command", "crack-rays"}, {"scene", scene.name}, {"triangles", scene.size()},
+    writeReport(a->report, {{"command", "crack-rays"}, {"scene", scene.name}, {"scene_numbers", toString(scene.numbers)}, {"triangles", scene.size()},
                             {"rays", c.rays.size()}, {"edge_rays", c.edgeRays}, {"vertex_rays", c.vertexRays},
                             {"shared_edges", c.sharedEdges}, {"closed_vertices", c.closedVertices},
                             {"rejected", c.rejected}, {"seed", a->seed}, {"pos_bits", fx::kPosBits},

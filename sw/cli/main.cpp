@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   lancer::cli::addBenchCommand(app);
   lancer::cli::addRunCommand(app);
   lancer::cli::addSpdCommand(app);
+  lancer::cli::addConvertCommand(app);
   lancer::cli::addSweepCommand(app);
   lancer::cli::addStressCommand(app);
   try {

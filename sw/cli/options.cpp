@@ -134,6 +134,7 @@ nlohmann::json tracerReport(const char* command, const Scene& scene, const Accel
                             const TracedRays& traced, double buildSeconds) {
   return {{"command", command},
           {"scene", scene.name},
+          {"scene_numbers", toString(scene.numbers)},
           {"triangles", scene.size()},
           {"accel", accel.name()},
           {"rays", rays},

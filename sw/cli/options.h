@@ -115,6 +115,7 @@ void addTraceCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addRunCommand(CLI::App& app);
 void addSpdCommand(CLI::App& app);
+void addConvertCommand(CLI::App& app);
 void addSweepCommand(CLI::App& app);  // sweep, sweep-job, sweep-merge, crack-rays
 void addStressCommand(CLI::App& app);
 

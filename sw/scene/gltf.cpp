@@ -8,14 +8,10 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
-#include <new>
 #include <numbers>
 #include <optional>
 
-#include <sys/resource.h>
-#include <unistd.h>
 
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <fmt/format.h>
@@ -25,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
+#include "scene/assimp_import.h"
 #include "scene/surface.h"
 #include "scene/text.h"
 
@@ -108,7 +105,9 @@ class Reader {
     readMeshes();
     const Json& nodes = array(doc_, "nodes", kTopLevel);
     visited_.assign(nodes.size(), false);
-    for (const size_t root : roots(nodes)) walk(nodes, root, glm::mat4(1.0f));
+    const std::vector<size_t> rootList = roots(nodes);
+    out_.rootCount = rootList.size();
+    for (size_t r = 0; r < rootList.size(); ++r) walk(nodes, rootList[r], glm::mat4(1.0f), {r});
     return std::move(out_);
   }
 
@@ -253,13 +252,23 @@ class Reader {
     }
   }
 
-  // ---- Meshes: how many primitives each has ----
+  // ---- Meshes: their primitives' materials ----
   void readMeshes() {
     const Json& meshes = array(doc_, "meshes", kTopLevel);
     for (size_t m = 0; m < meshes.size(); ++m) {
       const std::string owner = fmt::format("mesh {}", m);
       if (!meshes[m].is_object()) fail(owner, "must be an object");
-      out_.primitiveCounts.push_back(array(meshes[m], "primitives", owner).size());
+      const Json& primitives = array(meshes[m], "primitives", owner);
+      std::vector<std::optional<size_t>> materials;
+      for (size_t p = 0; p < primitives.size(); ++p) {
+        const std::string primitive = fmt::format("mesh {} primitive {}", m, p);
+        if (!primitives[p].is_object()) fail(primitive, "must be an object");
+        materials.push_back(primitives[p].contains("material")
+                                ? std::optional(index(primitives[p], "material", out_.materials.size(), primitive,
+                                                      "materials"))
+                                : std::nullopt);
+      }
+      out_.primitiveMaterials.push_back(std::move(materials));
     }
   }
 
@@ -310,7 +319,7 @@ class Reader {
            glm::scale(glm::mat4(1.0f), glm::vec3(s[0], s[1], s[2]));
   }
 
-  void walk(const Json& nodes, size_t n, const glm::mat4& parent) {
+  void walk(const Json& nodes, size_t n, const glm::mat4& parent, const std::vector<size_t>& treePath) {
     const std::string owner = nodeLabel(nodes, n);
     if (visited_[n]) fail(kTopLevel, fmt::format("{} is reached twice: the node graph must be a tree", owner));
     visited_[n] = true;
@@ -336,7 +345,8 @@ class Reader {
       }
     }
     if (node.contains("mesh")) {
-      out_.meshInstances.push_back({index(node, "mesh", out_.primitiveCounts.size(), owner, "meshes"), world, owner});
+      out_.meshInstances.push_back(
+          {index(node, "mesh", out_.primitiveMaterials.size(), owner, "meshes"), world, owner, treePath});
     }
     if (node.contains("camera")) {
       const size_t c = index(node, "camera", cameraFov_.size(), owner, "cameras");
@@ -352,11 +362,15 @@ class Reader {
         out_.view = view;
       }
     }
-    for (const Json& c : array(node, "children", owner)) {
+    const Json& children = array(node, "children", owner);
+    for (size_t k = 0; k < children.size(); ++k) {
+      const Json& c = children[k];
       if (!c.is_number_unsigned() || c.get<uint64_t>() >= nodes.size()) {
         fail(owner, fmt::format("child {} must name one of the file's {} nodes", c.dump(), nodes.size()));
       }
-      walk(nodes, c.get<size_t>(), world);
+      std::vector<size_t> childPath = treePath;
+      childPath.push_back(k);
+      walk(nodes, c.get<size_t>(), world, childPath);
     }
   }
 
@@ -372,30 +386,6 @@ class Reader {
 // ---- The scene: assimp's meshes at the JSON's nodes ------------------------------------
 
 glm::vec3 toVec(const aiVector3D& v) { return {v.x, v.y, v.z}; }
-
-// Caps the address space while assimp parses, so a file that declares absurd
-// counts (assimp's invalid/OutOfMemory.off claims trillions of vertices) fails
-// with bad_alloc instead of being killed by the kernel. Restored on scope exit.
-class AddressSpaceCap {
- public:
-  explicit AddressSpaceCap(uint64_t fileBytes) {
-    if (getrlimit(RLIMIT_AS, &saved_) != 0) return;
-    long pages = 0, pageSize = sysconf(_SC_PAGESIZE);
-    if (std::ifstream statm("/proc/self/statm"); !(statm >> pages)) return;
-    // Generous: assimp's in-memory scene is a few hundred bytes per input byte at worst.
-    const uint64_t budget = std::max<uint64_t>(uint64_t(4) << 30, fileBytes * 256);
-    rlimit capped = saved_;
-    capped.rlim_cur = std::min<uint64_t>(saved_.rlim_cur, uint64_t(pages) * uint64_t(pageSize) + budget);
-    active_ = setrlimit(RLIMIT_AS, &capped) == 0;
-  }
-  ~AddressSpaceCap() {
-    if (active_) setrlimit(RLIMIT_AS, &saved_);
-  }
-
- private:
-  rlimit saved_{};
-  bool active_ = false;
-};
 
 // glTF's metallic-roughness material in Whitted terms (docs/scenes.md, "glTF
 // 2.0"). Whitted tracing has only perfect mirrors and clear refraction, so
@@ -459,36 +449,81 @@ GltfExtras readGltfExtras(const std::string& path) {
   return Reader(path, std::move(doc)).read();
 }
 
+int gltfMajorVersion(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(8, '\0');
+  if (!in.read(head.data(), 8)) return 2;
+  if (readU32(head, 0) == kGlbMagic) return int(readU32(head, 4));
+  in.seekg(0);
+  const Json doc = Json::parse(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()),
+                               nullptr, /*allow_exceptions=*/false);
+  if (!doc.is_object() || !doc.contains("asset") || !doc["asset"].is_object() || !doc["asset"].contains("version")) {
+    return 2;
+  }
+  // glTF 1.0 files wrote the version as a string or a number.
+  const Json& version = doc["asset"]["version"];
+  if (version.is_number()) return version.get<double>() < 2.0 ? 1 : 2;
+  return version.is_string() && version.get<std::string>().starts_with("1") ? 1 : 2;
+}
+
 Scene loadGltf(const std::string& path) {
   // Read first, so that its errors name the light, camera, node or material
   // rather than assimp's parse.
   GltfExtras gltf = readGltfExtras(path);
-  std::error_code sizeError;
-  const uint64_t fileBytes = std::filesystem::file_size(path, sizeError);
   Assimp::Importer importer;
   // The meshes in their own frames, exactly as the buffers hold them (no
   // joining, no generated normals; no aiProcess_PreTransformVertices: the
   // nodes are placed below from the JSON).
-  const aiScene* ai = nullptr;
-  try {
-    AddressSpaceCap cap(sizeError ? 0 : fileBytes);
-    ai = importer.ReadFile(path, aiProcess_Triangulate);
-  } catch (const std::bad_alloc&) {
-    throw InputError(fmt::format("{}: cannot read scene: it declares more data than fits in memory", path));
-  }
-  if (!ai || !ai->mRootNode) {
-    throw InputError(fmt::format("{}: cannot read scene: {}", path, importer.GetErrorString()));
-  }
-  // assimp makes one aiMesh of each primitive, mesh after mesh.
-  std::vector<size_t> firstMesh;
-  size_t primitives = 0;
-  for (const size_t count : gltf.primitiveCounts) {
-    firstMesh.push_back(primitives);
-    primitives += count;
-  }
-  if (ai->mNumMeshes != primitives) {
-    throw InputError(fmt::format("{}: cannot read scene: assimp read {} meshes of the file's {} primitives", path,
-                                 ai->mNumMeshes, primitives));
+  const aiScene* ai = importWithAssimp(importer, path, aiProcess_Triangulate);
+  // Each placed node's aiMeshes, found through assimp's node tree, which has
+  // the shape of the default scene's (glTF2Importer's ImportNodes): its root
+  // is the scene's one root, or a node above the scene's roots. Not by the
+  // mesh's index in the file: assimp numbers meshes (and materials) in the
+  // order its reader first met them, which is not the file's.
+  const auto aiNodeOf = [&](const GltfExtras::MeshInstance& instance) -> const aiNode* {
+    const aiNode* node = ai->mRootNode;
+    for (size_t depth = gltf.rootCount == 1 ? 1 : 0; node && depth < instance.treePath.size(); ++depth) {
+      node = instance.treePath[depth] < node->mNumChildren ? node->mChildren[instance.treePath[depth]] : nullptr;
+    }
+    return node;
+  };
+  // Per placed node, its primitives' aiMeshes (nullptr: points or lines, not traced).
+  std::vector<std::vector<const aiMesh*>> instanceMeshes;
+  // assimp's material of each glTF material (assimp imports the ones its
+  // reader met, then a default of its own, last).
+  std::vector<std::optional<unsigned>> aiMaterialOf(gltf.materials.size());
+  std::vector<std::optional<size_t>> gltfMaterialOf(ai->mNumMaterials);
+  for (const GltfExtras::MeshInstance& instance : gltf.meshInstances) {
+    const std::vector<std::optional<size_t>>& primitives = gltf.primitiveMaterials[instance.mesh];
+    const aiNode* node = aiNodeOf(instance);
+    if (!node || node->mNumMeshes != primitives.size()) {
+      throw InputError(fmt::format("{}: cannot read scene: assimp's node tree does not match the file's at {} (mesh {}, "
+                                   "{} primitives)", path, instance.node, instance.mesh, primitives.size()));
+    }
+    std::vector<const aiMesh*>& meshes = instanceMeshes.emplace_back();
+    for (size_t p = 0; p < primitives.size(); ++p) {
+      if (node->mMeshes[p] >= ai->mNumMeshes) {
+        throw InputError(fmt::format("{}: cannot read scene: assimp's {} names mesh {} of its {}", path, instance.node,
+                                     node->mMeshes[p], ai->mNumMeshes));
+      }
+      const aiMesh* mesh = ai->mMeshes[node->mMeshes[p]];
+      meshes.push_back(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE ? mesh : nullptr);
+      // The primitive's glTF material and assimp's must pair one to one.
+      const unsigned aiMaterial = mesh->mMaterialIndex;
+      const std::optional<size_t> material = primitives[p];
+      const bool paired =
+          aiMaterial < ai->mNumMaterials &&
+          (!material || !aiMaterialOf[*material] || *aiMaterialOf[*material] == aiMaterial) &&
+          (!gltfMaterialOf[aiMaterial] || (material && *gltfMaterialOf[aiMaterial] == *material));
+      if (!paired) {
+        throw InputError(fmt::format("{}: cannot read scene: assimp's materials do not match the file's at {} mesh {} "
+                                     "primitive {}", path, instance.node, instance.mesh, p));
+      }
+      if (material) {
+        aiMaterialOf[*material] = aiMaterial;
+        gltfMaterialOf[aiMaterial] = *material;
+      }
+    }
   }
   Scene scene;
   scene.name = path;
@@ -500,34 +535,27 @@ Scene loadGltf(const std::string& path) {
     aiColor3D color;
     if (mat->Get(AI_MATKEY_COLOR_DIFFUSE, color) == AI_SUCCESS) material.diffuse = {color.r, color.g, color.b};
     if (mat->Get(AI_MATKEY_COLOR_EMISSIVE, color) == AI_SUCCESS) material.emission = {color.r, color.g, color.b};
-    // assimp lists the file's materials in order, then its own default.
+    // A material no placed primitive uses, and assimp's default, keep the
+    // extensions' defaults.
     const GltfExtras::MaterialExtras extras =
-        m < gltf.materials.size() ? gltf.materials[m] : GltfExtras::MaterialExtras{};
-    if (m < gltf.materials.size()) material.name = extras.name;
+        gltfMaterialOf[m] ? gltf.materials[*gltfMaterialOf[m]] : GltfExtras::MaterialExtras{};
+    if (gltfMaterialOf[m]) material.name = extras.name;
     material.emission *= extras.emissiveStrength;
     readGltfTerms(*mat, extras, path, material);
     checkMaterialTerms(material, path);
     scene.materials.push_back(material);
   }
   if (scene.materials.empty()) scene.materials.push_back(Material{"default"});
-  // A primitive of triangles, lines or points, and its triangles (points and
-  // lines are not traced).
-  const auto meshOf = [&](const GltfExtras::MeshInstance& instance, size_t p) -> const aiMesh* {
-    const aiMesh* mesh = ai->mMeshes[firstMesh[instance.mesh] + p];
-    return mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE ? mesh : nullptr;
-  };
   // Vertex normals (NORMAL) become shading normals when any placed triangle
   // mesh has them; a mesh without them, and a zero or non-finite normal, take
   // the triangle's geometric normal.
   bool withNormals = false;
-  for (const GltfExtras::MeshInstance& instance : gltf.meshInstances) {
-    for (size_t p = 0; p < gltf.primitiveCounts[instance.mesh]; ++p) {
-      const aiMesh* mesh = meshOf(instance, p);
-      withNormals |= mesh && mesh->mNormals;
-    }
+  for (const std::vector<const aiMesh*>& meshes : instanceMeshes) {
+    for (const aiMesh* mesh : meshes) withNormals |= mesh && mesh->mNormals;
   }
   // Triangle order: nodes in walk order, a mesh's primitives in order, faces in order.
-  for (const GltfExtras::MeshInstance& instance : gltf.meshInstances) {
+  for (size_t i = 0; i < gltf.meshInstances.size(); ++i) {
+    const GltfExtras::MeshInstance& instance = gltf.meshInstances[i];
     // The identity leaves the buffer's floats as they are; any other transform
     // is applied in float, so a scene scaled by a power of two (vertices and
     // translations) is placed at exactly that multiple.
@@ -536,8 +564,8 @@ Scene loadGltf(const std::string& path) {
     const auto place = [&](const aiVector3D& v) {
       return identity ? toVec(v) : glm::vec3(instance.world * glm::vec4(toVec(v), 1.0f));
     };
-    for (size_t p = 0; p < gltf.primitiveCounts[instance.mesh]; ++p) {
-      const aiMesh* mesh = meshOf(instance, p);
+    for (size_t p = 0; p < instanceMeshes[i].size(); ++p) {
+      const aiMesh* mesh = instanceMeshes[i][p];
       if (!mesh) continue;
       const uint32_t material = mesh->mMaterialIndex < scene.materials.size() ? mesh->mMaterialIndex : 0;
       for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
@@ -564,6 +592,11 @@ Scene loadGltf(const std::string& path) {
     }
   }
   if (scene.triangles.empty()) throw InputError(fmt::format("{}: scene has no triangles", path));
+  // The buffers' floats are exact; a node's transform is decimal text, read
+  // correctly rounded.
+  const bool placedAsStored = std::all_of(gltf.meshInstances.begin(), gltf.meshInstances.end(),
+                                          [](const auto& instance) { return instance.world == glm::mat4(1.0f); });
+  scene.numbers = placedAsStored ? SceneNumbers::Exact : SceneNumbers::CorrectlyRounded;
   scene.lights = std::move(gltf.lights);
   scene.view = gltf.view;
   scene.computeBounds();

@@ -17,6 +17,12 @@ namespace lancer {
 // out of range, "scene has no triangles").
 Scene loadGltf(const std::string& path);
 
+// The major version a glTF file declares: a .glb container's header, or a
+// .gltf's "asset": {"version": "1.0"}. 2 when it says nothing readable
+// (loadGltf then reports what is wrong with the file). assimp reads glTF 1.0
+// itself (loadScene).
+int gltfMajorVersion(const std::string& path);
+
 // What Lancer reads from a glTF 2.0 file's JSON itself, because assimp 5.2
 // drops or mangles it: the punctual lights with their names and their nodes'
 // world transforms, the scene's camera, the per-material factors assimp does
@@ -45,11 +51,22 @@ struct GltfExtras {
     size_t mesh = 0;         // index into the file's meshes
     glm::mat4 world{1.0f};   // its parents' transforms times its own, in float
     std::string node;        // "node 3 'name'", for messages
+    // Where the node sits in the default scene's tree: its root's position in
+    // the scene's list, then each child's position in its parent's list.
+    // assimp builds its node tree in the same shape, so this finds the node's
+    // aiNode, and the aiNode the node's meshes (loadGltf).
+    std::vector<size_t> treePath;
   };
   std::vector<MeshInstance> meshInstances;
-  // Per mesh of the file, how many primitives it has (assimp makes one aiMesh
-  // of each, in order).
-  std::vector<size_t> primitiveCounts;
+  // How many roots the default scene lists (assimp's root node is the root
+  // itself when there is one, a node above them all otherwise).
+  size_t rootCount = 0;
+  // Per mesh of the file, the glTF material of each primitive (nullopt: none,
+  // glTF's default material). assimp makes one aiMesh of each primitive, but
+  // orders meshes and materials by when its reader first met them, not by
+  // their index in the file; the primitives' materials tie assimp's materials
+  // to the file's.
+  std::vector<std::vector<std::optional<size_t>>> primitiveMaterials;
 };
 
 // Reads the JSON of a .gltf file, or the JSON chunk of a .glb container.

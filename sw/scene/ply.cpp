@@ -350,6 +350,8 @@ Scene readPly(std::string_view bytes, const std::string& name) {
 
   Scene scene;
   scene.name = name;
+  // Binary numbers are the file's (a double or a large integer rounded once).
+  scene.numbers = header.format == Format::Ascii ? SceneNumbers::CorrectlyRounded : SceneNumbers::Exact;
   scene.materials.push_back(Material{"default"});
   std::vector<glm::vec3> outline;
   const auto emit = [&](size_t at, uint32_t a, uint32_t b, uint32_t c) {

@@ -4,14 +4,13 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <tuple>
 #include <utility>
 
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "scene/assimp_scene.h"
 #include "scene/gltf.h"
 #include "scene/nff.h"
 #include "scene/obj.h"
@@ -25,6 +24,15 @@ namespace lancer {
 void Scene::computeBounds() {
   bounds = Aabb{};
   for (const Triangle& t : triangles) bounds.extend(t.bounds());
+}
+
+const char* toString(SceneNumbers numbers) {
+  switch (numbers) {
+    case SceneNumbers::Exact: return "exact";
+    case SceneNumbers::CorrectlyRounded: return "correctly_rounded";
+    case SceneNumbers::AssimpText: return "assimp_text";
+  }
+  return "unknown";
 }
 
 std::vector<uint32_t> Scene::emissiveTriangles() const {
@@ -43,14 +51,19 @@ Scene loadScene(const std::string& nameOrPath) {
     throw InputError(fmt::format("unknown built-in scene '{}' (available: {}, builtin:cube, builtin:spd-tetra, builtin:spd-gears)", nameOrPath,
                                  kDefaultSceneName));
   }
-  // Every format by a reader of Lancer's own, whose numbers are correctly
-  // rounded (docs/scenes.md, "Numbers"); glTF's binary buffers through assimp.
+  // The formats Lancer reads itself, whose numbers are correctly rounded
+  // (docs/scenes.md, "Numbers"); glTF 2.0's binary buffers through assimp.
   const std::string extension = lowercase(std::filesystem::path(nameOrPath).extension().string());
   if (extension == ".obj") return loadObj(nameOrPath);
   if (extension == ".ply") return loadPly(nameOrPath);
   if (extension == ".stl") return loadStl(nameOrPath);
   if (extension == ".nff") return loadNff(nameOrPath);
-  if (extension == ".gltf" || extension == ".glb") return loadGltf(nameOrPath);
+  if ((extension == ".gltf" || extension == ".glb") && gltfMajorVersion(nameOrPath) == 2) return loadGltf(nameOrPath);
+  // Every other format assimp imports (glTF 1.0 among them), through assimp.
+  if (const std::optional<SceneNumbers> numbers = assimpSceneNumbers(nameOrPath)) {
+    if (!std::filesystem::exists(nameOrPath)) throw InputError(fmt::format("{}: cannot open file", nameOrPath));
+    return loadAssimpScene(nameOrPath, *numbers);
+  }
   throw InputError(fmt::format("{}: {} is not a scene format Lancer reads: {} (convert the scene to one of them)",
                                nameOrPath, extension.empty() ? "a file without an extension" : "'" + extension + "'",
                                kSceneFormats));
@@ -114,25 +127,6 @@ Scene subdivide(const Scene& scene, int times) {
   }
   out.computeBounds();
   return out;
-}
-
-void writeObj(const Scene& scene, const std::filesystem::path& path) {
-  std::ofstream out(path);
-  if (!out) throw InputError(fmt::format("{}: cannot write file", path.string()));
-  // Deduplicate vertices so the OBJ keeps the mesh's connectivity.
-  std::map<std::tuple<float, float, float>, size_t> index;
-  std::vector<glm::vec3> vertices;
-  auto vertexId = [&](const glm::vec3& v) {
-    auto [it, inserted] = index.try_emplace({v.x, v.y, v.z}, vertices.size() + 1);
-    if (inserted) vertices.push_back(v);
-    return it->second;
-  };
-  std::vector<std::array<size_t, 3>> faces;
-  for (const Triangle& t : scene.triangles) faces.push_back({vertexId(t.v0), vertexId(t.v1), vertexId(t.v2)});
-  out << "# written by lancer from " << scene.name << "\n";
-  for (const glm::vec3& v : vertices) out << fmt::format("v {:.9g} {:.9g} {:.9g}\n", v.x, v.y, v.z);
-  for (const auto& f : faces) out << fmt::format("f {} {} {}\n", f[0], f[1], f[2]);
-  if (!out) throw InputError(fmt::format("{}: write failed", path.string()));
 }
 
 }  // namespace lancer

@@ -69,6 +69,18 @@ struct Light {
   std::string name;                           // for the effects plan and errors
 };
 
+// How a scene's numbers were read (docs/scenes.md, "Numbers"): the report's
+// `scene_numbers`. The stability suite's invariance promise holds for the
+// first two; an assimp_text scene's numbers may each be a float off the
+// file's decimals.
+enum class SceneNumbers : uint8_t {
+  Exact,             // binary floats as the file stores them (or a float transform of them)
+  CorrectlyRounded,  // decimals read by Lancer's own readers, each the float nearest its text
+  AssimpText,        // decimals parsed by assimp: maybe a float off
+};
+// "exact", "correctly_rounded", "assimp_text".
+const char* toString(SceneNumbers numbers);
+
 // A triangle scene. Triangle ids ("prim") are indices into `triangles`; their
 // order is stable and documented in docs/scenes.md: faces in file order (OBJ,
 // PLY, STL, NFF), a polygon's triangles in its ear-clipping order; glTF's
@@ -88,6 +100,9 @@ struct Scene {
   // What the loader went on past, one line each naming the file (and line): an
   // OBJ's missing MTL file, a material no MTL file defines. The CLI prints them.
   std::vector<std::string> warnings;
+  // How its numbers were read; built-in scenes are C++ literals, correctly
+  // rounded by the compiler.
+  SceneNumbers numbers = SceneNumbers::CorrectlyRounded;
 
   size_t size() const { return triangles.size(); }
   void computeBounds();
@@ -101,14 +116,17 @@ struct Scene {
 inline constexpr const char* kDefaultSceneName = "builtin:cornell";
 // What loadScene() reads, for messages and help.
 inline constexpr const char* kSceneFormats =
-    "OBJ (.obj, with its .mtl), PLY (.ply), STL (.stl), glTF 2.0 (.gltf, .glb), NFF (.nff), or builtin:cornell, "
-    "builtin:cube, builtin:spd-tetra, builtin:spd-gears";
+    "OBJ (.obj, with its .mtl), PLY (.ply), STL (.stl), glTF 2.0 (.gltf, .glb), NFF (.nff), every other format "
+    "assimp 5.2 imports (.blend, .fbx, .dae, .3ds, .ifc, ...), or builtin:cornell, builtin:cube, builtin:spd-tetra, "
+    "builtin:spd-gears";
 
-// Loads a scene file by its extension (kSceneFormats; docs/scenes.md), each
-// format by Lancer's own reader with correctly rounded numbers, polygons
-// triangulated and glTF's nodes placed, or a built-in scene by name. Throws
-// InputError naming the file (and line) on any failure, including an
-// extension it does not read and a scene with no triangles.
+// Loads a scene file by its extension (kSceneFormats; docs/scenes.md): OBJ,
+// PLY, STL and NFF by Lancer's own readers with correctly rounded numbers,
+// glTF 2.0 by assimp's buffers at nodes Lancer places, every other format
+// assimp imports through assimp (Scene::numbers says which numbers may be a
+// float off, and a text format adds a warning), or a built-in scene by name.
+// Throws InputError naming the file (and line) on any failure, including an
+// extension nothing reads, assimp's own reason, and a scene with no triangles.
 Scene loadScene(const std::string& nameOrPath);
 
 // The embedded Cornell box: closed walls, a glass block, a mirror block, an area
@@ -133,8 +151,5 @@ Scene makeIcosphere(int levels);
 // Splits every triangle into four at its edge midpoints (shared midpoints are
 // bit-identical, so the mesh stays watertight). Used to build large test meshes.
 Scene subdivide(const Scene& scene, int times);
-
-// Writes a Wavefront OBJ (positions and faces only), e.g. for generated scenes.
-void writeObj(const Scene& scene, const std::filesystem::path& path);
 
 }  // namespace lancer

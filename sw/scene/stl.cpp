@@ -120,6 +120,7 @@ Scene readStl(std::string_view bytes, const std::string& name) {
   if (bytes.size() >= kHeaderBytes && kHeaderBytes + kTriangleBytes * count == bytes.size()) {
     // Binary, even when its header starts with "solid" (many do).
     readBinary(bytes, count, scene);
+    scene.numbers = SceneNumbers::Exact;
   } else if (lowercase(start.substr(0, 5)) == "solid") {
     if (const size_t line = lineOfNulByte(bytes)) {
       throw InputError(fmt::format("{}:{}: a NUL byte in an ASCII STL (a binary STL of {} triangles would be {} bytes, "
