@@ -39,8 +39,14 @@ DONT_USE = re.compile(r"__(lpflow_|probe|clkdly|dlygate|dlymetal|clkbuf|clkinv|d
 
 # An array becomes a memory macro when it holds at least this many bits and has
 # at most this many read and write ports (the per-slot state that every slot's
-# logic reads at once stays flip-flops: it is a register file by nature).
+# logic reads at once stays flip-flops: it is a register file by nature). An
+# array read asynchronously (its address computed in the cycle it is read)
+# needs MACRO_MIN_BITS_ASYNC: below that it is a flip-flop register file, whose
+# read ABC folds into the address logic (the grid's 64 x 32 cell-queue counts
+# set a 79 MHz clock as macros, on a path of 7.8 ns to their address). The
+# macro must also be smaller than the flip-flops (choose_macros).
 MACRO_MIN_BITS = 2048
+MACRO_MIN_BITS_ASYNC = 4096
 MACRO_MAX_READ_PORTS = 4
 MACRO_MAX_WRITE_PORTS = 2
 
@@ -92,8 +98,8 @@ def flow_sha256():
     left out, the macro policy, ABC's script, the buffering, the wire load,
     the vectorless activity), the macro cut, the libraries and the memory
     table. Editing the code around them does not change it."""
-    settings = json.dumps({"dont_use": DONT_USE.pattern, "macro": [MACRO_MIN_BITS, MACRO_MAX_READ_PORTS,
-                                                                   MACRO_MAX_WRITE_PORTS],
+    settings = json.dumps({"dont_use": DONT_USE.pattern, "macro": [MACRO_MIN_BITS, MACRO_MIN_BITS_ASYNC,
+                                                                   MACRO_MAX_READ_PORTS, MACRO_MAX_WRITE_PORTS],
                            "abc": ABC_SCRIPT, "fanout": [MAX_FANOUT, *FANOUT_BUFFER], "tie": TIE_CELL,
                            "wire_load": WIRE_LOAD, "vectorless": VECTORLESS_ACTIVITY, "yosys": YOSYS_STEPS},
                           sort_keys=True)
@@ -221,7 +227,8 @@ def choose_macros(memories, pins, table):
     chip too). {name: {flop_um2, macro_um2}} of every candidate, with "macro" set."""
     choice = {}
     for name, mem in memories.items():
-        if mem["words"] * mem["width"] < MACRO_MIN_BITS or mem["read_ports"] > MACRO_MAX_READ_PORTS \
+        least = MACRO_MIN_BITS if all(mem["sync"]) else MACRO_MIN_BITS_ASYNC
+        if mem["words"] * mem["width"] < least or mem["read_ports"] > MACRO_MAX_READ_PORTS \
                 or mem["write_ports"] > MACRO_MAX_WRITE_PORTS:
             continue
         flops = flop_array_um2(mem, pins)

@@ -118,6 +118,7 @@ const std::vector<Column>& columns() {
       {"mismatches_vs_golden", true}, {"isect_latency_cycles", true}, {"cycles", true},
       {"cycles_per_ray", true}, {"tests_per_cycle", true}, {"tests_per_ray", true}, {"cells", true},
       {"flip_flops", true}, {"logic_depth", true}, {"fmax_mhz_est", true}, {"ns_per_ray_at_fmax", true},
+      {"area_um2", true}, {"sta_fmax_mhz", true}, {"ns_per_ray_at_sta", true}, {"pj_per_ray", true},
       {"cells_x_ns_per_ray", true}, {"host_model_seconds", false}, {"host_rays_per_second", false},
       {"build_seconds", false}, {"synth_cpu_seconds", false}};
   return cols;
@@ -190,6 +191,11 @@ nlohmann::json sweepRow(const Width& w, const std::string& unit, const std::stri
   const double fmax = syn.value("fmax_mhz", NAN);  // the gate model's (scripts/lancer_synth.py)
   const double nsPerRay = cyclesPerRay / fmax * 1e3;
   const double cells = syn.value("cells", NAN);
+  // The silicon flow's figures (scripts/sweep-synth, docs/silicon.md): SKY130 area, STA clock, energy.
+  const nlohmann::json si = syn.value("silicon", nlohmann::json::object());
+  const double areaUm2 = si.value("cell_area_um2", NAN) + si.value("macro_area_um2", NAN);
+  const double staMhz = si.value("sta_fmax_mhz", NAN);
+  const double pjPerRay = si.value("pj_per_cycle", NAN) * cyclesPerRay;
   const double tErrMean = ratio(t.tErrSum, double(t.compared));
   const bool hasCamera = t.cameraJobs > 0;
   const bool walks = unit != "isect";  // a traversal unit: it takes steps
@@ -221,6 +227,8 @@ nlohmann::json sweepRow(const Width& w, const std::string& unit, const std::stri
           {"cells", num(cells)}, {"flip_flops", num(syn.value("flip_flops", NAN))},
           {"logic_depth", num(depth)}, {"fmax_mhz_est", num(fmax)}, {"ns_per_ray_at_fmax", num(nsPerRay)},
           {"cells_x_ns_per_ray", num(cells * nsPerRay)},
+          {"area_um2", num(areaUm2)}, {"sta_fmax_mhz", num(staMhz)},
+          {"ns_per_ray_at_sta", num(cyclesPerRay / staMhz * 1e3)}, {"pj_per_ray", num(pjPerRay)},
           {"host_model_seconds", t.modelSeconds},
           {"host_rays_per_second", num(ratio(double(t.inLattice), t.modelSeconds))},
           {"build_seconds", tree.value("build_seconds", nlohmann::json(nullptr))},
@@ -309,9 +317,10 @@ bool hasLaterModel(const Spec& spec, const std::vector<nlohmann::json>& rows, co
 // The terminal summary: per width, unit and scene, the most detailed model
 // (the last in the spec that has results: rtl after golden).
 void printTable(FILE* table, const Spec& spec, const std::vector<nlohmann::json>& rows) {
-  constexpr const char* kLine = "{:<6} {:<6} {:<7} {:<14} {:>9} {:>10} {:>7} {:>7} {:>8} {:>7} {:>8} {:>7} {:>9} {:>7}\n";
+  constexpr const char* kLine =
+      "{:<6} {:<6} {:<7} {:<14} {:>9} {:>10} {:>7} {:>7} {:>8} {:>7} {:>10} {:>7} {:>7} {:>9} {:>7}\n";
   fmt::print(table, fmt::runtime(kLine), "width", "unit", "model", "scene", "misclass", "t err max", "cracks",
-             "extra", "cyc/ray", "tst/cyc", "cells", "MHz", "host r/s", "build");
+             "extra", "cyc/ray", "tst/cyc", "um2", "STA MHz", "pJ/ray", "host r/s", "build");
   const auto fmtNum = [](const nlohmann::json& v, const char* f) {
     return v.is_null() ? std::string("-") : fmt::format(fmt::runtime(f), v.get<double>());
   };
@@ -331,7 +340,8 @@ void printTable(FILE* table, const Spec& spec, const std::vector<nlohmann::json>
                    ? "-"
                    : fmt::format("{:+.1f}%", 100 * row["extra_steps_fraction"].get<double>()),
                fmtNum(row["cycles_per_ray"], "{:.2f}"), fmtNum(row["tests_per_cycle"], "{:.3f}"),
-               fmtNum(row["cells"], "{:.0f}"), fmtNum(row["fmax_mhz_est"], "{:.0f}"),
+               fmtNum(row["area_um2"], "{:.0f}"), fmtNum(row["sta_fmax_mhz"], "{:.0f}"),
+               fmtNum(row["pj_per_ray"], "{:.0f}"),
                fmtNum(row["host_rays_per_second"], "{:.0f}"), fmtNum(row["build_seconds"], "{:.0f}s"));
   }
 }

@@ -81,7 +81,9 @@ TreeResult buildTree(const Spec& spec, const Width& w, const std::string& out) {
   }
 
   const auto start = std::chrono::steady_clock::now();
-  const int rc = runLogged({"cmake", "--build", r.dir, "--target", "lancer", "-j", std::to_string(spec.buildJobs)}, r.log);
+  const int rc = runLogged({"cmake", "--build", r.dir, "--target", "lancer", "lancer_fst_activity", "-j",
+                            std::to_string(spec.buildJobs)},
+                           r.log);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (rc != 0) return fail(fmt::format("building lancer in {} failed (exit {}): {}", r.dir, rc, errorLine(r.log)));
 

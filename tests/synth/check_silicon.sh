@@ -7,14 +7,14 @@
 set -euo pipefail
 src=$1 tree=$2
 silicon=$src/scripts/silicon
-python3 "$silicon" --tree "$tree" --top rt_fifo --set Width=40 --set Depth=64 --check-only --remap
-python3 - "$tree/silicon/rt_fifo-Width-40-Depth-64/silicon.json" <<'PY'
+python3 "$silicon" --tree "$tree" --top rt_fifo --set Width=40 --set Depth=128 --check-only --remap
+python3 - "$tree/silicon/rt_fifo-Width-40-Depth-128/silicon.json" <<'PY'
 import json, sys
 fig = json.load(open(sys.argv[1]))
 macros = fig["macros"]
 assert list(macros) == ["mem_q"], macros
 m = macros["mem_q"]
-assert (m["words"], m["width"]) == (64, 40), m
+assert (m["words"], m["width"]) == (128, 40), m
 assert 0.005 < m["model"]["area_mm2"] < 0.2, m
 assert fig["logic"]["flip_flops"] < 64, fig["logic"]  # the array is not flip-flops
 assert 100 < fig["sta"]["fmax_mhz"] < 2000, fig["sta"]

@@ -131,13 +131,17 @@ class MacroTest(unittest.TestCase):
 
     def test_a_small_many_ported_array_stays_flip_flops(self):
         pins = {"sky130_fd_sc_hd__dfxtp_1": {"area": 20.02}, "sky130_fd_sc_hd__mux2_1": {"area": 11.26}}
-        mems = {"best": {"words": 32, "width": 312, "read_ports": 3, "write_ports": 2},
-                "stack": {"words": 1024, "width": 88, "read_ports": 1, "write_ports": 1},
-                "tiny": {"words": 4, "width": 8, "read_ports": 1, "write_ports": 1}}
+        mems = {"best": {"words": 32, "width": 312, "read_ports": 3, "write_ports": 2, "sync": [True, True, False]},
+                "stack": {"words": 1024, "width": 88, "read_ports": 1, "write_ports": 1, "sync": [False]},
+                "tiny": {"words": 4, "width": 8, "read_ports": 1, "write_ports": 1, "sync": [True]},
+                "counts": {"words": 64, "width": 32, "read_ports": 1, "write_ports": 1, "sync": [False]},
+                "den": {"words": 32, "width": 69, "read_ports": 1, "write_ports": 1, "sync": [True]}}
         choice = si.choose_macros(mems, pins, None)
         self.assertFalse(choice["best"]["macro"])
         self.assertTrue(choice["stack"]["macro"])
+        self.assertTrue(choice["den"]["macro"])
         self.assertNotIn("tiny", choice)
+        self.assertNotIn("counts", choice)  # read in the cycle and under 4 Kbit: a register file
 
     def test_replicated_ports_cost_banks(self):
         one = si.price_macro({"words": 512, "width": 35, "read_ports": 1, "write_ports": 1})
