@@ -508,6 +508,8 @@ def power_script(timing_lib, netlist_path, top, period_ns, port_activity, defaul
     """report_power at the clock with every input port's activity (toggles per
     cycle) set, the measured ones one by one."""
     s = _sta_header(timing_lib, netlist_path, top, period_ns)
+    # An input's activity is per cycle of its clock: without one, OpenSTA propagates nothing from it.
+    s += "set_input_delay 0 -clock clk [delete_from_list [all_inputs] [get_ports clk_i]]\n"
     s += f"set_power_activity -input -activity {default_activity:.6f} -duty 0.5\n"
     for port, rate in sorted(port_activity.items()):
         s += f"sta::set_power_input_port_activity [get_ports {{{port.strip().lstrip(chr(92))}}}] {rate:.6f} 0.5\n"
