@@ -1,6 +1,7 @@
 #include "scene/assimp_import.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "scene/surface.h"
 
 namespace lancer {
 
@@ -63,6 +65,41 @@ const aiScene* importWithAssimp(Assimp::Importer& importer, const std::string& p
     throw InputError(fmt::format("{}: cannot read scene: {}", path, reason.empty() ? "assimp read no scene" : reason));
   }
   return ai;
+}
+
+glm::vec3 toVec(const aiVector3D& v) { return {v.x, v.y, v.z}; }
+
+void appendPlacedMesh(Scene& scene, const aiMesh& mesh, const glm::mat4& world, uint32_t material,
+                      bool withNormals, const std::string& path, const std::string& where) {
+  const bool identity = world == glm::mat4(1.0f);
+  const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
+  const auto place = [&](const aiVector3D& v) {
+    return identity ? toVec(v) : glm::vec3(world * glm::vec4(toVec(v), 1.0f));
+  };
+  for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+    const aiFace& face = mesh.mFaces[f];
+    if (face.mNumIndices != 3) continue;  // a point or line among the triangles
+    if (std::any_of(face.mIndices, face.mIndices + 3, [&](unsigned i) { return i >= mesh.mNumVertices; })) {
+      throw InputError(fmt::format("{}: {} face {} names a vertex beyond the mesh's {}", path, where, f,
+                                   mesh.mNumVertices));
+    }
+    const Triangle tri{place(mesh.mVertices[face.mIndices[0]]), place(mesh.mVertices[face.mIndices[1]]),
+                       place(mesh.mVertices[face.mIndices[2]])};
+    if (!allFinite(tri.v0) || !allFinite(tri.v1) || !allFinite(tri.v2)) {
+      throw InputError(fmt::format("{}: {} face {} has a non-finite vertex", path, where, f));
+    }
+    scene.triangles.push_back(tri);
+    scene.materialOf.push_back(material);
+    if (!withNormals) continue;
+    std::array<glm::vec3, 3> normals{};
+    std::array<const glm::vec3*, 3> file{};
+    for (int c = 0; c < 3 && mesh.mNormals; ++c) {
+      normals[c] = toVec(mesh.mNormals[face.mIndices[c]]);
+      if (!identity) normals[c] = normalMatrix * normals[c];
+      file[c] = &normals[c];
+    }
+    scene.normals.push_back(shadingNormals(tri, file));
+  }
 }
 
 }  // namespace lancer

@@ -55,7 +55,6 @@ bool listed(std::string_view extension, auto const& list) {
 
 // ---- Materials and lights -----------------------------------------------------------------
 
-glm::vec3 toVec(const aiVector3D& v) { return {v.x, v.y, v.z}; }
 
 // assimp's row-major matrix as glm's column-major one.
 glm::mat4 toMat(const aiMatrix4x4& m) {
@@ -194,42 +193,12 @@ Scene loadAssimpScene(const std::string& path, SceneNumbers numbers) {
   }
   // Triangle order: nodes depth-first, a node's meshes in order, faces in order.
   for (const Instance& instance : instances) {
-    // The identity keeps the file's floats as they are; any other transform is
-    // applied in float.
-    const bool identity = instance.world == glm::mat4(1.0f);
-    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(instance.world)));
-    const auto place = [&](const aiVector3D& v) {
-      return identity ? toVec(v) : glm::vec3(instance.world * glm::vec4(toVec(v), 1.0f));
-    };
     for (unsigned k = 0; k < instance.node->mNumMeshes; ++k) {
       const aiMesh* mesh = ai->mMeshes[instance.node->mMeshes[k]];
       if (!triangles(mesh)) continue;
       const uint32_t material = mesh->mMaterialIndex < scene.materials.size() ? mesh->mMaterialIndex : 0;
-      for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-        const aiFace& face = mesh->mFaces[f];
-        if (face.mNumIndices != 3) continue;  // a point or line among the triangles
-        if (std::any_of(face.mIndices, face.mIndices + 3, [&](unsigned i) { return i >= mesh->mNumVertices; })) {
-          throw InputError(fmt::format("{}: {}: mesh '{}' face {} names a vertex beyond the mesh's {}", path,
-                                       nodeLabel(instance.node), mesh->mName.C_Str(), f, mesh->mNumVertices));
-        }
-        const Triangle tri{place(mesh->mVertices[face.mIndices[0]]), place(mesh->mVertices[face.mIndices[1]]),
-                           place(mesh->mVertices[face.mIndices[2]])};
-        if (!allFinite(tri.v0) || !allFinite(tri.v1) || !allFinite(tri.v2)) {
-          throw InputError(fmt::format("{}: {}: mesh '{}' face {} has a non-finite vertex", path,
-                                       nodeLabel(instance.node), mesh->mName.C_Str(), f));
-        }
-        scene.triangles.push_back(tri);
-        scene.materialOf.push_back(material);
-        if (!withNormals) continue;
-        std::array<glm::vec3, 3> normals{};
-        std::array<const glm::vec3*, 3> file{};
-        for (int c = 0; c < 3 && mesh->mNormals; ++c) {
-          normals[c] = toVec(mesh->mNormals[face.mIndices[c]]);
-          if (!identity) normals[c] = normalMatrix * normals[c];
-          file[c] = &normals[c];
-        }
-        scene.normals.push_back(shadingNormals(tri, file));
-      }
+      appendPlacedMesh(scene, *mesh, instance.world, material, withNormals, path,
+                       fmt::format("{}: mesh '{}'", nodeLabel(instance.node), mesh->mName.C_Str()));
     }
   }
   if (scene.triangles.empty()) throw InputError(fmt::format("{}: scene has no triangles", path));

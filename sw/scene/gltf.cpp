@@ -385,7 +385,6 @@ class Reader {
 
 // ---- The scene: assimp's meshes at the JSON's nodes ------------------------------------
 
-glm::vec3 toVec(const aiVector3D& v) { return {v.x, v.y, v.z}; }
 
 // glTF's metallic-roughness material in Whitted terms (docs/scenes.md, "glTF
 // 2.0"). Whitted tracing has only perfect mirrors and clear refraction, so
@@ -556,39 +555,12 @@ Scene loadGltf(const std::string& path) {
   // Triangle order: nodes in walk order, a mesh's primitives in order, faces in order.
   for (size_t i = 0; i < gltf.meshInstances.size(); ++i) {
     const GltfExtras::MeshInstance& instance = gltf.meshInstances[i];
-    // The identity leaves the buffer's floats as they are; any other transform
-    // is applied in float, so a scene scaled by a power of two (vertices and
-    // translations) is placed at exactly that multiple.
-    const bool identity = instance.world == glm::mat4(1.0f);
-    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(instance.world)));
-    const auto place = [&](const aiVector3D& v) {
-      return identity ? toVec(v) : glm::vec3(instance.world * glm::vec4(toVec(v), 1.0f));
-    };
     for (size_t p = 0; p < instanceMeshes[i].size(); ++p) {
       const aiMesh* mesh = instanceMeshes[i][p];
       if (!mesh) continue;
       const uint32_t material = mesh->mMaterialIndex < scene.materials.size() ? mesh->mMaterialIndex : 0;
-      for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-        const aiFace& face = mesh->mFaces[f];
-        if (face.mNumIndices != 3) continue;  // a point or line among the triangles
-        const Triangle tri{place(mesh->mVertices[face.mIndices[0]]), place(mesh->mVertices[face.mIndices[1]]),
-                           place(mesh->mVertices[face.mIndices[2]])};
-        if (!allFinite(tri.v0) || !allFinite(tri.v1) || !allFinite(tri.v2)) {
-          throw InputError(fmt::format("{}: {}: mesh {} primitive {} face {} has a non-finite vertex", path,
-                                       instance.node, instance.mesh, p, f));
-        }
-        scene.triangles.push_back(tri);
-        scene.materialOf.push_back(material);
-        if (!withNormals) continue;
-        std::array<glm::vec3, 3> normals{};
-        std::array<const glm::vec3*, 3> file{};
-        for (int k = 0; k < 3 && mesh->mNormals; ++k) {
-          normals[k] = toVec(mesh->mNormals[face.mIndices[k]]);
-          if (!identity) normals[k] = normalMatrix * normals[k];
-          file[k] = &normals[k];
-        }
-        scene.normals.push_back(shadingNormals(tri, file));
-      }
+      appendPlacedMesh(scene, *mesh, instance.world, material, withNormals, path,
+                       fmt::format("{}: mesh {} primitive {}", instance.node, instance.mesh, p));
     }
   }
   if (scene.triangles.empty()) throw InputError(fmt::format("{}: scene has no triangles", path));
