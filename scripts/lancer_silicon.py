@@ -8,13 +8,13 @@ its figures into rtl/synth/clocks.json.
 Every constant of the flow is here, so a figure states what it was made with.
 """
 
+import functools
 import gzip
 import hashlib
-import os
 import importlib.machinery
 import importlib.util
 import json
-import math
+import os
 import re
 import shutil
 import subprocess
@@ -523,6 +523,11 @@ def vectorless_script(timing_lib, netlist_path, top, period_ns, activity):
     return s
 
 
+def dynamic_w(power):
+    """The dynamic part (internal + switching) of parse_power's figures."""
+    return power["internal_w"] + power["switching_w"]
+
+
 def parse_power(report):
     """{"internal_w", "switching_w", "leakage_w", "total_w"} of report_power's Total row."""
     m = re.search(r"^Total\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)", report, re.M)
@@ -553,7 +558,9 @@ def check_linked(log, work):
 
 # ---- Memories -------------------------------------------------------------------------
 
+@functools.cache
 def _cacti_table():
+    """rtl/synth/sram/cacti-table as a module (its interpolation), loaded once."""
     loader = importlib.machinery.SourceFileLoader("cacti_table", str(SYNTH / "sram" / "cacti-table"))
     spec = importlib.util.spec_from_loader("cacti_table", loader)
     module = importlib.util.module_from_spec(spec)
@@ -584,12 +591,6 @@ def supply_scale(table):
     same in driver/silicon.cpp for the caches)."""
     ratio = LIBRARY["vdd_v"] / table["technology"]["vdd_v"]
     return ratio * ratio, ratio
-
-
-def cache_model(kind, kib, table=None):
-    """An L1 (kind "l1", capacity KiB) or one L2 bank (kind "l2_bank", bank KiB) from the CACTI table."""
-    table = table or json.loads(SRAM_TABLE.read_text())
-    return _cacti_table().query(table, kind, [kib])
 
 
 def stat_figures(stat_text, pins):
@@ -643,24 +644,20 @@ def port_activity(view, registers, activity, top):
         rest = parts[len(parts) - 1 - parts[::-1].index(top) + 1:] if top in parts else parts[1:]
         if rest:
             signals.setdefault(signal_base(".".join(rest)), entry)
-    rates, reg_bits, reg_toggles = {}, 0, 0.0
-    counts = {"registers": len(registers), "registers_measured": 0, "inputs": 0, "inputs_measured": 0}
-    for port in view.inputs:
-        if port == "clk_i":
-            continue
-        is_register = port in registers
-        counts["registers" if is_register else "inputs"] += 0 if is_register else 1
+    rates, reg_toggles = {}, 0.0
+    inputs = [port for port in view.inputs if port != "clk_i" and port not in registers]
+    counts = {"registers": len(registers), "registers_measured": 0, "inputs": len(inputs), "inputs_measured": 0}
+    for port in inputs + list(registers):
         entry = signals.get(signal_base(registers.get(port, port)))
         if entry is None:
             continue
-        rate = min(float(entry["per_bit_per_cycle"]), 1.0)
-        rates[port] = rate
-        if is_register:
+        rate = rates[port] = min(float(entry["per_bit_per_cycle"]), 1.0)
+        if port in registers:
             counts["registers_measured"] += 1
-            reg_bits += 1
             reg_toggles += rate
         else:
             counts["inputs_measured"] += 1
-    counts["default"] = round(reg_toggles / reg_bits, 6) if reg_bits else VECTORLESS_ACTIVITY
+    measured = counts["registers_measured"]
+    counts["default"] = round(reg_toggles / measured, 6) if measured else VECTORLESS_ACTIVITY
     counts["mean_register_activity"] = counts["default"]
     return rates, counts
