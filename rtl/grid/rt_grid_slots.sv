@@ -19,10 +19,12 @@
 // Cell prefetch. Each slot reads its cells ahead of the traversal: the DDA
 // registers hold the frontier, the next cell not yet requested; while the slot
 // has fewer than CellQueue cells requested and not finished, and the frontier
-// is in the grid, it asks for a cell read, and on the grant the frontier's id,
-// its exit accumulator (N of the crossing that leaves it) and whether it is the
-// last cell enter the slot's cell queue and the DDA steps (one shared stepper:
-// one grant per cycle). Responses fill the queue in order. The head of the
+// is in the grid, it asks for a cell read. On the grant the frontier's id
+// enters the slot's cell queue; in the next cycle the DDA steps (one shared
+// stepper: one grant per cycle) and the entry takes the cell's exit
+// accumulator (N of the crossing that leaves it) and whether it is the last
+// cell; in the one after, the next step is prepared. A slot thus reads at most
+// one cell every three cycles. Responses fill the queue in order. The head of the
 // queue is the cell the ray is entering (VISIT) or in; its visit record is
 // written only when the ray really enters it, and a cell read past the cell
 // where the ray stops is simply dropped. A slot ends only when none of its
@@ -174,9 +176,12 @@ module rt_grid_slots #(
   // down or R-1 stepping up (or no axis steps); else coordinate +-1, cell id
   // +- stride, N[axis] += pair[axis] << P. A slot keeps its next step worked
   // out (step_q): from the setup's values at init, and from the stepped
-  // frontier in the cycle after a cell grant (prep_q; the slot asks for no
-  // cell in that cycle). The grant itself only moves the frontier to the
-  // prepared cell, so no arithmetic follows the cell arbiter.
+  // frontier two cycles after a cell grant (prep_q). The grant only queues the
+  // frontier's cell; in the next cycle (stepping_q) the frontier moves to the
+  // prepared cell, read from step_q at a registered slot index, so neither
+  // arithmetic nor a macro read follows the cell arbiter (issue #35: the
+  // grant's read of step_q was rt_grid's STA critical path). The slot asks
+  // for no cell while it steps and prepares.
   typedef struct packed {
     logic [1:0]        axis;
     logic [ACC_W-1:0]  exit_acc;  // N[axis]: the exit accumulator of the frontier cell
@@ -225,12 +230,19 @@ module rt_grid_slots #(
   endfunction
 
   logic [STEP_W-1:0] step_q [N];  // each slot's next step
+  logic              stepping_q;  // a slot was granted a cell in the previous cycle:
+  logic [SlotW-1:0]  step_slot_q; // its frontier steps in this one,
+  logic [QW-1:0]     step_push_q; // and its new queue entry takes the cell's exit
   logic              prep_q;      // a slot's frontier stepped in the previous cycle:
   logic [SlotW-1:0]  prep_slot_q; // its next step is prepared in this one
 
-  // (prep_q is reset with the state vectors, below.)
+  // (stepping_q and prep_q are reset with the state vectors, below.)
   always_ff @(posedge clk_i) begin
-    if (cell_go_i) prep_slot_q <= cell_slot_i;
+    if (cell_go_i) begin
+      step_slot_q <= cell_slot_i;
+      step_push_q <= g_push;
+    end
+    if (stepping_q) prep_slot_q <= step_slot_q;
   end
 
   always_ff @(posedge clk_i) begin : p_step
@@ -244,7 +256,8 @@ module rt_grid_slots #(
     end
   end
 
-  // The grant's step: the prepared one, into the frontier's registers.
+  // The step of the slot granted a cell in the previous cycle: the prepared
+  // one, into the frontier's registers.
   step_t               st;
   logic [ACC_W-1:0]    st_exit;
   logic                st_leaves;
@@ -254,10 +267,10 @@ module rt_grid_slots #(
     st      = '0;
     st_cell = '0;
     st_acc  = '0;
-    if (cell_go_i) begin
-      st      = step_q[cell_slot_i];
-      st_cell = fcell_q[cell_slot_i];
-      st_acc  = facc_q[cell_slot_i];
+    if (stepping_q) begin
+      st      = step_q[step_slot_q];
+      st_cell = fcell_q[step_slot_q];
+      st_acc  = facc_q[step_slot_q];
       st_cell[st.axis*CELL_W +: CELL_W] = st.coord;
       st_acc[st.axis*ACC_W +: ACC_W]    = st.acc;
     end
@@ -403,9 +416,11 @@ module rt_grid_slots #(
       qc_q    <= '0;
       oc_q    <= '0;
       hd_q    <= '0;
-      prep_q  <= 1'b0;
+      stepping_q <= 1'b0;
+      prep_q     <= 1'b0;
     end else begin
-      prep_q  <= cell_go_i;
+      stepping_q <= cell_go_i;
+      prep_q     <= stepping_q;
       free_q  <= (free_q & ~alloc_oh) | done_oh;
       setup_q <= (setup_q & ~init_oh) | alloc_oh;
       visit_q <= (visit_q & ~vgo_oh) | init_oh | pop_set;
@@ -414,7 +429,7 @@ module rt_grid_slots #(
       check_q <= (check_q & ~chk_oh) | check_set;
       done_q  <= (done_q & ~done_oh) | done_set;
       iss_q   <= (iss_q & ~igo_oh) | fetch_set;
-      front_q <= (front_q & ~onehot(cell_go_i && st_leaves, cell_slot_i)) | init_oh;
+      front_q <= (front_q & ~onehot(stepping_q && st_leaves, step_slot_q)) | init_oh;
       qc_q    <= qc_d;
       oc_q    <= oc_d;
       hd_q    <= hd_d;
@@ -433,14 +448,14 @@ module rt_grid_slots #(
       cells_q[init_slot_i]  <= '0;
       tests_q[init_slot_i]  <= '0;
     end
-    if (cell_go_i) begin
-      ecid_q[{cell_slot_i, g_push}]  <= fid_q[cell_slot_i];
-      eexit_q[{cell_slot_i, g_push}] <= st_exit;
-      elast_q[{cell_slot_i, g_push}] <= st_leaves;
+    if (cell_go_i) ecid_q[{cell_slot_i, g_push}] <= fid_q[cell_slot_i];
+    if (stepping_q) begin
+      eexit_q[{step_slot_q, step_push_q}] <= st_exit;
+      elast_q[{step_slot_q, step_push_q}] <= st_leaves;
       if (!st_leaves) begin
-        fcell_q[cell_slot_i] <= st_cell;
-        fid_q[cell_slot_i]   <= st.id;
-        facc_q[cell_slot_i]  <= st_acc;
+        fcell_q[step_slot_q] <= st_cell;
+        fid_q[step_slot_q]   <= st.id;
+        facc_q[step_slot_q]  <= st_acc;
       end
     end
     if (cell_rsp_valid_i) begin
@@ -461,7 +476,7 @@ module rt_grid_slots #(
   // ---- Outputs ----------------------------------------------------------------------------
   assign free_o          = free_q;
   assign want_cell_o     = (visit_q | wait_q | fetch_q | check_q) & front_q & ~qc_q[(D-1)*N +: N]
-                           & ~onehot(prep_q, prep_slot_q);  // (its next step is being prepared)
+                           & ~onehot(stepping_q, step_slot_q) & ~onehot(prep_q, prep_slot_q);  // (stepping, preparing)
   assign want_visit_o    = visit_q & qc_q[0 +: N];
   assign want_idx_o      = iss_q;
   assign want_check_o    = check_q;
@@ -489,6 +504,11 @@ module rt_grid_slots #(
   // triangles' slots).
   `RT_CHECK_IF(a_cell_rsp_slot, cell_rsp_valid_i, t_out != '0)
   `RT_CHECK_IF(a_cell_rsp_head, cell_rsp_valid_i && wait_q[cell_rsp_tag_i], t_cnt == t_out)
+  // The entry whose exit the step writes has no data yet (the response comes
+  // through the request FIFO and the registered boundary: two cycles at least),
+  // so nothing reads its exit or last flag before the step writes them.
+  `RT_CHECK_IF(a_step_before_rsp, stepping_q && cell_rsp_valid_i && cell_rsp_tag_i == step_slot_q,
+               t_fill != step_push_q)
   `RT_CHECK_IF(a_res_fetch, res_valid_i, fetch_q[r_slot])
   // Every slot is in one state (parity catches any slot in two).
   `RT_CHECK(a_states, (free_q | setup_q | visit_q | wait_q | fetch_q | check_q | done_q) == '1 &&

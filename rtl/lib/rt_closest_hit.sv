@@ -3,33 +3,39 @@
 // parameters t = t_num / (DIR_MAX * det) over positive dets), exact ties to the
 // lower prim id; a hit always replaces "no hit yet", a miss never replaces.
 //
-// Two stages, so that neither holds a whole T_NUM_W x DET_ABS_W product and a
-// compare (issue #23: that was the traversal units' critical path):
-//   X  (the result's cycle) the four half products of each cross product, the
-//      det split in halves, against the slot's record as read in this cycle,
-//      and against the result now in stage Y when it is of the same slot
-//      (forwarding: that result may become the record at the end of this
-//      cycle, and the record read here is then stale); registered
-//   Y  (one cycle later) each difference of cross products as one sum of
-//      half products, its sign and zero test; the verdict against the result
-//      ahead when it was taken (take_o of the last cycle), else against the
-//      record. valid_o, slot_o and the result leave here with take_o, and the
-//      owner writes the record in this cycle.
-// The slot's record may change between X and Y only by the result ahead (one
-// result per cycle), which is what the forwarding covers.
+// Three stages, so that no cycle holds the record's read and a product, nor a
+// whole T_NUM_W x DET_ABS_W product and a compare (issue #23; issue #35: the
+// read of the 32-slot record file into the products was the traversal units'
+// STA critical path):
+//   R  (the result's cycle) the result and its slot's record as read in this
+//      cycle are registered; the record as the result in stage Y leaves it
+//      when that result is of the same slot and taken (write-through: the
+//      owner writes the record at the end of this cycle)
+//   X  the four half products of each cross product, the det split in halves,
+//      against the registered record, and against the result now in stage Y
+//      when it is of the same slot (forwarding: that result may become the
+//      record at the end of this cycle); registered
+//   Y  each difference of cross products as one sum of half products, its sign
+//      and zero test; the verdict against the result ahead when it was taken
+//      (take_o of the last cycle), else against the record. valid_o, slot_o and
+//      the result leave here with take_o, and the owner writes the record in
+//      this cycle.
+// Between R and Y the slot's record may change only by the two results ahead
+// (one result per cycle): the one in Y during R (written through) and the one
+// in Y during X (forwarded).
 //
 // The products load only when they are used (enabled flops: a simulator
 // skips the wide multiplications in the other cycles).
 //
-// Latency: 1 cycle. Throughput: one comparison per cycle, back to back on one
-// slot included.
+// Latency: rt_pkg::CLOSEST_HIT_LATENCY (= 2) cycles. Throughput: one
+// comparison per cycle, back to back on one slot included.
 module rt_closest_hit #(
   parameter int unsigned SlotW    = 5,  // width of the slot index carried along
   parameter int unsigned PayloadW = 1   // the rest of the result, carried along
 ) (
   input  logic                         clk_i,
   input  logic                         rst_ni,
-  // Stage X: a result for slot slot_i,
+  // Stage R: a result for slot slot_i,
   input  logic                         valid_i,
   input  logic [SlotW-1:0]             slot_i,
   input  logic                         hit_i,         // a hit,
@@ -61,6 +67,36 @@ module rt_closest_hit #(
   localparam int PHI_W = T_W + HI_W;
   localparam int DIF_W = T_W + D_W + 1;    // a difference of cross products, signed
 
+  // ---- Stage R ---------------------------------------------------------------
+  // The result, and its slot's record as the end of this cycle leaves it.
+  logic                valid_x, hit_x;
+  logic [SlotW-1:0]    slot_x;
+  logic [31:0]         prim_x;
+  logic [T_W-1:0]      t_num_x;
+  logic [D_W-1:0]      det_x;
+  logic [PayloadW-1:0] payload_x;
+  logic                write_through;
+  logic                has_best_x;
+  logic [31:0]         best_prim_x;
+  logic [T_W-1:0]      best_t_num_x;
+  logic [D_W-1:0]      best_det_x;
+
+  rt_pipe_reg #(.Width(SlotW + 1 + 32 + T_W + D_W + PayloadW)) u_result_x (
+    .clk_i, .rst_ni, .valid_i,
+    .data_i ({slot_i, hit_i, prim_id_i, t_num_i, det_i, payload_i}),
+    .valid_o(valid_x),
+    .data_o ({slot_x, hit_x, prim_x, t_num_x, det_x, payload_x}));
+
+  assign write_through = take_o && slot_o == slot_i;
+  always_ff @(posedge clk_i) begin
+    if (valid_i) begin
+      has_best_x   <= has_best_i || write_through;
+      best_prim_x  <= write_through ? prim_id_o : best_prim_i;
+      best_t_num_x <= write_through ? t_num_o   : best_t_num_i;
+      best_det_x   <= write_through ? det_o     : best_det_i;
+    end
+  end
+
   // ---- Stage X ---------------------------------------------------------------
   // Two comparisons: REC against the slot's record, AHEAD against the result
   // now in stage Y when it is a hit of the same slot.
@@ -68,19 +104,20 @@ module rt_closest_hit #(
   logic       same_slot, has_best_q, same_slot_q;
   logic [1:0] use_cmp, closer;  // per comparison
 
-  assign same_slot         = valid_o && slot_o == slot_i && hit_o;
-  assign use_cmp[REC]      = valid_i && hit_i && has_best_i;
-  assign use_cmp[AHEAD]    = valid_i && hit_i && same_slot;
+  assign same_slot         = valid_o && slot_o == slot_x && hit_o;
+  assign use_cmp[REC]      = valid_x && hit_x && has_best_x;
+  assign use_cmp[AHEAD]    = valid_x && hit_x && same_slot;
 
   rt_pipe_reg #(.Width(SlotW + 1 + 32 + T_W + D_W + PayloadW)) u_result (
-    .clk_i, .rst_ni, .valid_i,
-    .data_i ({slot_i, hit_i, prim_id_i, t_num_i, det_i, payload_i}),
+    .clk_i, .rst_ni,
+    .valid_i(valid_x),
+    .data_i ({slot_x, hit_x, prim_x, t_num_x, det_x, payload_x}),
     .valid_o,
     .data_o ({slot_o, hit_o, prim_id_o, t_num_o, det_o, payload_o}));
 
   always_ff @(posedge clk_i) begin
-    if (valid_i) begin
-      has_best_q  <= has_best_i;
+    if (valid_x) begin
+      has_best_q  <= has_best_x;
       same_slot_q <= same_slot;
     end
   end
@@ -95,17 +132,17 @@ module rt_closest_hit #(
     logic             prim_lt_q;
     logic [DIF_W-1:0] dif;  // (stage Y) new.t * old.det - old.t * new.det
 
-    assign old_t    = (c == REC) ? best_t_num_i : t_num_o;
-    assign old_det  = (c == REC) ? best_det_i   : det_o;
-    assign old_prim = (c == REC) ? best_prim_i  : prim_id_o;
+    assign old_t    = (c == REC) ? best_t_num_x : t_num_o;
+    assign old_det  = (c == REC) ? best_det_x   : det_o;
+    assign old_prim = (c == REC) ? best_prim_x  : prim_id_o;
 
     always_ff @(posedge clk_i) begin
       if (use_cmp[c]) begin
-        new_lo_q  <= PLO_W'(t_num_i) * PLO_W'(old_det[LO_W-1:0]);
-        new_hi_q  <= PHI_W'(t_num_i) * PHI_W'(old_det[D_W-1:LO_W]);
-        old_lo_q  <= PLO_W'(old_t) * PLO_W'(det_i[LO_W-1:0]);
-        old_hi_q  <= PHI_W'(old_t) * PHI_W'(det_i[D_W-1:LO_W]);
-        prim_lt_q <= prim_id_i < old_prim;
+        new_lo_q  <= PLO_W'(t_num_x) * PLO_W'(old_det[LO_W-1:0]);
+        new_hi_q  <= PHI_W'(t_num_x) * PHI_W'(old_det[D_W-1:LO_W]);
+        old_lo_q  <= PLO_W'(old_t) * PLO_W'(det_x[LO_W-1:0]);
+        old_hi_q  <= PHI_W'(old_t) * PHI_W'(det_x[D_W-1:LO_W]);
+        prim_lt_q <= prim_x < old_prim;
       end
     end
 
@@ -129,5 +166,11 @@ module rt_closest_hit #(
     if (!rst_ni) ahead_took_q <= 1'b0;
     else         ahead_took_q <= take_o;
   end
+
+`ifdef RT_ASSERT_ON
+`include "rt_assert.svh"
+  `RT_ASSERT_STATIC(g_latency_check, rt_pkg::CLOSEST_HIT_LATENCY == 2,
+                    "rt_closest_hit: its stages differ from rt_pkg::CLOSEST_HIT_LATENCY")
+`endif
 
 endmodule

@@ -21,8 +21,8 @@
 //              triangle response enters it in the cycle it arrives, or in the
 //              next one when RegRsp (registered at the boundary)
 //   closest    one isect result per cycle updates its slot's closest hit
-//              (rt_closest_hit, two stages: the walk sees the result and its
-//              verdict one cycle after it leaves rt_isect)
+//              (rt_closest_hit, three stages: the walk sees the result and its
+//              verdict CLOSEST_HIT_LATENCY cycles after it leaves rt_isect)
 //   check      one exit test started per cycle (round robin over the slots
 //              that want one and are not under test; rt_exit_test, pipelined,
 //              with the walk's exit parameter against the record: the closest
@@ -45,8 +45,8 @@
 // order; the tag is the slot.
 //
 // Latency: 0 cycles from a want to its grant; each FIFO 1 cycle; the triangle
-// response 0 (RegRsp = 0) or 1 cycle to rt_isect, then ISECT_LATENCY, then 1
-// cycle to the walk (the closest-hit verdict); an exit test EXIT_TEST_LATENCY
+// response 0 (RegRsp = 0) or 1 cycle to rt_isect, then ISECT_LATENCY, then
+// CLOSEST_HIT_LATENCY to the walk (the closest-hit verdict); an exit test EXIT_TEST_LATENCY
 // cycles from its grant to its answer.
 // Throughput: per cycle at most one ray accepted, one node read, one visit
 // record, one index read, one triangle read, one intersection test, one
@@ -346,10 +346,10 @@ module rt_trav_shell #(
   );
   assign perf_isect_fire_o = tri_valid && isect_req_ready;
 
-  // ---- Closest hit: two stages (rt_closest_hit) --------------------------------------
+  // ---- Closest hit: three stages (rt_closest_hit) ------------------------------------
   // A result leaving rt_isect meets its slot's record here; it reaches the
-  // walk (isect_valid_o, isect_slot_o, isect_hit_o) one cycle later, with
-  // its verdict (take), in the cycle the record takes it.
+  // walk (isect_valid_o, isect_slot_o, isect_hit_o) CLOSEST_HIT_LATENCY
+  // cycles later, with its verdict (take), in the cycle the record takes it.
   logic [SlotW-1:0]            res_slot;
   logic                        take;        // the result becomes the slot's closest hit
   logic [31:0]                 take_prim;

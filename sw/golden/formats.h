@@ -95,5 +95,10 @@ inline constexpr int kIsectLatency = 6;
 // comparison; one wide multiply a stage). The RTL builds these stages; the
 // SystemC shell model delays the answer by them.
 inline constexpr int kExitTestLatency = 5;
+// Cycles from an intersection result leaving rt_isect to its closest-hit
+// verdict reaching the walk (rt_closest_hit: the slot's record read and
+// registered, the cross products, their difference; issue #35: the record's
+// read and a product in one cycle were the traversal units' STA critical path).
+inline constexpr int kClosestHitLatency = 2;
 
 }  // namespace lancer::fx

@@ -11,8 +11,8 @@
 //              the FIFO heads taken in this cycle leave
 //   nodeResponse()   the node/cell response of the cycle (registered when RegRsp)
 //   intersect()      u_isect: the triangle response enters with its slot's ray;
-//              u_closest: the result that left it a cycle ago updates its
-//              slot's closest hit
+//              u_closest: the result that left it CLOSEST_HIT_LATENCY cycles
+//              ago updates its slot's closest hit
 //   (events)   the walk's slot updates; at its grants it pushes the node request,
 //              the visit, the index request and the result (push*()), and loads
 //              the ray leaving the setup pipeline (loadRay())
@@ -319,7 +319,7 @@ class rt_trav_shell_model : public sc_core::sc_module,
     checkGrant_ = -1;
     nodeRsp_.valid = triRsp_.valid = false;
     pipe_.fill(isect_stage{});
-    closest_ = {};
+    closest_.fill({});
     if (isect_) isect_->res_ready_i.write(true);  // rt_trav_shell takes every rt_isect result
     slot_mask all;
     for (int k = 0; k < N; ++k) all.set(k);
@@ -365,9 +365,10 @@ class rt_trav_shell_model : public sc_core::sc_module,
 
   // u_isect in this cycle: the triangle response enters with its slot's ray;
   // the result leaving it enters u_closest (rt_closest_hit), and the one that
-  // left it in the last cycle updates its slot's closest hit and is returned:
-  // the walk sees a result one cycle after rt_isect (the RTL forwards between
-  // back-to-back results of a slot, which is this sequential update).
+  // left it CLOSEST_HIT_LATENCY cycles ago updates its slot's closest hit and
+  // is returned: the walk sees a result that many cycles after rt_isect (the
+  // RTL writes through and forwards between back-to-back results of a slot,
+  // which is this sequential update).
   rt_isect_result intersect(const slot_mask& expect) {
     const tri_in in = triInput();
     if (in.valid && (in.slot >= N || !expect.test(in.slot))) {
@@ -398,7 +399,8 @@ class rt_trav_shell_model : public sc_core::sc_module,
         fail(fmt::format("rt_isect result for slot {}, which expects none", leaving.slot));
       }
     }
-    const rt_isect_result out = std::exchange(closest_, leaving);
+    const rt_isect_result out = closest_.out();
+    closest_.push(leaving);
     if (out.valid) {
       rt_closest_record& hit = hit_[size_t(out.slot)];
       if (hit.takes(out.res)) hit.take(out.res);
@@ -618,7 +620,7 @@ class rt_trav_shell_model : public sc_core::sc_module,
 
   rt_delay_line<isect_stage, ISECT_LATENCY> pipe_;  // u_isect inside (rt_isect_impl::model)
   std::unique_ptr<rt_isect_signals> isect_;  // u_isect on signals (rt_isect_impl::rtl)
-  rt_isect_result closest_;                  // u_closest's stage Y: the result whose verdict is next
+  rt_delay_line<rt_isect_result, fx::kClosestHitLatency> closest_;  // u_closest's stages R to Y
   std::unique_ptr<sc_core::sc_module> u_isect;
 
   // Which FIFO heads changed since the outputs were last written.

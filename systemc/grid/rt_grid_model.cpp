@@ -1,6 +1,7 @@
 #include "grid/rt_grid_model.h"
 
 #include <array>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -29,7 +30,7 @@ void rt_grid_model::seq() {
   if (loadSlot() >= 0) load(loadSlot());
   fillCell(cell);
   if (g.node >= 0) requestCell(g.node);
-  preparing_ = g.node;
+  preparing_ = std::exchange(stepping_, g.node);
   if (g.visit >= 0) visitCell(g.visit, visitHeadIn);
   if (cell.waiting && cell.slot != g.visit) startCell(cell.slot, cell.data);
   if (g.idx >= 0) issueIndex(g.idx);
@@ -43,6 +44,7 @@ void rt_grid_model::seq() {
 
 void rt_grid_model::reset() {
   for (Slot& s : slots_) s = Slot{};
+  stepping_ = -1;
   preparing_ = -1;
   resetShell();
 }
@@ -69,7 +71,7 @@ rt_grid_model::wants_t rt_grid_model::wants() const {
     }
     const bool inFlight = s.state == State::Visit || s.state == State::WaitCell || s.state == State::Fetch ||
                           s.state == State::Check;
-    if (inFlight && s.frontierValid && s.queued < CELL_QUEUE && k != preparing_) w.node.set(k);
+    if (inFlight && s.frontierValid && s.queued < CELL_QUEUE && k != stepping_ && k != preparing_) w.node.set(k);
   }
   return w;
 }

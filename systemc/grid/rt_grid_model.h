@@ -108,8 +108,10 @@ class rt_grid_model : public rt_trav_shell_model<rt_grid_unit, /*RegRsp=*/true> 
   fx::GridRes resolution() const;
 
   std::vector<Slot> slots_;
-  // The slot granted a cell in the previous cycle: rt_grid_slots prepares its
-  // frontier's next step in this one (step_q), so it asks for no cell now.
+  // The slots granted a cell one and two cycles ago: rt_grid_slots steps the
+  // first's frontier in this cycle and prepares the second's next step
+  // (step_q), so neither asks for a cell now.
+  int stepping_ = -1;
   int preparing_ = -1;
 };
 

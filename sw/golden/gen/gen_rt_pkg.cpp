@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
       {"SHEAR_W", kShearBits},      {"EDGE_W", kEdgeBits},      {"DET_W", kDetBits},
       {"T_W", kTBits},              {"T_NUM_W", kTNumBits},     {"DET_ABS_W", kDetAbsBits},
       {"BARY_W", kBaryBits},        {"ISECT_LATENCY", kIsectLatency}, {"EXIT_TEST_LATENCY", kExitTestLatency},
+      {"CLOSEST_HIT_LATENCY", kClosestHitLatency},
       {"SEG_FRAC_W", kSegFracBits}, {"SEG_END_W", kSegEndBits},
       {"ISECT_RAY_W", kIsectRayBits}, {"ISECT_TRI_W", kIsectTriBits},
       {"ISECT_RES_W", kIsectResBits}, {"MEM_ADDR_W", kMemAddrBits},
