@@ -15,7 +15,9 @@
 
 namespace lancer::fx {
 
-struct BvhUnit {
+// Its configuration port, cfg_root_i, carries the root's reference.
+struct BvhUnit
+    : UnitRecords<kBvhNodeFields, kBvhRefFields, kBvhVisitFields, kBvhResFields, kBvhRecords, kBvhPkgParams> {
   using Image = BvhImage;
   using Node = BvhNode;
 
@@ -33,14 +35,6 @@ struct BvhUnit {
                                     .stepsLabel = "node steps",
                                     .readsKey = "node_reads",
                                     .readsLabel = "node reads"};
-  static constexpr const auto& kNodeFieldList = kBvhNodeFields;
-  static constexpr const auto& kCfgFieldList = kBvhRefFields;
-  static constexpr std::span<const FieldSpec> kNodeFields = kBvhNodeFields;
-  static constexpr std::span<const FieldSpec> kVisitFields = kBvhVisitFields;
-  static constexpr std::span<const FieldSpec> kResFields = kBvhResFields;
-  static constexpr std::span<const FieldSpec> kCfgFields = kBvhRefFields;  // cfg_root_i: the root's reference
-  static constexpr std::span<const RecordSpec> kRecords = kBvhRecords;
-  static constexpr std::span<const PackageParam> kPkgParams = kBvhPkgParams;
   static constexpr size_t kGroup = 1;  // a node read returns one node (both children's boxes)
   static constexpr int kSetupLatency = kBvhSetupLatency;
 

@@ -20,7 +20,9 @@ inline constexpr FieldSpec kGridCfgFields[] = {
     {"res", kGridResolutionBits, 3, false, "cells per axis, [0]=x"},
 };
 
-struct GridUnit {
+// Its configuration port, cfg_res_i, carries the resolution.
+struct GridUnit
+    : UnitRecords<kGridCellFields, kGridCfgFields, kGridVisitFields, kGridResFields, kGridRecords, kGridPkgParams> {
   using Image = GridImage;
   using Node = GridCell;
 
@@ -38,14 +40,6 @@ struct GridUnit {
                                     .stepsLabel = "voxel steps",
                                     .readsKey = "cell_reads",
                                     .readsLabel = "cell table reads"};
-  static constexpr const auto& kNodeFieldList = kGridCellFields;
-  static constexpr const auto& kCfgFieldList = kGridCfgFields;
-  static constexpr std::span<const FieldSpec> kNodeFields = kGridCellFields;
-  static constexpr std::span<const FieldSpec> kVisitFields = kGridVisitFields;
-  static constexpr std::span<const FieldSpec> kResFields = kGridResFields;
-  static constexpr std::span<const FieldSpec> kCfgFields = kGridCfgFields;
-  static constexpr std::span<const RecordSpec> kRecords = kGridRecords;
-  static constexpr std::span<const PackageParam> kPkgParams = kGridPkgParams;
   static constexpr size_t kGroup = 1;  // a node read returns one cell
   static constexpr int kSetupLatency = kGridSetupLatency;
 

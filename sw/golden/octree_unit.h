@@ -16,7 +16,9 @@
 
 namespace lancer::fx {
 
-struct OctreeUnit {
+// Its configuration port, cfg_root_i, carries the root's node record.
+struct OctreeUnit
+    : UnitRecords<kOctreeNodeFields, kOctreeNodeFields, kOctreeVisitFields, kOctreeResFields, kOctreeRecords, kOctreePkgParams> {
   using Image = OctreeImage;
   using Node = OctreeNode;
 
@@ -34,14 +36,6 @@ struct OctreeUnit {
                                     .stepsLabel = "node steps",
                                     .readsKey = "node_reads",
                                     .readsLabel = "child group reads"};
-  static constexpr const auto& kNodeFieldList = kOctreeNodeFields;
-  static constexpr const auto& kCfgFieldList = kOctreeNodeFields;
-  static constexpr std::span<const FieldSpec> kNodeFields = kOctreeNodeFields;
-  static constexpr std::span<const FieldSpec> kVisitFields = kOctreeVisitFields;
-  static constexpr std::span<const FieldSpec> kResFields = kOctreeResFields;
-  static constexpr std::span<const FieldSpec> kCfgFields = kOctreeNodeFields;  // cfg_root_i: the root's record
-  static constexpr std::span<const RecordSpec> kRecords = kOctreeRecords;
-  static constexpr std::span<const PackageParam> kPkgParams = kOctreePkgParams;
   static constexpr size_t kGroup = kOctreeChildren;  // a node read returns a child group
   static constexpr int kSetupLatency = kOctreeSetupLatency;
 

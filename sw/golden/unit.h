@@ -15,6 +15,7 @@
 //   kResFields, kCfgFields           and configuration lists also as the arrays
 //   kNodeFieldList, kCfgFieldList    themselves, for the compile-time packing
 //   kRecords, kPkgParams             what rt_pkg holds of its records and formats
+//                                    (all eight from UnitRecords, below)
 //   kGroup                           nodes per node-port response (the octree's child group: 8)
 //   kSetupLatency                    the per-ray setup's register stages (rt_<unit>_setup)
 //   nodes(image)                     the node table
@@ -39,6 +40,22 @@ namespace lancer::fx {
 // The hardware paths of `lancer run --accel`: the host's BVH feeding the
 // intersection pipeline, and each traversal unit.
 enum class UnitKind { Isect, Grid, Octree, Bvh };
+
+// A descriptor's records, from its lists (golden/<unit>_formats.h): derive
+// from UnitRecords<node fields, configuration fields, visit fields, result
+// fields, records, package parameters> and the members above come with it.
+template <const auto& NodeFields, const auto& CfgFields, const auto& VisitFields, const auto& ResFields,
+          const auto& Records, const auto& PkgParams>
+struct UnitRecords {
+  static constexpr const auto& kNodeFieldList = NodeFields;
+  static constexpr const auto& kCfgFieldList = CfgFields;
+  static constexpr std::span<const FieldSpec> kNodeFields = NodeFields;
+  static constexpr std::span<const FieldSpec> kVisitFields = VisitFields;
+  static constexpr std::span<const FieldSpec> kResFields = ResFields;
+  static constexpr std::span<const FieldSpec> kCfgFields = CfgFields;
+  static constexpr std::span<const RecordSpec> kRecords = Records;
+  static constexpr std::span<const PackageParam> kPkgParams = PkgParams;
+};
 
 // How each layer names a unit.
 struct UnitNames {

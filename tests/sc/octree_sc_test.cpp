@@ -1,126 +1,25 @@
-// The SystemC side of rt_octree: the cycle model ("systemc") and the Verilated
-// RTL in SystemC ("rtl-systemc") against the golden octree walk
-// (fx::traverseOctree), against the timing the micro-architecture prescribes
-// (docs/octree-unit.md), against each other cycle for cycle, and against the
-// C++ Verilated device ("rtl") when the build has them.
+// The SystemC side of rt_octree beyond the shared suite (trav_sc_suite.h, run
+// over the unit by trav_sc_units.cpp): the timing the micro-architecture
+// prescribes (docs/octree-unit.md), on the cycle model and the Verilated RTL.
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <string>
 #include <vector>
 
-#include <fmt/format.h>
-
-#include "common/error.h"
-#include "driver/devices.h"
-#include "support/unit_devices.h"
 #include "golden/octree.h"
-#include "scene/scene.h"
-#include "support/octree_cases.h"
-#include "trav_sc_fixture.h"
+#include "trav_sc_suite.h"
 
 namespace lancer {
 namespace {
 
-using Impl = SystemCOctreeDevice::Impl;
 using fx::kDirMax;
 using fx::kPosBits;
 using fx::QRay;
 using fx::QTriangle;
-using test::expectSameStats;
-using test::optionsText;
-
-// ---- Stimulus: the unit's shared hard cases (tests/support/octree_cases.h) ----------
-
-using test::OctreeCase;
-using test::QuantizedScene;
-
-QuantizedScene bunnyCamera(int width, int height) {
-  static const Scene scene = loadScene(std::string(LANCER_DATA_DIR) + "/scenes/bunny.obj");
-  return test::quantizedCamera(scene, width, height);
-}
-
-fx::OctreeImage bunnyImage(const QuantizedScene& q) {
-  return fx::buildOctreeImage(q.triangles, fx::defaultOctreeDepth(q.triangles.size()), fx::kDefaultOctreeLeafSize);
-}
-
-TraversalRunOptions roughOptions(uint64_t seed, int raysInFlight = 0) {
-  return test::roughOctreeOptions(seed, raysInFlight);
-}
-
-std::string describe(const QRay& r) { return test::describeRay(r); }
-std::string describe(const fx::TraversalTrace& t) { return test::describeTrace(t); }
-
-const test::Describe<fx::OctreeImage> kDescribe{
-    [](const fx::OctreeImage& image) { return fmt::format("octree depth {}", image.depth); },
-    [](const QRay& r) { return describe(r); }, [](const fx::TraversalTrace& t) { return describe(t); }};
-
-// Runs golden and `device`, expects identical traces and golden's counters
-// (node reads exactly: no prefetch), and step-ready cycles while nodes are stepped.
-TraversalRunStats expectSameTraces(OctreeDevice& device, const fx::OctreeImage& image, const std::vector<QRay>& rays,
-                                   const TraversalRunOptions& options, const std::string& what) {
-  GoldenOctreeDevice golden;
-  const auto [g, r] = test::expectGoldenTraces<fx::OctreeImage>(golden, device, image, rays, options, what, kDescribe);
-  EXPECT_EQ(r.nodeReads, g.nodeReads) << what;
-  EXPECT_LE(r.stepReadyCycles, r.cycles + 1) << what;
-  if (r.steps > 0) {
-    EXPECT_GT(r.stepReadyCycles, 0u) << what;
-  }
-  return r;
-}
-
-// ---- Each implementation against the golden model -------------------------------------
 
 class ScOctree : public test::ScTraversalTest<SystemCOctreeDevice> {};
 
-INSTANTIATE_TEST_SUITE_P(Impl, ScOctree, ::testing::Values(Impl::Model, Impl::Rtl), test::implName<Impl>);
-
-TEST_P(ScOctree, MatchesGoldenOnBunnyCameraRays) {
-  const QuantizedScene q = bunnyCamera(32, 32);
-  const fx::OctreeImage image = bunnyImage(q);
-  SystemCOctreeDevice device(GetParam());
-  expectSameTraces(device, image, q.rays, roughOptions(1), "bunny 32x32, rough");
-}
-
-TEST_P(ScOctree, MatchesGoldenOnHardCasesWithOneSlotAndAllSlots) {
-  SystemCOctreeDevice device(GetParam());
-  uint64_t seed = 20;
-  for (const OctreeCase& c : test::octreeHardCases()) {
-    SCOPED_TRACE(c.name);
-    expectSameTraces(device, c.image, c.rays, roughOptions(++seed), c.name + ", all slots");
-    expectSameTraces(device, c.image, c.rays, roughOptions(++seed, 1), c.name + ", one slot");
-  }
-}
-
-TEST_P(ScOctree, MatchesGoldenWithoutBackpressure) {
-  const QuantizedScene q = bunnyCamera(10, 10);
-  const fx::OctreeImage image = bunnyImage(q);
-  SystemCOctreeDevice device(GetParam());
-  TraversalRunOptions fast;  // no jitter, no stalls, latency 1
-  fast.memLatency = 1;
-  expectSameTraces(device, image, q.rays, fast, "latency 1, no backpressure");
-  expectSameTraces(device, image, q.rays, {}, "latency 20, no backpressure");
-  TraversalRunOptions slow = roughOptions(9, 3);
-  slow.memLatency = 60;
-  slow.memLatencyJitter = 60;
-  slow.stream.outputStallProbability = 0.7;
-  expectSameTraces(device, image, q.rays, slow, "latency 60 + jitter 60, stalls 0.7, 3 slots");
-}
-
-TEST_P(ScOctree, RepeatedRunsAreIndependentAndReproducible) {
-  const QuantizedScene q = bunnyCamera(6, 6);
-  test::expectRepeatableRuns<SystemCOctreeDevice>(GetParam(), bunnyImage(q), q.rays, roughOptions(3), roughOptions(4));
-}
-
-TEST_P(ScOctree, EmptyRunAndInvalidOptions) {
-  SystemCOctreeDevice device(GetParam());
-  const fx::OctreeImage image = fx::buildOctreeImage({}, 1, 1);
-  test::expectEmptyRun<fx::OctreeImage>(device, image);
-  test::expectInvalidOptionsRejected<fx::OctreeImage>(device, image);
-  // Still usable afterwards.
-  const std::vector<QRay> one{QRay{0, {0, 0, 0}, {kDirMax, 0, 0}}};
-  expectSameTraces(device, image, one, {}, "after errors");
-}
+INSTANTIATE_TEST_SUITE_P(Impl, ScOctree, ::testing::Values(SystemCImpl::Model, SystemCImpl::Rtl),
+                         test::implName<SystemCImpl>);
 
 // ---- The timing the micro-architecture prescribes (docs/octree-unit.md) ---------------
 
@@ -185,63 +84,12 @@ TEST_P(ScOctree, OneRayTimingFollowsTheStateMachine) {
     for (int latency : {1, 5, 20}) {
       fx::TraversalTrace t;
       const uint64_t cycles = oneRayCycles(device, image, ray, latency, &t);
-      ASSERT_EQ(t.visits.size(), 3u) << describe(t);
-      ASSERT_TRUE(image.nodes[t.visits[1]].leaf && image.nodes[t.visits[1]].count == 0) << describe(t);
-      ASSERT_TRUE(image.nodes[t.visits[2]].leaf && image.nodes[t.visits[2]].count == 0) << describe(t);
+      ASSERT_EQ(t.visits.size(), 3u) << test::describeTrace(t);
+      ASSERT_TRUE(image.nodes[t.visits[1]].leaf && image.nodes[t.visits[1]].count == 0) << test::describeTrace(t);
+      ASSERT_TRUE(image.nodes[t.visits[2]].leaf && image.nodes[t.visits[2]].count == 0) << test::describeTrace(t);
       EXPECT_EQ(cycles, e + 12 + uint64_t(latency)) << "latency " << latency;
     }
   }
-}
-
-// ---- Cycle accuracy ---------------------------------------------------------------------
-
-std::vector<TraversalRunOptions> timingSettings() { return test::timingSettings(roughOptions, 31, 33, 34); }
-
-std::vector<OctreeCase> cycleCases() {
-  const QuantizedScene q = bunnyCamera(16, 16);
-  std::vector<OctreeCase> cases{{"bunny 16x16", bunnyImage(q), q.rays}};
-  for (OctreeCase& c : test::octreeHardCases()) cases.push_back(std::move(c));
-  return cases;
-}
-
-TEST(ScOctreeCycleAccuracy, ModelMatchesVerilatedRtlCycleForCycle) {
-  test::expectModelMatchesRtlCycleForCycle<SystemCOctreeDevice>(cycleCases(), timingSettings());
-}
-
-TEST(ScOctreeCycleAccuracy, StatsEqualTheCxxVerilatedDevice) {
-  const std::vector<TraversalRunOptions> settings = timingSettings();
-  test::expectStatsEqualTheCxxVerilatedDevice<fx::OctreeUnit, SystemCOctreeDevice>(
-      cycleCases(), {settings[0], settings[2], settings[4]}, {Impl::Model});
-}
-
-// ---- The device in the process ------------------------------------------------------------
-
-TEST(ScOctreeDevice, NamesAndFactory) {
-  test::expectNamesAndFactory<fx::OctreeUnit, SystemCOctreeDevice>(LANCER_OCTREE_RAYS_IN_FLIGHT);
-}
-
-TEST(ScOctreeDevice, SharesTheKernelWithTheGridUnit) {
-  // Any SystemC system may run first; all are elaborated together.
-  const QuantizedScene q = bunnyCamera(4, 4);
-  const fx::OctreeImage octree = bunnyImage(q);
-  const fx::GridImage grid = fx::buildGridImage(q.triangles, {8, 8, 8});
-  for (int round = 0; round < 2; ++round) {
-    std::vector<fx::TraversalTrace> want, got;
-    GoldenGridDevice().run(grid, q.rays, want);
-    SystemCGridDevice().run(grid, q.rays, got, roughOptions(40 + round));
-    EXPECT_EQ(got, want);
-    SystemCOctreeDevice device;
-    expectSameTraces(device, octree, q.rays, roughOptions(50 + round), "interleaved");
-  }
-}
-
-TEST(ScOctreeDevice, WaveformOfTheRtlOnRequest) {
-  const QuantizedScene q = bunnyCamera(3, 3);
-  const fx::OctreeImage image = bunnyImage(q);
-  test::expectRtlWave<SystemCOctreeDevice>("rt_octree_sc_wave.fst", roughOptions(60),
-                          [&](SystemCOctreeDevice& rtl, const TraversalRunOptions& o) {
-                            expectSameTraces(rtl, image, q.rays, o, "with waves");
-                          });
 }
 
 }  // namespace

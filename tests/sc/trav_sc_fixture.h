@@ -109,48 +109,6 @@ inline void expectSameStats(const TraversalRunStats& a, const TraversalRunStats&
   EXPECT_EQ(a.isectBusyCycles, b.isectBusyCycles) << what;
 }
 
-// How a failing ray is described: the image, the ray, a trace.
-template <class Image>
-struct Describe {
-  std::function<std::string(const Image&)> image;
-  std::function<std::string(const fx::QRay&)> ray;
-  std::function<std::string(const fx::TraversalTrace&)> trace;
-};
-
-struct GoldenAndDevice {
-  TraversalRunStats golden, device;
-};
-
-// Runs `golden` and `device` on the same rays, expects identical traces (the
-// first five differing rays reported) and golden's counters where every unit
-// must have them (steps, index and triangle reads, tests); node reads are the
-// unit's to check (the grid prefetches).
-template <class Image>
-GoldenAndDevice expectGoldenTraces(TraversalDevice<Image>& golden, TraversalDevice<Image>& device, const Image& image,
-                                   const std::vector<fx::QRay>& rays, const TraversalRunOptions& options,
-                                   const std::string& what, const Describe<Image>& describe) {
-  std::vector<fx::TraversalTrace> want, got;
-  const TraversalRunStats g = golden.run(image, rays, want, options);
-  const TraversalRunStats r = device.run(image, rays, got, options);
-  EXPECT_EQ(got.size(), want.size()) << what;
-  int reported = 0;
-  for (size_t k = 0; k < std::min(got.size(), want.size()); ++k) {
-    if (got[k] == want[k]) continue;
-    ADD_FAILURE() << what << ": " << describe.image(image) << ", " << describe.ray(rays[k]) << "\n  " << device.name()
-                  << ": " << describe.trace(got[k]) << "\n  golden: " << describe.trace(want[k]);
-    if (++reported == 5) break;
-  }
-  EXPECT_EQ(r.rays, rays.size()) << what;
-  EXPECT_EQ(r.steps, g.steps) << what;
-  EXPECT_EQ(r.indexReads, g.indexReads) << what;
-  EXPECT_EQ(r.triangleReads, g.triangleReads) << what;
-  EXPECT_EQ(r.isectTests, g.isectTests) << what;
-  EXPECT_EQ(r.isectBusyCycles, r.isectTests) << what;
-  EXPECT_TRUE(r.cycleAccurate) << what;
-  EXPECT_GT(r.cycles, 0u) << what;
-  return {g, r};
-}
-
 // The cycle model and the Verilated RTL (Device: a SystemCTraversalDevice) on
 // the same run: the same counters and traces, and the same port activity in
 // every cycle (the first three differing cycles reported).
