@@ -124,14 +124,27 @@ struct rt_trav_unit {
   };
 };
 
+// The traits of a unit whose DUT takes cfg_root_i and the shared node port
+// (node_*): rt_octree, rt_bvh. Model: its cycle model.
+template <int RaysInFlight, class Desc, class Model>
+struct rt_root_node_unit : rt_trav_unit<RaysInFlight, Desc> {
+  using model_t = Model;
+
+  template <class Dut, class Bench>
+  static void bindUnitPorts(Dut& dut, Bench& b) {
+    dut.cfg_root_i(b.cfg_i);
+    b.bindNodePort(dut);
+  }
+};
+
 // "<prefix>_<suffix>": the SystemC name of one port of a unit's node/cell
 // memory port (rt_grid: cell_req_valid_o, rt_octree: node_req_valid_o), so
 // that the shared modules' objects carry the RTL's names.
 inline std::string portName(const char* prefix, const char* suffix) { return std::string(prefix) + "_" + suffix; }
 
 // The Verilated SystemC class of a unit (Vrt_grid_sc, ...), or void when the
-// build lacks it: specialized by the unit's systemc/<unit>/rt_<unit>_system.cpp,
-// the one file that includes its Verilated class.
+// build lacks it: specialized by the unit's rt_<unit>_system.cpp (generated from
+// common/rt_trav_system.cpp.in), the one file that includes its Verilated class.
 template <class Unit>
 struct rt_trav_rtl {
   using type = void;
