@@ -121,11 +121,13 @@ def critical_path(ltp_text):
     return [{"from": first}] + path + [{"to": last}]
 
 
-def cached_figures(tree, top):
+def cached_figures(tree, top, silicon=True):
     """TREE's figures of TOP (TREE/synth/TOP/sweep-synth.json, scripts/sweep-synth)
     while they were made from TREE's package and this tree's RTL sources, by
-    content; else None. lancer sweep and scripts/clock-table reuse a synthesis
-    only through this."""
+    content; else None. With `silicon` (lancer sweep), where OpenSTA is
+    installed they must include the silicon flow's; scripts/clock-table asks
+    for the gate model's only. lancer sweep and scripts/clock-table reuse a
+    synthesis only through this."""
     cache = Path(tree) / "synth" / top / "sweep-synth.json"
     pkg = Path(tree) / "generated" / "rtl" / "rt_pkg.sv"
     if not cache.exists() or not pkg.exists():
@@ -137,7 +139,7 @@ def cached_figures(tree, top):
     current = (isinstance(fig, dict) and "error" not in fig and "fmax_mhz" in fig
                and fig.get("pkg_sha256") == file_sha256(pkg) and fig.get("sources_sha256") == sources_sha256(top)
                # with OpenSTA installed, the figures include the silicon flow's (scripts/sweep-synth)
-               and ("silicon" in fig or not shutil.which("sta")))
+               and ("silicon" in fig or not silicon or not shutil.which("sta")))
     return fig if current else None
 
 
