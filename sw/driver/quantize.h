@@ -22,14 +22,9 @@ struct QuantizedRay {
 // it would pass through the ray's origin, at t = 0, which the pipeline's t > 0
 // excludes: a closed object seen from outside would show its inside. With the
 // margin every entry point lies outside the scene's box, where no triangle
-// passes. One unit is enough: the scene's faces land on it exactly, the entry
-// points a unit outside. A secondary origin moved off a triangle on the box to
-// its outer side lands on the cube's face, inside it; one whose hit is off by
-// more than half a unit beyond lies outside the cube and is left out (counted
-// in origins_outside_lattice), as at any margin. Two units (issue #21 to #35)
-// bought no measured ray and cost the resolution a rounding pattern
-// (docs/accuracy.md, "The lattice margin and regr01").
-inline constexpr int64_t kLatticeMarginUnits = 1;
+// passes. Two units, not one, so that a secondary origin (a hit on the box
+// moved one unit off the surface, then rounded) stays inside the cube.
+inline constexpr int64_t kLatticeMarginUnits = 2;
 
 // The driver's boundary into the hardware's fixed-point space (docs/number-formats.md):
 // the scene's bounding cube (centred on its bounds, side = the longest extent)

