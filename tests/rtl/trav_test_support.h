@@ -1,9 +1,9 @@
 #pragma once
 
-// What the tests of the Verilated traversal units (rt_grid_test.cpp,
-// rt_octree_test.cpp) do the same way: run the RTL beside the golden device
-// and compare the traces ray by ray, the counts both must agree on, the
-// option checks, the waveform, and the performance sweep.
+// What the tests of the Verilated traversal units (trav_rtl_suite.h and each
+// unit's own tests) share besides the comparison with golden
+// (support/trav_compare.h): the device a program shares, the option checks,
+// the waveform, and the performance sweep.
 
 #include <gtest/gtest.h>
 
@@ -33,47 +33,6 @@ template <class Device>
 Device& sharedDevice() {
   static Device device;
   return device;
-}
-
-struct GoldenAndRtl {
-  TraversalRunStats golden, rtl;
-};
-
-// How a failing ray is described: the image, the ray, a trace.
-struct Describe {
-  std::string image;
-  std::function<std::string(const fx::QRay&)> ray;
-  std::function<std::string(const fx::TraversalTrace&)> trace;
-};
-
-// Runs the golden device `Golden` and `rtl` on the same rays; expects the same trace for every
-// ray (the first five differences are reported) and the counts that do not
-// depend on timing equal: steps, index and triangle reads, isect tests, rays.
-// Node reads are left to the caller (the grid prefetches cells).
-template <class Golden, class Image>
-GoldenAndRtl compareWithGolden(TraversalDevice<Image>& rtl, const Image& image, const std::vector<fx::QRay>& rays,
-                               const TraversalRunOptions& options, const Describe& describe) {
-  Golden golden;
-  std::vector<fx::TraversalTrace> want, got;
-  GoldenAndRtl s;
-  s.golden = golden.run(image, rays, want, options);
-  s.rtl = rtl.run(image, rays, got, options);
-  EXPECT_EQ(got.size(), want.size());
-  int reported = 0;
-  for (size_t k = 0; k < std::min(got.size(), want.size()); ++k) {
-    if (got[k] == want[k]) continue;
-    ADD_FAILURE() << describe.image << ", " << describe.ray(rays[k]) << "\n  rtl:    " << describe.trace(got[k])
-                  << "\n  golden: " << describe.trace(want[k]);
-    if (++reported == 5) break;
-  }
-  EXPECT_EQ(s.rtl.steps, s.golden.steps);
-  EXPECT_EQ(s.rtl.indexReads, s.golden.indexReads);
-  EXPECT_EQ(s.rtl.triangleReads, s.golden.triangleReads);
-  EXPECT_EQ(s.rtl.isectTests, s.golden.isectTests);
-  EXPECT_EQ(s.rtl.isectBusyCycles, s.rtl.isectTests);
-  EXPECT_EQ(s.rtl.rays, rays.size());
-  EXPECT_TRUE(s.rtl.cycleAccurate);
-  return s;
 }
 
 // raysInFlight above the unit's slots is an InputError naming both numbers

@@ -84,9 +84,9 @@ TEST_P(ScOctree, OneRayTimingFollowsTheStateMachine) {
     for (int latency : {1, 5, 20}) {
       fx::TraversalTrace t;
       const uint64_t cycles = oneRayCycles(device, image, ray, latency, &t);
-      ASSERT_EQ(t.visits.size(), 3u) << test::describeTrace(t);
-      ASSERT_TRUE(image.nodes[t.visits[1]].leaf && image.nodes[t.visits[1]].count == 0) << test::describeTrace(t);
-      ASSERT_TRUE(image.nodes[t.visits[2]].leaf && image.nodes[t.visits[2]].count == 0) << test::describeTrace(t);
+      ASSERT_EQ(t.visits.size(), 3u) << test::UnitTraits<fx::OctreeUnit>::describeTrace(t);
+      ASSERT_TRUE(image.nodes[t.visits[1]].leaf && image.nodes[t.visits[1]].count == 0) << test::UnitTraits<fx::OctreeUnit>::describeTrace(t);
+      ASSERT_TRUE(image.nodes[t.visits[2]].leaf && image.nodes[t.visits[2]].count == 0) << test::UnitTraits<fx::OctreeUnit>::describeTrace(t);
       EXPECT_EQ(cycles, e + 12 + uint64_t(latency)) << "latency " << latency;
     }
   }

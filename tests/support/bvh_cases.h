@@ -52,8 +52,4 @@ std::vector<BvhCase> bvhHardCases();
 // and overflows the stack if it slips past (the RTL's a_stack_depth).
 fx::BvhImage bvhChainImage(int levels);
 
-// One-line descriptions for mismatch reports.
-inline std::string describeBvhRay(const fx::QRay& ray) { return describeLatticeRay(ray); }
-inline std::string describeBvhTrace(const fx::TraversalTrace& trace) { return describeTraversalTrace(trace, "nodes", 16); }
-
 }  // namespace lancer::test

@@ -27,15 +27,9 @@ const Scene& bunnyScene() {
   return scene;
 }
 
-GridScene bunnyCamera(int width, int height) { return GridScene{quantizedCamera(bunnyScene(), width, height)}; }
-
-fx::GridImage defaultGridImage(const GridScene& scene) {
-  return fx::buildGridImage(scene.triangles, fx::chooseGridResolution(scene.triangles));
-}
-
 std::vector<GridCase> gridHardCases() {
   std::vector<GridCase> cases;
-  const GridScene bunny = bunnyCamera(1, 1);
+  const QuantizedScene bunny = quantizedCamera(bunnyScene(), 1, 1);
 
   {  // Axis-parallel float rays with +0 and -0 components, through the quantizer.
     const Scene& scene = bunnyScene();
@@ -147,7 +141,7 @@ std::vector<GridCase> gridHardCases() {
     std::mt19937_64 rng(23);
     std::vector<QRay> rays;
     for (uint32_t i = 0; i < 60; ++i) rays.push_back(randomGridRay(rng, i));
-    for (QRay& r : bunnyCamera(8, 8).rays) rays.push_back(r);
+    for (QRay& r : quantizedCamera(bunnyScene(), 8, 8).rays) rays.push_back(r);
     cases.push_back({"segment variants, bunny 12^3", fx::buildGridImage(bunny.triangles, {12, 12, 12}),
                      segmentVariants(bunny.triangles, rays, rays.size())});
   }

@@ -41,26 +41,11 @@ std::vector<GridCase> gridHardCases();
 // The bunny, loaded once.
 const Scene& bunnyScene();
 
-// Quantized bunny triangles (id = index) and its camera rays (frameScene,
-// width x height) through the same Quantizer, as the driver makes them; rays
-// that miss the lattice cube are dropped, ids stay the pixel index.
-struct GridScene : QuantizedScene {};
-GridScene bunnyCamera(int width, int height);
-
-// The grid the driver builds for a scene: fx::chooseGridResolution.
-fx::GridImage defaultGridImage(const GridScene& scene);
-
 // A random lattice ray (direction normalized as the quantizer does) and random
 // triangles with vertices within `spread` lattice units of a random centre.
 inline fx::QRay randomGridRay(std::mt19937_64& rng, uint32_t id) { return randomLatticeRay(rng, id); }
 inline std::vector<fx::QTriangle> randomGridTriangles(std::mt19937_64& rng, int count, int64_t spread) {
   return randomLatticeTriangles(rng, count, 0, fx::kPosMax, spread);
-}
-
-// Adverse conditions for a cycle model: memory latency 7 with 0..13 jitter,
-// 30 % output stalls, 20 % input bubbles.
-inline TraversalRunOptions roughGridOptions(uint64_t seed, int raysInFlight = 0) {
-  return roughTraversalOptions(seed, raysInFlight);
 }
 
 // rt_grid's CellQueue as the models are built (LANCER_GRID_CELL_QUEUE): a ray
@@ -70,11 +55,5 @@ inline TraversalRunOptions roughGridOptions(uint64_t seed, int raysInFlight = 0)
 #error "LANCER_GRID_CELL_QUEUE must come from the build (rt_grid_vlt and lancer_systemc define it)"
 #endif
 inline constexpr uint64_t kGridCellQueue = LANCER_GRID_CELL_QUEUE;
-
-// One-line descriptions for mismatch reports.
-inline std::string describeGridRay(const fx::QRay& ray) { return describeLatticeRay(ray); }
-inline std::string describeGridTrace(const fx::TraversalTrace& trace) {
-  return describeTraversalTrace(trace, "cells", 12);
-}
 
 }  // namespace lancer::test

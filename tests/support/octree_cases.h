@@ -50,14 +50,4 @@ std::vector<OctreeCase> octreeHardCases();
 // (Scenes through the quantizer, QuantizedScene and quantizedCamera, come from
 // support/traversal_cases.h.)
 
-// Adverse conditions for a cycle model: memory latency 7 with 0..13 jitter,
-// 30 % output stalls, 20 % input bubbles.
-inline TraversalRunOptions roughOctreeOptions(uint64_t seed, int raysInFlight = 0) {
-  return roughTraversalOptions(seed, raysInFlight);
-}
-
-// One-line descriptions for mismatch reports.
-inline std::string describeRay(const fx::QRay& ray) { return describeLatticeRay(ray); }
-inline std::string describeTrace(const fx::TraversalTrace& trace) { return describeTraversalTrace(trace, "nodes", 16); }
-
 }  // namespace lancer::test
