@@ -1,7 +1,9 @@
-// rt_bvh_slots: the ray slots of rt_bvh — per-slot state machines, the current
-// candidate node {ref, entry}, the stacks and the pop lane — updated by the
-// unit's events, each addressed to one slot by index (docs/bvh-unit.md, "Slot
-// state machine").
+// rt_bvh_slots: the walk of rt_bvh beside its rt_trav_shell — the ray's setup
+// (rt_mirror_pairs, BVH_SETUP_LATENCY stages, multiplications only), the box
+// tester (rt_bvh_box, both children of a node response, one node a cycle) and
+// the ray slots: per-slot state machines, the current candidate node {ref,
+// entry}, the stacks and the pop lane, updated by the unit's events, each
+// addressed to one slot by index (docs/bvh-unit.md, "Slot state machine").
 //
 //   FREE -alloc-> SETUP -init-> ENTER (the root, entry 0)
 //   ENTER -visit grant-> NODE_REQ (interior) | FETCH (leaf, count > 0) | POP (empty leaf)
@@ -31,77 +33,25 @@
 // answer, one index grant, one result, one end of FETCH, one pop, one exit
 // test, one result record.
 module rt_bvh_slots #(
-  parameter int unsigned N     = 32,                       // ray slots
-  parameter int unsigned SlotW = (N > 1) ? $clog2(N) : 1   // derived
+  parameter int unsigned N         = 32,                                // ray slots
+  parameter int unsigned SlotW     = (N > 1) ? $clog2(N) : 1,           // derived
+  // The shell's figures (rt_walk_ports.svh), the same in every instance.
+  parameter int unsigned NodeRspW  = rt_pkg::BVH_NODE_W,
+  parameter int unsigned VisitIdW  = 32,
+  parameter int unsigned ExitW     = rt_pkg::BVH_ENTRY_W,
+  parameter int unsigned DenW      = rt_pkg::BVH_COMMON_W,
+  parameter int unsigned TestPorts = 1
 ) (
   input  logic                                   clk_i,
   input  logic                                   rst_ni,
 
-  // Allocation and per-ray setup.
-  output logic [N-1:0]                           free_o,
-  input  logic                                   alloc_i,
-  input  logic [SlotW-1:0]                       alloc_slot_i,
-  input  logic                                   init_i,
-  input  logic [SlotW-1:0]                       init_slot_i,
-  input  logic [rt_pkg::BVH_REF_W-1:0]           init_root_i,    // cfg_root_i as plain bits
-  input  logic                                   init_any_hit_i,
-  input  logic [2:0]                             init_mirror_i,
-  input  logic [2:0]                             init_active_i,
-  input  logic [3*(rt_pkg::POS_W+1)-1:0]         init_origin_i,
-  input  logic [3*2*(rt_pkg::DIR_W-1)-1:0]       init_pair_i,
+  // Toward rt_trav_shell.
+`define RT_WALK_PORTS_OF_WALK
+`include "rt_walk_ports.svh"
 
-  // Visits: a granted slot enters its current node.
-  output logic [N-1:0]                           want_visit_o,
-  input  logic                                   visit_go_i,
-  input  logic [SlotW-1:0]                       visit_slot_i,
-  output logic [31:0]                            visit_node_id_o,  // of visit_slot_i
-  output logic                                   visit_leaf_o,
-  output logic [rt_pkg::BVH_COUNT_W-1:0]         visit_count_o,
-
-  // Node reads, and the responses into the box tester.
-  output logic [N-1:0]                           want_node_o,
-  input  logic                                   node_go_i,
-  input  logic [SlotW-1:0]                       node_slot_i,
-  output logic [rt_pkg::MEM_ADDR_W-1:0]          node_addr_o,      // of node_slot_i
-  output logic [N-1:0]                           waiting_node_o,
-  input  logic                                   node_rsp_valid_i,
-  input  logic [SlotW-1:0]                       node_rsp_slot_i,
-  output logic [3*(rt_pkg::POS_W+1)-1:0]         box_origin_o,     // node_rsp_slot_i's ray
-  output logic [2:0]                             box_mirror_o,
-  output logic [2:0]                             box_active_o,
-  output logic [3*2*(rt_pkg::DIR_W-1)-1:0]       box_pair_o,
-
-  // The box tester's answer.
-  input  logic                                   box_valid_i,
-  input  logic [SlotW-1:0]                       box_slot_i,
-  input  logic [1:0]                             box_hit_i,
-  input  logic [2*rt_pkg::BVH_ENTRY_W-1:0]       box_entry_i,
-  input  logic                                   box_near_i,
-  input  logic [2*rt_pkg::BVH_REF_W-1:0]         box_child_i,
-
-  // Index reads of the current leaf, and its intersection results.
-  output logic [N-1:0]                           want_idx_o,
-  input  logic                                   idx_go_i,
-  input  logic [SlotW-1:0]                       idx_slot_i,
-  output logic [rt_pkg::MEM_ADDR_W-1:0]          idx_addr_o,       // first + issued of idx_slot_i
-  output logic [N-1:0]                           fetching_o,
-  input  logic                                   res_valid_i,
-  input  logic [SlotW-1:0]                       res_slot_i,
-  input  logic                                   res_hit_i,
-
-  // Exit tests of candidates (the cull rule, fx::culledBy).
-  input  logic [N-1:0]                           bound_i,          // a closest hit so far, or a segment end
-  output logic [N-1:0]                           want_check_o,
-  input  logic [SlotW-1:0]                       check_sel_i,
-  output logic [rt_pkg::BVH_ENTRY_W-1:0]         check_exit_o,     // entry - 1 of check_sel_i's candidate
-  input  logic                                   check_go_i,       // the answer for check_slot_i
-  input  logic [SlotW-1:0]                       check_slot_i,
-  input  logic                                   check_holds_i,
-
-  // Results.
-  output logic [N-1:0]                           want_done_o,
-  input  logic                                   done_go_i,
-  input  logic [SlotW-1:0]                       done_slot_i
+  // The unit's: its root, and the rays it accepts (into the setup).
+  input  rt_pkg::bvh_ref_t                       cfg_root_i,
+  input  rt_pkg::isect_ray_t                     ray_data_i
 );
 
   localparam int P       = rt_pkg::POS_W;
@@ -154,20 +104,78 @@ module rt_bvh_slots #(
 
   // ---- Events ----------------------------------------------------------------------------
   logic [N-1:0] alloc_oh, init_oh, visit_oh, node_oh, rsp_oh, box_oh, check_oh, done_oh, fin_oh, pop_oh;
-  assign alloc_oh = onehot(alloc_i, alloc_slot_i);
-  assign init_oh  = onehot(init_i, init_slot_i);
-  assign visit_oh = onehot(visit_go_i, visit_slot_i);
-  assign node_oh  = onehot(node_go_i, node_slot_i);
-  assign rsp_oh   = onehot(node_rsp_valid_i, node_rsp_slot_i);
-  assign box_oh   = onehot(box_valid_i, box_slot_i);
-  assign check_oh = onehot(check_go_i, check_slot_i);
-  assign done_oh  = onehot(done_go_i, done_slot_i);
+  assign alloc_oh = onehot(alloc, alloc_slot);
+  assign init_oh  = onehot(init, init_slot);
+  assign visit_oh = onehot(visit_go, visit_slot);
+  assign node_oh  = onehot(node_go, node_slot);
+  assign rsp_oh   = onehot(node_valid, node_tag);
+  assign box_oh   = onehot(box_valid, box_slot);
+  assign check_oh = onehot(check_go, check_slot);
+  assign done_oh  = onehot(done_go, done_slot);
   assign fin_oh   = onehot(fin_q, fin_slot_q);
+
+  // ---- The ray's setup: rt_mirror_pairs ---------------------------------------------------
+  logic [2:0]           init_mirror, init_active;
+  logic [3*ORG_W-1:0]   init_origin;
+  logic [3*PAIR_W-1:0]  init_pair;
+  logic                 unused_s1_valid, unused_s2_valid;
+  logic [3*ORG_W-1:0]   unused_s1_org, unused_s2_org;
+  logic [3*PAIR_W-1:0]  unused_s2_pair;
+
+  rt_mirror_pairs #(.SlotW(SlotW), .Latency(rt_pkg::BVH_SETUP_LATENCY), .ComW(DenW)) u_setup (
+    .clk_i,
+    .rst_ni,
+    .valid_i     (alloc),
+    .slot_i      (alloc_slot),
+    .ray_i       (ray_data_i),
+    .valid_o     (init),
+    .slot_o      (init_slot),
+    .ray_o       (init_ray),
+    .dom_o       (init_dom),
+    .s1_valid_o  (unused_s1_valid),
+    .s2_valid_o  (unused_s2_valid),
+    .active_o    (init_active),
+    .neg_o       (init_mirror),
+    .s1_org_o    (unused_s1_org),
+    .s2_org_o    (unused_s2_org),
+    .s2_pair_o   (unused_s2_pair),
+    .s3_org_o    (init_origin),
+    .s3_pair_o   (init_pair),
+    .s3_common_o (init_den)
+  );
+
+  // ---- The box tester: both children's tests of a node response (rt_bvh_box) ------------
+  logic [3*ORG_W-1:0]   box_origin;
+  logic [2:0]           box_mirror, box_active;
+  logic [3*PAIR_W-1:0]  box_pair;
+  logic                 box_valid, box_near;
+  logic [SlotW-1:0]     box_slot;
+  logic [1:0]           box_hit;
+  logic [2*ENTRY_W-1:0] box_entries;
+  logic [2*REF_W-1:0]   box_children;
+
+  rt_bvh_box #(.SlotW(SlotW)) u_box (
+    .clk_i,
+    .rst_ni,
+    .valid_i  (node_valid),
+    .slot_i   (node_tag),
+    .node_i   (node_data),
+    .origin_i (box_origin),
+    .mirror_i (box_mirror),
+    .active_i (box_active),
+    .pair_i   (box_pair),
+    .valid_o  (box_valid),
+    .slot_o   (box_slot),
+    .hit_o    (box_hit),
+    .entry_o  (box_entries),
+    .near_o   (box_near),
+    .child_o  (box_children)
+  );
 
   // The visited node's reference decides where the slot goes.
   ref_t             visit_ref;
   logic             visit_empty;
-  assign visit_ref   = cur_ref_q[visit_slot_i];
+  assign visit_ref   = cur_ref_q[visit_slot];
   assign visit_empty = visit_ref.count == '0;
 
   // ---- The pop lane ----------------------------------------------------------------------
@@ -207,19 +215,19 @@ module rt_bvh_slots #(
   logic              box_both, box_none, box_pick;   // box_pick: the candidate is child 1
   logic [REF_W-1:0]  box_ref [2];
   logic [ENTRY_W-1:0] box_entry [2];
-  assign box_ref[0]   = box_child_i[0 +: REF_W];
-  assign box_ref[1]   = box_child_i[REF_W +: REF_W];
-  assign box_entry[0] = box_entry_i[0 +: ENTRY_W];
-  assign box_entry[1] = box_entry_i[ENTRY_W +: ENTRY_W];
-  assign box_both     = box_hit_i == 2'b11;
-  assign box_none     = box_hit_i == 2'b00;
-  assign box_pick     = box_both ? box_near_i : box_hit_i[1];
+  assign box_ref[0]   = box_children[0 +: REF_W];
+  assign box_ref[1]   = box_children[REF_W +: REF_W];
+  assign box_entry[0] = box_entries[0 +: ENTRY_W];
+  assign box_entry[1] = box_entries[ENTRY_W +: ENTRY_W];
+  assign box_both     = box_hit == 2'b11;
+  assign box_none     = box_hit == 2'b00;
+  assign box_pick     = box_both ? box_near : box_hit[1];
 
   // The new candidates' next states (the candidate rule): CHECK if the slot is
   // bound and the entry is not 0, else ENTER.
   logic box_check, pop_check;
-  assign box_check = bound_i[box_slot_i] && box_entry[box_pick] != '0;
-  assign pop_check = bound_i[pop_slot_q] && pop_top[ENTRY_W-1:0] != '0;
+  assign box_check = bound[box_slot] && box_entry[box_pick] != '0;
+  assign pop_check = bound[pop_slot_q] && pop_top[ENTRY_W-1:0] != '0;
 
   // ---- The leaf's index reads and results, counted from the visit ----------------------
   logic [31:0] idx_issued;
@@ -227,15 +235,15 @@ module rt_bvh_slots #(
   rt_idx_count #(.N(N), .Starts(1), .SlotW(SlotW)) u_idx_count (
     .clk_i,
     .rst_ni,
-    .start_i       (visit_go_i),
-    .start_slot_i  (visit_slot_i),
+    .start_i       (visit_go),
+    .start_slot_i  (visit_slot),
     .start_count_i (visit_ref.leaf ? 32'(visit_ref.count) : 32'd0),
-    .idx_go_i,
-    .idx_slot_i,
+    .idx_go_i      (idx_go),
+    .idx_slot_i    (idx_slot),
     .idx_issued_o  (idx_issued),
     .idx_last_o    (idx_last),
-    .res_valid_i,
-    .res_slot_i,
+    .res_valid_i   (isect_valid),
+    .res_slot_i    (isect_slot),
     .res_last_o    (res_last)
   );
 
@@ -276,20 +284,20 @@ module rt_bvh_slots #(
       free_q      <= (free_q & ~alloc_oh) | done_oh;
       setup_q     <= (setup_q & ~init_oh) | alloc_oh;
       enter_q     <= (enter_q & ~visit_oh) | init_oh | box_to_enter | pop_to_enter
-                     | (check_oh & {N{!check_holds_i}});
+                     | (check_oh & {N{!check_holds}});
       node_req_q  <= (node_req_q & ~node_oh) | visit_node;
       wait_node_q <= (wait_node_q & ~rsp_oh) | node_oh;
       box_q       <= (box_q & ~box_oh) | rsp_oh;
       fetch_q     <= (fetch_q & ~fin_oh) | visit_fetch;
       pop_q       <= (pop_q & ~pop_oh) | visit_pop | box_to_pop | (fin_oh & ~fin_to_done)
-                     | (check_oh & {N{check_holds_i}});
+                     | (check_oh & {N{check_holds}});
       check_q     <= (check_q & ~check_oh) | box_to_check | pop_to_check;
       done_q      <= (done_q & ~done_oh) | pop_to_done | fin_to_done;
-      iss_q       <= (iss_q & ~onehot(idx_last, idx_slot_i)) | visit_fetch;
-      hit_seen_q  <= (hit_seen_q & ~init_oh) | onehot(res_valid_i && res_hit_i, res_slot_i);
+      iss_q       <= (iss_q & ~onehot(idx_last, idx_slot)) | visit_fetch;
+      hit_seen_q  <= (hit_seen_q & ~init_oh) | onehot(isect_valid && isect_hit, isect_slot);
       // The result that completes the leaf: FETCH ends in the next cycle.
       fin_q       <= res_last;
-      fin_slot_q  <= res_slot_i;
+      fin_slot_q  <= isect_slot;
     end
   end
 
@@ -297,44 +305,44 @@ module rt_bvh_slots #(
   // The candidate and the stack pointer: init, the box answer, the pop (their
   // slots differ: SETUP, BOX and POP).
   always_ff @(posedge clk_i) begin : p_walk
-    if (box_valid_i && !box_none) begin
-      cur_ref_q[box_slot_i]   <= box_ref[box_pick];
-      cur_entry_q[box_slot_i] <= box_entry[box_pick];
-      if (box_both) sp_q[box_slot_i] <= sp_q[box_slot_i] + 1'b1;
+    if (box_valid && !box_none) begin
+      cur_ref_q[box_slot]   <= box_ref[box_pick];
+      cur_entry_q[box_slot] <= box_entry[box_pick];
+      if (box_both) sp_q[box_slot] <= sp_q[box_slot] + 1'b1;
     end
     if (pop_go_q && !pop_empty) begin
       cur_ref_q[pop_slot_q]   <= pop_top[ENTRY_W +: REF_W];
       cur_entry_q[pop_slot_q] <= pop_top[ENTRY_W-1:0];
       sp_q[pop_slot_q]        <= pop_sp - 1'b1;
     end
-    if (init_i) begin
-      cur_ref_q[init_slot_i]   <= init_root_i;
-      cur_entry_q[init_slot_i] <= '0;
-      sp_q[init_slot_i]        <= '0;
+    if (init) begin
+      cur_ref_q[init_slot]   <= cfg_root_i;
+      cur_entry_q[init_slot] <= '0;
+      sp_q[init_slot]        <= '0;
     end
   end
 
   // The stack: the box answer pushes the farther child.
   always_ff @(posedge clk_i) begin : p_stack
-    if (box_valid_i && box_both) begin
-      stack_q[stack_addr(box_slot_i, STK_W'(sp_q[box_slot_i]))] <= {box_ref[!box_pick], box_entry[!box_pick]};
+    if (box_valid && box_both) begin
+      stack_q[stack_addr(box_slot, STK_W'(sp_q[box_slot]))] <= {box_ref[!box_pick], box_entry[!box_pick]};
     end
   end
 
   // The ray's setup.
   always_ff @(posedge clk_i) begin : p_ray
-    if (init_i) begin
-      mirror_q[init_slot_i] <= init_mirror_i;
-      active_q[init_slot_i] <= init_active_i;
-      org_q[init_slot_i]    <= init_origin_i;
-      pair_q[init_slot_i]   <= init_pair_i;
+    if (init) begin
+      mirror_q[init_slot] <= init_mirror;
+      active_q[init_slot] <= init_active;
+      org_q[init_slot]    <= init_origin;
+      pair_q[init_slot]   <= init_pair;
     end
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       any_hit_q <= '0;
-    end else if (init_i) begin
-      any_hit_q[init_slot_i] <= init_any_hit_i;
+    end else if (init) begin
+      any_hit_q[init_slot] <= init_ray.any_hit;
     end
   end
 
@@ -342,47 +350,49 @@ module rt_bvh_slots #(
   // (Whole references read by index: the address takes their first field.)
   ref_t             node_ref, idx_ref;
   logic [REF_W-1-32:0] unused_node_ref, unused_idx_ref;
-  assign node_ref        = cur_ref_q[node_slot_i];
-  assign idx_ref         = cur_ref_q[idx_slot_i];
+  assign node_ref        = cur_ref_q[node_slot];
+  assign idx_ref         = cur_ref_q[idx_slot];
   assign unused_node_ref = {node_ref.leaf, node_ref.count};
   assign unused_idx_ref  = {idx_ref.leaf, idx_ref.count};
-  assign visit_node_id_o = visit_ref.first | {visit_ref.leaf, 31'd0};
-  assign visit_leaf_o    = visit_ref.leaf;
-  assign visit_count_o   = visit_ref.count;
-  assign node_addr_o     = ADDR_W'(node_ref.first);
-  assign idx_addr_o      = ADDR_W'(idx_ref.first + idx_issued);
-  assign check_exit_o    = cur_entry_q[check_sel_i] - 1'b1;
-  assign box_origin_o    = org_q[node_rsp_slot_i];
-  assign box_mirror_o    = mirror_q[node_rsp_slot_i];
-  assign box_active_o    = active_q[node_rsp_slot_i];
-  assign box_pair_o      = pair_q[node_rsp_slot_i];
+  assign visit_id = visit_ref.first | {visit_ref.leaf, 31'd0};
+  // A leaf's triangles are counted when it is entered.
+  assign tests_add       = visit_go && visit_ref.leaf;
+  assign tests_slot      = visit_slot;
+  assign tests_num       = 32'(visit_ref.count);
+  assign node_addr     = ADDR_W'(node_ref.first);
+  assign idx_addr      = ADDR_W'(idx_ref.first + idx_issued);
+  assign check_exit    = cur_entry_q[check_sel] - 1'b1;
+  assign box_origin    = org_q[node_tag];
+  assign box_mirror    = mirror_q[node_tag];
+  assign box_active    = active_q[node_tag];
+  assign box_pair      = pair_q[node_tag];
 
-  assign free_o         = free_q;
-  assign want_visit_o   = enter_q;
-  assign want_node_o    = node_req_q;
-  assign want_idx_o     = iss_q;
-  assign want_check_o   = check_q;
-  assign want_done_o    = done_q;
-  assign fetching_o     = fetch_q;
-  assign waiting_node_o = wait_node_q;
+  assign free         = free_q;
+  assign want_visit   = enter_q;
+  assign want_node    = node_req_q;
+  assign want_idx     = iss_q;
+  assign want_check   = check_q;
+  assign want_done    = done_q;
+  assign fetching     = fetch_q;
 
 `ifdef RT_ASSERT_ON
 `include "rt_assert.svh"
   // Events meet slots in the states that expect them.
-  `RT_CHECK_IF(a_alloc_free, alloc_i, free_q[alloc_slot_i])
-  `RT_CHECK_IF(a_init_setup, init_i, setup_q[init_slot_i])
-  `RT_CHECK_IF(a_visit_enter, visit_go_i, enter_q[visit_slot_i])
-  `RT_CHECK_IF(a_node_req, node_go_i, node_req_q[node_slot_i])
-  `RT_CHECK_IF(a_box_slot, box_valid_i, box_q[box_slot_i])
-  `RT_CHECK_IF(a_idx_fetch, idx_go_i, iss_q[idx_slot_i])
-  `RT_CHECK_IF(a_res_fetch, res_valid_i, fetch_q[res_slot_i])
+  `RT_CHECK_IF(a_alloc_free, alloc, free_q[alloc_slot])
+  `RT_CHECK_IF(a_init_setup, init, setup_q[init_slot])
+  `RT_CHECK_IF(a_visit_enter, visit_go, enter_q[visit_slot])
+  `RT_CHECK_IF(a_node_req, node_go, node_req_q[node_slot])
+  `RT_CHECK_IF(a_node_rsp_slot, node_valid, wait_node_q[node_tag])
+  `RT_CHECK_IF(a_box_slot, box_valid, box_q[box_slot])
+  `RT_CHECK_IF(a_idx_fetch, idx_go, iss_q[idx_slot])
+  `RT_CHECK_IF(a_res_fetch, isect_valid, fetch_q[isect_slot])
   `RT_CHECK_IF(a_pop_slot, pop_go_q, pop_q[pop_slot_q])
-  `RT_CHECK_IF(a_check_wants, check_go_i, check_q[check_slot_i] && bound_i[check_slot_i])
+  `RT_CHECK_IF(a_check_wants, check_go, check_q[check_slot] && bound[check_slot])
   // A candidate tested is bound (it asked in CHECK; bounds never go away).
-  `RT_CHECK(a_check_bound, (check_q & ~bound_i) == '0)
+  `RT_CHECK(a_check_bound, (check_q & ~bound) == '0)
   // The stack never overflows: a push happens below the levels limit
   // (kBvhMaxLevels; checkImage refuses deeper images).
-  `RT_CHECK_IF(a_stack_depth, box_valid_i && box_both, sp_q[box_slot_i] < SP_W'(STACK))
+  `RT_CHECK_IF(a_stack_depth, box_valid && box_both, sp_q[box_slot] < SP_W'(STACK))
 `endif
 
 endmodule

@@ -1,8 +1,9 @@
-// rt_grid_slots: the ray slots of rt_grid — per-slot state machines, DDA
-// registers, cell queues and counters — updated by the unit's events, each
-// addressed to one slot by index. The ray, its closest hit and the exit test
-// are rt_trav_shell's: the slots take the exit-test state (bound_i, and
-// res_hit_i: a slot with no hit yet is bound after a hit, which becomes its
+// rt_grid_slots: the walk of rt_grid beside its rt_trav_shell — the ray's
+// setup (rt_grid_setup) and the ray slots: per-slot state machines, DDA
+// registers and cell queues, updated by the unit's events, each addressed to
+// one slot by index. The ray, its closest hit, the exit test and the counts
+// are rt_trav_shell's: the slots take the exit-test state (bound, and
+// isect_hit: a slot with no hit yet is bound after a hit, which becomes its
 // record) and the exit test's answer, and give the exit accumulator of the
 // cell.
 //
@@ -42,70 +43,24 @@ module rt_grid_slots #(
   parameter int unsigned N         = 32,  // ray slots
   parameter int unsigned CellQueue = 2,   // cells per slot requested and not finished (power of 2, >= 2)
   parameter int unsigned SlotW     = (N > 1) ? $clog2(N) : 1,            // derived
-  parameter int unsigned QW        = (CellQueue > 1) ? $clog2(CellQueue) : 1  // derived
+  parameter int unsigned QW        = (CellQueue > 1) ? $clog2(CellQueue) : 1,  // derived
+  // The shell's figures (rt_walk_ports.svh), the same in every instance.
+  parameter int unsigned NodeRspW  = rt_pkg::GRID_CELL_W,
+  parameter int unsigned VisitIdW  = 3 * rt_pkg::CELL_INDEX_W,
+  parameter int unsigned ExitW     = rt_pkg::GRID_ACC_W,
+  parameter int unsigned DenW      = rt_pkg::GRID_TRIPLE_W,
+  parameter int unsigned TestPorts = 2
 ) (
   input  logic                                   clk_i,
   input  logic                                   rst_ni,
+
+  // Toward rt_trav_shell (the node port reads cells).
+`define RT_WALK_PORTS_OF_WALK
+`include "rt_walk_ports.svh"
+
+  // The unit's: its resolution, and the rays it accepts (into the setup).
   input  logic [3*rt_pkg::GRID_RESOLUTION_W-1:0] cfg_res_i,     // {Rz, Ry, Rx}
-
-  // Allocation and per-ray setup.
-  output logic [N-1:0]                           free_o,
-  input  logic                                   alloc_i,
-  input  logic [SlotW-1:0]                       alloc_slot_i,
-  input  logic                                   init_i,
-  input  logic [SlotW-1:0]                       init_slot_i,
-  input  logic [3*rt_pkg::CELL_INDEX_W-1:0]      init_cell_i,
-  input  logic [3*rt_pkg::CELL_INDEX_W-1:0]      init_cell_id_i,
-  input  logic [2:0]                             init_active_i,
-  input  logic [2:0]                             init_neg_i,
-  input  logic [3*rt_pkg::GRID_ACC_W-1:0]        init_acc_i,
-  input  logic [3*rt_pkg::GRID_PAIR_W-1:0]       init_pair_i,
-
-  // Cell reads: a granted slot's frontier cell is read and the DDA steps.
-  output logic [N-1:0]                           want_cell_o,
-  input  logic                                   cell_go_i,
-  input  logic [SlotW-1:0]                       cell_slot_i,
-  output logic [3*rt_pkg::CELL_INDEX_W-1:0]      cell_id_o,     // frontier of cell_slot_i
-  input  logic                                   cell_rsp_valid_i,
-  input  logic [SlotW-1:0]                       cell_rsp_tag_i,
-  input  rt_pkg::grid_cell_t                     cell_rsp_data_i,
-
-  // Visits: a granted slot enters the cell at the head of its queue.
-  output logic [N-1:0]                           want_visit_o,
-  input  logic                                   visit_go_i,
-  input  logic [SlotW-1:0]                       visit_slot_i,
-  output logic [3*rt_pkg::CELL_INDEX_W-1:0]      visit_cell_id_o,
-
-  // Index reads of the current cell.
-  output logic [N-1:0]                           want_idx_o,
-  input  logic                                   idx_go_i,
-  input  logic [SlotW-1:0]                       idx_slot_i,
-  output logic [rt_pkg::MEM_ADDR_W-1:0]          idx_addr_o,    // first + issued
-
-  output logic [N-1:0]                           fetching_o,    // slots in FETCH
-
-  // Intersection results, and the closest-hit state (rt_trav_shell's).
-  input  logic                                   res_valid_i,
-  input  logic [SlotW-1:0]                       res_slot_i,
-  input  logic [N-1:0]                           bound_i,       // exit-tested: a closest hit so far, or a segment end
-  input  logic                                   res_hit_i,     // the result is a hit
-
-  // Exit tests of slots with a bound.
-  // (rt_trav_shell pipelines the test: it reads check_sel_i's exit accumulator
-  // the cycle after the grant, and answers EXIT_TEST_LATENCY cycles after it.)
-  output logic [N-1:0]                           want_check_o,
-  input  logic [SlotW-1:0]                       check_sel_i,
-  output logic [rt_pkg::GRID_ACC_W-1:0]          check_exit_o,  // exit accumulator of check_sel_i's cell
-  input  logic                                   check_go_i,    // the answer for check_slot_i
-  input  logic [SlotW-1:0]                       check_slot_i,
-  input  logic                                   check_holds_i, // the hit lies within the cell
-
-  // Results.
-  output logic [N-1:0]                           want_done_o,
-  input  logic                                   done_go_i,
-  input  logic [SlotW-1:0]                       done_slot_i,
-  output logic [31:0]                            done_cells_o,  // of done_slot_i
-  output logic [31:0]                            done_tests_o
+  input  rt_pkg::isect_ray_t                     ray_data_i
 );
 
   localparam int RES_W    = rt_pkg::GRID_RESOLUTION_W;
@@ -135,13 +90,42 @@ module rt_grid_slots #(
   logic [2:0]          act_q   [N];
   logic [2:0]          neg_q   [N];
   logic [31:0]         first_q [N];   // the current cell's (its counters: u_idx_count)
-  logic [31:0]         cells_q [N], tests_q [N];
   // Cell queue entries, index {slot, entry}.
   logic [ID_W-1:0]     ecid_q  [NE];  // cell id
   logic [ACC_W-1:0]    eexit_q [NE];  // exit accumulator of the cell
   logic                elast_q [NE];  // the ray leaves the grid after this cell
   logic [31:0]         efirst_q[NE];  // cell table entry, once the response is in
   logic [31:0]         ecount_q[NE];
+
+  // ---- The ray's setup (rt_grid_setup) ---------------------------------------------------
+  logic [3*CELL_W-1:0] init_cell, init_cell_id;
+  logic [2:0]          init_active, init_neg;
+  logic [3*ACC_W-1:0]  init_acc;
+  logic [3*PAIR_W-1:0] init_pair;
+
+  rt_grid_setup #(.SlotW(SlotW)) u_setup (
+    .clk_i,
+    .rst_ni,
+    .cfg_res_i,
+    .valid_i   (alloc),
+    .slot_i    (alloc_slot),
+    .ray_i     (ray_data_i),
+    .valid_o   (init),
+    .slot_o    (init_slot),
+    .ray_o     (init_ray),
+    .cell_o    (init_cell),
+    .cell_id_o (init_cell_id),
+    .active_o  (init_active),
+    .neg_o     (init_neg),
+    .acc_o     (init_acc),
+    .pair_o    (init_pair),
+    .triple_o  (init_den),
+    .dom_o     (init_dom)
+  );
+
+  // The cell read (the shell's node port).
+  rt_pkg::grid_cell_t cell_rsp;
+  assign cell_rsp = node_data;
 
   // Registered configuration: the stepper runs at least three cycles after a
   // ray's acceptance, and the configuration is static while rays are in flight.
@@ -238,17 +222,17 @@ module rt_grid_slots #(
 
   // (stepping_q and prep_q are reset with the state vectors, below.)
   always_ff @(posedge clk_i) begin
-    if (cell_go_i) begin
-      step_slot_q <= cell_slot_i;
+    if (node_go) begin
+      step_slot_q <= node_slot;
       step_push_q <= g_push;
     end
     if (stepping_q) prep_slot_q <= step_slot_q;
   end
 
   always_ff @(posedge clk_i) begin : p_step
-    if (init_i) begin
-      step_q[init_slot_i] <= next_step(init_cell_i, init_cell_id_i, init_acc_i, init_pair_i, init_active_i,
-                                       init_neg_i);
+    if (init) begin
+      step_q[init_slot] <= next_step(init_cell, init_cell_id, init_acc, init_pair, init_active,
+                                       init_neg);
     end
     if (prep_q) begin
       step_q[prep_slot_q] <= next_step(fcell_q[prep_slot_q], fid_q[prep_slot_q], facc_q[prep_slot_q],
@@ -283,11 +267,11 @@ module rt_grid_slots #(
   logic [SlotW-1:0] r_slot;
   logic [QW-1:0]    k_hd;
   logic             hit, holds;
-  assign r_slot       = res_slot_i;
-  assign hit          = res_hit_i;
-  assign holds        = check_holds_i;
-  assign k_hd         = head(hd_q, check_slot_i);
-  assign check_exit_o = eexit_q[{check_sel_i, head(hd_q, check_sel_i)}];
+  assign r_slot       = isect_slot;
+  assign hit          = isect_hit;
+  assign holds        = check_holds;
+  assign k_hd         = head(hd_q, check_slot);
+  assign check_exit = eexit_q[{check_sel, head(hd_q, check_sel)}];
 
   // ---- This cycle's events, per slot index --------------------------------------------
   // Cell grant g: the new entry goes behind the queued ones.
@@ -311,38 +295,38 @@ module rt_grid_slots #(
   logic        idx_last, res_last;
 
   always_comb begin
-    g_push    = head(hd_q, cell_slot_i) + QW'(therm(qc_q, cell_slot_i));
-    t_cnt     = therm(qc_q, cell_rsp_tag_i);
-    t_out     = therm(oc_q, cell_rsp_tag_i);
-    t_fill    = head(hd_q, cell_rsp_tag_i) + QW'(t_cnt - t_out);
-    v_cnt     = therm(qc_q, visit_slot_i);
-    v_out     = therm(oc_q, visit_slot_i);
-    v_hd      = head(hd_q, visit_slot_i);
+    g_push    = head(hd_q, node_slot) + QW'(therm(qc_q, node_slot));
+    t_cnt     = therm(qc_q, node_tag);
+    t_out     = therm(oc_q, node_tag);
+    t_fill    = head(hd_q, node_tag) + QW'(t_cnt - t_out);
+    v_cnt     = therm(qc_q, visit_slot);
+    v_out     = therm(oc_q, visit_slot);
+    v_hd      = head(hd_q, visit_slot);
     v_pending = (v_cnt == v_out);
-    stv       = visit_go_i && (!v_pending || (cell_rsp_valid_i && cell_rsp_tag_i == visit_slot_i));
-    stw       = cell_rsp_valid_i && wait_q[cell_rsp_tag_i];
-    v_data    = v_pending ? cell_rsp_data_i : {efirst_q[{visit_slot_i, v_hd}], ecount_q[{visit_slot_i, v_hd}]};
+    stv       = visit_go && (!v_pending || (node_valid && node_tag == visit_slot));
+    stw       = node_valid && wait_q[node_tag];
+    v_data    = v_pending ? cell_rsp : {efirst_q[{visit_slot, v_hd}], ecount_q[{visit_slot, v_hd}]};
     cv        = stv && (v_data.count == '0);
-    cw        = stw && (cell_rsp_data_i.count == '0);
+    cw        = stw && (cell_rsp.count == '0);
     cr        = res_last;
-    last_v    = elast_q[{visit_slot_i, v_hd}];
-    last_t    = elast_q[{cell_rsp_tag_i, head(hd_q, cell_rsp_tag_i)}];
+    last_v    = elast_q[{visit_slot, v_hd}];
+    last_t    = elast_q[{node_tag, head(hd_q, node_tag)}];
     last_r    = elast_q[{r_slot, head(hd_q, r_slot)}];
-    last_k    = elast_q[{check_slot_i, k_hd}];
+    last_k    = elast_q[{check_slot, k_hd}];
 
-    fetch_set = onehot(stv && !cv, visit_slot_i) | onehot(stw && !cw, cell_rsp_tag_i);
+    fetch_set = onehot(stv && !cv, visit_slot) | onehot(stw && !cw, node_tag);
     // Bound (a hit so far, or a segment end): CHECK. None: DONE after the last cell, else the next cell.
-    check_set = onehot(cv && bound_i[visit_slot_i], visit_slot_i) |
-                onehot(cw && bound_i[cell_rsp_tag_i], cell_rsp_tag_i) |
-                onehot(cr && (bound_i[r_slot] || hit), r_slot);
-    done_set  = onehot(cv && !bound_i[visit_slot_i] && last_v, visit_slot_i) |
-                onehot(cw && !bound_i[cell_rsp_tag_i] && last_t, cell_rsp_tag_i) |
-                onehot(cr && !(bound_i[r_slot] || hit) && last_r, r_slot) |
-                onehot(check_go_i && (holds || last_k), check_slot_i);
-    pop_set   = onehot(cv && !bound_i[visit_slot_i] && !last_v, visit_slot_i) |
-                onehot(cw && !bound_i[cell_rsp_tag_i] && !last_t, cell_rsp_tag_i) |
-                onehot(cr && !(bound_i[r_slot] || hit) && !last_r, r_slot) |
-                onehot(check_go_i && !(holds || last_k), check_slot_i);
+    check_set = onehot(cv && bound[visit_slot], visit_slot) |
+                onehot(cw && bound[node_tag], node_tag) |
+                onehot(cr && (bound[r_slot] || hit), r_slot);
+    done_set  = onehot(cv && !bound[visit_slot] && last_v, visit_slot) |
+                onehot(cw && !bound[node_tag] && last_t, node_tag) |
+                onehot(cr && !(bound[r_slot] || hit) && last_r, r_slot) |
+                onehot(check_go && (holds || last_k), check_slot);
+    pop_set   = onehot(cv && !bound[visit_slot] && !last_v, visit_slot) |
+                onehot(cw && !bound[node_tag] && !last_t, node_tag) |
+                onehot(cr && !(bound[r_slot] || hit) && !last_r, r_slot) |
+                onehot(check_go && !(holds || last_k), check_slot);
   end
 
   // ---- The cell's index reads and results, counted from the start of the cell -----
@@ -350,28 +334,28 @@ module rt_grid_slots #(
     .clk_i,
     .rst_ni,
     .start_i       ({stw, stv}),
-    .start_slot_i  ({cell_rsp_tag_i, visit_slot_i}),
-    .start_count_i ({cell_rsp_data_i.count, v_data.count}),
-    .idx_go_i,
-    .idx_slot_i,
+    .start_slot_i  ({node_tag, visit_slot}),
+    .start_count_i ({cell_rsp.count, v_data.count}),
+    .idx_go_i      (idx_go),
+    .idx_slot_i    (idx_slot),
     .idx_issued_o  (idx_issued),
     .idx_last_o    (idx_last),
-    .res_valid_i,
+    .res_valid_i   (isect_valid),
     .res_slot_i    (r_slot),
     .res_last_o    (res_last)
   );
 
   // ---- State vectors ----------------------------------------------------------------
   logic [N-1:0] alloc_oh, init_oh, cgo_oh, rsp_oh, vgo_oh, igo_oh, res_oh, chk_oh, done_oh;
-  assign alloc_oh = onehot(alloc_i, alloc_slot_i);
-  assign init_oh  = onehot(init_i, init_slot_i);
-  assign cgo_oh   = onehot(cell_go_i, cell_slot_i);
-  assign rsp_oh   = onehot(cell_rsp_valid_i, cell_rsp_tag_i);
-  assign vgo_oh   = onehot(visit_go_i, visit_slot_i);
-  assign igo_oh   = onehot(idx_last, idx_slot_i);
+  assign alloc_oh = onehot(alloc, alloc_slot);
+  assign init_oh  = onehot(init, init_slot);
+  assign cgo_oh   = onehot(node_go, node_slot);
+  assign rsp_oh   = onehot(node_valid, node_tag);
+  assign vgo_oh   = onehot(visit_go, visit_slot);
+  assign igo_oh   = onehot(idx_last, idx_slot);
   assign res_oh   = onehot(cr, r_slot);
-  assign chk_oh   = onehot(check_go_i, check_slot_i);
-  assign done_oh  = onehot(done_go_i, done_slot_i);
+  assign chk_oh   = onehot(check_go, check_slot);
+  assign done_oh  = onehot(done_go, done_slot);
 
   // Thermometer counts: +1 where only inc, -1 where only dec.
   logic [N-1:0] q_inc, q_dec, o_inc, o_dec;
@@ -419,12 +403,12 @@ module rt_grid_slots #(
       stepping_q <= 1'b0;
       prep_q     <= 1'b0;
     end else begin
-      stepping_q <= cell_go_i;
+      stepping_q <= node_go;
       prep_q     <= stepping_q;
       free_q  <= (free_q & ~alloc_oh) | done_oh;
       setup_q <= (setup_q & ~init_oh) | alloc_oh;
       visit_q <= (visit_q & ~vgo_oh) | init_oh | pop_set;
-      wait_q  <= (wait_q & ~onehot(stw, cell_rsp_tag_i)) | (vgo_oh & ~onehot(stv, visit_slot_i));
+      wait_q  <= (wait_q & ~onehot(stw, node_tag)) | (vgo_oh & ~onehot(stv, visit_slot));
       fetch_q <= (fetch_q & ~res_oh) | fetch_set;
       check_q <= (check_q & ~chk_oh) | check_set;
       done_q  <= (done_q & ~done_oh) | done_set;
@@ -438,17 +422,15 @@ module rt_grid_slots #(
 
   // ---- Per-slot registers ---------------------------------------------------------------
   always_ff @(posedge clk_i) begin
-    if (init_i) begin
-      fcell_q[init_slot_i]  <= init_cell_i;
-      fid_q[init_slot_i]    <= init_cell_id_i;
-      facc_q[init_slot_i]   <= init_acc_i;
-      pair_q[init_slot_i]   <= init_pair_i;
-      act_q[init_slot_i]    <= init_active_i;
-      neg_q[init_slot_i]    <= init_neg_i;
-      cells_q[init_slot_i]  <= '0;
-      tests_q[init_slot_i]  <= '0;
+    if (init) begin
+      fcell_q[init_slot]  <= init_cell;
+      fid_q[init_slot]    <= init_cell_id;
+      facc_q[init_slot]   <= init_acc;
+      pair_q[init_slot]   <= init_pair;
+      act_q[init_slot]    <= init_active;
+      neg_q[init_slot]    <= init_neg;
     end
-    if (cell_go_i) ecid_q[{cell_slot_i, g_push}] <= fid_q[cell_slot_i];
+    if (node_go) ecid_q[{node_slot, g_push}] <= fid_q[node_slot];
     if (stepping_q) begin
       eexit_q[{step_slot_q, step_push_q}] <= st_exit;
       elast_q[{step_slot_q, step_push_q}] <= st_leaves;
@@ -458,58 +440,54 @@ module rt_grid_slots #(
         facc_q[step_slot_q]  <= st_acc;
       end
     end
-    if (cell_rsp_valid_i) begin
-      efirst_q[{cell_rsp_tag_i, t_fill}] <= cell_rsp_data_i.first;
-      ecount_q[{cell_rsp_tag_i, t_fill}] <= cell_rsp_data_i.count;
+    if (node_valid) begin
+      efirst_q[{node_tag, t_fill}] <= cell_rsp.first;
+      ecount_q[{node_tag, t_fill}] <= cell_rsp.count;
     end
-    if (visit_go_i) cells_q[visit_slot_i] <= cells_q[visit_slot_i] + 1'b1;
-    if (stv) begin
-      first_q[visit_slot_i] <= v_data.first;
-      tests_q[visit_slot_i] <= tests_q[visit_slot_i] + v_data.count;
-    end
-    if (stw) begin
-      first_q[cell_rsp_tag_i] <= cell_rsp_data_i.first;
-      tests_q[cell_rsp_tag_i] <= tests_q[cell_rsp_tag_i] + cell_rsp_data_i.count;
-    end
+    if (stv) first_q[visit_slot] <= v_data.first;
+    if (stw) first_q[node_tag]   <= cell_rsp.first;
   end
 
   // ---- Outputs ----------------------------------------------------------------------------
-  assign free_o          = free_q;
-  assign want_cell_o     = (visit_q | wait_q | fetch_q | check_q) & front_q & ~qc_q[(D-1)*N +: N]
+  assign free          = free_q;
+  assign want_node     = (visit_q | wait_q | fetch_q | check_q) & front_q & ~qc_q[(D-1)*N +: N]
                            & ~onehot(stepping_q, step_slot_q) & ~onehot(prep_q, prep_slot_q);  // (stepping, preparing)
-  assign want_visit_o    = visit_q & qc_q[0 +: N];
-  assign want_idx_o      = iss_q;
-  assign want_check_o    = check_q;
-  assign want_done_o     = done_q & ~oc_q[0 +: N];
-  assign fetching_o      = fetch_q;
-  assign cell_id_o       = fid_q[cell_slot_i];
-  assign visit_cell_id_o = ecid_q[{visit_slot_i, v_hd}];
-  assign idx_addr_o      = ADDR_W'(first_q[idx_slot_i] + idx_issued);
-  assign done_cells_o    = cells_q[done_slot_i];
-  assign done_tests_o    = tests_q[done_slot_i];
+  assign want_visit    = visit_q & qc_q[0 +: N];
+  assign want_idx      = iss_q;
+  assign want_check    = check_q;
+  assign want_done     = done_q & ~oc_q[0 +: N];
+  assign fetching      = fetch_q;
+  assign node_addr       = ADDR_W'(fid_q[node_slot]);
+  assign visit_id = ecid_q[{visit_slot, v_hd}];
+  assign idx_addr      = ADDR_W'(first_q[idx_slot] + idx_issued);
+  // A cell's triangles are counted when its data is in: at its visit, or at
+  // the response a WAIT_CELL slot waits for (two slots in one cycle).
+  assign tests_add       = {stw, stv};
+  assign tests_slot      = {node_tag, visit_slot};
+  assign tests_num       = {cell_rsp.count, v_data.count};
 
 `ifdef RT_ASSERT_ON
 `include "rt_assert.svh"
   // Events name slots in the right state.
-  `RT_CHECK_IF(a_alloc_free, alloc_i, free_q[alloc_slot_i])
-  `RT_CHECK_IF(a_init_setup, init_i, setup_q[init_slot_i])
-  `RT_CHECK_IF(a_cell_go, cell_go_i, want_cell_o[cell_slot_i])
-  `RT_CHECK_IF(a_visit_go, visit_go_i, want_visit_o[visit_slot_i])
-  `RT_CHECK_IF(a_idx_go, idx_go_i, iss_q[idx_slot_i])
-  `RT_CHECK_IF(a_check_go, check_go_i, check_q[check_slot_i])
-  `RT_CHECK_IF(a_done_go, done_go_i, want_done_o[done_slot_i])
+  `RT_CHECK_IF(a_alloc_free, alloc, free_q[alloc_slot])
+  `RT_CHECK_IF(a_init_setup, init, setup_q[init_slot])
+  `RT_CHECK_IF(a_cell_go, node_go, want_node[node_slot])
+  `RT_CHECK_IF(a_visit_go, visit_go, want_visit[visit_slot])
+  `RT_CHECK_IF(a_idx_go, idx_go, iss_q[idx_slot])
+  `RT_CHECK_IF(a_check_go, check_go, check_q[check_slot])
+  `RT_CHECK_IF(a_done_go, done_go, want_done[done_slot])
   // Responses: a cell response answers an outstanding read of its slot (the
   // head's, for a slot waiting in WAIT_CELL); results arrive for a slot in
   // FETCH (u_idx_count checks that it expects them, rt_trav_shell the
   // triangles' slots).
-  `RT_CHECK_IF(a_cell_rsp_slot, cell_rsp_valid_i, t_out != '0)
-  `RT_CHECK_IF(a_cell_rsp_head, cell_rsp_valid_i && wait_q[cell_rsp_tag_i], t_cnt == t_out)
+  `RT_CHECK_IF(a_cell_rsp_slot, node_valid, t_out != '0)
+  `RT_CHECK_IF(a_cell_rsp_head, node_valid && wait_q[node_tag], t_cnt == t_out)
   // The entry whose exit the step writes has no data yet (the response comes
   // through the request FIFO and the registered boundary: two cycles at least),
   // so nothing reads its exit or last flag before the step writes them.
-  `RT_CHECK_IF(a_step_before_rsp, stepping_q && cell_rsp_valid_i && cell_rsp_tag_i == step_slot_q,
+  `RT_CHECK_IF(a_step_before_rsp, stepping_q && node_valid && node_tag == step_slot_q,
                t_fill != step_push_q)
-  `RT_CHECK_IF(a_res_fetch, res_valid_i, fetch_q[r_slot])
+  `RT_CHECK_IF(a_res_fetch, isect_valid, fetch_q[r_slot])
   // Every slot is in one state (parity catches any slot in two).
   `RT_CHECK(a_states, (free_q | setup_q | visit_q | wait_q | fetch_q | check_q | done_q) == '1 &&
                        (free_q ^ setup_q ^ visit_q ^ wait_q ^ fetch_q ^ check_q ^ done_q) == '1)

@@ -1,7 +1,8 @@
 // rt_setup_front: what the per-ray setups of every traversal unit share
-// (rt_grid_setup, rt_octree_setup): the three-stage pipeline that carries the
-// ray and its slot, and the direction's arithmetic of stage 1, |d[a]|, the
-// active axes (d[a] != 0), the negative ones and the dominant max |d[a]|.
+// (rt_grid_setup; rt_mirror_pairs, the octree's and the BVH's): the
+// three-stage pipeline that carries the ray and its slot, and the direction's
+// arithmetic of stage 1, |d[a]|, the active axes (d[a] != 0), the negative
+// ones and the dominant max |d[a]|.
 //
 // The unit's own stage arithmetic sits beside it, one multiplication deep per
 // stage: stage 1 loads with valid_i (from ray_i and mag_o), stage 2 with

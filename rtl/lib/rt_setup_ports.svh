@@ -1,5 +1,5 @@
 // The ports every per-ray setup shares, included in the port lists of
-// rt_setup_front, rt_grid_setup and rt_octree_setup (which add the figures
+// rt_setup_front, rt_grid_setup, rt_mirror_pairs and rt_octree_setup (which add the figures
 // they compute). Needs the module's SlotW; every line ends with a comma.
 
   input  logic                       clk_i,

@@ -1,5 +1,5 @@
-// rt_trav_shell: what every traversal unit (rt_grid, rt_octree) does the same
-// way around its own walk, which sits beside it (the unit's slots module).
+// rt_trav_shell: what every traversal unit (rt_grid, rt_octree, rt_bvh) does the
+// same way around its own walk, which sits beside it (the unit's slots module).
 //
 //   ray_*      rays in (valid/ready); the lowest free usable slot takes a ray
 //              (a fixed-priority arbiter: an rt_rr_arb whose pointer never
@@ -12,7 +12,7 @@
 //   node port  the walk's reads (grid cells, octree child groups): round robin
 //              over the slots that want one, through a 2-entry request FIFO;
 //              the response goes to the walk, registered when RegRsp
-//   visit_*    one record {ray id, visit_id_i} per region entered (round robin,
+//   visit_*    one record {ray id, visit_id} per region entered (round robin,
 //              4-entry FIFO)
 //   idx port   one index-list read per test (round robin), credit-limited by
 //              the index buffer (IdxBufDepth entries, the credits)
@@ -27,15 +27,16 @@
 //              that want one and are not under test; rt_exit_test, pipelined,
 //              with the walk's exit parameter against the record: the closest
 //              hit, or the segment end), its answer EXIT_TEST_LATENCY cycles
-//              after the grant. A slot is tested when bound_o (a hit, or a
+//              after the grant. A slot is tested when bound (a hit, or a
 //              segment end); an any-hit ray with a hit holds without the
 //              arithmetic (its walk ends after the region of its hit)
-//   res_*      one record per ray: {ray id, done_count_i, done_tests_i, hit,
+//   res_*      one record per ray: {ray id, regions entered, tests issued, hit,
 //              the closest hit} (round robin, 2-entry FIFO)
 //
 // The walk sees only grants (go, slot index), the responses, the results and
 // the closest-hit state; it gives want vectors, addresses, the visit id, the
-// exit parameter and the counts of the granted slots.
+// tests to count and the exit parameter. Those ports (rt_walk_ports.svh) have
+// one name at both ends, so a unit's top joins the two with `.*`.
 //
 // Memory ports: requests are valid/ready (a 2-entry FIFO holds each port's
 // request stream); responses have no ready: the unit always accepts them
@@ -59,6 +60,7 @@ module rt_trav_shell #(
   parameter int unsigned VisitIdW    = 32,  // width of the region id of a visit record
   parameter int unsigned ExitW       = 8,   // width of the exit parameter
   parameter int unsigned DenW        = 8,   // width of the exit test's denominator
+  parameter int unsigned TestPorts   = 1,   // walk events a cycle that add to a slot's test count
   parameter int unsigned SlotW     = (N > 1) ? $clog2(N) : 1,  // derived
   parameter int unsigned CfgSlotsW = $clog2(N + 1),            // derived
   parameter int unsigned ResW      = rt_pkg::ISECT_RES_W + 64  // derived: {ray id, count, tests, hit, hit record}
@@ -66,6 +68,10 @@ module rt_trav_shell #(
   input  logic                          clk_i,
   input  logic                          rst_ni,
   input  logic [CfgSlotsW-1:0]          cfg_slots_i,  // slots to use, 1..N
+
+  // ---- The walk's side ----
+`define RT_WALK_PORTS_OF_SHELL
+`include "rt_walk_ports.svh"
 
   // ---- The unit's ports ----
 `include "rt_trav_ports.svh"
@@ -79,63 +85,7 @@ module rt_trav_shell #(
   output logic [SlotW-1:0]              node_req_tag_o,
   input  logic                          node_rsp_valid_i,
   input  logic [NodeRspW-1:0]           node_rsp_data_i,
-  input  logic [SlotW-1:0]              node_rsp_tag_i,
-
-  // ---- The walk's side ----
-  // Allocation (a ray accepted into alloc_slot_o) and the slot's setup.
-  input  logic [N-1:0]                  free_i,
-  output logic                          alloc_o,
-  output logic [SlotW-1:0]              alloc_slot_o,
-  input  logic                          init_i,
-  input  logic [SlotW-1:0]              init_slot_i,
-  input  rt_pkg::isect_ray_t            init_ray_i,
-  input  logic [rt_pkg::DIR_W-1:0]      init_dom_i,
-  input  logic [DenW-1:0]               init_den_i,
-
-  // Node reads and their responses.
-  input  logic [N-1:0]                  want_node_i,
-  output logic                          node_go_o,
-  output logic [SlotW-1:0]              node_slot_o,
-  input  logic [rt_pkg::MEM_ADDR_W-1:0] node_addr_i,      // of node_slot_o
-  output logic                          node_valid_o,
-  output logic [SlotW-1:0]              node_tag_o,
-  output logic [NodeRspW-1:0]           node_data_o,
-
-  // Visits.
-  input  logic [N-1:0]                  want_visit_i,
-  output logic                          visit_go_o,
-  output logic [SlotW-1:0]              visit_slot_o,
-  input  logic [VisitIdW-1:0]           visit_id_i,       // of visit_slot_o
-
-  // Index reads, and the intersection results.
-  input  logic [N-1:0]                  want_idx_i,
-  output logic                          idx_go_o,
-  output logic [SlotW-1:0]              idx_slot_o,
-  input  logic [rt_pkg::MEM_ADDR_W-1:0] idx_addr_i,       // of idx_slot_o
-  input  logic [N-1:0]                  expect_i,         // slots that expect triangles (assertions only)
-  output logic                          isect_valid_o,    // a result of slot isect_slot_o
-  output logic [SlotW-1:0]              isect_slot_o,
-  output logic                          isect_hit_o,      // it is a hit (so the slot is bound after it:
-                                                          // with no hit yet, a hit becomes the record)
-  output logic [N-1:0]                  bound_o,          // exit-tested: a closest hit so far, or a segment end
-
-  // Exit tests.
-  input  logic [N-1:0]                  want_check_i,
-  // A slot's test is granted in cycle t; its exit parameter is read in t+1
-  // (check_sel_o); its answer reaches the walk in t + EXIT_TEST_LATENCY
-  // (check_go_o, check_slot_o, check_holds_o, from registers).
-  output logic [SlotW-1:0]              check_sel_o,
-  input  logic [ExitW-1:0]              check_exit_i,     // of check_sel_o
-  output logic                          check_go_o,
-  output logic [SlotW-1:0]              check_slot_o,
-  output logic                          check_holds_o,
-
-  // Results.
-  input  logic [N-1:0]                  want_done_i,
-  output logic                          done_go_o,
-  output logic [SlotW-1:0]              done_slot_o,
-  input  logic [31:0]                   done_count_i,     // of done_slot_o: regions entered
-  input  logic [31:0]                   done_tests_i      // and tests issued
+  input  logic [SlotW-1:0]              node_rsp_tag_i
 );
 
   localparam int ADDR_W   = rt_pkg::MEM_ADDR_W;
@@ -174,6 +124,8 @@ module rt_trav_shell #(
   logic [BEST_W-1:0] best_q  [N];
   logic [rt_pkg::SEG_END_W-1:0] seg_q [N];
   logic [N-1:0]     has_hit_q, bounded_q, any_hit_q;
+  logic [31:0]      visits_q [N];   // regions entered
+  logic [31:0]      tests_q  [N];   // tests issued
 
   // ---- Ray input and slot allocation --------------------------------------------
   logic [N-1:0] usable, unused_alloc_gnt;
@@ -181,10 +133,10 @@ module rt_trav_shell #(
   assign usable = N'((NP1'(1) << cfg_slots_i) - 1'b1);
 
   rt_rr_arb #(.N(N)) u_alloc_arb (
-    .clk_i, .rst_ni, .req_i(free_i & usable), .ack_i(1'b0),
-    .valid_o(ray_ready_o), .gnt_o(unused_alloc_gnt), .idx_o(alloc_slot_o));
+    .clk_i, .rst_ni, .req_i(free & usable), .ack_i(1'b0),
+    .valid_o(ray_ready_o), .gnt_o(unused_alloc_gnt), .idx_o(alloc_slot));
 
-  assign alloc_o = ray_valid_i && ray_ready_o;
+  assign alloc = ray_valid_i && ray_ready_o;
 
   // ---- Arbiters -------------------------------------------------------------------
   logic         node_any, visit_any, idx_any, done_any;
@@ -198,36 +150,36 @@ module rt_trav_shell #(
   logic         idxbuf_pop;
 
   rt_rr_arb #(.N(N)) u_node_arb (
-    .clk_i, .rst_ni, .req_i(want_node_i), .ack_i(node_go_o),
-    .valid_o(node_any), .gnt_o(unused_node_gnt), .idx_o(node_slot_o));
+    .clk_i, .rst_ni, .req_i(want_node), .ack_i(node_go),
+    .valid_o(node_any), .gnt_o(unused_node_gnt), .idx_o(node_slot));
   rt_rr_arb #(.N(N)) u_visit_arb (
-    .clk_i, .rst_ni, .req_i(want_visit_i), .ack_i(visit_go_o),
-    .valid_o(visit_any), .gnt_o(unused_visit_gnt), .idx_o(visit_slot_o));
+    .clk_i, .rst_ni, .req_i(want_visit), .ack_i(visit_go),
+    .valid_o(visit_any), .gnt_o(unused_visit_gnt), .idx_o(visit_slot));
   rt_rr_arb #(.N(N)) u_idx_arb (
-    .clk_i, .rst_ni, .req_i(want_idx_i), .ack_i(idx_go_o),
-    .valid_o(idx_any), .gnt_o(unused_idx_gnt), .idx_o(idx_slot_o));
+    .clk_i, .rst_ni, .req_i(want_idx), .ack_i(idx_go),
+    .valid_o(idx_any), .gnt_o(unused_idx_gnt), .idx_o(idx_slot));
   rt_rr_arb #(.N(N)) u_check_arb (
-    .clk_i, .rst_ni, .req_i(want_check_i & ~testing_q), .ack_i(check_grant),
+    .clk_i, .rst_ni, .req_i(want_check & ~testing_q), .ack_i(check_grant),
     .valid_o(check_grant), .gnt_o(unused_check_gnt), .idx_o(check_grant_slot));
   rt_rr_arb #(.N(N)) u_done_arb (
-    .clk_i, .rst_ni, .req_i(want_done_i), .ack_i(done_go_o),
-    .valid_o(done_any), .gnt_o(unused_done_gnt), .idx_o(done_slot_o));
+    .clk_i, .rst_ni, .req_i(want_done), .ack_i(done_go),
+    .valid_o(done_any), .gnt_o(unused_done_gnt), .idx_o(done_slot));
 
   // A node read needs room in its request FIFO, a visit room in the visit FIFO.
-  assign node_go_o  = node_any && nodeq_ready;
-  assign visit_go_o = visit_any && visitq_ready;
+  assign node_go  = node_any && nodeq_ready;
+  assign visit_go = visit_any && visitq_ready;
   // An index read needs a credit: a place in the index buffer for its response.
-  assign idx_go_o   = idx_any && idxq_ready && (credit_q != '0);
-  assign done_go_o  = done_any && resq_ready;
+  assign idx_go   = idx_any && idxq_ready && (credit_q != '0);
+  assign done_go  = done_any && resq_ready;
 
-  assign perf_step_ready_o = (want_visit_i != '0);
+  assign perf_step_ready_o = (want_visit != '0);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       credit_q <= CREDIT_W'(IdxBufDepth);
-    end else if (idx_go_o && !idxbuf_pop) begin
+    end else if (idx_go && !idxbuf_pop) begin
       credit_q <= credit_q - 1'b1;
-    end else if (idxbuf_pop && !idx_go_o) begin
+    end else if (idxbuf_pop && !idx_go) begin
       credit_q <= credit_q + 1'b1;
     end
   end
@@ -241,12 +193,12 @@ module rt_trav_shell #(
     // A node or triangle response arriving in cycle c is used in cycle c+1.
     rt_pipe_reg #(.Width(SlotW + NodeRspW)) u_node_rsp (
       .clk_i, .rst_ni, .valid_i(node_rsp_valid_i), .data_i({node_rsp_tag_i, node_rsp_data_i}),
-      .valid_o(node_valid_o), .data_o({node_tag_o, node_data_o}));
+      .valid_o(node_valid), .data_o({node_tag, node_data}));
     rt_pipe_reg #(.Width(SlotW + rt_pkg::ISECT_TRI_W)) u_tri_rsp (
       .clk_i, .rst_ni, .valid_i(tri_rsp_valid_i), .data_i({tri_rsp_tag_i, tri_rsp_data_i}),
       .valid_o(tri_valid), .data_o({tri_slot, tri_data}));
   end else begin : g_direct_rsp
-    assign {node_valid_o, node_tag_o, node_data_o} = {node_rsp_valid_i, node_rsp_tag_i, node_rsp_data_i};
+    assign {node_valid, node_tag, node_data} = {node_rsp_valid_i, node_rsp_tag_i, node_rsp_data_i};
     assign {tri_valid, tri_slot, tri_data}         = {tri_rsp_valid_i, tri_rsp_tag_i, tri_rsp_data_i};
   end
 
@@ -255,14 +207,14 @@ module rt_trav_shell #(
   // a concatenation, and takes no field of an array element.
   logic [31:0]          visit_ray_id;
   logic [32+VisitIdW-1:0] visit_rec;
-  assign visit_ray_id = ray_id_q[visit_slot_o];
-  assign visit_rec    = {visit_ray_id, visit_id_i};
+  assign visit_ray_id = ray_id_q[visit_slot];
+  assign visit_rec    = {visit_ray_id, visit_id};
 
   rt_fifo #(.Width(MEMREQ_W), .Depth(2)) u_node_q (
     .clk_i, .rst_ni,
-    .in_valid_i (node_go_o),
+    .in_valid_i (node_go),
     .in_ready_o (nodeq_ready),
-    .in_data_i  ({node_addr_i, node_slot_o}),
+    .in_data_i  ({node_addr, node_slot}),
     .out_valid_o(node_req_valid_o),
     .out_ready_i(node_req_ready_i),
     .out_data_o ({node_req_addr_o, node_req_tag_o})
@@ -270,7 +222,7 @@ module rt_trav_shell #(
 
   rt_fifo #(.Width(32 + VisitIdW), .Depth(4)) u_visit_q (
     .clk_i, .rst_ni,
-    .in_valid_i (visit_go_o),
+    .in_valid_i (visit_go),
     .in_ready_o (visitq_ready),
     .in_data_i  (visit_rec),
     .out_valid_o(visit_valid_o),
@@ -285,9 +237,9 @@ module rt_trav_shell #(
 
   rt_fifo #(.Width(MEMREQ_W), .Depth(2)) u_idx_q (
     .clk_i, .rst_ni,
-    .in_valid_i (idx_go_o),
+    .in_valid_i (idx_go),
     .in_ready_o (idxq_ready),
-    .in_data_i  ({idx_addr_i, idx_slot_o}),
+    .in_data_i  ({idx_addr, idx_slot}),
     .out_valid_o(idx_req_valid_o),
     .out_ready_i(idx_req_ready_i),
     .out_data_o ({idx_req_addr_o, idx_req_tag_o})
@@ -348,7 +300,7 @@ module rt_trav_shell #(
 
   // ---- Closest hit: three stages (rt_closest_hit) ------------------------------------
   // A result leaving rt_isect meets its slot's record here; it reaches the
-  // walk (isect_valid_o, isect_slot_o, isect_hit_o) CLOSEST_HIT_LATENCY
+  // walk (isect_valid, isect_slot, isect_hit) CLOSEST_HIT_LATENCY
   // cycles later, with its verdict (take), in the cycle the record takes it.
   logic [SlotW-1:0]            res_slot;
   logic                        take;        // the result becomes the slot's closest hit
@@ -375,9 +327,9 @@ module rt_trav_shell #(
     .best_prim_i  (res_best.prim_id),
     .best_t_num_i (res_best.t_num),
     .best_det_i   (res_best.det),
-    .valid_o      (isect_valid_o),
-    .slot_o       (isect_slot_o),
-    .hit_o        (isect_hit_o),
+    .valid_o      (isect_valid),
+    .slot_o       (isect_slot),
+    .hit_o        (isect_hit),
     .take_o       (take),
     .prim_id_o    (take_prim),
     .t_num_o      (take_t_num),
@@ -390,7 +342,7 @@ module rt_trav_shell #(
     res_new.det     = take_det;
     {res_new.u_num, res_new.v_num} = take_bary;
   end
-  assign bound_o = has_hit_q | bounded_q;
+  assign bound = has_hit_q | bounded_q;
 
   // ---- Exit tests, pipelined ---------------------------------------------------------
   // The grant is registered (cycle t+1 reads the slot's exit parameter and its
@@ -404,7 +356,7 @@ module rt_trav_shell #(
   rt_pipe_reg #(.Width(SlotW)) u_check_grant (
     .clk_i, .rst_ni, .valid_i(check_grant), .data_i(check_grant_slot),
     .valid_o(sel_valid), .data_o(sel_slot));
-  assign check_sel_o = sel_slot;
+  assign check_sel = sel_slot;
   assign sel_best    = best_q[sel_slot];
 
   rt_exit_test #(.ExitW(ExitW), .DenW(DenW), .TagW(SlotW)) u_exit (
@@ -413,37 +365,52 @@ module rt_trav_shell #(
     .valid_i   (sel_valid),
     .tag_i     (sel_slot),
     .settled_i (any_hit_q[sel_slot] && has_hit_q[sel_slot]),
-    .exit_i    (check_exit_i),
+    .exit_i    (check_exit),
     .dom_i     (dom_q[sel_slot]),
     .den_i     (den_q[sel_slot]),
     .t_num_i   (sel_best.t_num),
     .det_i     (sel_best.det),
-    .valid_o   (check_go_o),
-    .tag_o     (check_slot_o),
-    .holds_o   (check_holds_o)
+    .valid_o   (check_go),
+    .tag_o     (check_slot),
+    .holds_o   (check_holds)
   );
 
   // ---- The records kept by slot index ---------------------------------------------------
   ray_geom_t init_geom;
   best_t     init_best;  // the segment end as a pseudo hit
-  assign init_geom.org = init_ray_i.org;
-  assign init_geom.dir = init_ray_i.dir;
+  assign init_geom.org = init_ray.org;
+  assign init_geom.dir = init_ray.dir;
   always_comb begin
     init_best         = '0;
-    init_best.t_num   = rt_pkg::T_NUM_W'(init_ray_i.t_max);
+    init_best.t_num   = rt_pkg::T_NUM_W'(init_ray.t_max);
     init_best.det     = rt_pkg::DET_ABS_W'(1) << rt_pkg::SEG_FRAC_W;
   end
 
   always_ff @(posedge clk_i) begin
-    if (init_i) begin
-      ray_id_q[init_slot_i] <= init_ray_i.ray_id;
-      geom_q[init_slot_i]   <= init_geom;
-      dom_q[init_slot_i]    <= init_dom_i;
-      den_q[init_slot_i]    <= init_den_i;
-      best_q[init_slot_i]   <= init_best;
-      seg_q[init_slot_i]    <= init_ray_i.t_max;
+    if (init) begin
+      ray_id_q[init_slot] <= init_ray.ray_id;
+      geom_q[init_slot]   <= init_geom;
+      dom_q[init_slot]    <= init_dom;
+      den_q[init_slot]    <= init_den;
+      best_q[init_slot]   <= init_best;
+      seg_q[init_slot]    <= init_ray.t_max;
     end
-    if (take) best_q[isect_slot_o] <= res_new;
+    if (take) best_q[isect_slot] <= res_new;
+  end
+
+  // The counts of the result record: regions entered and tests issued. (The
+  // walk's test-count ports name different slots in one cycle.)
+  always_ff @(posedge clk_i) begin
+    if (init) begin
+      visits_q[init_slot] <= '0;
+      tests_q[init_slot]  <= '0;
+    end
+    if (visit_go) visits_q[visit_slot] <= visits_q[visit_slot] + 1'b1;
+    for (int p = 0; p < TestPorts; p++) begin
+      if (tests_add[p]) begin
+        tests_q[tests_slot[p*SlotW +: SlotW]] <= tests_q[tests_slot[p*SlotW +: SlotW]] + tests_num[p*32 +: 32];
+      end
+    end
   end
 
   // (testing_q: the slots whose exit test is in flight, above.)
@@ -454,13 +421,13 @@ module rt_trav_shell #(
       any_hit_q <= '0;
       testing_q <= '0;
     end else begin
-      testing_q <= (testing_q | (N'(check_grant) << check_grant_slot)) & ~(N'(check_go_o) << check_slot_o);
-      if (init_i) begin
-        has_hit_q[init_slot_i] <= 1'b0;
-        bounded_q[init_slot_i] <= init_ray_i.t_max != '1;
-        any_hit_q[init_slot_i] <= init_ray_i.any_hit;
+      testing_q <= (testing_q | (N'(check_grant) << check_grant_slot)) & ~(N'(check_go) << check_slot);
+      if (init) begin
+        has_hit_q[init_slot] <= 1'b0;
+        bounded_q[init_slot] <= init_ray.t_max != '1;
+        any_hit_q[init_slot] <= init_ray.any_hit;
       end
-      if (take) has_hit_q[isect_slot_o] <= 1'b1;
+      if (take) has_hit_q[isect_slot] <= 1'b1;
     end
   end
 
@@ -468,23 +435,25 @@ module rt_trav_shell #(
   // The record is assembled only in a cycle with a done grant.
   logic [ResW-1:0] done_rec;
   best_t           done_best;
-  logic [31:0]     done_ray_id;
+  logic [31:0]     done_ray_id, done_visits, done_tests;
   logic            done_hit;
   always_comb begin
     done_best   = '0;
     done_ray_id = '0;
     done_hit    = 1'b0;
     if (done_any) begin
-      done_ray_id = ray_id_q[done_slot_o];
-      done_hit    = has_hit_q[done_slot_o];
-      if (done_hit) done_best = best_q[done_slot_o];  // (not the segment end)
+      done_ray_id = ray_id_q[done_slot];
+      done_hit    = has_hit_q[done_slot];
+      if (done_hit) done_best = best_q[done_slot];  // (not the segment end)
     end
   end
-  assign done_rec = {done_ray_id, done_count_i, done_tests_i, done_hit, done_best};
+  assign done_visits = visits_q[done_slot];
+  assign done_tests  = tests_q[done_slot];
+  assign done_rec    = {done_ray_id, done_visits, done_tests, done_hit, done_best};
 
   rt_fifo #(.Width(ResW), .Depth(2)) u_res_q (
     .clk_i, .rst_ni,
-    .in_valid_i (done_go_o),
+    .in_valid_i (done_go),
     .in_ready_o (resq_ready),
     .in_data_i  (done_rec),
     .out_valid_o(res_valid_o),
@@ -503,8 +472,8 @@ module rt_trav_shell #(
   // expects them.
   `RT_CHECK_IF(a_idx_buf_room, idx_rsp_valid_i, idxbuf_ready)
   `RT_CHECK_IF(a_isect_ready, tri_valid, isect_req_ready)
-  `RT_CHECK_IF(a_tri_rsp_slot, tri_valid, expect_i[tri_slot])
-  `RT_CHECK_IF(a_res_slot, isect_res_valid, expect_i[res_slot])
+  `RT_CHECK_IF(a_tri_rsp_slot, tri_valid, fetching[tri_slot])
+  `RT_CHECK_IF(a_res_slot, isect_res_valid, fetching[res_slot])
   `RT_CHECK(a_cfg_slots, cfg_slots_i != '0 && cfg_slots_i <= CfgSlotsW'(N))
   `RT_CHECK(a_credit_range, credit_q <= CREDIT_W'(IdxBufDepth))
   `RT_ASSERT_STATIC(g_exit_latency_check, rt_pkg::EXIT_TEST_LATENCY == 1 + 4,

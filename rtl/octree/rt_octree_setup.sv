@@ -16,9 +16,9 @@
 //            (inactive axes: -inf / +inf, values 0), and the root test
 //            max t0 < min t1 over the active axes (true with none active)
 //
-// rt_setup_front carries the ray through the stages and computes |d|, the
-// active and negative axes and the dominant; rt_mirror_pairs computes o', the
-// pair products and common, as for rt_bvh_setup.
+// rt_mirror_pairs (with rt_setup_front) carries the ray through the stages and
+// computes |d|, the active and negative axes, the dominant, o', the pair
+// products and common, as for the BVH's setup.
 //
 // Latency:    a ray accepted at edge t (valid_i high in the cycle before t) is on
 //             valid_o after edge t+2; the slot loads it at edge t+3.
@@ -46,43 +46,26 @@ module rt_octree_setup #(
   localparam int T_W    = rt_pkg::OCTREE_T_W;
   localparam int ORG_W  = P + 1;
 
-  // ---- The shared front: valid, slot and ray through the stages, |d|, the
-  // active axes, the mirrored ones, dominant ------------------------------------
-  logic [3*DIR_W-1:0] mag;
+  // ---- The shared stages (rt_mirror_pairs): valid, slot and ray, the active
+  // and mirrored axes, the dominant, o', the pair products, C ------------------
   logic               s1_valid, s2_valid;
-  logic [2:0]         s1_active, unused_s1_neg;
   logic [2:0]         s3_active, s3_neg;
+  logic [3*ORG_W-1:0] s1_org, s2_org, s3_org;
+  logic [3*PAIR_W-1:0] s2_pair, unused_s3_pair;
+  logic [COM_W-1:0]   s3_common;
 
   // The ray in, and valid, slot, ray and dom out, by name.
-  rt_setup_front #(.SlotW(SlotW), .Latency(rt_pkg::OCTREE_SETUP_LATENCY)) u_front (
+  rt_mirror_pairs #(.SlotW(SlotW), .Latency(rt_pkg::OCTREE_SETUP_LATENCY), .ComW(COM_W)) u_pairs (
     .*,
-    .mag_o       (mag),
     .s1_valid_o  (s1_valid),
-    .s1_active_o (s1_active),
-    .s1_neg_o    (unused_s1_neg),
     .s2_valid_o  (s2_valid),
     .active_o    (s3_active),
-    .neg_o       (s3_neg)
-  );
-
-  // ---- Stages 1 to 3: o', the pair products, C ----------------------------------
-  logic [3*ORG_W-1:0]   s1_org, s2_org, s3_org;
-  logic [3*PAIR_W-1:0]  s2_pair;
-  logic [COM_W-1:0]     s3_common;
-
-  rt_mirror_pairs #(.ComW(COM_W)) u_pairs (
-    .clk_i,
-    .valid_i,
-    .org_i       (ray_i.org),
-    .dir_i       (ray_i.dir),
-    .mag_i       (mag),
-    .s1_valid_i  (s1_valid),
-    .s1_active_i (s1_active),
-    .s2_valid_i  (s2_valid),
+    .neg_o       (s3_neg),
     .s1_org_o    (s1_org),
     .s2_org_o    (s2_org),
     .s2_pair_o   (s2_pair),
     .s3_org_o    (s3_org),
+    .s3_pair_o   (unused_s3_pair),
     .s3_common_o (s3_common)
   );
 

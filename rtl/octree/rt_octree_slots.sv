@@ -1,6 +1,8 @@
-// rt_octree_slots: the ray slots of rt_octree — per-slot state machines, the
-// current node's plane parameters, the stacks and the DESCEND and advance
-// steps — updated by the unit's events, each addressed to one slot by index.
+// rt_octree_slots: the walk of rt_octree beside its rt_trav_shell — the ray's
+// setup (rt_octree_setup), the child groups read, and the ray slots: per-slot
+// state machines, the current node's plane parameters, the stacks and the
+// DESCEND and advance steps, updated by the unit's events, each addressed to
+// one slot by index.
 //
 //   FREE -alloc-> SETUP -init-> ENTER (root test passes) | DONE
 //   ENTER -visit grant-> GROUP_REQ (interior) | FETCH (leaf, count > 0) | CHECK (empty leaf)
@@ -55,69 +57,26 @@
 // DESCEND, one index grant, one result, one end of FETCH, one exit test, one
 // result record, AdvLanes + 1 advance steps.
 module rt_octree_slots #(
-  parameter int unsigned N        = 32,                       // ray slots
-  parameter int unsigned AdvLanes = 2,                        // advance lanes besides the exit test's
-  parameter int unsigned SlotW    = (N > 1) ? $clog2(N) : 1   // derived
+  parameter int unsigned N         = 32,                                // ray slots
+  parameter int unsigned AdvLanes  = 2,                                 // advance lanes besides the exit test's
+  parameter int unsigned SlotW     = (N > 1) ? $clog2(N) : 1,           // derived
+  // The shell's figures (rt_walk_ports.svh), the same in every instance.
+  parameter int unsigned NodeRspW  = rt_pkg::OCTREE_CHILDREN * rt_pkg::OCTREE_NODE_W,
+  parameter int unsigned VisitIdW  = 32,
+  parameter int unsigned ExitW     = rt_pkg::OCTREE_T_W,
+  parameter int unsigned DenW      = rt_pkg::OCTREE_COMMON_W,
+  parameter int unsigned TestPorts = 1
 ) (
   input  logic                                   clk_i,
   input  logic                                   rst_ni,
 
-  // Allocation and per-ray setup.
-  output logic [N-1:0]                           free_o,
-  input  logic                                   alloc_i,
-  input  logic [SlotW-1:0]                       alloc_slot_i,
-  input  logic                                   init_i,
-  input  logic [SlotW-1:0]                       init_slot_i,
-  input  logic                                   init_enter_i,   // the root test passes
-  input  logic [2:0]                             init_mirror_i,
-  input  logic [2:0]                             init_active_i,
-  input  logic [3*(rt_pkg::POS_W+1)-1:0]         init_origin_i,
-  input  logic [3*rt_pkg::OCTREE_T_W-1:0]        init_t0_i,
-  input  logic [3*rt_pkg::OCTREE_T_W-1:0]        init_t1_i,
+  // Toward rt_trav_shell.
+`define RT_WALK_PORTS_OF_WALK
+`include "rt_walk_ports.svh"
 
-  // Visits: a granted slot enters its current node, whose record is visit_rec_i.
-  output logic [N-1:0]                           want_visit_o,
-  input  logic                                   visit_go_i,
-  input  logic [SlotW-1:0]                       visit_slot_i,
-  input  rt_pkg::octree_node_t                   visit_rec_i,
-  output logic                                   visit_at_root_o,  // of visit_slot_i: the record is the root's
-  output logic [2:0]                             visit_sel_o,      // its index in the slot's child group
-  output logic [31:0]                            visit_node_id_o,
-
-  // Child-group reads (the node's children, or a refill of the parent's).
-  output logic [N-1:0]                           want_node_o,
-  input  logic                                   node_go_i,
-  input  logic [SlotW-1:0]                       node_slot_i,
-  output logic [rt_pkg::MEM_ADDR_W-1:0]          node_addr_o,      // of node_slot_i
-  output logic [N-1:0]                           waiting_node_o,
-  input  logic                                   node_rsp_valid_i,
-  input  logic [SlotW-1:0]                       node_rsp_slot_i,
-
-  // Index reads of the current leaf, and its intersection results.
-  output logic [N-1:0]                           want_idx_o,
-  input  logic                                   idx_go_i,
-  input  logic [SlotW-1:0]                       idx_slot_i,
-  output logic [rt_pkg::MEM_ADDR_W-1:0]          idx_addr_o,       // first + issued of idx_slot_i
-  output logic [N-1:0]                           fetching_o,
-  input  logic                                   res_valid_i,
-  input  logic [SlotW-1:0]                       res_slot_i,
-
-  // Exit tests of slots with a bound.
-  input  logic [N-1:0]                           bound_i,          // exit-tested: a closest hit so far, or a segment end
-  // (rt_trav_shell pipelines the test: it reads check_sel_i's exit parameter
-  // the cycle after the grant, and answers EXIT_TEST_LATENCY cycles after it;
-  // the slot stays in CHECK meanwhile.)
-  output logic [N-1:0]                           want_check_o,
-  input  logic [SlotW-1:0]                       check_sel_i,
-  output logic [rt_pkg::OCTREE_T_W-1:0]          check_exit_o,     // min t1 over check_sel_i's active axes
-  input  logic                                   check_go_i,       // the answer for check_slot_i
-  input  logic [SlotW-1:0]                       check_slot_i,
-  input  logic                                   check_holds_i,
-
-  // Results.
-  output logic [N-1:0]                           want_done_o,
-  input  logic                                   done_go_i,
-  input  logic [SlotW-1:0]                       done_slot_i
+  // The unit's: its root, and the rays it accepts (into the setup).
+  input  rt_pkg::octree_node_t                   cfg_root_i,
+  input  rt_pkg::isect_ray_t                     ray_data_i
 );
 
   localparam int P       = rt_pkg::POS_W;
@@ -210,20 +169,70 @@ module rt_octree_slots #(
 
   // ---- Events ----------------------------------------------------------------------------
   logic [N-1:0] alloc_oh, init_oh, visit_oh, node_oh, rsp_oh, check_oh, done_oh, desc_oh, fin_oh;
-  assign alloc_oh = onehot(alloc_i, alloc_slot_i);
-  assign init_oh  = onehot(init_i, init_slot_i);
-  assign visit_oh = onehot(visit_go_i, visit_slot_i);
-  assign node_oh  = onehot(node_go_i, node_slot_i);
-  assign rsp_oh   = onehot(node_rsp_valid_i, node_rsp_slot_i);
-  assign check_oh = onehot(check_go_i, check_slot_i);
-  assign done_oh  = onehot(done_go_i, done_slot_i);
+  assign alloc_oh = onehot(alloc, alloc_slot);
+  assign init_oh  = onehot(init, init_slot);
+  assign visit_oh = onehot(visit_go, visit_slot);
+  assign node_oh  = onehot(node_go, node_slot);
+  assign rsp_oh   = onehot(node_valid, node_tag);
+  assign check_oh = onehot(check_go, check_slot);
+  assign done_oh  = onehot(done_go, done_slot);
   assign desc_oh  = onehot(desc_q, desc_slot_q);
   assign fin_oh   = onehot(fin_q, fin_slot_q);
 
+  // ---- The ray's setup (rt_octree_setup) ------------------------------------------------
+  logic                 init_enter;
+  logic [2:0]           init_mirror, init_active;
+  logic [3*ORG_W-1:0]   init_origin;
+  logic [3*T_W-1:0]     init_t0, init_t1;
+
+  rt_octree_setup #(.SlotW(SlotW)) u_setup (
+    .clk_i,
+    .rst_ni,
+    .valid_i  (alloc),
+    .slot_i   (alloc_slot),
+    .ray_i    (ray_data_i),
+    .valid_o  (init),
+    .slot_o   (init_slot),
+    .ray_o    (init_ray),
+    .mirror_o (init_mirror),
+    .active_o (init_active),
+    .origin_o (init_origin),
+    .t0_o     (init_t0),
+    .t1_o     (init_t1),
+    .common_o (init_den),
+    .dom_o    (init_dom),
+    .enter_o  (init_enter)
+  );
+
+  // ---- Child groups, and the visited node's record --------------------------------------
+  // A slot's child group as it arrives (plain vectors, read into group_t:
+  // Yosys 0.23 keeps only one element's flops of an unpacked array of a packed
+  // struct, reads a two-dimensional packed array only inside a struct, and a
+  // package type only outside one). The visited node's record is the root's at
+  // depth 0, else entry `visit_sel` of the slot's child group (its parent's
+  // children).
+  typedef struct packed {
+    logic [rt_pkg::OCTREE_CHILDREN-1:0][rt_pkg::OCTREE_NODE_W-1:0] node;
+  } group_t;
+  logic [NodeRspW-1:0]  group_q [N];
+  group_t               visit_grp;
+  rt_pkg::octree_node_t visit_rec;
+  logic [2:0]           visit_sel;
+  logic                 visit_at_root;
+
+  always_ff @(posedge clk_i) begin : p_group
+    if (node_valid) group_q[node_tag] <= node_data;
+  end
+  // (The whole element first: Yosys 0.23 takes no field of an array element.)
+  assign visit_grp     = group_q[visit_slot];
+  assign visit_sel     = child_q[visit_slot] ^ mirror_q[visit_slot];
+  assign visit_at_root = (depth_q[visit_slot] == '0);
+  assign visit_rec     = visit_at_root ? cfg_root_i : visit_grp.node[visit_sel];
+
   // The visited node's record decides where the slot goes.
   logic visit_leaf, visit_empty;
-  assign visit_leaf  = visit_rec_i.leaf;
-  assign visit_empty = (visit_rec_i.count == '0);
+  assign visit_leaf  = visit_rec.leaf;
+  assign visit_empty = (visit_rec.count == '0);
 
   // ---- The advance lanes -----------------------------------------------------------
   // A slot advances (fx::nextChild) in NEXT, in CHECK without a bound, and when
@@ -254,7 +263,7 @@ module rt_octree_slots #(
   logic                  lane_go [LANES];
   logic [SlotW-1:0]      lane_slot [LANES];
 
-  assign want_adv    = next_q | (check_q & ~bound_i);
+  assign want_adv    = next_q | (check_q & ~bound);
   assign lane_req[0] = want_adv & ~in_lane;
   for (genvar l = 0; l < AdvLanes; l++) begin : g_adv_arb
     logic [N-1:0] gnt;
@@ -283,8 +292,8 @@ module rt_octree_slots #(
   end
   // The slot whose exit test fails advances in the exit lane in the cycle of
   // the answer (registers: rt_exit_test's output).
-  assign lane_go[CHECK_LANE]   = check_go_i && !check_holds_i;
-  assign lane_slot[CHECK_LANE] = check_slot_i;
+  assign lane_go[CHECK_LANE]   = check_go && !check_holds;
+  assign lane_slot[CHECK_LANE] = check_slot;
 
   // ---- The next advance, prepared ---------------------------------------------------
   // What an advance compares depends on the slot's parameters only: the exit
@@ -515,15 +524,15 @@ module rt_octree_slots #(
   rt_idx_count #(.N(N), .Starts(1), .SlotW(SlotW)) u_idx_count (
     .clk_i,
     .rst_ni,
-    .start_i       (visit_go_i),
-    .start_slot_i  (visit_slot_i),
-    .start_count_i (32'(visit_rec_i.count)),
-    .idx_go_i,
-    .idx_slot_i,
+    .start_i       (visit_go),
+    .start_slot_i  (visit_slot),
+    .start_count_i (32'(visit_rec.count)),
+    .idx_go_i      (idx_go),
+    .idx_slot_i    (idx_slot),
     .idx_issued_o  (idx_issued),
     .idx_last_o    (idx_last),
-    .res_valid_i,
-    .res_slot_i,
+    .res_valid_i   (isect_valid),
+    .res_slot_i    (isect_slot),
     .res_last_o    (res_last)
   );
 
@@ -561,7 +570,7 @@ module rt_octree_slots #(
       for (int l = 0; l < LANES; l++) stepped = stepped | onehot(lane_step[l], lane_slot[l]);
       free_q        <= (free_q & ~alloc_oh) | done_oh;
       setup_q       <= (setup_q & ~init_oh) | alloc_oh;
-      enter_q       <= (enter_q & ~visit_oh) | (init_oh & {N{init_enter_i}})
+      enter_q       <= (enter_q & ~visit_oh) | (init_oh & {N{init_enter}})
                        | (desc_oh & {N{!desc_behind}}) | to_enter | (rsp_oh & wait_refill_q);
       group_req_q   <= (group_req_q & ~node_oh) | visit_group;
       refill_req_q  <= (refill_req_q & ~node_oh) | to_refill;
@@ -570,15 +579,15 @@ module rt_octree_slots #(
       fetch_q       <= (fetch_q & ~fin_oh) | visit_fetch;
       check_q       <= (check_q & ~adv_oh & ~check_oh) | fin_oh | visit_check;
       next_q        <= (next_q & ~adv_oh) | to_next | (desc_oh & {N{desc_behind}});
-      done_q        <= (done_q & ~done_oh) | (init_oh & {N{!init_enter_i}}) | to_done
-                       | (check_oh & {N{check_holds_i}});
-      iss_q         <= (iss_q & ~onehot(idx_last, idx_slot_i)) | visit_fetch;
+      done_q        <= (done_q & ~done_oh) | (init_oh & {N{!init_enter}}) | to_done
+                       | (check_oh & {N{check_holds}});
+      iss_q         <= (iss_q & ~onehot(idx_last, idx_slot)) | visit_fetch;
       gv_q          <= (gv_q & ~popped & ~init_oh) | rsp_oh;
-      desc_q        <= node_rsp_valid_i && wait_group_q[node_rsp_slot_i];
-      desc_slot_q   <= node_rsp_slot_i;
+      desc_q        <= node_valid && wait_group_q[node_tag];
+      desc_slot_q   <= node_tag;
       // The result that completes the leaf: FETCH ends in the next cycle.
       fin_q         <= res_last;
-      fin_slot_q    <= res_slot_i;
+      fin_slot_q    <= isect_slot;
       // The slots whose parameters are written at this edge (p_walk).
       fresh_q       <= stepped | desc_oh | init_oh;
     end
@@ -608,12 +617,12 @@ module rt_octree_slots #(
       child_q[desc_slot_q] <= desc_child_d;
       depth_q[desc_slot_q] <= desc_depth + 1'b1;
     end
-    if (init_i) begin
-      t0_q[init_slot_i]    <= init_t0_i;
-      t1_q[init_slot_i]    <= init_t1_i;
-      depth_q[init_slot_i] <= '0;
-      grp_q[init_slot_i]   <= '0;
-      child_q[init_slot_i] <= '0;
+    if (init) begin
+      t0_q[init_slot]    <= init_t0;
+      t1_q[init_slot]    <= init_t1;
+      depth_q[init_slot] <= '0;
+      grp_q[init_slot]   <= '0;
+      child_q[init_slot] <= '0;
     end
   end
 
@@ -626,56 +635,59 @@ module rt_octree_slots #(
 
   // The ray's setup, and the current node's record.
   always_ff @(posedge clk_i) begin : p_ray
-    if (init_i) begin
-      mirror_q[init_slot_i] <= init_mirror_i;
-      active_q[init_slot_i] <= init_active_i;
-      org_q[init_slot_i]    <= init_origin_i;
+    if (init) begin
+      mirror_q[init_slot] <= init_mirror;
+      active_q[init_slot] <= init_active;
+      org_q[init_slot]    <= init_origin;
     end
   end
 
   always_ff @(posedge clk_i) begin : p_node
-    if (visit_go_i) first_q[visit_slot_i] <= visit_rec_i.first;
+    if (visit_go) first_q[visit_slot] <= visit_rec.first;
   end
 
   always_ff @(posedge clk_i) begin : p_desc_operands
-    if (node_rsp_valid_i && wait_group_q[node_rsp_slot_i]) begin
-      desc_op_t0_q     <= t0_q[node_rsp_slot_i];
-      desc_op_t1_q     <= t1_q[node_rsp_slot_i];
-      desc_op_org_q    <= org_q[node_rsp_slot_i];
-      desc_op_active_q <= active_q[node_rsp_slot_i];
-      desc_op_depth_q  <= depth_q[node_rsp_slot_i];
+    if (node_valid && wait_group_q[node_tag]) begin
+      desc_op_t0_q     <= t0_q[node_tag];
+      desc_op_t1_q     <= t1_q[node_tag];
+      desc_op_org_q    <= org_q[node_tag];
+      desc_op_active_q <= active_q[node_tag];
+      desc_op_depth_q  <= depth_q[node_tag];
     end
   end
 
   // ---- Outputs ----------------------------------------------------------------------------
-  logic [2:0] visit_sel;
-  assign visit_sel       = child_q[visit_slot_i] ^ mirror_q[visit_slot_i];
-  assign visit_at_root_o = (depth_q[visit_slot_i] == '0);
-  assign visit_sel_o     = visit_sel;
-  assign visit_node_id_o = visit_at_root_o ? '0 : grp_q[visit_slot_i] + 32'(visit_sel);
-  assign node_addr_o     = ADDR_W'(group_req_q[node_slot_i] ? first_q[node_slot_i] : grp_q[node_slot_i]);
-  assign idx_addr_o      = ADDR_W'(first_q[idx_slot_i] + idx_issued);
-  assign check_exit_o    = min_active(active_q[check_sel_i], t1_q[check_sel_i][0*T_W +: T_W], t1_q[check_sel_i][1*T_W +: T_W],
-                                      t1_q[check_sel_i][2*T_W +: T_W]);
+  assign visit_id        = visit_at_root ? '0 : grp_q[visit_slot] + 32'(visit_sel);
+  // (The walk reads the exit-test state from bound, not the result's hit.)
+  logic unused_isect_hit;
+  assign unused_isect_hit = isect_hit;
+  // A leaf's triangles are counted when it is entered.
+  assign tests_add       = visit_go && visit_leaf;
+  assign tests_slot      = visit_slot;
+  assign tests_num       = 32'(visit_rec.count);
+  assign node_addr     = ADDR_W'(group_req_q[node_slot] ? first_q[node_slot] : grp_q[node_slot]);
+  assign idx_addr      = ADDR_W'(first_q[idx_slot] + idx_issued);
+  assign check_exit    = min_active(active_q[check_sel], t1_q[check_sel][0*T_W +: T_W], t1_q[check_sel][1*T_W +: T_W],
+                                      t1_q[check_sel][2*T_W +: T_W]);
 
-  assign free_o         = free_q;
-  assign want_visit_o   = enter_q;
-  assign want_node_o    = group_req_q | refill_req_q;
-  assign want_idx_o     = iss_q;
-  assign want_check_o   = check_q & bound_i;
-  assign want_done_o    = done_q;
-  assign fetching_o     = fetch_q;
-  assign waiting_node_o = wait_group_q | wait_refill_q;
+  assign free         = free_q;
+  assign want_visit   = enter_q;
+  assign want_node    = group_req_q | refill_req_q;
+  assign want_idx     = iss_q;
+  assign want_check   = check_q & bound;
+  assign want_done    = done_q;
+  assign fetching     = fetch_q;
 
 `ifdef RT_ASSERT_ON
 `include "rt_assert.svh"
   // Events meet slots in the states that expect them.
-  `RT_CHECK_IF(a_alloc_free, alloc_i, free_q[alloc_slot_i])
-  `RT_CHECK_IF(a_init_setup, init_i, setup_q[init_slot_i])
-  `RT_CHECK_IF(a_visit_enter, visit_go_i, enter_q[visit_slot_i])
-  `RT_CHECK_IF(a_idx_fetch, idx_go_i, iss_q[idx_slot_i])
-  `RT_CHECK_IF(a_res_fetch, res_valid_i, fetch_q[res_slot_i])
-  `RT_CHECK_IF(a_check_wants, check_go_i, check_q[check_slot_i] && bound_i[check_slot_i])
+  `RT_CHECK_IF(a_alloc_free, alloc, free_q[alloc_slot])
+  `RT_CHECK_IF(a_init_setup, init, setup_q[init_slot])
+  `RT_CHECK_IF(a_visit_enter, visit_go, enter_q[visit_slot])
+  `RT_CHECK_IF(a_node_rsp_slot, node_valid, wait_group_q[node_tag] || wait_refill_q[node_tag])
+  `RT_CHECK_IF(a_idx_fetch, idx_go, iss_q[idx_slot])
+  `RT_CHECK_IF(a_res_fetch, isect_valid, fetch_q[isect_slot])
+  `RT_CHECK_IF(a_check_wants, check_go, check_q[check_slot] && bound[check_slot])
   // A lane's slot has its advance prepared (p_prep).
   for (genvar l = 0; l < LANES; l++) begin : g_prepared
     `RT_CHECK_IF(a_prepared, lane_go[l], !fresh_q[lane_slot[l]])

@@ -2,7 +2,6 @@
 # (the generated package is read first by the script).
 -f rt_trav_shell.f
 lib/rt_mirror_pairs.sv
-bvh/rt_bvh_setup.sv
 bvh/rt_bvh_box.sv
 bvh/rt_bvh_slots.sv
 bvh/rt_bvh.sv

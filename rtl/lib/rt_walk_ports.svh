@@ -1,0 +1,92 @@
+// The ports between rt_trav_shell and a unit's walk (its slots module): one
+// list for both ends and for the nets of the unit's top that joins them with
+// `.*`. Each name is the same at both ends, so it carries no _i/_o suffix;
+// RT_TO_SHELL and RT_TO_WALK give its direction.
+//
+// Define RT_WALK_PORTS_OF_SHELL or RT_WALK_PORTS_OF_WALK before including it in
+// a port list (every entry then ends with a comma: more ports must follow);
+// with neither, it declares the nets. It undefines what it defines.
+// Needs N, SlotW, NodeRspW, VisitIdW, ExitW, DenW and TestPorts (the figures
+// RT_WALK_PARAMS passes to both ends).
+`ifdef RT_WALK_PORTS_OF_SHELL
+  `define RT_TO_SHELL input
+  `define RT_TO_WALK  output
+  `define RT_END      ,
+`elsif RT_WALK_PORTS_OF_WALK
+  `define RT_TO_SHELL output
+  `define RT_TO_WALK  input
+  `define RT_END      ,
+`else
+  `define RT_TO_SHELL
+  `define RT_TO_WALK
+  `define RT_END      ;
+`endif
+`ifndef RT_WALK_PARAMS
+  `define RT_WALK_PARAMS .N(N), .SlotW(SlotW), .NodeRspW(NodeRspW), .VisitIdW(VisitIdW), \
+                         .ExitW(ExitW), .DenW(DenW), .TestPorts(TestPorts)
+`endif
+
+  // Allocation (a ray accepted into alloc_slot) and the slot's setup (init:
+  // the walk's setup hands the shell the ray, its dominant |d| and the exit
+  // test's denominator).
+  `RT_TO_SHELL logic [N-1:0]                     free                      `RT_END
+  `RT_TO_WALK  logic                             alloc                     `RT_END
+  `RT_TO_WALK  logic [SlotW-1:0]                 alloc_slot                `RT_END
+  `RT_TO_SHELL logic                             init                      `RT_END
+  `RT_TO_SHELL logic [SlotW-1:0]                 init_slot                 `RT_END
+  `RT_TO_SHELL rt_pkg::isect_ray_t               init_ray                  `RT_END
+  `RT_TO_SHELL logic [rt_pkg::DIR_W-1:0]         init_dom                  `RT_END
+  `RT_TO_SHELL logic [DenW-1:0]                  init_den                  `RT_END
+
+  // Node reads (a grid's cells, an octree's child groups, a BVH's nodes) and
+  // their responses.
+  `RT_TO_SHELL logic [N-1:0]                     want_node                 `RT_END
+  `RT_TO_WALK  logic                             node_go                   `RT_END
+  `RT_TO_WALK  logic [SlotW-1:0]                 node_slot                 `RT_END
+  `RT_TO_SHELL logic [rt_pkg::MEM_ADDR_W-1:0]    node_addr                 `RT_END  // of node_slot
+  `RT_TO_WALK  logic                             node_valid                `RT_END
+  `RT_TO_WALK  logic [SlotW-1:0]                 node_tag                  `RT_END
+  `RT_TO_WALK  logic [NodeRspW-1:0]              node_data                 `RT_END
+
+  // Visits: a granted slot enters a region (the shell counts it, and writes
+  // its visit record with visit_id).
+  `RT_TO_SHELL logic [N-1:0]                     want_visit                `RT_END
+  `RT_TO_WALK  logic                             visit_go                  `RT_END
+  `RT_TO_WALK  logic [SlotW-1:0]                 visit_slot                `RT_END
+  `RT_TO_SHELL logic [VisitIdW-1:0]              visit_id                  `RT_END  // of visit_slot
+
+  // Tests counted: port p adds tests_num[p] to slot tests_slot[p]'s count.
+  `RT_TO_SHELL logic [TestPorts-1:0]             tests_add                 `RT_END
+  `RT_TO_SHELL logic [TestPorts*SlotW-1:0]       tests_slot                `RT_END
+  `RT_TO_SHELL logic [TestPorts*32-1:0]          tests_num                 `RT_END
+
+  // Index reads, and the intersection results with the closest-hit state.
+  `RT_TO_SHELL logic [N-1:0]                     want_idx                  `RT_END
+  `RT_TO_WALK  logic                             idx_go                    `RT_END
+  `RT_TO_WALK  logic [SlotW-1:0]                 idx_slot                  `RT_END
+  `RT_TO_SHELL logic [rt_pkg::MEM_ADDR_W-1:0]    idx_addr                  `RT_END  // of idx_slot
+  `RT_TO_SHELL logic [N-1:0]                     fetching                  `RT_END  // slots that expect triangles (assertions)
+  `RT_TO_WALK  logic                             isect_valid               `RT_END  // a result of slot isect_slot
+  `RT_TO_WALK  logic [SlotW-1:0]                 isect_slot                `RT_END
+  `RT_TO_WALK  logic                             isect_hit                 `RT_END  // it is a hit
+  `RT_TO_WALK  logic [N-1:0]                     bound                     `RT_END  // a closest hit so far, or a segment end
+
+  // Exit tests: granted in cycle t, the exit parameter of check_sel read in
+  // t+1, the answer for check_slot in t + EXIT_TEST_LATENCY.
+  `RT_TO_SHELL logic [N-1:0]                     want_check                `RT_END
+  `RT_TO_WALK  logic [SlotW-1:0]                 check_sel                 `RT_END
+  `RT_TO_SHELL logic [ExitW-1:0]                 check_exit                `RT_END  // of check_sel
+  `RT_TO_WALK  logic                             check_go                  `RT_END
+  `RT_TO_WALK  logic [SlotW-1:0]                 check_slot                `RT_END
+  `RT_TO_WALK  logic                             check_holds               `RT_END
+
+  // Results: a granted slot's record leaves, and the slot is free again.
+  `RT_TO_SHELL logic [N-1:0]                     want_done                 `RT_END
+  `RT_TO_WALK  logic                             done_go                   `RT_END
+  `RT_TO_WALK  logic [SlotW-1:0]                 done_slot                 `RT_END
+
+`undef RT_TO_SHELL
+`undef RT_TO_WALK
+`undef RT_END
+`undef RT_WALK_PORTS_OF_SHELL
+`undef RT_WALK_PORTS_OF_WALK
