@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <charconv>
 #include <filesystem>
+#include <optional>
+#include <type_traits>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include "common/error.h"
+#include "common/json_keys.h"
 #include "golden/units.h"
 
 namespace lancer::sweep {
@@ -33,6 +36,27 @@ std::string replaceAll(std::string s, const std::string& from, const std::string
 }
 
 }  // namespace
+
+// A spec file's keys, each with the member it sets, once (common/json_keys.h):
+// Spec::fromJson, Spec::toJson and fromJson's list of the known keys (in this
+// order) all read this table.
+template <class S, class Fn>
+  requires std::is_same_v<std::remove_const_t<S>, Spec>
+static void forEachKey(S& s, Fn&& fn) {
+  fn("widths", s.widths), fn("scenes", s.scenes), fn("units", s.units), fn("models", s.models);
+  fn("image", s.image), fn("chunks", s.chunks), fn("crack_rays", s.crackRays), fn("seed", s.seed);
+  fn("grid_res", s.gridRes), fn("mem_latency", s.memLatency), fn("clock_mhz", s.clockMhz), fn("synth", s.synth);
+  fn("synth_units", s.synthUnits), fn("source", s.source), fn("tree_pattern", s.treePattern);
+  fn("trees", s.trees), fn("cmake_args", s.cmakeArgs), fn("build_jobs", s.buildJobs);
+}
+
+// A plan's job record, likewise (Job::toJson, Job::fromJson).
+template <class J, class Fn>
+  requires std::is_same_v<std::remove_const_t<J>, Job>
+static void forEachKey(J& job, Fn&& fn) {
+  fn("key", job.key), fn("width", job.width), fn("unit", job.unit), fn("model", job.model);
+  fn("scene", job.scene), fn("set", job.set), fn("chunk", job.chunk);
+}
 
 std::string Width::name() const { return fmt::format("{}/{}", pos, dir); }
 std::string Width::tag() const { return fmt::format("{}-{}", pos, dir); }
@@ -119,47 +143,41 @@ std::string Spec::treeOf(const Width& w) const {
 }
 
 nlohmann::json Spec::toJson() const {
-  std::vector<std::string> ws;
-  for (const Width& w : widths) ws.push_back(w.name());
-  return {{"widths", ws},           {"scenes", scenes},         {"units", units},
-          {"models", models},       {"image", image},           {"chunks", chunks},
-          {"crack_rays", crackRays}, {"seed", seed},             {"grid_res", gridRes},
-          {"mem_latency", memLatency}, {"clock_mhz", clockMhz ? nlohmann::json(*clockMhz) : nlohmann::json()}, {"synth", synth}, {"synth_units", synthUnits},
-          {"source", source},       {"tree_pattern", treePattern}, {"trees", trees},
-          {"cmake_args", cmakeArgs}, {"build_jobs", buildJobs}};
+  const auto widthNames = [](const std::vector<Width>& widths) {
+    std::vector<std::string> names;
+    for (const Width& w : widths) names.push_back(w.name());
+    return nlohmann::json(names);
+  };
+  const auto clock = [](const std::optional<double>& mhz) { return mhz ? nlohmann::json(*mhz) : nlohmann::json(); };
+  return json_keys::write(*this, json_keys::Overloaded{widthNames, clock, json_keys::Plain{}});
 }
 
 Spec Spec::fromJson(const nlohmann::json& j, const std::string& where) {
   Spec s;
   if (!j.is_object()) throw InputError(fmt::format("{}: a sweep spec is a JSON object", where));
-  static const std::vector<std::string> known{"widths", "scenes", "units", "models", "image", "chunks",
-                                              "crack_rays", "seed", "grid_res", "mem_latency", "clock_mhz",
-                                              "synth", "synth_units", "source", "tree_pattern", "trees", "cmake_args",
-                                              "build_jobs"};
+  static const std::vector<std::string> known = [] {
+    std::vector<std::string> keys;
+    Spec unused;
+    forEachKey(unused, [&](const char* key, const auto&) { keys.emplace_back(key); });
+    return keys;
+  }();
   for (const auto& [key, value] : j.items()) {
     if (std::find(known.begin(), known.end(), key) == known.end()) {
       throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, key, fmt::join(known, ", ")));
     }
   }
   try {
-    for (const std::string& w : j.value("widths", std::vector<std::string>{})) s.widths.push_back(parseWidth(w, where));
-    s.scenes = j.value("scenes", s.scenes);
-    s.units = j.value("units", s.units);
-    s.models = j.value("models", s.models);
-    s.image = j.value("image", s.image);
-    s.chunks = j.value("chunks", s.chunks);
-    s.crackRays = j.value("crack_rays", s.crackRays);
-    s.seed = j.value("seed", s.seed);
-    s.gridRes = j.value("grid_res", s.gridRes);
-    s.memLatency = j.value("mem_latency", s.memLatency);
-    if (j.contains("clock_mhz") && !j["clock_mhz"].is_null()) s.clockMhz = j["clock_mhz"].get<double>();
-    s.synth = j.value("synth", s.synth);
-    s.synthUnits = j.value("synth_units", s.synthUnits);
-    s.source = j.value("source", s.source);
-    s.treePattern = j.value("tree_pattern", s.treePattern);
-    s.trees = j.value("trees", s.trees);
-    s.cmakeArgs = j.value("cmake_args", s.cmakeArgs);
-    s.buildJobs = j.value("build_jobs", s.buildJobs);
+    const auto widths = [&](const nlohmann::json& spec, const char* key, std::vector<Width>& out) {
+      for (const std::string& w : spec.value(key, std::vector<std::string>{})) out.push_back(parseWidth(w, where));
+    };
+    const auto clock = [](const nlohmann::json& spec, const char* key, std::optional<double>& mhz) {
+      if (spec.contains(key) && !spec[key].is_null()) mhz = spec[key].get<double>();
+    };
+    // Any other key may be left out: its member keeps its default.
+    const auto orDefault = [](const nlohmann::json& spec, const char* key, auto& member) {
+      member = spec.value(key, member);
+    };
+    json_keys::read(j, s, json_keys::Overloaded{widths, clock, orDefault});
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: {}", where, e.what()));
   }
@@ -167,19 +185,16 @@ Spec Spec::fromJson(const nlohmann::json& j, const std::string& where) {
 }
 
 nlohmann::json Job::toJson() const {
-  return {{"key", key}, {"width", width.name()}, {"unit", unit}, {"model", model},
-          {"scene", scene}, {"set", set}, {"chunk", chunk}};
+  return json_keys::write(
+      *this, json_keys::Overloaded{[](const Width& w) { return nlohmann::json(w.name()); }, json_keys::Plain{}});
 }
 
 Job Job::fromJson(const nlohmann::json& j) {
+  const auto width = [](const nlohmann::json& plan, const char* key, Width& w) {
+    w = parseWidth(plan.at(key).get<std::string>(), "plan");
+  };
   Job job;
-  job.key = j.at("key").get<std::string>();
-  job.width = parseWidth(j.at("width").get<std::string>(), "plan");
-  job.unit = j.at("unit").get<std::string>();
-  job.model = j.at("model").get<std::string>();
-  job.scene = j.at("scene").get<int>();
-  job.set = j.at("set").get<std::string>();
-  job.chunk = j.at("chunk").get<int>();
+  json_keys::read(j, job, json_keys::Overloaded{width, json_keys::Plain{}});
   return job;
 }
 
