@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <optional>
+#include <string_view>
+#include <type_traits>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include "common/error.h"
+#include "common/json_keys.h"
 #include "driver/job.h"
 #include "driver/report.h"
 #include "oracle/exact.h"
@@ -18,7 +22,10 @@ namespace {
 
 constexpr std::array<const char*, 4> kVerdictKeys = {"correct", "tie", "within_bound", "beyond_bound"};
 
-nlohmann::json optionalJson(const std::optional<uint32_t>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
+// A ray id or null, as the report writes the first rays of a kind.
+struct OptionalJson {
+  nlohmann::json operator()(const std::optional<uint32_t>& v) const { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
+};
 
 double share(uint64_t part, uint64_t whole) { return whole ? 100.0 * double(part) / double(whole) : 0.0; }
 
@@ -82,83 +89,70 @@ bool latticeRayMisses(const ExactOracle& lattice, const std::optional<QuantizedR
 
 }  // namespace
 
+// A report row's keys, each with the member it holds, once
+// (common/json_keys.h): StressRow::toJson and StressRow::fromJson read this table (toJson adds the share that differs,
+// differs_from_exact_percent, which fromJson has no member for).
+template <class R, class Fn>
+  requires std::is_same_v<std::remove_const_t<R>, StressRow>
+static void forEachKey(R& r, Fn&& fn) {
+  fn("case", r.caseName), fn("variant", r.variant), fn("unit", r.unit), fn("model", r.model);
+  fn("rays", r.rays), fn("rays_in_lattice", r.inLattice), fn("hits", r.hits), fn("mismatches", r.mismatches);
+  fn("differs_from_exact", r.differs), fn("hit_miss_differs_from_exact", r.hitMissDiffers);
+  fn("verdicts", r.verdicts), fn("must_hit", r.mustHit), fn("cracks", r.cracks);
+  fn("lattice_misses", r.latticeMisses), fn("lattice_exact", r.latticeExact), fn("differs_from_base", r.baseDiffers);
+  fn("first_beyond_bound", r.firstBeyond), fn("first_beyond_bound_details", r.firstBeyondDetails);
+  fn("first_crack", r.firstCrack), fn("first_differs_from_base", r.firstBaseDiffers);
+  fn("host_seconds", r.hostSeconds);
+}
+
+// A placement's keys, likewise (PlacementInfo::toJson, PlacementInfo::fromJson).
+template <class P, class Fn>
+  requires std::is_same_v<std::remove_const_t<P>, PlacementInfo>
+static void forEachKey(P& p, Fn&& fn) {
+  fn("case", p.caseName), fn("variant", p.variant), fn("description", p.description), fn("rays", p.rays);
+  fn("triangles", p.triangles), fn("lattice_rays_rejected", p.latticeRejected), fn("lattice", p.fit);
+}
+
 bool StressRow::failed(bool warned) const {
   return mismatches || verdicts[3] || (latticeExact && baseDiffers) || (cracks && !warned);
 }
 
 nlohmann::json StressRow::toJson() const {
-  nlohmann::json v;
-  for (size_t k = 0; k < kVerdictKeys.size(); ++k) v[kVerdictKeys[k]] = verdicts[k];
-  return {{"case", caseName},
-          {"variant", variant},
-          {"unit", unit},
-          {"model", model},
-          {"rays", rays},
-          {"rays_in_lattice", inLattice},
-          {"hits", hits},
-          {"mismatches", mismatches},
-          {"differs_from_exact", differs},
-          {"differs_from_exact_percent", share(differs, rays)},
-          {"hit_miss_differs_from_exact", hitMissDiffers},
-          {"verdicts", v},
-          {"must_hit", mustHit},
-          {"cracks", cracks},
-          {"lattice_misses", latticeMisses},
-          {"lattice_exact", latticeExact},
-          {"differs_from_base", baseDiffers},
-          {"first_beyond_bound", optionalJson(firstBeyond)},
-          {"first_beyond_bound_details", firstBeyondDetails},
-          {"first_crack", optionalJson(firstCrack)},
-          {"first_differs_from_base", optionalJson(firstBaseDiffers)},
-          {"host_seconds", hostSeconds}};
+  const auto verdictsJson = [](const std::array<uint64_t, 4>& counts) {
+    nlohmann::json v;
+    for (size_t k = 0; k < kVerdictKeys.size(); ++k) v[kVerdictKeys[k]] = counts[k];
+    return v;
+  };
+  nlohmann::json j = json_keys::write(*this, json_keys::Overloaded{verdictsJson, OptionalJson{}, json_keys::Plain{}});
+  j["differs_from_exact_percent"] = share(differs, rays);
+  return j;
 }
 
 nlohmann::json PlacementInfo::toJson() const {
-  return {{"case", caseName}, {"variant", variant}, {"description", description}, {"rays", rays}, {"triangles", triangles},
-          {"lattice_rays_rejected", latticeRejected}, {"lattice", fit.toJson()}};
+  const auto fitJson = [](const LatticeFit& f) { return f.toJson(); };
+  return json_keys::write(*this, json_keys::Overloaded{fitJson, json_keys::Plain{}});
 }
 
 PlacementInfo PlacementInfo::fromJson(const nlohmann::json& p) {
+  const auto fit = [](const nlohmann::json& j, const char* key, LatticeFit& f) { f = LatticeFit::fromJson(j.at(key)); };
   PlacementInfo info;
-  info.caseName = p.at("case");
-  info.variant = p.at("variant");
-  info.description = p.at("description");
-  info.rays = p.at("rays");
-  info.triangles = p.at("triangles");
-  info.latticeRejected = p.at("lattice_rays_rejected");
-  info.fit.shortestExtentUnits = p.at("lattice").at("shortest_extent_lattice_units");
-  info.fit.floatSpacingUnits = p.at("lattice").at("float_spacing_lattice_units");
-  info.fit.warning = p.at("lattice").value("warning", "");
+  json_keys::read(p, info, json_keys::Overloaded{fit, json_keys::Plain{}});
   return info;
 }
 
 StressRow StressRow::fromJson(const nlohmann::json& row) {
-  StressRow s;
-  s.caseName = row.at("case");
-  s.variant = row.at("variant");
-  s.unit = row.at("unit");
-  s.model = row.at("model");
-  s.rays = row.at("rays");
-  s.inLattice = row.at("rays_in_lattice");
-  s.hits = row.at("hits");
-  s.mismatches = row.at("mismatches");
-  s.differs = row.at("differs_from_exact");
-  s.hitMissDiffers = row.at("hit_miss_differs_from_exact");
-  const auto& v = row.at("verdicts");
-  s.verdicts = {v.at("correct"), v.at("tie"), v.at("within_bound"), v.at("beyond_bound")};
-  s.mustHit = row.at("must_hit");
-  s.cracks = row.at("cracks");
-  s.latticeMisses = row.value("lattice_misses", uint64_t(0));
-  s.latticeExact = row.at("lattice_exact");
-  s.baseDiffers = row.at("differs_from_base");
-  const auto first = [&](const char* key) -> std::optional<uint32_t> {
-    return row.at(key).is_null() ? std::nullopt : std::optional<uint32_t>(row.at(key).get<uint32_t>());
+  const auto verdicts = [](const nlohmann::json& j, const char* key, std::array<uint64_t, 4>& counts) {
+    for (size_t k = 0; k < kVerdictKeys.size(); ++k) counts[k] = j.at(key).at(kVerdictKeys[k]).get<uint64_t>();
   };
-  s.firstBeyond = first("first_beyond_bound");
-  s.firstBeyondDetails = row.at("first_beyond_bound_details");
-  s.firstCrack = first("first_crack");
-  s.firstBaseDiffers = first("first_differs_from_base");
-  s.hostSeconds = row.at("host_seconds");
+  const auto first = [](const nlohmann::json& j, const char* key, std::optional<uint32_t>& id) {
+    if (!j.at(key).is_null()) id = j.at(key).get<uint32_t>();
+  };
+  const auto count = [](const nlohmann::json& j, const char* key, uint64_t& n) {
+    // lattice_misses is absent from the reports written before it was counted.
+    n = std::string_view(key) == "lattice_misses" ? j.value(key, uint64_t(0)) : j.at(key).get<uint64_t>();
+  };
+  StressRow s;
+  json_keys::read(row, s, json_keys::Overloaded{verdicts, first, count, json_keys::Plain{}});
   return s;
 }
 

@@ -125,6 +125,11 @@ nlohmann::json LatticeFit::toJson() const {
   return j;
 }
 
+LatticeFit LatticeFit::fromJson(const nlohmann::json& j) {
+  return {j.at("shortest_extent_lattice_units").get<double>(), j.at("float_spacing_lattice_units").get<double>(),
+          j.value("warning", "")};
+}
+
 LatticeFit latticeFit(const Scene& scene, const Quantizer& quantizer) {
   LatticeFit fit;
   const glm::vec3 extent = scene.bounds.diagonal();

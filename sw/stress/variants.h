@@ -49,6 +49,7 @@ struct LatticeFit {
   double floatSpacingUnits = 0;
   std::string warning;
   nlohmann::json toJson() const;
+  static LatticeFit fromJson(const nlohmann::json& j);  // toJson's object back
 };
 LatticeFit latticeFit(const Scene& scene, const Quantizer& quantizer);
 
