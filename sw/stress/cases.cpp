@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <random>
@@ -111,6 +112,28 @@ std::vector<Triangle> randomTriangles(Draw& draw, int count, float minSize, floa
 Ray aimedAt(Draw& draw, const glm::vec3& target, float distance) {
   const glm::vec3 from = target + distance * draw.unit();
   return {from, target - from, kInfinity};
+}
+
+// The shape of the cases on randomTriangles(draw, count, minSize, maxSize).
+struct RandomTriangles {
+  int count;
+  float minSize, maxSize;
+};
+
+// A case `name` on random triangles whose every ray is drawn at one of them,
+// picked at random: rayAt(draw, triangle, scene) gives the ray, or none to
+// pick again.
+template <class RayAt>
+StressCase raysAtTriangles(std::string name, std::string description, size_t rays, uint64_t seed,
+                           RandomTriangles shape, RayAt rayAt) {
+  StressCase c = named(name, std::move(description));
+  Draw draw(seed);
+  c.scene = makeScene("stress:" + name, randomTriangles(draw, shape.count, shape.minSize, shape.maxSize));
+  while (c.rays.size() < rays) {
+    const Triangle& t = draw.pick(c.scene.triangles);
+    if (const std::optional<Ray> ray = rayAt(draw, t, c.scene)) c.rays.push_back(*ray);
+  }
+  return c;
 }
 
 // ---- closed-mesh --------------------------------------------------------------
@@ -256,22 +279,19 @@ StressCase axisPlanes(size_t rays, uint64_t seed) {
 // ---- grazing ----------------------------------------------------------------------
 
 StressCase grazing(size_t rays, uint64_t seed) {
-  StressCase c = named("grazing", "rays 1e-2 to 1e-7 rad from a triangle's plane, at its inside and edges");
-  Draw draw(seed);
-  c.scene = makeScene("stress:grazing", randomTriangles(draw, 60, 0.3f, 0.7f));
-  while (c.rays.size() < rays) {
-    const Triangle& t = draw.pick(c.scene.triangles);
+  const auto rayAt = [](Draw& draw, const Triangle& t, const Scene&) -> std::optional<Ray> {
     const glm::vec3 n = glm::normalize(glm::cross(t.v1 - t.v0, t.v2 - t.v0));
     const glm::vec3 target = draw.coin() ? draw.inside(t) : draw.onEdge(t);
     // An in-plane direction, tilted out of the plane by a tiny angle.
     glm::vec3 along = glm::cross(n, draw.unit());
-    if (glm::length(along) < 1e-3f) continue;
+    if (glm::length(along) < 1e-3f) return std::nullopt;
     along = glm::normalize(along);
     const float angle = float(draw.logUniform(1e-7, 1e-2)) * (draw.coin() ? 1.0f : -1.0f);
     const glm::vec3 from = target - 1.5f * (along + angle * n);
-    c.rays.push_back({from, target - from, kInfinity});
-  }
-  return c;
+    return Ray{from, target - from, kInfinity};
+  };
+  return raysAtTriangles("grazing", "rays 1e-2 to 1e-7 rad from a triangle's plane, at its inside and edges", rays,
+                         seed, {60, 0.3f, 0.7f}, rayAt);
 }
 
 // ---- degenerate -------------------------------------------------------------------
@@ -327,31 +347,24 @@ StressCase coincident(size_t rays, uint64_t seed) {
 // ---- origin-on-surface ----------------------------------------------------------
 
 StressCase originOnSurface(size_t rays, uint64_t seed) {
-  StressCase c = named("origin-on-surface", "rays from a vertex or a point of a triangle: away, into it, along it");
-  Draw draw(seed);
-  c.scene = makeScene("stress:origin-on-surface", randomTriangles(draw, 80, 0.2f, 0.5f));
-  while (c.rays.size() < rays) {
-    const Triangle& t = draw.pick(c.scene.triangles);
+  const auto rayAt = [](Draw& draw, const Triangle& t, const Scene&) -> std::optional<Ray> {
     const glm::vec3 from = draw.integer(0, 2) == 0 ? t.v2 : draw.inside(t);
     const glm::vec3 n = glm::cross(t.v1 - t.v0, t.v2 - t.v0);
     glm::vec3 dir = draw.unit();
     if (draw.integer(0, 3) == 0) dir = glm::cross(n, dir);  // in the plane
-    if (glm::length(dir) == 0.0f) continue;
-    c.rays.push_back({from, dir, kInfinity});
-  }
-  return c;
+    if (glm::length(dir) == 0.0f) return std::nullopt;
+    return Ray{from, dir, kInfinity};
+  };
+  return raysAtTriangles("origin-on-surface", "rays from a vertex or a point of a triangle: away, into it, along it",
+                         rays, seed, {80, 0.2f, 0.5f}, rayAt);
 }
 
 // ---- tiny-components ------------------------------------------------------------
 
 StressCase tinyComponents(size_t rays, uint64_t seed) {
-  StressCase c = named("tiny-components", "direction components 1e-7 .. 1e-45 (subnormal), +0, -0 beside 1");
-  Draw draw(seed);
-  c.scene = makeScene("stress:tiny-components", randomTriangles(draw, 120, 0.1f, 0.4f));
-  constexpr std::array<float, 7> kTiny = {0.0f, -0.0f, 1e-7f, 1e-20f, 1e-30f, 1e-38f, 1.4e-45f};
-  const Aabb& b = c.scene.bounds;
-  while (c.rays.size() < rays) {
-    const Triangle& t = draw.pick(c.scene.triangles);
+  const auto rayAt = [](Draw& draw, const Triangle& t, const Scene& scene) -> std::optional<Ray> {
+    constexpr std::array<float, 7> kTiny = {0.0f, -0.0f, 1e-7f, 1e-20f, 1e-30f, 1e-38f, 1.4e-45f};
+    const Aabb& b = scene.bounds;
     const int axis = draw.integer(0, 2);
     glm::vec3 dir;
     for (int a = 0; a < 3; ++a) {
@@ -362,9 +375,10 @@ StressCase tinyComponents(size_t rays, uint64_t seed) {
     // Through a point of the triangle along the near-axis direction.
     glm::vec3 from = draw.inside(t);
     from[axis] = dir[axis] > 0 ? b.lo[axis] - 0.25f : b.hi[axis] + 0.25f;
-    c.rays.push_back({from, dir, kInfinity});
-  }
-  return c;
+    return Ray{from, dir, kInfinity};
+  };
+  return raysAtTriangles("tiny-components", "direction components 1e-7 .. 1e-45 (subnormal), +0, -0 beside 1", rays,
+                         seed, {120, 0.1f, 0.4f}, rayAt);
 }
 
 // ---- obj-text -------------------------------------------------------------------
