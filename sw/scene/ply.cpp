@@ -172,15 +172,20 @@ class Body {
     throw InputError(fmt::format("{}: {}", place(format_ == Format::Ascii ? line_ : at_), what));
   }
 
+  // The next ASCII word read by parse (parseFloat, parseInteger), or a failure
+  // saying it is not `what`.
+  template <class T>
+  T asciiNumber(std::optional<T> (*parse)(std::string_view), const char* what) {
+    const std::string_view word = token();
+    const std::optional<T> value = parse(word);
+    if (!value) fail(fmt::format("'{}' is not {}", word, what));
+    return *value;
+  }
+
   // A coordinate: ASCII text correctly rounded to float, a binary float as it
   // is, a double or an integer rounded once.
   float real(Scalar type) {
-    if (format_ == Format::Ascii) {
-      const std::string_view word = token();
-      const std::optional<float> value = parseFloat(word);
-      if (!value) fail(fmt::format("'{}' is not a number", word));
-      return *value;
-    }
+    if (format_ == Format::Ascii) return asciiNumber(parseFloat, "a number");
     switch (type) {
       case Scalar::Float32:
         return std::bit_cast<float>(uint32_t(binary(4)));
@@ -193,12 +198,7 @@ class Body {
 
   // A list length or an index.
   int64_t whole(Scalar type) {
-    if (format_ == Format::Ascii) {
-      const std::string_view word = token();
-      const std::optional<int64_t> value = parseInteger(word);
-      if (!value) fail(fmt::format("'{}' is not a whole number", word));
-      return *value;
-    }
+    if (format_ == Format::Ascii) return asciiNumber(parseInteger, "a whole number");
     const uint64_t raw = binary(sizeOf(type));
     switch (type) {
       case Scalar::Int8:
