@@ -1,9 +1,7 @@
 # `lancer run` on a scene with effects: every wave through the Verilated RTL
 # (and the SystemC models), bit-exact against golden, the plan and the SPD
 # counts in the report, no self-hits; the float reference's counts beside them.
-# (must_run: check_whitted.cmake's, which defines it before it runs anything.)
-set(LANCER_CLI_DEFINE_ONLY ON)
-include(${CMAKE_CURRENT_LIST_DIR}/check_whitted.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/cli_checks.cmake)
 
 foreach(run grid:rtl octree:rtl isect:rtl grid:systemc octree:rtl-systemc)
   string(REPLACE ":" ";" parts ${run})

@@ -1,13 +1,8 @@
 # `lancer trace` and `lancer run` on a tiny rays file: the CSV and the JSON
 # report carry what the README promises.
-function(must_run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT status EQUAL 0)
-    message(FATAL_ERROR "failed (${status}): ${ARGN}\n${out}\n${err}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/cli_checks.cmake)
 
-must_run(${LANCER} trace --rays ${DATA}/two.rays --accel grid --hits ${OUT}/two.csv --report ${OUT}/trace.json)
+must_run(printed ${LANCER} trace --rays ${DATA}/two.rays --accel grid --hits ${OUT}/two.csv --report ${OUT}/trace.json)
 file(STRINGS ${OUT}/two.csv lines)
 list(GET lines 0 header)
 if(NOT header STREQUAL "ray,hit,prim,t,u,v")
@@ -22,15 +17,10 @@ if(NOT row MATCHES "^0,1,3[01],1091\\.9[0-9]*,")  # the tall block front face, f
   message(FATAL_ERROR "ray 0 should hit the tall block at t = 1091.97: ${row}")
 endif()
 
-must_run(${LANCER} run --rays ${DATA}/two.rays --model golden --report ${OUT}/run.json --hits ${OUT}/run.csv)
-file(READ ${OUT}/run.json json)
-foreach(key rays mismatches cycles intersection_tests clock_hz intersections_per_second host_seconds
-            reference_disagreements)
-  string(JSON value ERROR_VARIABLE missing GET "${json}" ${key})
-  if(missing)
-    message(FATAL_ERROR "run report lacks '${key}': ${json}")
-  endif()
-endforeach()
+must_run(printed ${LANCER} run --rays ${DATA}/two.rays --model golden --report ${OUT}/run.json --hits ${OUT}/run.csv)
+json_of(${OUT}/run.json json)
+require_json_keys("${json}" run rays mismatches cycles intersection_tests clock_hz intersections_per_second host_seconds
+                  reference_disagreements)
 string(JSON mismatches GET "${json}" mismatches)
 string(JSON rays GET "${json}" rays)
 if(NOT mismatches EQUAL 0 OR NOT rays EQUAL 2)

@@ -1,20 +1,6 @@
 # `lancer render --whitted` and `lancer spd`: the plan and the SPD counts on the
 # terminal and in the report; the generated NFF file is the built-in scene.
-function(must_run var)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT status EQUAL 0)
-    message(FATAL_ERROR "failed (${status}): ${ARGN}\n${out}\n${err}")
-  endif()
-  set(${var} "${out}" PARENT_SCOPE)
-endfunction()
-
-function(json_of file var)
-  file(READ ${file} json)
-  set(${var} "${json}" PARENT_SCOPE)
-endfunction()
-if(LANCER_CLI_DEFINE_ONLY)  # included for its functions (check_effects_run.cmake)
-  return()
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/cli_checks.cmake)
 
 must_run(printed ${LANCER} render --scene ${DATA}/spheres.nff --whitted --sampling corners --width 24 --height 24
          --image ${OUT}/spheres.png --report ${OUT}/spheres.json)
@@ -25,12 +11,8 @@ foreach(line "refraction yes  material f@24: T 0.9, index of refraction 1.5" "ey
   endif()
 endforeach()
 json_of(${OUT}/spheres.json json)
-foreach(key eye_hit_rays reflect_rays refract_rays shadow_rays shadow_rays_blocked self_hits plan)
-  string(JSON value ERROR_VARIABLE missing GET "${json}" ${key})
-  if(missing)
-    message(FATAL_ERROR "whitted report lacks '${key}': ${json}")
-  endif()
-endforeach()
+require_json_keys("${json}" whitted eye_hit_rays reflect_rays refract_rays shadow_rays shadow_rays_blocked self_hits
+                  plan)
 string(JSON eye GET "${json}" eye_rays)
 string(JSON reflect GET "${json}" reflect_rays)
 string(JSON refract GET "${json}" refract_rays)
