@@ -36,6 +36,14 @@ std::vector<std::array<Vec, 2>> childBoxes(const BvhImage& image) {
   return boxes;
 }
 
+// Up to `count` of the image's child boxes, drawn at random (childBoxes shuffled).
+std::vector<std::array<Vec, 2>> someChildBoxes(const BvhImage& image, std::mt19937_64& rng, size_t count) {
+  std::vector<std::array<Vec, 2>> boxes = childBoxes(image);
+  std::shuffle(boxes.begin(), boxes.end(), rng);
+  boxes.resize(std::min(boxes.size(), count));
+  return boxes;
+}
+
 BvhCase makeCase(std::string name, BvhImage image, std::vector<QRay> rays) {
   return makeTraversalCase("bvh", std::move(name), std::move(image), std::move(rays));
 }
@@ -45,11 +53,8 @@ BvhCase makeCase(std::string name, BvhImage image, std::vector<QRay> rays) {
 BvhCase axisParallel() {
   std::mt19937_64 rng(201);
   const BvhImage image = fx::buildBvhImage(quantizedCornell(), 2);
-  std::vector<std::array<Vec, 2>> boxes = childBoxes(image);
-  std::shuffle(boxes.begin(), boxes.end(), rng);
   std::vector<QRay> rays;
-  for (size_t b = 0; b < std::min<size_t>(boxes.size(), 12); ++b) {
-    const auto& [lo, hi] = boxes[b];
+  for (const auto& [lo, hi] : someChildBoxes(image, rng, 12)) {
     for (int axis = 0; axis < 3; ++axis) {
       for (int64_t sign : {1, -1}) {
         const int u = (axis + 1) % 3, v = (axis + 2) % 3;
@@ -73,11 +78,8 @@ BvhCase axisParallel() {
 BvhCase boxCorners() {
   std::mt19937_64 rng(202);
   const BvhImage image = fx::buildBvhImage(quantizeScene(subdivide(makeCornellBox(), 1)), 2);
-  std::vector<std::array<Vec, 2>> boxes = childBoxes(image);
-  std::shuffle(boxes.begin(), boxes.end(), rng);
   std::vector<QRay> rays;
-  for (size_t b = 0; b < std::min<size_t>(boxes.size(), 10); ++b) {
-    const auto& [lo, hi] = boxes[b];
+  for (const auto& [lo, hi] : someChildBoxes(image, rng, 10)) {
     // From each corner along the diagonals (through the opposite corner when the box is a cube) ...
     for (int corner = 0; corner < 8; ++corner) {
       const Vec at{(corner & 4) ? hi[0] : lo[0], (corner & 2) ? hi[1] : lo[1], (corner & 1) ? hi[2] : lo[2]};
@@ -98,12 +100,9 @@ BvhCase boxCorners() {
 BvhCase boxFaces() {
   std::mt19937_64 rng(203);
   const BvhImage image = fx::buildBvhImage(quantizedCornell(), 1);
-  std::vector<std::array<Vec, 2>> boxes = childBoxes(image);
-  std::shuffle(boxes.begin(), boxes.end(), rng);
   std::uniform_int_distribution<int64_t> dir(-kDirMax, kDirMax);
   std::vector<QRay> rays;
-  for (size_t b = 0; b < std::min<size_t>(boxes.size(), 16); ++b) {
-    const auto& [lo, hi] = boxes[b];
+  for (const auto& [lo, hi] : someChildBoxes(image, rng, 16)) {
     for (int axis = 0; axis < 3; ++axis) {
       for (const int64_t plane : {lo[axis], hi[axis]}) {
         Vec at{};
@@ -220,27 +219,15 @@ BvhCase tinyComponents() {
 BvhCase cornellRandom() {
   std::mt19937_64 rng(209);
   std::vector<QRay> rays;
-  std::uniform_int_distribution<size_t> pick(0, quantizedCornell().size() - 1);
-  for (int i = 0; i < 120; ++i) {
-    const QTriangle& t = quantizedCornell()[pick(rng)];
-    const Vec to{(t.v[0][0] + t.v[1][0] + t.v[2][0]) / 3, (t.v[0][1] + t.v[1][1] + t.v[2][1]) / 3,
-                 (t.v[0][2] + t.v[1][2] + t.v[2][2]) / 3};
-    rays.push_back(aimedRay(randomLatticePoint(rng), to));
-  }
-  for (int i = 0; i < 80; ++i) rays.push_back(randomLatticeRay(rng, 0));
+  addAimedRays(rays, quantizedCornell(), rng, 120);
+  addRandomRays(rays, rng, 80);
   return makeCase("cornell_random", fx::buildBvhImage(quantizedCornell(), fx::kDefaultBvhLeafSize), std::move(rays));
 }
 
 BvhCase cornellSegments() {
   std::mt19937_64 rng(210);
   std::vector<QRay> base;
-  std::uniform_int_distribution<size_t> pick(0, quantizedCornell().size() - 1);
-  for (int i = 0; i < 30; ++i) {
-    const QTriangle& t = quantizedCornell()[pick(rng)];
-    const Vec to{(t.v[0][0] + t.v[1][0] + t.v[2][0]) / 3, (t.v[0][1] + t.v[1][1] + t.v[2][1]) / 3,
-                 (t.v[0][2] + t.v[1][2] + t.v[2][2]) / 3};
-    base.push_back(aimedRay(randomLatticePoint(rng), to));
-  }
+  addAimedRays(base, quantizedCornell(), rng, 30);
   return makeCase("cornell_segments", fx::buildBvhImage(quantizedCornell(), 2), segmentVariants(quantizedCornell(), base, base.size()));
 }
 
@@ -267,19 +254,8 @@ BvhImage bvhChainImage(int levels) {
 }
 
 std::vector<BvhCase> bvhHardCases() {
-  std::vector<BvhCase> cases;
-  cases.push_back(axisParallel());
-  cases.push_back(boxCorners());
-  cases.push_back(boxFaces());
-  cases.push_back(octants());
-  cases.push_back(crowdedLeaf());
-  cases.push_back(rootLeaf());
-  cases.push_back(empty());
-  cases.push_back(chain());
-  cases.push_back(tinyComponents());
-  cases.push_back(cornellRandom());
-  cases.push_back(cornellSegments());
-  return cases;
+  return makeCases<BvhCase>({axisParallel, boxCorners, boxFaces, octants, crowdedLeaf, rootLeaf, empty, chain,
+                             tinyComponents, cornellRandom, cornellSegments});
 }
 
 }  // namespace lancer::test

@@ -39,23 +39,6 @@ Vec randomDir(std::mt19937_64& rng) {
 
 QRay randomRay(std::mt19937_64& rng) { return randomLatticeRay(rng, 0); }
 
-Vec centroid(const QTriangle& t) {
-  Vec c{};
-  for (int a = 0; a < 3; ++a) c[a] = (t.v[0][a] + t.v[1][a] + t.v[2][a]) / 3;
-  return c;
-}
-
-// Rays from random origins aimed at (near) the centroids of random triangles.
-void addAimedRays(std::vector<QRay>& rays, const std::vector<QTriangle>& tris, std::mt19937_64& rng, int count) {
-  if (tris.empty()) return;
-  std::uniform_int_distribution<size_t> pick(0, tris.size() - 1);
-  for (int i = 0; i < count; ++i) rays.push_back(aimedRay(randomLatticePoint(rng), centroid(tris[pick(rng)])));
-}
-
-void addRandomRays(std::vector<QRay>& rays, std::mt19937_64& rng, int count) {
-  for (int i = 0; i < count; ++i) rays.push_back(randomRay(rng));
-}
-
 OctreeCase makeCase(std::string name, OctreeImage image, std::vector<QRay> rays) {
   return makeTraversalCase("octree", std::move(name), std::move(image), std::move(rays));
 }
@@ -296,10 +279,7 @@ OctreeCase deepSparse() {
 OctreeCase full() {
   std::mt19937_64 rng(112);
   const std::vector<QTriangle> tris = quantizeScene(subdivide(makeCornellBox(), 3));
-  std::vector<QRay> rays;
-  addRandomRays(rays, rng, 150);
-  addAimedRays(rays, tris, rng, 50);
-  return makeCase("full", fx::buildOctreeImage(tris, depthAtMost(9), 1), std::move(rays));
+  return makeCase("full", fx::buildOctreeImage(tris, depthAtMost(9), 1), randomAndAimedRays(rng, tris, 150, 50));
 }
 
 OctreeCase emptyLeaves() {
@@ -325,10 +305,7 @@ OctreeCase emptyLeaves() {
     throw std::logic_error(fmt::format("octree case empty_leaves has {} empty leaves of {} nodes", emptyLeaves,
                                        image.nodes.size()));
   }
-  std::vector<QRay> rays;
-  addRandomRays(rays, rng, 150);
-  addAimedRays(rays, tris, rng, 60);
-  return makeCase("empty_leaves", std::move(image), std::move(rays));
+  return makeCase("empty_leaves", std::move(image), randomAndAimedRays(rng, tris, 150, 60));
 }
 
 OctreeCase crowdedLeaf() {
@@ -352,10 +329,7 @@ OctreeCase crowdedLeaf() {
 OctreeCase rootLeaf() {
   std::mt19937_64 rng(115);
   const std::vector<QTriangle> tris = randomLatticeTriangles(rng, 5, kSide / 8, kSide - kSide / 8, kSide / 8);
-  std::vector<QRay> rays;
-  addRandomRays(rays, rng, 40);
-  addAimedRays(rays, tris, rng, 20);
-  return makeCase("root_leaf", fx::buildOctreeImage(tris, depthAtMost(4), 8), std::move(rays));
+  return makeCase("root_leaf", fx::buildOctreeImage(tris, depthAtMost(4), 8), randomAndAimedRays(rng, tris, 40, 20));
 }
 
 OctreeCase empty() {
@@ -438,25 +412,10 @@ std::vector<OctreeCase> segmentEnds() {
 }  // namespace
 
 std::vector<OctreeCase> octreeHardCases() {
-  std::vector<OctreeCase> cases;
-  cases.push_back(axisParallel());
-  cases.push_back(midPlanes());
-  cases.push_back(centreAndCorners());
-  cases.push_back(octants());
-  cases.push_back(nodeFaces());
-  cases.push_back(rootFaces());
-  cases.push_back(deepLeafOrigins());
-  cases.push_back(offCentre(false));
-  cases.push_back(offCentre(true));
-  cases.push_back(maxDepth());
-  cases.push_back(deepSparse());
-  cases.push_back(full());
-  cases.push_back(emptyLeaves());
-  cases.push_back(crowdedLeaf());
-  cases.push_back(rootLeaf());
-  cases.push_back(empty());
-  cases.push_back(tinyComponents());
-  cases.push_back(cornellRandom());
+  std::vector<OctreeCase> cases = makeCases<OctreeCase>(
+      {axisParallel, midPlanes, centreAndCorners, octants, nodeFaces, rootFaces, deepLeafOrigins,
+       [] { return offCentre(false); }, [] { return offCentre(true); }, maxDepth, deepSparse, full, emptyLeaves,
+       crowdedLeaf, rootLeaf, empty, tinyComponents, cornellRandom});
   for (OctreeCase& c : segmentEnds()) cases.push_back(std::move(c));
   return cases;
 }

@@ -90,6 +90,33 @@ QRay randomLatticeRay(std::mt19937_64& rng, uint32_t id) {
   return normalizedDirection(QRay{id, {pos(rng), pos(rng), pos(rng)}, {dir(rng), dir(rng), dir(rng)}});
 }
 
+LatticePoint centroid(const QTriangle& t) {
+  LatticePoint c{};
+  for (int a = 0; a < 3; ++a) c[a] = (t.v[0][a] + t.v[1][a] + t.v[2][a]) / 3;
+  return c;
+}
+
+void addRandomRays(std::vector<QRay>& rays, std::mt19937_64& rng, int count) {
+  for (int i = 0; i < count; ++i) rays.push_back(randomLatticeRay(rng, 0));
+}
+
+void addAimedRays(std::vector<QRay>& rays, const std::vector<QTriangle>& tris, std::mt19937_64& rng, int count) {
+  if (tris.empty()) return;
+  std::uniform_int_distribution<size_t> pick(0, tris.size() - 1);
+  for (int i = 0; i < count; ++i) {
+    const QTriangle& t = tris[pick(rng)];
+    rays.push_back(aimedRay(randomLatticePoint(rng), centroid(t)));
+  }
+}
+
+std::vector<QRay> randomAndAimedRays(std::mt19937_64& rng, const std::vector<QTriangle>& tris, int random,
+                                     int aimed) {
+  std::vector<QRay> rays;
+  addRandomRays(rays, rng, random);
+  addAimedRays(rays, tris, rng, aimed);
+  return rays;
+}
+
 std::vector<QTriangle> randomLatticeTriangles(std::mt19937_64& rng, int count, int64_t lo, int64_t hi,
                                               int64_t spread) {
   std::uniform_int_distribution<int64_t> centre(lo, hi), off(-spread, spread);

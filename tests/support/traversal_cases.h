@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <random>
 #include <span>
@@ -102,6 +103,26 @@ TraversalCase<Image> makeTraversalCase(std::string_view unit, std::string name, 
 fx::QRay randomLatticeRay(std::mt19937_64& rng, uint32_t id);
 std::vector<fx::QTriangle> randomLatticeTriangles(std::mt19937_64& rng, int count, int64_t lo, int64_t hi,
                                                   int64_t spread);
+
+// A triangle's centroid, each coordinate rounded towards zero.
+LatticePoint centroid(const fx::QTriangle& t);
+// `count` random lattice rays (randomLatticeRay, id 0).
+void addRandomRays(std::vector<fx::QRay>& rays, std::mt19937_64& rng, int count);
+// `count` rays, each from a random lattice point aimed at (near) the centroid
+// of a random triangle of `tris` (drawn first); none when `tris` is empty.
+void addAimedRays(std::vector<fx::QRay>& rays, const std::vector<fx::QTriangle>& tris, std::mt19937_64& rng,
+                  int count);
+// `random` random rays, then `aimed` aimed rays at `tris`.
+std::vector<fx::QRay> randomAndAimedRays(std::mt19937_64& rng, const std::vector<fx::QTriangle>& tris, int random,
+                                         int aimed);
+
+// A unit's hard cases from its table of case factories, in the table's order.
+template <class Case>
+std::vector<Case> makeCases(std::initializer_list<Case (*)()> factories) {
+  std::vector<Case> cases;
+  for (Case (*make)() : factories) cases.push_back(make());
+  return cases;
+}
 
 // ---- Segment ends and any-hit (shadow rays) ------------------------------------
 // A hit's displacement along the dominant axis in segment-end codes
