@@ -12,9 +12,17 @@
 // record with members that need another conversion passes
 // Overloaded{its conversions..., Plain{}}.
 
+#include <concepts>
+#include <type_traits>
+
 #include <nlohmann/json.hpp>
 
 namespace lancer::json_keys {
+
+// A record of type R or a const one: forEachKey(json_keys::Of<R> auto& r, auto&& fn)
+// declares a table for both write() and read().
+template <class T, class R>
+concept Of = std::same_as<std::remove_const_t<T>, R>;
 
 // One callable from several: Overloaded{[](const A&) {...}, Plain{}}.
 template <class... Fs>

@@ -92,9 +92,7 @@ bool latticeRayMisses(const ExactOracle& lattice, const std::optional<QuantizedR
 // A report row's keys, each with the member it holds, once
 // (common/json_keys.h): StressRow::toJson and StressRow::fromJson read this table (toJson adds the share that differs,
 // differs_from_exact_percent, which fromJson has no member for).
-template <class R, class Fn>
-  requires std::is_same_v<std::remove_const_t<R>, StressRow>
-static void forEachKey(R& r, Fn&& fn) {
+static void forEachKey(json_keys::Of<StressRow> auto& r, auto&& fn) {
   fn("case", r.caseName), fn("variant", r.variant), fn("unit", r.unit), fn("model", r.model);
   fn("rays", r.rays), fn("rays_in_lattice", r.inLattice), fn("hits", r.hits), fn("mismatches", r.mismatches);
   fn("differs_from_exact", r.differs), fn("hit_miss_differs_from_exact", r.hitMissDiffers);
@@ -106,9 +104,7 @@ static void forEachKey(R& r, Fn&& fn) {
 }
 
 // A placement's keys, likewise (PlacementInfo::toJson, PlacementInfo::fromJson).
-template <class P, class Fn>
-  requires std::is_same_v<std::remove_const_t<P>, PlacementInfo>
-static void forEachKey(P& p, Fn&& fn) {
+static void forEachKey(json_keys::Of<PlacementInfo> auto& p, auto&& fn) {
   fn("case", p.caseName), fn("variant", p.variant), fn("description", p.description), fn("rays", p.rays);
   fn("triangles", p.triangles), fn("lattice_rays_rejected", p.latticeRejected), fn("lattice", p.fit);
 }

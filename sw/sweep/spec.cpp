@@ -40,9 +40,7 @@ std::string replaceAll(std::string s, const std::string& from, const std::string
 // A spec file's keys, each with the member it sets, once (common/json_keys.h):
 // Spec::fromJson, Spec::toJson and fromJson's list of the known keys (in this
 // order) all read this table.
-template <class S, class Fn>
-  requires std::is_same_v<std::remove_const_t<S>, Spec>
-static void forEachKey(S& s, Fn&& fn) {
+static void forEachKey(json_keys::Of<Spec> auto& s, auto&& fn) {
   fn("widths", s.widths), fn("scenes", s.scenes), fn("units", s.units), fn("models", s.models);
   fn("image", s.image), fn("chunks", s.chunks), fn("crack_rays", s.crackRays), fn("seed", s.seed);
   fn("grid_res", s.gridRes), fn("mem_latency", s.memLatency), fn("clock_mhz", s.clockMhz), fn("synth", s.synth);
@@ -51,9 +49,7 @@ static void forEachKey(S& s, Fn&& fn) {
 }
 
 // A plan's job record, likewise (Job::toJson, Job::fromJson).
-template <class J, class Fn>
-  requires std::is_same_v<std::remove_const_t<J>, Job>
-static void forEachKey(J& job, Fn&& fn) {
+static void forEachKey(json_keys::Of<Job> auto& job, auto&& fn) {
   fn("key", job.key), fn("width", job.width), fn("unit", job.unit), fn("model", job.model);
   fn("scene", job.scene), fn("set", job.set), fn("chunk", job.chunk);
 }
