@@ -76,13 +76,9 @@ class VerilatedUnit {
     context_->gotFinish(false);
     top_->rst_ni = 0;
     idle(*top_);
-    for (int i = 0; i < 2; ++i) {
-      settle();
-      tick();
-    }
+    step(2);
     top_->rst_ni = 1;
-    settle();
-    tick();
+    step();
   }
 
   // The inputs set for this cycle through the combinational logic (clk_i low).
@@ -101,6 +97,14 @@ class VerilatedUnit {
     ++cycle_;
     context_->time(2 * cycle_);
     checkAssertions();
+  }
+
+  // `cycles` whole cycles with the inputs as they stand: settle(), then tick(), each.
+  void step(int cycles = 1) {
+    for (int i = 0; i < cycles; ++i) {
+      settle();
+      tick();
+    }
   }
 
   // Makes this unit's context the calling thread's (see the destructor).

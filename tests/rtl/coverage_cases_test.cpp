@@ -14,6 +14,7 @@
 #include "driver/verilated_unit.h"
 #include "golden/records.h"
 #include "isect/isect_cases.h"
+#include "stream_rule.h"
 
 namespace lancer {
 namespace {
@@ -55,7 +56,7 @@ std::string withdrawRefusedRay(VerilatedUnit<Top>& unit, Idle idle) {
   Top& top = unit.top();
   const auto pairs = rtltest::randomPairs(16, 11);
   fx::RayWire ray;
-  try {
+  const auto offer = [&]() -> std::string {
     int refused = 0;
     for (size_t k = 0, cycle = 0; refused < 3; ++cycle) {
       if (cycle > 200 || k >= pairs.size()) return "no ray was ever refused";
@@ -72,15 +73,9 @@ std::string withdrawRefusedRay(VerilatedUnit<Top>& unit, Idle idle) {
         ++refused;
       }
     }
-    top.ray_valid_i = 0;  // withdrawn, not taken
-    for (int cycle = 0; cycle < 2; ++cycle) {
-      unit.settle();
-      unit.tick();
-    }
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "";
+    return "";
+  };
+  return rtltest::withdrawRefused(unit, offer, [](Top& t) { t.ray_valid_i = 0; });
 }
 
 TEST(StreamAssertions, GridRayInputHoldIsLive) {
@@ -104,10 +99,7 @@ TEST(StreamAssertions, HeldRayFiresNothing) {
   fx::packWire(rtltest::randomPairs(1, 11)[0].ray, ray);
   writePort(top.ray_data_i, ray.data(), ray.size());
   top.ray_valid_i = 1;
-  for (int cycle = 0; cycle < 50; ++cycle) {
-    unit.settle();
-    EXPECT_NO_THROW(unit.tick()) << "cycle " << cycle;
-  }
+  for (int cycle = 0; cycle < 50; ++cycle) EXPECT_NO_THROW(unit.step()) << "cycle " << cycle;
 }
 
 }  // namespace

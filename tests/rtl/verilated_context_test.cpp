@@ -18,6 +18,7 @@
 #include "golden/octree.h"
 #include "isect/isect_cases.h"
 #include "octree/too_deep_image.h"
+#include "stream_rule.h"
 #include "verilated.h"
 
 namespace lancer {
@@ -39,7 +40,7 @@ std::string breakProducerRule(VerilatedUnit<Vrt_isect>& unit) {
   Vrt_isect& top = unit.top();
   fx::RayWire ray;
   fx::TriWire tri;
-  try {
+  const auto offer = [&]() -> std::string {
     for (int cycle = 0; cycle <= fx::kIsectLatency + 2; ++cycle) {
       const auto& pair = pairs[size_t(std::min(cycle, fx::kIsectLatency))];
       fx::packWire(pair.ray, ray);
@@ -47,19 +48,11 @@ std::string breakProducerRule(VerilatedUnit<Vrt_isect>& unit) {
       writePort(top.req_ray_i, ray.data(), ray.size());
       writePort(top.req_tri_i, tri.data(), tri.size());
       top.req_valid_i = 1;
-      unit.settle();
-      unit.tick();
+      unit.step();
     }
-    if (unit.top().req_ready_o) return "the pipeline was not full";
-    top.req_valid_i = 0;  // withdrawn, not taken
-    for (int cycle = 0; cycle < 2; ++cycle) {
-      unit.settle();
-      unit.tick();
-    }
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "";
+    return top.req_ready_o ? "the pipeline was not full" : "";
+  };
+  return rtltest::withdrawRefused(unit, offer, [](Vrt_isect& t) { t.req_valid_i = 0; });
 }
 
 // VerilatedUnit itself: of two units alive, the older one's failure is its own
