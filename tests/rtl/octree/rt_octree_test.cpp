@@ -31,14 +31,8 @@ const OctreeCase& hardCase(const std::string& name) { return test::caseNamed<tes
 TEST(RtOctree, BunnyRandomRaysAtSeveralDepthsAndLeafSizes) {
   const test::QuantizedScene q = Octree::bunny(1, 1);
   std::mt19937_64 rng(2);
-  std::uniform_int_distribution<int64_t> pos(0, kPosMax), dir(-kDirMax, kDirMax);
   std::vector<QRay> rays;
-  for (uint32_t i = 0; i < 300; ++i) {
-    QRay r{i, {pos(rng), pos(rng), pos(rng)}, {dir(rng), dir(rng), dir(rng)}};
-    const int k = fx::dominantAxis(r.dir);
-    r.dir[k] = r.dir[k] < 0 ? -kDirMax : kDirMax;
-    rays.push_back(r);
-  }
+  for (uint32_t i = 0; i < 300; ++i) rays.push_back(test::randomLatticeRay(rng, i));
   for (const auto& [depth, leaf] : {std::pair{1, 8}, {4, 8}, {8, 1}, {fx::kOctreeMaxDepth, 2}}) {
     SCOPED_TRACE(fmt::format("depth {} leaf {}", depth, leaf));
     // A shallow tree tests hundreds of triangles per leaf: fewer rays there.
