@@ -15,10 +15,12 @@
 //              the per-slot ray and closest hit, the exit test, the counts,
 //              the results (the node port is its node port, not registered:
 //              RegRsp = 0)
-//   u_walk     rt_bvh_slots: the per-ray setup (multiplications only, 3
-//              stages), the box tester (both children of a node response,
-//              BVH_BOX_LATENCY stages, one node a cycle) and RaysInFlight
-//              slots: walk state, candidates, stacks, the pop lane
+//   u_setup    rt_mirror_pairs: the per-ray setup (multiplications only,
+//              BVH_SETUP_LATENCY stages)
+//   u_box      rt_bvh_box: both children's box tests of a node response
+//              (BVH_BOX_LATENCY stages, one node a cycle)
+//   the walk   RaysInFlight slots (below): walk state, candidates, stacks,
+//              the pop lane
 //   visit_*    one record per node entered (round robin over slots in ENTER)
 //   node port  one node read per interior node entered (round robin)
 //   idx port   one index-list read per test (round robin), credit-limited
@@ -27,8 +29,9 @@
 //              bound slots with a non-zero entry)
 //   res_*      one record per ray
 //
-// rt_bvh_slots keeps the walks; rt_trav_shell the ray, its closest hit, the
-// dominant, the common denominator of the exit test and the counts.
+// This module is the walk, beside its rt_trav_shell, which keeps the ray, its
+// closest hit, the dominant, the common denominator of the exit test and the
+// counts; the two are joined by name (the ports of rt_walk_ports.svh).
 //
 // Memory ports: requests are valid/ready (a 2-entry FIFO holds each port's
 // request stream); responses have no ready: the unit always accepts them
@@ -43,9 +46,43 @@
 //             read, one box test, one index read, one triangle read, one
 //             intersection test, one closest-hit update, one exit test, one
 //             pop and one result.
+//
+// The walk: the ray slots — per-slot state machines, the current candidate
+// node {ref, entry}, the stacks and the pop lane — updated by the unit's
+// events, each addressed to one slot by index (docs/bvh-unit.md, "Slot state
+// machine").
+//
+//   FREE -alloc-> SETUP -init-> ENTER (the root, entry 0)
+//   ENTER -visit grant-> NODE_REQ (interior) | FETCH (leaf, count > 0) | POP (empty leaf)
+//   NODE_REQ -node grant-> WAIT_NODE -node response (into rt_bvh_box)-> BOX
+//   BOX -the box answer-> candidate(near) [push far] | candidate(the one) | POP (none)
+//   FETCH: one index read per index grant; once every result is in
+//          -> DONE (an any-hit ray with a hit) | POP
+//   POP -pop-lane grant, acting in the next cycle-> candidate(popped) | DONE (stack empty)
+//   candidate(x): CHECK if the slot is bound and x's entry != 0, else ENTER
+//   CHECK -the exit test's answer-> POP (culled: the bound lies before the node) | ENTER
+//   DONE -done grant-> FREE
+//
+// Which slots act in a cycle. The box answer (one per cycle: one node response
+// a cycle) names one slot. FETCH ends the cycle after the result that
+// completes the leaf (one per cycle): the registered result slot. The pop
+// lane is one round-robin arbiter over the slots in POP whose grant is
+// registered: the granted slot pops in the next cycle (and is left out of the
+// arbitration meanwhile). The exit test's answer names one slot.
+//
+// Storage: one-hot state vectors (N bits each, reset); per-slot registers as
+// arrays written by index (no reset; written before read). The stacks of all
+// slots are one memory of N x BVH_STACK_DEPTH entries {ref, entry}: one write
+// port (the box answer's push), one read port (the pop lane).
+//
+// Latency: every transition takes one clock edge. Throughput: per cycle one
+// allocation, one init, one visit, one node grant, one node response, one box
+// answer, one index grant, one result, one end of FETCH, one pop, one exit
+// test, one result record.
 module rt_bvh #(
   parameter int unsigned RaysInFlight = 32,  // ray slots, 1..256
   parameter int unsigned IdxBufDepth  = 64,  // index responses buffered (credits)
+  parameter int unsigned NodeRspW = rt_pkg::BVH_NODE_W,  // derived: a node response's bits
   parameter int unsigned SlotW = (RaysInFlight > 1) ? $clog2(RaysInFlight) : 1,  // derived
   parameter int unsigned CfgSlotsW = $clog2(RaysInFlight + 1)                     // derived
 ) (
@@ -59,31 +96,331 @@ module rt_bvh #(
 `include "rt_trav_ports.svh"
 
   // One result per ray, one record per node entered.
-  output rt_pkg::bvh_res_t                       res_data_o,
-  output rt_pkg::bvh_visit_t                     visit_data_o,
-
-  // Node reads: one bvh_node_t (both children's boxes) as plain bits.
-  output logic                                   node_req_valid_o,
-  input  logic                                   node_req_ready_i,
-  output logic [rt_pkg::MEM_ADDR_W-1:0]          node_req_addr_o,
-  output logic [SlotW-1:0]                       node_req_tag_o,
-  input  logic                                   node_rsp_valid_i,
-  input  logic [rt_pkg::BVH_NODE_W-1:0]          node_rsp_data_i,
-  input  logic [SlotW-1:0]                       node_rsp_tag_i
+  output rt_pkg::bvh_res_t                         res_data_o,
+  output rt_pkg::bvh_visit_t                       visit_data_o
 );
 
   // The figures of the shell's ports toward the walk (rt_walk_ports.svh).
   localparam int unsigned N         = RaysInFlight;
-  localparam int unsigned NodeRspW  = rt_pkg::BVH_NODE_W;
   localparam int unsigned VisitIdW  = 32;
   localparam int unsigned ExitW     = rt_pkg::BVH_ENTRY_W;
   localparam int unsigned DenW      = rt_pkg::BVH_COMMON_W;
-  localparam int unsigned TestPorts = 1;
+  localparam int unsigned RunPorts  = 1;
 `include "rt_walk_ports.svh"
 
   // The shell (streams, memory ports, rt_isect, closest hits, exit tests, the
   // counts) and the BVH walk, joined by name.
   rt_trav_shell #(`RT_WALK_PARAMS, .IdxBufDepth(IdxBufDepth), .RegRsp(1'b0)) u_shell (.*);
-  rt_bvh_slots  #(`RT_WALK_PARAMS) u_walk (.*);
+
+  // ---- The walk ----------------------------------------------------------------------
+  localparam int P       = rt_pkg::POS_W;
+  localparam int ORG_W   = P + 1;
+  localparam int PAIR_W  = 2 * (rt_pkg::DIR_W - 1);
+  localparam int ADDR_W  = rt_pkg::MEM_ADDR_W;
+  localparam int REF_W   = rt_pkg::BVH_REF_W;
+  localparam int ENTRY_W = rt_pkg::BVH_ENTRY_W;
+  localparam int COUNT_W = rt_pkg::BVH_COUNT_W;
+  localparam int STACK   = rt_pkg::BVH_STACK_DEPTH;
+  localparam int SP_W    = $clog2(STACK + 1);                    // 0 .. STACK
+  localparam int STK_W   = (STACK > 1) ? $clog2(STACK) : 1;
+  localparam int STK_AW  = $clog2(N * STACK);                    // stack memory address
+  localparam int CAND_W  = REF_W + ENTRY_W;                      // {ref, entry}
+
+  // bvh_ref_t as plain bits, read into a local struct (Yosys 0.23 reads a
+  // package type only outside a struct).
+  typedef struct packed {
+    logic               leaf;
+    logic [COUNT_W-1:0] count;
+    logic [31:0]        first;
+  } ref_t;
+
+  // Where slot s keeps its stack entry k.
+  function automatic logic [STK_AW-1:0] stack_addr(input logic [SlotW-1:0] s, input logic [STK_W-1:0] k);
+    stack_addr = STK_AW'(s) * STK_AW'(STACK) + STK_AW'(k);
+  endfunction
+
+  function automatic logic [N-1:0] onehot(input logic valid, input logic [SlotW-1:0] s);
+    onehot = valid ? (N'(1) << s) : '0;
+  endfunction
+
+  // ---- State vectors (bit s = slot s) -------------------------------------------
+  logic [N-1:0] enter_q, node_req_q, wait_node_q, box_q, fetch_q, pop_q, check_q, done_q;
+  logic [N-1:0] any_hit_q;   // the ray is an any-hit ray
+  logic [N-1:0] hit_seen_q;  // a result of the ray was a hit
+  logic         fin_q;       // a slot's last result came in the previous cycle: fin_slot_q
+  logic [SlotW-1:0] fin_slot_q;
+
+  // ---- Per-slot registers -------------------------------------------------------------
+  logic [2:0]             mirror_q [N];
+  logic [2:0]             active_q [N];
+  logic [3*ORG_W-1:0]     org_q    [N];   // o' {z, y, x}
+  logic [3*PAIR_W-1:0]    pair_q   [N];
+  logic [REF_W-1:0]       cur_ref_q   [N];  // the candidate: its reference and entry
+  logic [ENTRY_W-1:0]     cur_entry_q [N];
+  logic [SP_W-1:0]        sp_q     [N];
+  logic [CAND_W-1:0]      stack_q  [N * STACK];
+
+  // ---- Events ----------------------------------------------------------------------------
+  logic [N-1:0] init_oh, visit_oh, node_oh, rsp_oh, box_oh, check_oh, done_oh, fin_oh, pop_oh;
+  assign init_oh  = onehot(init, init_slot);
+  assign visit_oh = onehot(visit_go, visit_slot);
+  assign node_oh  = onehot(node_go, node_slot);
+  assign rsp_oh   = onehot(node_valid, node_tag);
+  assign box_oh   = onehot(box_valid, box_slot);
+  assign check_oh = onehot(check_go, check_slot);
+  assign done_oh  = onehot(done_go, done_slot);
+  assign fin_oh   = onehot(fin_q, fin_slot_q);
+
+  // ---- The ray's setup: rt_mirror_pairs ---------------------------------------------------
+  logic [2:0]           init_mirror, init_active;
+  logic [3*ORG_W-1:0]   init_origin;
+  logic [3*PAIR_W-1:0]  init_pair;
+  logic                 unused_s1_valid, unused_s2_valid;
+  logic [3*ORG_W-1:0]   unused_s1_org, unused_s2_org;
+  logic [3*PAIR_W-1:0]  unused_s2_pair;
+
+  rt_mirror_pairs #(.SlotW(SlotW), .Latency(rt_pkg::BVH_SETUP_LATENCY), .ComW(DenW)) u_setup (
+    .clk_i,
+    .rst_ni,
+    .valid_i     (alloc),
+    .slot_i      (alloc_slot),
+    .ray_i       (ray_data_i),
+    .valid_o     (init),
+    .slot_o      (init_slot),
+    .ray_o       (init_ray),
+    .dom_o       (init_dom),
+    .s1_valid_o  (unused_s1_valid),
+    .s2_valid_o  (unused_s2_valid),
+    .active_o    (init_active),
+    .neg_o       (init_mirror),
+    .s1_org_o    (unused_s1_org),
+    .s2_org_o    (unused_s2_org),
+    .s2_pair_o   (unused_s2_pair),
+    .s3_org_o    (init_origin),
+    .s3_pair_o   (init_pair),
+    .s3_common_o (init_den)
+  );
+
+  // ---- The box tester: both children's tests of a node response (rt_bvh_box) ------------
+  logic [3*ORG_W-1:0]   box_origin;
+  logic [2:0]           box_mirror, box_active;
+  logic [3*PAIR_W-1:0]  box_pair;
+  logic                 box_valid, box_near;
+  logic [SlotW-1:0]     box_slot;
+  logic [1:0]           box_hit;
+  logic [2*ENTRY_W-1:0] box_entries;
+  logic [2*REF_W-1:0]   box_children;
+
+  rt_bvh_box #(.SlotW(SlotW)) u_box (
+    .clk_i,
+    .rst_ni,
+    .valid_i  (node_valid),
+    .slot_i   (node_tag),
+    .node_i   (node_data),
+    .origin_i (box_origin),
+    .mirror_i (box_mirror),
+    .active_i (box_active),
+    .pair_i   (box_pair),
+    .valid_o  (box_valid),
+    .slot_o   (box_slot),
+    .hit_o    (box_hit),
+    .entry_o  (box_entries),
+    .near_o   (box_near),
+    .child_o  (box_children)
+  );
+
+  // The visited node's reference decides where the slot goes.
+  ref_t             visit_ref;
+  logic             visit_empty;
+  assign visit_ref   = cur_ref_q[visit_slot];
+  assign visit_empty = visit_ref.count == '0;
+
+  // ---- The pop lane ----------------------------------------------------------------------
+  // A round robin over the slots in POP, its grant registered: the granted slot
+  // pops in the next cycle, out of the arbitration meanwhile.
+  logic             pop_arb_go, pop_go_q;
+  logic [SlotW-1:0] pop_arb_slot, pop_slot_q;
+  logic [N-1:0]     unused_pop_gnt;
+
+  rt_rr_arb #(.N(N)) u_pop_arb (
+    .clk_i, .rst_ni, .req_i(pop_q & ~onehot(pop_go_q, pop_slot_q)), .ack_i(pop_arb_go),
+    .valid_o(pop_arb_go), .gnt_o(unused_pop_gnt), .idx_o(pop_arb_slot));
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      pop_go_q <= 1'b0;
+    end else begin
+      pop_go_q <= pop_arb_go;
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    if (pop_arb_go) pop_slot_q <= pop_arb_slot;
+  end
+  assign pop_oh = onehot(pop_go_q, pop_slot_q);
+
+  // The pop: the top of the stack becomes the candidate, or DONE when it is empty.
+  logic [SP_W-1:0]   pop_sp;
+  logic              pop_empty;
+  logic [CAND_W-1:0] pop_top;
+  assign pop_sp    = sp_q[pop_slot_q];
+  assign pop_empty = pop_sp == '0;
+  assign pop_top   = stack_q[stack_addr(pop_slot_q, STK_W'(pop_sp - 1'b1))];
+
+  // ---- The box answer --------------------------------------------------------------------
+  // Both children entered: the nearer (child 0 on a tie) is the candidate, the
+  // farther is pushed; one: it is the candidate; none: POP.
+  logic              box_both, box_none, box_pick;   // box_pick: the candidate is child 1
+  logic [REF_W-1:0]  box_ref [2];
+  logic [ENTRY_W-1:0] box_entry [2];
+  assign box_ref[0]   = box_children[0 +: REF_W];
+  assign box_ref[1]   = box_children[REF_W +: REF_W];
+  assign box_entry[0] = box_entries[0 +: ENTRY_W];
+  assign box_entry[1] = box_entries[ENTRY_W +: ENTRY_W];
+  assign box_both     = box_hit == 2'b11;
+  assign box_none     = box_hit == 2'b00;
+  assign box_pick     = box_both ? box_near : box_hit[1];
+
+  // The new candidates' next states (the candidate rule): CHECK if the slot is
+  // bound and the entry is not 0, else ENTER.
+  logic box_check, pop_check;
+  assign box_check = bound[box_slot] && box_entry[box_pick] != '0;
+  assign pop_check = bound[pop_slot_q] && pop_top[ENTRY_W-1:0] != '0;
+
+  // ---- State (reset) ---------------------------------------------------------------------
+  // Each vector loses the slots whose event leaves its state and gains those
+  // whose event enters it.
+  always_ff @(posedge clk_i or negedge rst_ni) begin : p_state
+    if (!rst_ni) begin
+      enter_q     <= '0;
+      node_req_q  <= '0;
+      wait_node_q <= '0;
+      box_q       <= '0;
+      fetch_q     <= '0;
+      pop_q       <= '0;
+      check_q     <= '0;
+      done_q      <= '0;
+      hit_seen_q  <= '0;
+      fin_q       <= 1'b0;
+      fin_slot_q  <= '0;
+    end else begin : b_next
+      logic [N-1:0] visit_node, visit_fetch, visit_pop, box_to_check, box_to_enter, box_to_pop;
+      logic [N-1:0] pop_to_done, pop_to_check, pop_to_enter, fin_to_done;
+      logic         fin_done;
+      visit_node   = visit_oh & {N{!visit_ref.leaf}};
+      visit_fetch  = visit_oh & {N{visit_ref.leaf && !visit_empty}};
+      visit_pop    = visit_oh & {N{visit_ref.leaf && visit_empty}};
+      box_to_pop   = box_oh & {N{box_none}};
+      box_to_check = box_oh & {N{!box_none && box_check}};
+      box_to_enter = box_oh & {N{!box_none && !box_check}};
+      pop_to_done  = pop_oh & {N{pop_empty}};
+      pop_to_check = pop_oh & {N{!pop_empty && pop_check}};
+      pop_to_enter = pop_oh & {N{!pop_empty && !pop_check}};
+      fin_done     = any_hit_q[fin_slot_q] && hit_seen_q[fin_slot_q];
+      fin_to_done  = fin_oh & {N{fin_done}};
+      enter_q     <= (enter_q & ~visit_oh) | init_oh | box_to_enter | pop_to_enter
+                     | (check_oh & {N{!check_holds}});
+      node_req_q  <= (node_req_q & ~node_oh) | visit_node;
+      wait_node_q <= (wait_node_q & ~rsp_oh) | node_oh;
+      box_q       <= (box_q & ~box_oh) | rsp_oh;
+      fetch_q     <= (fetch_q & ~fin_oh) | visit_fetch;
+      pop_q       <= (pop_q & ~pop_oh) | visit_pop | box_to_pop | (fin_oh & ~fin_to_done)
+                     | (check_oh & {N{check_holds}});
+      check_q     <= (check_q & ~check_oh) | box_to_check | pop_to_check;
+      done_q      <= (done_q & ~done_oh) | pop_to_done | fin_to_done;
+      hit_seen_q  <= (hit_seen_q & ~init_oh) | onehot(isect_valid && isect_hit, isect_slot);
+      // The result that completes the leaf: FETCH ends in the next cycle.
+      fin_q       <= res_last;
+      fin_slot_q  <= isect_slot;
+    end
+  end
+
+  // ---- Per-slot registers (no reset: written before read) ------------------------------
+  // The candidate and the stack pointer: init, the box answer, the pop (their
+  // slots differ: SETUP, BOX and POP).
+  always_ff @(posedge clk_i) begin : p_walk
+    if (box_valid && !box_none) begin
+      cur_ref_q[box_slot]   <= box_ref[box_pick];
+      cur_entry_q[box_slot] <= box_entry[box_pick];
+      if (box_both) sp_q[box_slot] <= sp_q[box_slot] + 1'b1;
+    end
+    if (pop_go_q && !pop_empty) begin
+      cur_ref_q[pop_slot_q]   <= pop_top[ENTRY_W +: REF_W];
+      cur_entry_q[pop_slot_q] <= pop_top[ENTRY_W-1:0];
+      sp_q[pop_slot_q]        <= pop_sp - 1'b1;
+    end
+    if (init) begin
+      cur_ref_q[init_slot]   <= cfg_root_i;
+      cur_entry_q[init_slot] <= '0;
+      sp_q[init_slot]        <= '0;
+    end
+  end
+
+  // The stack: the box answer pushes the farther child.
+  always_ff @(posedge clk_i) begin : p_stack
+    if (box_valid && box_both) begin
+      stack_q[stack_addr(box_slot, STK_W'(sp_q[box_slot]))] <= {box_ref[!box_pick], box_entry[!box_pick]};
+    end
+  end
+
+  // The ray's setup.
+  always_ff @(posedge clk_i) begin : p_ray
+    if (init) begin
+      mirror_q[init_slot] <= init_mirror;
+      active_q[init_slot] <= init_active;
+      org_q[init_slot]    <= init_origin;
+      pair_q[init_slot]   <= init_pair;
+    end
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      any_hit_q <= '0;
+    end else if (init) begin
+      any_hit_q[init_slot] <= init_ray.any_hit;
+    end
+  end
+
+  // ---- Outputs ----------------------------------------------------------------------------
+  // (Whole references read by index: the address takes their first field.)
+  ref_t             node_ref, idx_ref;
+  logic [REF_W-1-32:0] unused_node_ref, unused_idx_ref;
+  assign node_ref        = cur_ref_q[node_slot];
+  assign idx_ref         = cur_ref_q[idx_slot];
+  assign unused_node_ref = {node_ref.leaf, node_ref.count};
+  assign unused_idx_ref  = {idx_ref.leaf, idx_ref.count};
+  assign visit_id = visit_ref.first | {visit_ref.leaf, 31'd0};
+  // A leaf's triangles are counted when it is entered.
+  assign run_start       = visit_go && visit_ref.leaf;
+  assign run_slot        = visit_slot;
+  assign run_count       = 32'(visit_ref.count);
+  assign node_addr     = ADDR_W'(node_ref.first);
+  assign idx_addr      = ADDR_W'(idx_ref.first + idx_issued);
+  assign check_exit    = cur_entry_q[check_sel] - 1'b1;
+  assign box_origin    = org_q[node_tag];
+  assign box_mirror    = mirror_q[node_tag];
+  assign box_active    = active_q[node_tag];
+  assign box_pair      = pair_q[node_tag];
+
+  assign want_visit   = enter_q;
+  assign want_node    = node_req_q;
+  assign want_check   = check_q;
+  assign want_done    = done_q;
+  assign fetching     = fetch_q;
+
+`ifdef RT_ASSERT_ON
+`include "rt_assert.svh"
+  // Events meet slots in the states that expect them.
+  `RT_CHECK_IF(a_visit_enter, visit_go, enter_q[visit_slot])
+  `RT_CHECK_IF(a_node_req, node_go, node_req_q[node_slot])
+  `RT_CHECK_IF(a_node_rsp_slot, node_valid, wait_node_q[node_tag])
+  `RT_CHECK_IF(a_box_slot, box_valid, box_q[box_slot])
+  `RT_CHECK_IF(a_res_fetch, isect_valid, fetch_q[isect_slot])
+  `RT_CHECK_IF(a_pop_slot, pop_go_q, pop_q[pop_slot_q])
+  `RT_CHECK_IF(a_check_wants, check_go, check_q[check_slot] && bound[check_slot])
+  // A candidate tested is bound (it asked in CHECK; bounds never go away).
+  `RT_CHECK(a_check_bound, (check_q & ~bound) == '0)
+  // The stack never overflows: a push happens below the levels limit
+  // (kBvhMaxLevels; checkImage refuses deeper images).
+  `RT_CHECK_IF(a_stack_depth, box_valid && box_both, sp_q[box_slot] < SP_W'(STACK))
+`endif
 
 endmodule

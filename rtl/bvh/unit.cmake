@@ -2,6 +2,6 @@
 # its sources in compile order after the package and the shell: the modules
 # of rtl/lib it shares with some other units, then its own.
 set(unit_lib_sources rt_mirror_pairs.sv)
-set(unit_sources rt_bvh_box.sv rt_bvh_slots.sv rt_bvh.sv)
+set(unit_sources rt_bvh_box.sv rt_bvh.sv)
 set(unit_params)
 set(unit_definitions)

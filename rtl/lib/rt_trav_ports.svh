@@ -1,7 +1,7 @@
 // The ports every traversal unit shares with its rt_trav_shell, included in
-// the port lists of rt_trav_shell, rt_grid and rt_octree (which add their
-// result and visit records, their configuration and their walk's memory port).
-// Needs the module's SlotW; every line ends with a comma.
+// the port lists of rt_trav_shell, rt_grid, rt_octree and rt_bvh (which add
+// their result and visit records and their configuration). Needs the module's
+// SlotW and NodeRspW; every line ends with a comma.
 
   // Rays in.
   input  logic                          ray_valid_i,
@@ -39,3 +39,16 @@
   // waits to enter its next region (the visit arbiter has a request).
   output logic                          perf_isect_fire_o,
   output logic                          perf_step_ready_o,
+
+  // Node reads: a grid's cells (grid_cell_t), an octree's child groups (the
+  // eight octree_node_t records first .. first+7, element 0 least
+  // significant), a BVH's nodes (bvh_node_t: both children's boxes), as plain
+  // bits (Yosys 0.23 reads a port of a package type's packed array as one
+  // element).
+  output logic                          node_req_valid_o,
+  input  logic                          node_req_ready_i,
+  output logic [rt_pkg::MEM_ADDR_W-1:0] node_req_addr_o,
+  output logic [SlotW-1:0]              node_req_tag_o,
+  input  logic                          node_rsp_valid_i,
+  input  logic [NodeRspW-1:0]           node_rsp_data_i,
+  input  logic [SlotW-1:0]              node_rsp_tag_i,

@@ -60,7 +60,7 @@ module rt_trav_shell #(
   parameter int unsigned VisitIdW    = 32,  // width of the region id of a visit record
   parameter int unsigned ExitW       = 8,   // width of the exit parameter
   parameter int unsigned DenW        = 8,   // width of the exit test's denominator
-  parameter int unsigned TestPorts   = 1,   // walk events a cycle that add to a slot's test count
+  parameter int unsigned RunPorts    = 1,   // index runs the walk may start in a cycle
   parameter int unsigned SlotW     = (N > 1) ? $clog2(N) : 1,  // derived
   parameter int unsigned CfgSlotsW = $clog2(N + 1),            // derived
   parameter int unsigned ResW      = rt_pkg::ISECT_RES_W + 64  // derived: {ray id, count, tests, hit, hit record}
@@ -77,15 +77,7 @@ module rt_trav_shell #(
 `include "rt_trav_ports.svh"
 
   output logic [ResW-1:0]               res_data_o,
-  output logic [32+VisitIdW-1:0]        visit_data_o,
-
-  output logic                          node_req_valid_o,
-  input  logic                          node_req_ready_i,
-  output logic [rt_pkg::MEM_ADDR_W-1:0] node_req_addr_o,
-  output logic [SlotW-1:0]              node_req_tag_o,
-  input  logic                          node_rsp_valid_i,
-  input  logic [NodeRspW-1:0]           node_rsp_data_i,
-  input  logic [SlotW-1:0]              node_rsp_tag_i
+  output logic [32+VisitIdW-1:0]        visit_data_o
 );
 
   localparam int ADDR_W   = rt_pkg::MEM_ADDR_W;
@@ -127,16 +119,70 @@ module rt_trav_shell #(
   logic [31:0]      visits_q [N];   // regions entered
   logic [31:0]      tests_q  [N];   // tests issued
 
+  function automatic logic [N-1:0] onehot(input logic valid, input logic [SlotW-1:0] s);
+    onehot = valid ? (N'(1) << s) : '0;
+  endfunction
+
   // ---- Ray input and slot allocation --------------------------------------------
-  logic [N-1:0] usable, unused_alloc_gnt;
+  // A slot is FREE, then in SETUP from its allocation to its init (the walk's
+  // setup latency), then the walk's until its done grant.
+  logic [N-1:0] free_q, setup_q, usable, unused_alloc_gnt;
 
   assign usable = N'((NP1'(1) << cfg_slots_i) - 1'b1);
 
   rt_rr_arb #(.N(N)) u_alloc_arb (
-    .clk_i, .rst_ni, .req_i(free & usable), .ack_i(1'b0),
+    .clk_i, .rst_ni, .req_i(free_q & usable), .ack_i(1'b0),
     .valid_o(ray_ready_o), .gnt_o(unused_alloc_gnt), .idx_o(alloc_slot));
 
   assign alloc = ray_valid_i && ray_ready_o;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      free_q  <= '1;
+      setup_q <= '0;
+    end else begin
+      free_q  <= (free_q & ~onehot(alloc, alloc_slot)) | onehot(done_go, done_slot);
+      setup_q <= (setup_q & ~onehot(init, init_slot)) | onehot(alloc, alloc_slot);
+    end
+  end
+
+  // ---- Index runs: their reads and results, counted per slot ----------------------
+  // A run with triangles asks for index reads (iss_q) from its start to its
+  // last grant; rt_idx_count counts the reads issued and the results in.
+  logic [N-1:0] iss_q;     // slots with index reads left to issue
+  logic         idx_go;    // an index read of idx_slot is granted
+  logic         idx_last;  // the index grant is its run's last read
+  logic [N-1:0] run_reads;
+
+  rt_idx_count #(.N(N), .Starts(RunPorts), .SlotW(SlotW)) u_idx_count (
+    .clk_i,
+    .rst_ni,
+    .start_i       (run_start),
+    .start_slot_i  (run_slot),
+    .start_count_i (run_count),
+    .idx_go_i      (idx_go),
+    .idx_slot_i    (idx_slot),
+    .idx_issued_o  (idx_issued),
+    .idx_last_o    (idx_last),
+    .res_valid_i   (isect_valid),
+    .res_slot_i    (isect_slot),
+    .res_last_o    (res_last)
+  );
+
+  always_comb begin
+    run_reads = '0;
+    for (int p = 0; p < RunPorts; p++) begin
+      run_reads = run_reads | onehot(run_start[p] && run_count[p*32 +: 32] != '0, run_slot[p*SlotW +: SlotW]);
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      iss_q <= '0;
+    end else begin
+      iss_q <= (iss_q & ~onehot(idx_last, idx_slot)) | run_reads;
+    end
+  end
 
   // ---- Arbiters -------------------------------------------------------------------
   logic         node_any, visit_any, idx_any, done_any;
@@ -156,7 +202,7 @@ module rt_trav_shell #(
     .clk_i, .rst_ni, .req_i(want_visit), .ack_i(visit_go),
     .valid_o(visit_any), .gnt_o(unused_visit_gnt), .idx_o(visit_slot));
   rt_rr_arb #(.N(N)) u_idx_arb (
-    .clk_i, .rst_ni, .req_i(want_idx), .ack_i(idx_go),
+    .clk_i, .rst_ni, .req_i(iss_q), .ack_i(idx_go),
     .valid_o(idx_any), .gnt_o(unused_idx_gnt), .idx_o(idx_slot));
   rt_rr_arb #(.N(N)) u_check_arb (
     .clk_i, .rst_ni, .req_i(want_check & ~testing_q), .ack_i(check_grant),
@@ -398,17 +444,17 @@ module rt_trav_shell #(
     if (take) best_q[isect_slot] <= res_new;
   end
 
-  // The counts of the result record: regions entered and tests issued. (The
-  // walk's test-count ports name different slots in one cycle.)
+  // The counts of the result record: regions entered and tests issued (the
+  // runs' triangles; the run ports name different slots in one cycle).
   always_ff @(posedge clk_i) begin
     if (init) begin
       visits_q[init_slot] <= '0;
       tests_q[init_slot]  <= '0;
     end
     if (visit_go) visits_q[visit_slot] <= visits_q[visit_slot] + 1'b1;
-    for (int p = 0; p < TestPorts; p++) begin
-      if (tests_add[p]) begin
-        tests_q[tests_slot[p*SlotW +: SlotW]] <= tests_q[tests_slot[p*SlotW +: SlotW]] + tests_num[p*32 +: 32];
+    for (int p = 0; p < RunPorts; p++) begin
+      if (run_start[p]) begin
+        tests_q[run_slot[p*SlotW +: SlotW]] <= tests_q[run_slot[p*SlotW +: SlotW]] + run_count[p*32 +: 32];
       end
     end
   end
@@ -474,6 +520,7 @@ module rt_trav_shell #(
   `RT_CHECK_IF(a_isect_ready, tri_valid, isect_req_ready)
   `RT_CHECK_IF(a_tri_rsp_slot, tri_valid, fetching[tri_slot])
   `RT_CHECK_IF(a_res_slot, isect_res_valid, fetching[res_slot])
+  `RT_CHECK_IF(a_init_setup, init, setup_q[init_slot])
   `RT_CHECK(a_cfg_slots, cfg_slots_i != '0 && cfg_slots_i <= CfgSlotsW'(N))
   `RT_CHECK(a_credit_range, credit_q <= CREDIT_W'(IdxBufDepth))
   `RT_ASSERT_STATIC(g_exit_latency_check, rt_pkg::EXIT_TEST_LATENCY == 1 + 4,

@@ -1,20 +1,17 @@
-// The ports between rt_trav_shell and a unit's walk (its slots module): one
-// list for both ends and for the nets of the unit's top that joins them with
-// `.*`. Each name is the same at both ends, so it carries no _i/_o suffix;
-// RT_TO_SHELL and RT_TO_WALK give its direction.
+// The ports between rt_trav_shell and a unit's walk (the unit's module, which
+// instantiates the shell): one list for the shell's port list and for the
+// unit's nets, which `.*` joins to them. Each name is the same at both ends,
+// so it carries no _i/_o suffix; RT_TO_SHELL and RT_TO_WALK give its
+// direction.
 //
-// Define RT_WALK_PORTS_OF_SHELL or RT_WALK_PORTS_OF_WALK before including it in
-// a port list (every entry then ends with a comma: more ports must follow);
-// with neither, it declares the nets. It undefines what it defines.
-// Needs N, SlotW, NodeRspW, VisitIdW, ExitW, DenW and TestPorts (the figures
-// RT_WALK_PARAMS passes to both ends).
+// Define RT_WALK_PORTS_OF_SHELL before including it in the shell's port list
+// (every entry then ends with a comma: more ports must follow); without it, it
+// declares the unit's nets. It undefines what it defines.
+// Needs N, SlotW, NodeRspW, VisitIdW, ExitW, DenW and RunPorts (the unit's
+// figures, which RT_WALK_PARAMS passes to the shell by name).
 `ifdef RT_WALK_PORTS_OF_SHELL
   `define RT_TO_SHELL input
   `define RT_TO_WALK  output
-  `define RT_END      ,
-`elsif RT_WALK_PORTS_OF_WALK
-  `define RT_TO_SHELL output
-  `define RT_TO_WALK  input
   `define RT_END      ,
 `else
   `define RT_TO_SHELL
@@ -23,13 +20,13 @@
 `endif
 `ifndef RT_WALK_PARAMS
   `define RT_WALK_PARAMS .N(N), .SlotW(SlotW), .NodeRspW(NodeRspW), .VisitIdW(VisitIdW), \
-                         .ExitW(ExitW), .DenW(DenW), .TestPorts(TestPorts)
+                         .ExitW(ExitW), .DenW(DenW), .RunPorts(RunPorts)
 `endif
 
-  // Allocation (a ray accepted into alloc_slot) and the slot's setup (init:
-  // the walk's setup hands the shell the ray, its dominant |d| and the exit
-  // test's denominator).
-  `RT_TO_SHELL logic [N-1:0]                     free                      `RT_END
+  // Allocation (the shell's: a ray accepted into a free alloc_slot) and the
+  // slot's setup (init: the walk's setup hands the shell the ray, its dominant
+  // |d| and the exit test's denominator). A slot is the walk's from init to
+  // its done grant.
   `RT_TO_WALK  logic                             alloc                     `RT_END
   `RT_TO_WALK  logic [SlotW-1:0]                 alloc_slot                `RT_END
   `RT_TO_SHELL logic                             init                      `RT_END
@@ -55,20 +52,24 @@
   `RT_TO_WALK  logic [SlotW-1:0]                 visit_slot                `RT_END
   `RT_TO_SHELL logic [VisitIdW-1:0]              visit_id                  `RT_END  // of visit_slot
 
-  // Tests counted: port p adds tests_num[p] to slot tests_slot[p]'s count.
-  `RT_TO_SHELL logic [TestPorts-1:0]             tests_add                 `RT_END
-  `RT_TO_SHELL logic [TestPorts*SlotW-1:0]       tests_slot                `RT_END
-  `RT_TO_SHELL logic [TestPorts*32-1:0]          tests_num                 `RT_END
-
-  // Index reads, and the intersection results with the closest-hit state.
-  `RT_TO_SHELL logic [N-1:0]                     want_idx                  `RT_END
-  `RT_TO_WALK  logic                             idx_go                    `RT_END
+  // Index runs (a leaf's or a cell's triangles): port p starts slot
+  // run_slot[p]'s run of run_count[p] triangles. The shell counts them as
+  // tests, asks for their index reads (one per grant, at idx_addr: the run's
+  // first + idx_issued) and counts their results (res_last: the result
+  // completes the run).
+  `RT_TO_SHELL logic [RunPorts-1:0]              run_start                 `RT_END
+  `RT_TO_SHELL logic [RunPorts*SlotW-1:0]        run_slot                  `RT_END
+  `RT_TO_SHELL logic [RunPorts*32-1:0]           run_count                 `RT_END
   `RT_TO_WALK  logic [SlotW-1:0]                 idx_slot                  `RT_END
+  `RT_TO_WALK  logic [31:0]                      idx_issued                `RT_END  // of idx_slot: reads before this one
   `RT_TO_SHELL logic [rt_pkg::MEM_ADDR_W-1:0]    idx_addr                  `RT_END  // of idx_slot
+
+  // The intersection results with the closest-hit state.
   `RT_TO_SHELL logic [N-1:0]                     fetching                  `RT_END  // slots that expect triangles (assertions)
   `RT_TO_WALK  logic                             isect_valid               `RT_END  // a result of slot isect_slot
   `RT_TO_WALK  logic [SlotW-1:0]                 isect_slot                `RT_END
   `RT_TO_WALK  logic                             isect_hit                 `RT_END  // it is a hit
+  `RT_TO_WALK  logic                             res_last                  `RT_END  // it completes its slot's run
   `RT_TO_WALK  logic [N-1:0]                     bound                     `RT_END  // a closest hit so far, or a segment end
 
   // Exit tests: granted in cycle t, the exit parameter of check_sel read in
@@ -89,4 +90,3 @@
 `undef RT_TO_WALK
 `undef RT_END
 `undef RT_WALK_PORTS_OF_SHELL
-`undef RT_WALK_PORTS_OF_WALK

@@ -3,5 +3,4 @@
 -f rt_trav_shell.f
 lib/rt_mirror_pairs.sv
 bvh/rt_bvh_box.sv
-bvh/rt_bvh_slots.sv
 bvh/rt_bvh.sv

@@ -2,5 +2,4 @@
 # (the generated package is read first by the script).
 -f rt_trav_shell.f
 grid/rt_grid_setup.sv
-grid/rt_grid_slots.sv
 grid/rt_grid.sv

@@ -3,5 +3,4 @@
 -f rt_trav_shell.f
 lib/rt_mirror_pairs.sv
 octree/rt_octree_setup.sv
-octree/rt_octree_slots.sv
 octree/rt_octree.sv

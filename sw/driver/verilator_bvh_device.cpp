@@ -6,4 +6,4 @@
 #endif
 
 // rt_bvh: the node port (one bvh_node_t, both children's boxes, per read), the root's reference on cfg_root_i.
-LANCER_VERILATED_TRAVERSAL_UNIT(Vrt_bvh, fx::BvhUnit, LANCER_BVH_RAYS_IN_FLIGHT, node, cfg_root_i)
+LANCER_VERILATED_TRAVERSAL_UNIT(Vrt_bvh, fx::BvhUnit, LANCER_BVH_RAYS_IN_FLIGHT, cfg_root_i)

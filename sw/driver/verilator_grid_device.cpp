@@ -6,4 +6,4 @@
 #endif
 
 // rt_grid: the cell port, the resolution on cfg_res_i.
-LANCER_VERILATED_TRAVERSAL_UNIT(Vrt_grid, fx::GridUnit, LANCER_GRID_RAYS_IN_FLIGHT, cell, cfg_res_i)
+LANCER_VERILATED_TRAVERSAL_UNIT(Vrt_grid, fx::GridUnit, LANCER_GRID_RAYS_IN_FLIGHT, cfg_res_i)

@@ -6,4 +6,4 @@
 #endif
 
 // rt_octree: the node port (a child group per read), the root's record on cfg_root_i.
-LANCER_VERILATED_TRAVERSAL_UNIT(Vrt_octree, fx::OctreeUnit, LANCER_OCTREE_RAYS_IN_FLIGHT, node, cfg_root_i)
+LANCER_VERILATED_TRAVERSAL_UNIT(Vrt_octree, fx::OctreeUnit, LANCER_OCTREE_RAYS_IN_FLIGHT, cfg_root_i)

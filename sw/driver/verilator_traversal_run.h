@@ -510,18 +510,18 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
 }  // namespace lancer
 
 // A unit's Verilated device, in its verilator_<unit>_device.cpp: the traits of
-// the Verilated model `Top` for the descriptor `Descriptor` (its node port's
-// members start with `Prefix`, its configuration port is `CfgPort`, it has
-// `Slots` ray slots), the device's explicit instantiation and its factory.
-#define LANCER_VERILATED_TRAVERSAL_UNIT(Top, Descriptor, Slots, Prefix, CfgPort)                                 \
+// the Verilated model `Top` for the descriptor `Descriptor` (its configuration
+// port is `CfgPort`, it has `Slots` ray slots), the device's explicit
+// instantiation and its factory.
+#define LANCER_VERILATED_TRAVERSAL_UNIT(Top, Descriptor, Slots, CfgPort)                                 \
   namespace lancer {                                                                                             \
   template <>                                                                                                    \
   struct VerilatedTraversalUnit<Top> {                                                                           \
     using Desc = Descriptor;                                                                                     \
     static constexpr int kMaxSlots = Slots;                                                                      \
     static auto nodePort(Top& t) {                                                                               \
-      return std::tie(t.Prefix##_req_valid_o, t.Prefix##_req_addr_o, t.Prefix##_req_tag_o, t.Prefix##_req_ready_i, \
-                      t.Prefix##_rsp_valid_i, t.Prefix##_rsp_data_i, t.Prefix##_rsp_tag_i);                      \
+      return std::tie(t.node_req_valid_o, t.node_req_addr_o, t.node_req_tag_o, t.node_req_ready_i,              \
+                      t.node_rsp_valid_i, t.node_rsp_data_i, t.node_rsp_tag_i);                                  \
     }                                                                                                            \
     static auto& configPort(Top& t) { return t.CfgPort; }                                                        \
   };                                                                                                             \

@@ -25,7 +25,6 @@ struct BvhUnit
   static constexpr UnitNames kNames{.unit = "bvh",
                                     .module = "rt_bvh",
                                     .elements = "nodes",
-                                    .nodePort = "node",
                                     .nodeRead = "node",
                                     .nodeTable = "node table",
                                     .cfgPort = "cfg_root_i",

@@ -30,7 +30,6 @@ struct GridUnit
   static constexpr UnitNames kNames{.unit = "grid",
                                     .module = "rt_grid",
                                     .elements = "cells",
-                                    .nodePort = "cell",
                                     .nodeRead = "cell",
                                     .nodeTable = "cell table",
                                     .cfgPort = "cfg_res_i",

@@ -26,7 +26,6 @@ struct OctreeUnit
   static constexpr UnitNames kNames{.unit = "octree",
                                     .module = "rt_octree",
                                     .elements = "nodes",
-                                    .nodePort = "node",
                                     .nodeRead = "child group",
                                     .nodeTable = "node table",
                                     .cfgPort = "cfg_root_i",

@@ -62,7 +62,6 @@ struct UnitNames {
   const char* unit;         // "grid": --accel, report keys, messages
   const char* module;       // "rt_grid": its RTL top and SystemC model
   const char* elements;     // what a visit enters, plural: "cells", "nodes"
-  const char* nodePort;     // the RTL's prefix of the node memory port: "cell" (cell_req_valid_o)
   const char* nodeRead;     // one read of that port: "cell", "child group"
   const char* nodeTable;    // the region it reads: "cell table", "node table"
   const char* cfgPort;      // its configuration port besides cfg_slots_i: "cfg_res_i"

@@ -15,7 +15,7 @@ struct TraversalCycle {
   bool rayValid = false, rayReady = false;      // ray_valid_i, ray_ready_o
   bool resValid = false, resReady = false;      // res_valid_o, res_ready_i
   bool visitValid = false, visitReady = false;  // visit_valid_o, visit_ready_i
-  // {valid, addr, tag} of node_req_* (cell_req_* for the grid), idx_req_*, tri_req_* (addr, tag 0 unless valid).
+  // {valid, addr, tag} of node_req_*, idx_req_*, tri_req_* (addr, tag 0 unless valid).
   bool nodeReq = false, idxReq = false, triReq = false;
   uint32_t nodeAddr = 0, nodeTag = 0, idxAddr = 0, idxTag = 0, triAddr = 0, triTag = 0;
   bool perfIsectFire = false;       // perf_isect_fire_o

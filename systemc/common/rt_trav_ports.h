@@ -42,17 +42,17 @@ struct rt_trav_host_ports {
   Out<bool> perf_step_ready_o{"perf_step_ready_o"};
 };
 
-// One read port's seven ports, <p>_req_valid_o .. <p>_rsp_tag_i in C++,
-// <prefix>_req_valid_o .. in SystemC: requests {addr, tag} valid/ready,
-// responses {data, tag} without ready. (A macro: the names are the RTL's.)
-#define LANCER_SC_READ_PORT(p, prefix, data_t)                                                \
-  Out<bool> p##_req_valid_o{portName(prefix, "req_valid_o").c_str()};                         \
-  In<bool> p##_req_ready_i{portName(prefix, "req_ready_i").c_str()};                          \
-  Out<typename Unit::mem_addr_t> p##_req_addr_o{portName(prefix, "req_addr_o").c_str()};     \
-  Out<typename Unit::slot_t> p##_req_tag_o{portName(prefix, "req_tag_o").c_str()};           \
-  In<bool> p##_rsp_valid_i{portName(prefix, "rsp_valid_i").c_str()};                         \
-  In<data_t> p##_rsp_data_i{portName(prefix, "rsp_data_i").c_str()};                         \
-  In<typename Unit::slot_t> p##_rsp_tag_i{portName(prefix, "rsp_tag_i").c_str()}
+// One read port's seven ports, <p>_req_valid_o .. <p>_rsp_tag_i: requests
+// {addr, tag} valid/ready, responses {data, tag} without ready. (A macro: the
+// names are the RTL's.)
+#define LANCER_SC_READ_PORT(p, data_t)                                   \
+  Out<bool> p##_req_valid_o{#p "_req_valid_o"};                          \
+  In<bool> p##_req_ready_i{#p "_req_ready_i"};                           \
+  Out<typename Unit::mem_addr_t> p##_req_addr_o{#p "_req_addr_o"};       \
+  Out<typename Unit::slot_t> p##_req_tag_o{#p "_req_tag_o"};             \
+  In<bool> p##_rsp_valid_i{#p "_rsp_valid_i"};                           \
+  In<data_t> p##_rsp_data_i{#p "_rsp_data_i"};                           \
+  In<typename Unit::slot_t> p##_rsp_tag_i{#p "_rsp_tag_i"}
 
 // Binds read port p of `a` to the same of `b`.
 #define LANCER_SC_BIND_READ_PORT(a, b, p)                                                     \
@@ -61,18 +61,17 @@ struct rt_trav_host_ports {
       (a).p##_rsp_valid_i((b).p##_rsp_valid_i), (a).p##_rsp_data_i((b).p##_rsp_data_i),       \
       (a).p##_rsp_tag_i((b).p##_rsp_tag_i)
 
-// The node/cell read port (SystemC names with the unit's prefix, kNames.nodePort:
-// cell_* for rt_grid; node_* in C++).
+// The node read port (a grid's cells, an octree's child groups, a BVH's nodes).
 template <class Unit, template <class> class In, template <class> class Out>
 struct rt_trav_node_port {
-  LANCER_SC_READ_PORT(node, Unit::kNames.nodePort, typename Unit::node_data_t);
+  LANCER_SC_READ_PORT(node, typename Unit::node_data_t);
 };
 
 // The index and triangle read ports.
 template <class Unit, template <class> class In, template <class> class Out>
 struct rt_trav_mem_ports {
-  LANCER_SC_READ_PORT(idx, "idx", typename Unit::idx_data_t);
-  LANCER_SC_READ_PORT(tri, "tri", isect_tri_t);
+  LANCER_SC_READ_PORT(idx, typename Unit::idx_data_t);
+  LANCER_SC_READ_PORT(tri, isect_tri_t);
 };
 
 // Binds one side's ports (a module's, or a parent's) to another's of the same

@@ -137,11 +137,6 @@ struct rt_root_node_unit : rt_trav_unit<RaysInFlight, Desc> {
   }
 };
 
-// "<prefix>_<suffix>": the SystemC name of one port of a unit's node/cell
-// memory port (rt_grid: cell_req_valid_o, rt_octree: node_req_valid_o), so
-// that the shared modules' objects carry the RTL's names.
-inline std::string portName(const char* prefix, const char* suffix) { return std::string(prefix) + "_" + suffix; }
-
 // The Verilated SystemC class of a unit (Vrt_grid_sc, ...), or void when the
 // build lacks it: specialized by the unit's rt_<unit>_system.cpp (generated from
 // common/rt_trav_system.cpp.in), the one file that includes its Verilated class.

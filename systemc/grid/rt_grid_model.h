@@ -41,15 +41,8 @@ namespace lancer::sc {
 // update, one exit test and one result.
 class rt_grid_model : public rt_trav_shell_model<rt_grid_unit, /*RegRsp=*/true> {
  public:
-  // The unit's own ports under their RTL names (the shell's cfg_i and node_*).
+  // The unit's configuration port under its RTL name (the shell's cfg_i).
   sc_core::sc_in<cfg_t>& cfg_res_i = cfg_i;
-  sc_core::sc_out<bool>& cell_req_valid_o = node_req_valid_o;
-  sc_core::sc_in<bool>& cell_req_ready_i = node_req_ready_i;
-  sc_core::sc_out<mem_addr_t>& cell_req_addr_o = node_req_addr_o;
-  sc_core::sc_out<slot_t>& cell_req_tag_o = node_req_tag_o;
-  sc_core::sc_in<bool>& cell_rsp_valid_i = node_rsp_valid_i;
-  sc_core::sc_in<node_data_t>& cell_rsp_data_i = node_rsp_data_i;
-  sc_core::sc_in<slot_t>& cell_rsp_tag_i = node_rsp_tag_i;
 
   SC_HAS_PROCESS(rt_grid_model);
   explicit rt_grid_model(sc_core::sc_module_name name, rt_isect_impl isect = rt_isect_impl::model);

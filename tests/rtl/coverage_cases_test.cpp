@@ -35,8 +35,8 @@ void idleShared(Top& top) {
 
 void idleGrid(Vrt_grid& top) {
   idleShared(top);
-  top.cell_req_ready_i = 1;
-  top.cell_rsp_valid_i = 0;
+  top.node_req_ready_i = 1;
+  top.node_rsp_valid_i = 0;
   top.cfg_res_i = 1 | (1 << 9) | (1 << 18);  // 1 x 1 x 1 cells
 }
 
