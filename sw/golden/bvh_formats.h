@@ -58,22 +58,19 @@ inline constexpr FieldSpec kBvhNodeFields[] = {
     {"count", kBvhCountBits, 2, false, "child c: as bvh_ref_t"},
     {"first", 32, 2, false, "child c: as bvh_ref_t"},
 };
-// ---- bvh_visit_t: one node entered, on the unit's trace stream ----------------------
-inline constexpr FieldSpec kBvhVisitFields[] = {
-    {"ray_id", kRayIdBits, 1, false, "ray id"},
-    {"node_id", 32, 1, false, "interior: node-table index; leaf: 2^31 + first index-list entry"},
-};
-inline constexpr std::array<FieldSpec, 9> kBvhResFields = traversalResFields("nodes", "nodes entered");
+// ---- bvh_visit_t: one node entered, on the unit's trace stream; bvh_res_t ----------
+inline constexpr auto kBvhVisitFields =
+    traversalVisitFields("node_id", 32, "interior: node-table index; leaf: 2^31 + first index-list entry");
+inline constexpr auto kBvhResFields = traversalResFields("nodes", "nodes entered");
 
-inline constexpr RecordSpec kBvhRef{"bvh_ref_t", "a BVH child reference", kBvhRefFields};
-inline constexpr RecordSpec kBvhNode{"bvh_node_t", "a BVH node table entry", kBvhNodeFields};
-inline constexpr RecordSpec kBvhVisit{"bvh_visit_t", "a BVH unit node step", kBvhVisitFields};
-inline constexpr RecordSpec kBvhRes{"bvh_res_t", "a BVH unit ray result", kBvhResFields};
-inline constexpr RecordSpec kBvhRecords[] = {kBvhRef, kBvhNode, kBvhVisit, kBvhRes};
+inline constexpr RecordSpec kBvhRecords[] = {
+    {"bvh_ref_t", "BVH_REF_W", "a BVH child reference", kBvhRefFields},
+    {"bvh_node_t", "BVH_NODE_W", "a BVH node table entry", kBvhNodeFields},
+    {"bvh_visit_t", "BVH_VISIT_W", "a BVH unit node step", kBvhVisitFields},
+    {"bvh_res_t", "BVH_RESULT_W", "a BVH unit ray result", kBvhResFields},
+};
 inline constexpr int kBvhRefBits = recordBits(kBvhRefFields);
 inline constexpr int kBvhNodeBits = recordBits(kBvhNodeFields);
-inline constexpr int kBvhVisitBits = recordBits(kBvhVisitFields);
-inline constexpr int kBvhResultBits = recordBits(kBvhResFields);
 static_assert(kMemAddrBits <= 31, "a leaf's visit id sets bit 31 over an index-list entry");
 
 // rt_bvh_setup's register stages (docs/bvh-unit.md): |d| and o', the pair
@@ -85,13 +82,16 @@ inline constexpr int kBvhSetupLatency = 3;
 // the order.
 inline constexpr int kBvhBoxLatency = 4;
 
-// What rt_pkg holds of the BVH's formats.
-inline constexpr PackageParam kBvhPkgParams[] = {
-    {"BVH_WIDTH", kBvhWidth},           {"BVH_PLANE_W", kBvhPlaneBits},   {"BVH_SHIFT_W", kBvhShiftBits},
-    {"BVH_COUNT_W", kBvhCountBits},     {"BVH_STACK_DEPTH", kBvhStackDepth}, {"BVH_T_W", kBvhTBits},
-    {"BVH_ENTRY_W", kBvhEntryBits},     {"BVH_COMMON_W", kBvhCommonBits}, {"BVH_REF_W", kBvhRefBits},
-    {"BVH_NODE_W", kBvhNodeBits},       {"BVH_VISIT_W", kBvhVisitBits},   {"BVH_RESULT_W", kBvhResultBits},
-    {"BVH_SETUP_LATENCY", kBvhSetupLatency}, {"BVH_BOX_LATENCY", kBvhBoxLatency},
+// What rt_pkg holds of the BVH's formats (before its records' widths) and of
+// its latencies (after them).
+inline constexpr PackageParam kBvhFormatParams[] = {
+    {"BVH_WIDTH", kBvhWidth},        {"BVH_PLANE_W", kBvhPlaneBits},      {"BVH_SHIFT_W", kBvhShiftBits},
+    {"BVH_COUNT_W", kBvhCountBits},  {"BVH_STACK_DEPTH", kBvhStackDepth}, {"BVH_T_W", kBvhTBits},
+    {"BVH_ENTRY_W", kBvhEntryBits},  {"BVH_COMMON_W", kBvhCommonBits},
+};
+inline constexpr PackageParam kBvhLatencies[] = {
+    {"BVH_SETUP_LATENCY", kBvhSetupLatency},
+    {"BVH_BOX_LATENCY", kBvhBoxLatency},
 };
 
 }  // namespace lancer::fx

@@ -2,38 +2,16 @@
 
 // The BVH unit's descriptor (golden/unit.h lists what a descriptor provides).
 
-#include <array>
-#include <span>
-#include <vector>
-
-#include <fmt/format.h>
-
-#include "common/accel_options.h"
-#include "common/error.h"
 #include "golden/bvh.h"
 #include "golden/unit.h"
 
 namespace lancer::fx {
 
 // Its configuration port, cfg_root_i, carries the root's reference.
-struct BvhUnit
-    : UnitRecords<kBvhNodeFields, kBvhRefFields, kBvhVisitFields, kBvhResFields, kBvhRecords, kBvhPkgParams> {
-  using Image = BvhImage;
-  using Node = BvhNode;
-
-  static constexpr UnitKind kKind = UnitKind::Bvh;
-  static constexpr UnitNames kNames{.unit = "bvh",
-                                    .module = "rt_bvh",
-                                    .elements = "nodes",
-                                    .nodeRead = "node",
-                                    .nodeTable = "node table",
-                                    .cfgPort = "cfg_root_i",
-                                    .slotsOption = "LANCER_BVH_RAYS_IN_FLIGHT",
-                                    .rtlSources = "LANCER_RTL_BVH_SOURCES",
-                                    .stepsKey = "node_steps",
-                                    .stepsLabel = "node steps",
-                                    .readsKey = "node_reads",
-                                    .readsLabel = "node reads"};
+struct BvhUnit : UnitBase<UnitKind::Bvh, BvhImage, BvhNode, kBvhNodeFields, kBvhRefFields, kBvhRecords,
+                          kBvhFormatParams, kBvhLatencies> {
+  static constexpr UnitNames kNames = unitNames<"bvh">(
+      {"nodes", "node", "node table", "cfg_root_i", "node_steps", "node steps", "node_reads", "node reads"});
   static constexpr size_t kGroup = 1;  // a node read returns one node (both children's boxes)
   static constexpr int kSetupLatency = kBvhSetupLatency;
 

@@ -38,20 +38,16 @@ inline constexpr FieldSpec kGridCellFields[] = {
     {"first", 32, 1, false, "first entry of the cell's run in the index list"},
     {"count", 32, 1, false, "triangles listed in the cell"},
 };
-// ---- grid_visit_t: one voxel step, on the unit's trace stream ---------------------
-inline constexpr FieldSpec kGridVisitFields[] = {
-    {"ray_id", kRayIdBits, 1, false, "ray id"},
-    {"cell_id", 3 * kCellIndexBits, 1, false, "(z * Ry + y) * Rx + x"},
-};
-inline constexpr std::array<FieldSpec, 9> kGridResFields = traversalResFields("cells", "cells visited");
+// ---- grid_visit_t: one voxel step, on the unit's trace stream; grid_res_t --------
+inline constexpr auto kGridVisitFields = traversalVisitFields("cell_id", 3 * kCellIndexBits, "(z * Ry + y) * Rx + x");
+inline constexpr auto kGridResFields = traversalResFields("cells", "cells visited");
 
-inline constexpr RecordSpec kGridCell{"grid_cell_t", "a grid cell table entry", kGridCellFields};
-inline constexpr RecordSpec kGridVisit{"grid_visit_t", "a grid unit voxel step", kGridVisitFields};
-inline constexpr RecordSpec kGridRes{"grid_res_t", "a grid unit ray result", kGridResFields};
-inline constexpr RecordSpec kGridRecords[] = {kGridCell, kGridVisit, kGridRes};
+inline constexpr RecordSpec kGridRecords[] = {
+    {"grid_cell_t", "GRID_CELL_W", "a grid cell table entry", kGridCellFields},
+    {"grid_visit_t", "GRID_VISIT_W", "a grid unit voxel step", kGridVisitFields},
+    {"grid_res_t", "GRID_RESULT_W", "a grid unit ray result", kGridResFields},
+};
 inline constexpr int kGridCellBits = recordBits(kGridCellFields);
-inline constexpr int kGridVisitBits = recordBits(kGridVisitFields);
-inline constexpr int kGridResultBits = recordBits(kGridResFields);
 
 // rt_grid_setup's register stages: a ray accepted at edge t loads its slot at
 // edge t + 1 + kGridSetupLatency (one multiplication deep each: the scaled
@@ -59,14 +55,14 @@ inline constexpr int kGridResultBits = recordBits(kGridResFields);
 // the SystemC shell model carries the ray through as many.
 inline constexpr int kGridSetupLatency = 3;
 
-// What rt_pkg holds of the grid's formats.
-inline constexpr PackageParam kGridPkgParams[] = {
+// What rt_pkg holds of the grid's formats (before its records' widths) and of
+// its latencies (after them).
+inline constexpr PackageParam kGridFormatParams[] = {
     {"GRID_RES_MAX", kGridResMax},       {"GRID_RESOLUTION_W", kGridResolutionBits},
     {"CELL_INDEX_W", kCellIndexBits},    {"GRID_POS_W", kGridPosBits},
     {"GRID_DIR_W", kGridDirBits},        {"GRID_PAIR_W", kGridPairBits},
     {"GRID_TRIPLE_W", kGridTripleBits},  {"GRID_ACC_W", kGridAccBits},
-    {"GRID_CELL_W", kGridCellBits},      {"GRID_VISIT_W", kGridVisitBits},
-    {"GRID_RESULT_W", kGridResultBits},  {"GRID_SETUP_LATENCY", kGridSetupLatency},
 };
+inline constexpr PackageParam kGridLatencies[] = {{"GRID_SETUP_LATENCY", kGridSetupLatency}};
 
 }  // namespace lancer::fx

@@ -2,14 +2,6 @@
 
 // The grid unit's descriptor (golden/unit.h lists what a descriptor provides).
 
-#include <array>
-#include <span>
-#include <vector>
-
-#include <fmt/format.h>
-
-#include "common/accel_options.h"
-#include "common/error.h"
 #include "golden/grid.h"
 #include "golden/unit.h"
 
@@ -21,24 +13,10 @@ inline constexpr FieldSpec kGridCfgFields[] = {
 };
 
 // Its configuration port, cfg_res_i, carries the resolution.
-struct GridUnit
-    : UnitRecords<kGridCellFields, kGridCfgFields, kGridVisitFields, kGridResFields, kGridRecords, kGridPkgParams> {
-  using Image = GridImage;
-  using Node = GridCell;
-
-  static constexpr UnitKind kKind = UnitKind::Grid;
-  static constexpr UnitNames kNames{.unit = "grid",
-                                    .module = "rt_grid",
-                                    .elements = "cells",
-                                    .nodeRead = "cell",
-                                    .nodeTable = "cell table",
-                                    .cfgPort = "cfg_res_i",
-                                    .slotsOption = "LANCER_GRID_RAYS_IN_FLIGHT",
-                                    .rtlSources = "LANCER_RTL_GRID_SOURCES",
-                                    .stepsKey = "voxel_steps",
-                                    .stepsLabel = "voxel steps",
-                                    .readsKey = "cell_reads",
-                                    .readsLabel = "cell table reads"};
+struct GridUnit : UnitBase<UnitKind::Grid, GridImage, GridCell, kGridCellFields, kGridCfgFields, kGridRecords,
+                           kGridFormatParams, kGridLatencies> {
+  static constexpr UnitNames kNames = unitNames<"grid">(
+      {"cells", "cell", "cell table", "cfg_res_i", "voxel_steps", "voxel steps", "cell_reads", "cell table reads"});
   static constexpr size_t kGroup = 1;  // a node read returns one cell
   static constexpr int kSetupLatency = kGridSetupLatency;
 

@@ -32,20 +32,16 @@ inline constexpr FieldSpec kOctreeNodeFields[] = {
     {"count", 31, 1, false, "leaf: triangles listed; interior: 0"},
     {"first", 32, 1, false, "leaf: first index-list entry; interior: node index of child 0"},
 };
-// ---- octree_visit_t: one node entered, on the unit's trace stream ------------------
-inline constexpr FieldSpec kOctreeVisitFields[] = {
-    {"ray_id", kRayIdBits, 1, false, "ray id"},
-    {"node_id", 32, 1, false, "node index in the node table"},
-};
-inline constexpr std::array<FieldSpec, 9> kOctreeResFields = traversalResFields("nodes", "nodes entered");
+// ---- octree_visit_t: one node entered, on the unit's trace stream; octree_res_t ----
+inline constexpr auto kOctreeVisitFields = traversalVisitFields("node_id", 32, "node index in the node table");
+inline constexpr auto kOctreeResFields = traversalResFields("nodes", "nodes entered");
 
-inline constexpr RecordSpec kOctreeNode{"octree_node_t", "an octree node table entry", kOctreeNodeFields};
-inline constexpr RecordSpec kOctreeVisit{"octree_visit_t", "an octree unit node step", kOctreeVisitFields};
-inline constexpr RecordSpec kOctreeRes{"octree_res_t", "an octree unit ray result", kOctreeResFields};
-inline constexpr RecordSpec kOctreeRecords[] = {kOctreeNode, kOctreeVisit, kOctreeRes};
+inline constexpr RecordSpec kOctreeRecords[] = {
+    {"octree_node_t", "OCTREE_NODE_W", "an octree node table entry", kOctreeNodeFields},
+    {"octree_visit_t", "OCTREE_VISIT_W", "an octree unit node step", kOctreeVisitFields},
+    {"octree_res_t", "OCTREE_RESULT_W", "an octree unit ray result", kOctreeResFields},
+};
 inline constexpr int kOctreeNodeBits = recordBits(kOctreeNodeFields);
-inline constexpr int kOctreeVisitBits = recordBits(kOctreeVisitFields);
-inline constexpr int kOctreeResultBits = recordBits(kOctreeResFields);
 static_assert(kMemAddrBits <= 31, "a leaf's count (up to the index list's size) must fit octree_node_t.count");
 static_assert(kOctreeNodeBits == 64, "a node is one 64-bit word; a child group one 512-bit line");
 
@@ -55,13 +51,13 @@ static_assert(kOctreeNodeBits == 64, "a node is one 64-bit word; a child group o
 // shell model carries the ray through as many.
 inline constexpr int kOctreeSetupLatency = 3;
 
-// What rt_pkg holds of the octree's formats.
-inline constexpr PackageParam kOctreePkgParams[] = {
-    {"OCTREE_MAX_DEPTH", kOctreeMaxDepth},   {"OCTREE_STACK_DEPTH", kOctreeStackDepth},
-    {"OCTREE_T_W", kOctreeTBits},            {"OCTREE_COMMON_W", kOctreeCommonBits},
-    {"OCTREE_CHILDREN", kOctreeChildren},    {"OCTREE_NODE_W", kOctreeNodeBits},
-    {"OCTREE_VISIT_W", kOctreeVisitBits},    {"OCTREE_RESULT_W", kOctreeResultBits},
-    {"OCTREE_SETUP_LATENCY", kOctreeSetupLatency},
+// What rt_pkg holds of the octree's formats (before its records' widths) and
+// of its latencies (after them).
+inline constexpr PackageParam kOctreeFormatParams[] = {
+    {"OCTREE_MAX_DEPTH", kOctreeMaxDepth}, {"OCTREE_STACK_DEPTH", kOctreeStackDepth},
+    {"OCTREE_T_W", kOctreeTBits},          {"OCTREE_COMMON_W", kOctreeCommonBits},
+    {"OCTREE_CHILDREN", kOctreeChildren},
 };
+inline constexpr PackageParam kOctreeLatencies[] = {{"OCTREE_SETUP_LATENCY", kOctreeSetupLatency}};
 
 }  // namespace lancer::fx

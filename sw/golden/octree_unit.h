@@ -2,39 +2,19 @@
 
 // The octree unit's descriptor (golden/unit.h lists what a descriptor provides).
 
-#include <array>
 #include <optional>
-#include <span>
-#include <vector>
 
-#include <fmt/format.h>
-
-#include "common/accel_options.h"
-#include "common/error.h"
 #include "golden/octree.h"
 #include "golden/unit.h"
 
 namespace lancer::fx {
 
 // Its configuration port, cfg_root_i, carries the root's node record.
-struct OctreeUnit
-    : UnitRecords<kOctreeNodeFields, kOctreeNodeFields, kOctreeVisitFields, kOctreeResFields, kOctreeRecords, kOctreePkgParams> {
-  using Image = OctreeImage;
-  using Node = OctreeNode;
-
-  static constexpr UnitKind kKind = UnitKind::Octree;
-  static constexpr UnitNames kNames{.unit = "octree",
-                                    .module = "rt_octree",
-                                    .elements = "nodes",
-                                    .nodeRead = "child group",
-                                    .nodeTable = "node table",
-                                    .cfgPort = "cfg_root_i",
-                                    .slotsOption = "LANCER_OCTREE_RAYS_IN_FLIGHT",
-                                    .rtlSources = "LANCER_RTL_OCTREE_SOURCES",
-                                    .stepsKey = "node_steps",
-                                    .stepsLabel = "node steps",
-                                    .readsKey = "node_reads",
-                                    .readsLabel = "child group reads"};
+struct OctreeUnit : UnitBase<UnitKind::Octree, OctreeImage, OctreeNode, kOctreeNodeFields, kOctreeNodeFields,
+                             kOctreeRecords, kOctreeFormatParams, kOctreeLatencies> {
+  static constexpr UnitNames kNames =
+      unitNames<"octree">({"nodes", "child group", "node table", "cfg_root_i", "node_steps", "node steps", "node_reads",
+                           "child group reads"});
   static constexpr size_t kGroup = kOctreeChildren;  // a node read returns a child group
   static constexpr int kSetupLatency = kOctreeSetupLatency;
 

@@ -26,7 +26,8 @@ struct FieldSpec {
 };
 
 struct RecordSpec {
-  const char* name;  // SystemVerilog type name, ends in _t
+  const char* name;        // SystemVerilog type name, ends in _t
+  const char* widthParam;  // rt_pkg's localparam of its width: "ISECT_RAY_W"
   const char* doc;
   std::span<const FieldSpec> fields;
 };
@@ -37,6 +38,17 @@ constexpr int recordBits(std::span<const FieldSpec> fields) {
   return bits;
 }
 constexpr int wireWords(int bits) { return (bits + 31) / 32; }
+
+// A localparam of rt_pkg: the name the RTL reads and its value.
+struct PackageParam {
+  const char* name;
+  long long value;
+};
+
+// A record's width, as rt_pkg holds it.
+constexpr PackageParam widthParam(const RecordSpec& record) {
+  return {record.widthParam, recordBits(record.fields)};
+}
 
 // ---- isect_ray_t: a quantized ray, as the intersection pipeline sees it -------
 inline constexpr FieldSpec kIsectRayFields[] = {
@@ -64,6 +76,15 @@ inline constexpr FieldSpec kIsectResFields[] = {
     {"v_num", kBaryBits, 1, false, "v = v_num / det (weight of v2)"},
 };
 
+// ---- <unit>_visit_t: one structure element a traversal unit entered (`id`:
+// cell_id, node_id), on its trace stream -------------------------------------------
+constexpr std::array<FieldSpec, 2> traversalVisitFields(const char* id, int idBits, const char* idDoc) {
+  return {{
+      {"ray_id", kRayIdBits, 1, false, "ray id"},
+      {id, idBits, 1, false, idDoc},
+  }};
+}
+
 // ---- <unit>_res_t: a ray's answer from a traversal unit: the
 // structure elements it visited (`visited`: cells, nodes), the tests it issued,
 // and its closest hit, field for field as isect_res_t ---------------------------------
@@ -81,18 +102,12 @@ constexpr std::array<FieldSpec, 9> traversalResFields(const char* visited, const
   }};
 }
 
-inline constexpr RecordSpec kIsectRay{"isect_ray_t", "a quantized ray", kIsectRayFields};
-inline constexpr RecordSpec kIsectTri{"isect_tri_t", "a quantized triangle", kIsectTriFields};
-inline constexpr RecordSpec kIsectRes{"isect_res_t", "an intersection result", kIsectResFields};
+inline constexpr RecordSpec kIsectRay{"isect_ray_t", "ISECT_RAY_W", "a quantized ray", kIsectRayFields};
+inline constexpr RecordSpec kIsectTri{"isect_tri_t", "ISECT_TRI_W", "a quantized triangle", kIsectTriFields};
+inline constexpr RecordSpec kIsectRes{"isect_res_t", "ISECT_RES_W", "an intersection result", kIsectResFields};
 // The intersection pipeline's records; each traversal unit lists its own
 // (its descriptor's kRecords), and golden/units.h's allRecords() has them all.
 inline constexpr RecordSpec kIsectRecords[] = {kIsectRay, kIsectTri, kIsectRes};
-
-// A localparam of rt_pkg: the name the RTL reads and its value.
-struct PackageParam {
-  const char* name;
-  long long value;
-};
 
 inline constexpr int kIsectRayBits = recordBits(kIsectRayFields);
 inline constexpr int kIsectTriBits = recordBits(kIsectTriFields);

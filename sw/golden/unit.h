@@ -15,7 +15,7 @@
 //   kResFields, kCfgFields           and configuration lists also as the arrays
 //   kNodeFieldList, kCfgFieldList    themselves, for the compile-time packing
 //   kRecords, kPkgParams             what rt_pkg holds of its records and formats
-//                                    (all eight from UnitRecords, below)
+//                                    (Image, Node, kKind and these eight from UnitBase, below)
 //   kGroup                           nodes per node-port response (the octree's child group: 8)
 //   kSetupLatency                    the per-ray setup's register stages (rt_<unit>_setup)
 //   nodes(image)                     the node table
@@ -27,11 +27,19 @@
 //   NodeReads(image)(trace)          node-port reads the hardware issues for a golden trace
 //   imageCounters(image)             the image's figures for the summary and the report
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
+#include <iterator>
 #include <span>
 #include <string_view>
 #include <vector>
 
+// What a descriptor's build and checkImage take and throw.
+#include <fmt/format.h>
+
+#include "common/accel_options.h"
+#include "common/error.h"
 #include "golden/record_bits.h"
 #include "golden/records.h"
 
@@ -41,37 +49,92 @@ namespace lancer::fx {
 // intersection pipeline, and each traversal unit.
 enum class UnitKind { Isect, Grid, Octree, Bvh };
 
-// A descriptor's records, from its lists (golden/<unit>_formats.h): derive
-// from UnitRecords<node fields, configuration fields, visit fields, result
-// fields, records, package parameters> and the members above come with it.
-template <const auto& NodeFields, const auto& CfgFields, const auto& VisitFields, const auto& ResFields,
-          const auto& Records, const auto& PkgParams>
-struct UnitRecords {
+// A descriptor's kind, types and records, from its lists
+// (golden/<unit>_formats.h): derive from UnitBase<kind, image, node, node
+// fields, configuration fields, records, format parameters, latencies> and
+// Image, Node, kKind and the record members above come with it. The records are
+// the unit's own (node, reference), then its visit and its result record;
+// kPkgParams holds, in this order, its format parameters, its records' widths
+// (RecordSpec::widthParam) and its latencies.
+template <UnitKind Kind, class ImageT, class NodeT, const auto& NodeFields, const auto& CfgFields,
+          const auto& Records, const auto& FormatParams, const auto& Latencies>
+struct UnitBase {
+  using Image = ImageT;
+  using Node = NodeT;
+  static constexpr UnitKind kKind = Kind;
   static constexpr const auto& kNodeFieldList = NodeFields;
   static constexpr const auto& kCfgFieldList = CfgFields;
   static constexpr std::span<const FieldSpec> kNodeFields = NodeFields;
-  static constexpr std::span<const FieldSpec> kVisitFields = VisitFields;
-  static constexpr std::span<const FieldSpec> kResFields = ResFields;
+  static constexpr std::span<const FieldSpec> kVisitFields = Records[std::size(Records) - 2].fields;
+  static constexpr std::span<const FieldSpec> kResFields = Records[std::size(Records) - 1].fields;
   static constexpr std::span<const FieldSpec> kCfgFields = CfgFields;
   static constexpr std::span<const RecordSpec> kRecords = Records;
-  static constexpr std::span<const PackageParam> kPkgParams = PkgParams;
+  static constexpr auto kPkgParamList = [] {
+    std::array<PackageParam, std::size(FormatParams) + std::size(Records) + std::size(Latencies)> params{};
+    auto out = std::copy(std::begin(FormatParams), std::end(FormatParams), params.begin());
+    out = std::transform(std::begin(Records), std::end(Records), out, widthParam);
+    std::copy(std::begin(Latencies), std::end(Latencies), out);
+    return params;
+  }();
+  static constexpr std::span<const PackageParam> kPkgParams = kPkgParamList;
 };
 
-// How each layer names a unit.
-struct UnitNames {
-  const char* unit;         // "grid": --accel, report keys, messages
-  const char* module;       // "rt_grid": its RTL top and SystemC model
-  const char* elements;     // what a visit enters, plural: "cells", "nodes"
-  const char* nodeRead;     // one read of that port: "cell", "child group"
-  const char* nodeTable;    // the region it reads: "cell table", "node table"
-  const char* cfgPort;      // its configuration port besides cfg_slots_i: "cfg_res_i"
-  const char* slotsOption;  // the CMake variable of its ray slots
-  const char* rtlSources;   // the CMake variable of its RTL sources
-  const char* stepsKey;     // report key and summary label of the steps ("voxel_steps", "voxel steps")
+// How a unit's descriptor names what it visits and counts (a descriptor lists
+// them in this order).
+struct UnitWords {
+  const char* elements;    // what a visit enters, plural: "cells", "nodes"
+  const char* nodeRead;    // one read of its node port: "cell", "child group"
+  const char* nodeTable;   // the region it reads: "cell table", "node table"
+  const char* cfgPort;     // its configuration port besides cfg_slots_i: "cfg_res_i"
+  const char* stepsKey;    // report key and summary label of the steps ("voxel_steps", "voxel steps")
   const char* stepsLabel;
-  const char* readsKey;     // ... and of the node-port reads ("cell_reads", "cell table reads")
+  const char* readsKey;    // ... and of the node-port reads ("cell_reads", "cell table reads")
   const char* readsLabel;
 };
+
+// How each layer names a unit: its words, and the names that follow from its
+// own (unitNames<"grid">).
+struct UnitNames : UnitWords {
+  const char* unit;         // "grid": --accel, report keys, messages
+  const char* module;       // "rt_grid": its RTL top and SystemC model
+  const char* slotsOption;  // the CMake variable of its ray slots: "LANCER_GRID_RAYS_IN_FLIGHT"
+  const char* rtlSources;   // the CMake variable of its RTL sources: "LANCER_RTL_GRID_SOURCES"
+};
+
+// A name as a template argument, NUL-terminated, joined and upper-cased at
+// compile time (the text of a static member stays put: a const char*).
+template <size_t N>
+struct FixedName {
+  char text[N]{};
+  constexpr FixedName() = default;
+  constexpr FixedName(const char (&s)[N]) { std::copy_n(s, N, text); }
+};
+template <size_t A, size_t B>
+constexpr FixedName<A + B - 1> operator+(const FixedName<A>& a, const FixedName<B>& b) {
+  FixedName<A + B - 1> joined;
+  std::copy_n(a.text, A - 1, joined.text);
+  std::copy_n(b.text, B, joined.text + A - 1);
+  return joined;
+}
+template <size_t N>
+constexpr FixedName<N> upperCase(FixedName<N> name) {
+  for (char& c : name.text) c = (c >= 'a' && c <= 'z') ? char(c - 'a' + 'A') : c;
+  return name;
+}
+
+template <FixedName Unit>
+struct DerivedUnitNames {
+  static constexpr auto kUnit = Unit;
+  static constexpr auto kModule = FixedName("rt_") + Unit;
+  static constexpr auto kSlotsOption = FixedName("LANCER_") + upperCase(Unit) + FixedName("_RAYS_IN_FLIGHT");
+  static constexpr auto kRtlSources = FixedName("LANCER_RTL_") + upperCase(Unit) + FixedName("_SOURCES");
+};
+
+template <FixedName Unit>
+constexpr UnitNames unitNames(const UnitWords& words) {
+  using Derived = DerivedUnitNames<Unit>;
+  return {words, Derived::kUnit.text, Derived::kModule.text, Derived::kSlotsOption.text, Derived::kRtlSources.text};
+}
 
 // A figure of a unit's memory image (the grid's resolution, the octree's depth).
 struct ImageCounter {

@@ -54,8 +54,8 @@ int main(int argc, char** argv) {
       {"BARY_W", kBaryBits},        {"ISECT_LATENCY", kIsectLatency}, {"EXIT_TEST_LATENCY", kExitTestLatency},
       {"CLOSEST_HIT_LATENCY", kClosestHitLatency},
       {"SEG_FRAC_W", kSegFracBits}, {"SEG_END_W", kSegEndBits},
-      {"ISECT_RAY_W", kIsectRayBits}, {"ISECT_TRI_W", kIsectTriBits},
-      {"ISECT_RES_W", kIsectResBits}, {"MEM_ADDR_W", kMemAddrBits},
+      widthParam(kIsectRay),        widthParam(kIsectTri),      widthParam(kIsectRes),
+      {"MEM_ADDR_W", kMemAddrBits},
   };
   const auto emitParams = [&](std::span<const PackageParam> params) {
     for (const PackageParam& p : params) out << fmt::format("  localparam int {} = {};\n", p.name, p.value);
