@@ -26,6 +26,7 @@
 #include "golden/bvh.h"
 #include "golden/isect.h"
 #include "golden/octree.h"
+#include "golden/units.h"
 #include "ref/bvh.h"
 #include "ref/shade.h"
 #include "ref/trace.h"
@@ -84,10 +85,11 @@ std::string unitOptions(const Args& args) {
   const auto add = [&out](const char* flag, int value) {
     if (value) out += fmt::format(" {} {}", flag, value);
   };
-  add("--grid-res", job.accel.gridResolution);
-  add("--octree-depth", job.accel.octreeMaxDepth);
-  add("--octree-leaf", job.accel.octreeLeafSize);
-  if (job.accel.bvhLeafSize != fx::kDefaultBvhLeafSize) add("--bvh-leaf", job.accel.bvhLeafSize);
+  fx::forEachTraversalUnit([&](auto unit) {
+    for (const fx::BuildOption& o : decltype(unit)::buildOptions()) {
+      if (job.accel.*o.field != AccelOptions{}.*o.field) add(o.flag, job.accel.*o.field);
+    }
+  });
   if (args.latticeMargin != kLatticeMarginUnits) out += fmt::format(" --lattice-margin {}", args.latticeMargin);
   if (args.accel != fx::UnitKind::Isect) {
     out += fmt::format(" --mem-latency {}", job.memLatency);
@@ -569,19 +571,12 @@ void addRunCommand(CLI::App& app) {
       "widths, rtl/synth/clocks.json)");
   cmd->add_option("--pos-bits", args->posBits, "Expected position width (must match the build)");
   cmd->add_option("--dir-bits", args->dirBits, "Expected direction width (must match the build)");
-  cmd->add_option("--grid-res", args->job.accel.gridResolution,
-                  "Grid cells per axis (default: from the triangle count)");
-  cmd->add_option("--octree-depth", args->job.accel.octreeMaxDepth,
-                  fmt::format("Octree maximum depth, 1..{} (default: from the triangle count)", fx::kOctreeMaxDepth))
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--octree-leaf", args->job.accel.octreeLeafSize,
-                  fmt::format("Octree leaf size: split nodes holding more triangles (default {})",
-                              fx::kDefaultOctreeLeafSize))
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--bvh-leaf", args->job.accel.bvhLeafSize,
-                  fmt::format("BVH unit's largest leaf, 1..{} triangles (default {})", fx::kBvhMaxLeafSize,
-                              fx::kDefaultBvhLeafSize))
-      ->check(CLI::PositiveNumber);
+  fx::forEachTraversalUnit([&](auto unit) {
+    for (const fx::BuildOption& o : decltype(unit)::buildOptions()) {
+      CLI::Option* option = cmd->add_option(o.flag, args->job.accel.*o.field, o.help);
+      if (o.positive) option->check(CLI::PositiveNumber);
+    }
+  });
   cmd->add_option("--mem-latency", args->job.memLatency, "Memory latency of the traversal units, in cycles")
       ->capture_default_str();
   cmd->add_option("--mem-jitter", args->job.memLatencyJitter, "Random extra memory latency per read, 0..N cycles")

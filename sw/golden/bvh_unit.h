@@ -36,6 +36,13 @@ struct BvhUnit : UnitBase<UnitKind::Bvh, BvhImage, BvhNode, kBvhNodeFields, kBvh
   }
 
   // --bvh-leaf: the largest leaf the SAH builder may make.
+  static std::vector<BuildOption> buildOptions() {
+    return {{"--bvh-leaf", &AccelOptions::bvhLeafSize,
+             fmt::format("BVH unit's largest leaf, 1..{} triangles (default {})", kBvhMaxLeafSize,
+                         kDefaultBvhLeafSize),
+             true, {"bvh_leaf_size"}}};
+  }
+  static_assert(AccelOptions{}.bvhLeafSize == kDefaultBvhLeafSize, "a replay omits --bvh-leaf at the default");
   static Image build(std::vector<QTriangle> triangles, const AccelOptions& options) {
     return buildBvhImage(std::move(triangles), options.bvhLeafSize ? options.bvhLeafSize : kDefaultBvhLeafSize);
   }

@@ -26,6 +26,14 @@ struct OctreeUnit : UnitBase<UnitKind::Octree, OctreeImage, OctreeNode, kOctreeN
   }
 
   // --octree-depth and --octree-leaf, or the heuristics where 0.
+  static std::vector<BuildOption> buildOptions() {
+    return {{"--octree-depth", &AccelOptions::octreeMaxDepth,
+             fmt::format("Octree maximum depth, 1..{} (default: from the triangle count)", kOctreeMaxDepth), true,
+             {"octree_max_depth"}},
+            {"--octree-leaf", &AccelOptions::octreeLeafSize,
+             fmt::format("Octree leaf size: split nodes holding more triangles (default {})", kDefaultOctreeLeafSize),
+             true, {"octree_leaf_size"}}};
+  }
   static Image build(std::vector<QTriangle> triangles, const AccelOptions& options) {
     const int depth = options.octreeMaxDepth ? options.octreeMaxDepth : defaultOctreeDepth(triangles.size());
     const int leaf = options.octreeLeafSize ? options.octreeLeafSize : kDefaultOctreeLeafSize;

@@ -21,6 +21,7 @@
 //   nodes(image)                     the node table
 //   nodeValues(node)                 a node's field values, in kNodeFields order
 //   configValues(image)              the configuration port's field values of a run
+//   buildOptions()                   the options of `lancer run` that build reads (BuildOption)
 //   build(triangles, options)        the image the driver builds for a scene
 //   checkImage(image, rays)          InputError for an image or ray the unit cannot take
 //   traverse(image, ray)             the golden walk
@@ -32,6 +33,7 @@
 #include <cstdint>
 #include <iterator>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -135,6 +137,20 @@ constexpr UnitNames unitNames(const UnitWords& words) {
   using Derived = DerivedUnitNames<Unit>;
   return {words, Derived::kUnit.text, Derived::kModule.text, Derived::kSlotsOption.text, Derived::kRtlSources.text};
 }
+
+// A build option of a unit's image (--bvh-leaf): how `lancer run` takes it,
+// the AccelOptions field it sets, and the image counters that report the value
+// the image was built with. A replay's command line repeats it where it differs
+// from AccelOptions' default; the sweep's reference trace passes the reported
+// value to `lancer trace` (the float structure takes the same flag) when the
+// counters agree.
+struct BuildOption {
+  const char* flag;
+  int AccelOptions::*field;
+  std::string help;                     // in `lancer run --help`
+  bool positive;                        // refused unless > 0
+  std::vector<const char*> reportKeys;  // "bvh_leaf_size"; the grid's three axes
+};
 
 // A figure of a unit's memory image (the grid's resolution, the octree's depth).
 struct ImageCounter {

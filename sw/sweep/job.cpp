@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "golden/units.h"
 #include "sweep/process.h"
 #include "sweep/trees.h"
 
@@ -100,18 +101,18 @@ std::string executeJob(const std::string& out, const Spec& spec, const Job& job)
     const nlohmann::json& r = result["run"];
     std::vector<std::string> trace{lancer, "trace", "--scene", scene, "--rays", rays, "--accel", job.unit,
                                    "--report", work + "/trace.json", "--hits", "/dev/null"};
+    // Each build option as the unit reported it (the float grid is cubic: its
+    // three axes must agree; the BVH is the same SAH builder over float boxes).
     bool comparable = true;
-    if (job.unit == "grid") {
-      const int64_t x = r.value("grid_resolution_x", 0), y = r.value("grid_resolution_y", 0),
-                    z = r.value("grid_resolution_z", 0);
-      comparable = x == y && y == z && x > 0;  // the float grid is cubic
-      trace.insert(trace.end(), {"--grid-res", std::to_string(x)});
-    } else if (job.unit == "octree") {
-      trace.insert(trace.end(), {"--octree-depth", std::to_string(r.value("octree_max_depth", 0)), "--octree-leaf",
-                                 std::to_string(r.value("octree_leaf_size", 0))});
-    } else {  // bvh: the same SAH builder, over float boxes instead of lattice ones
-      trace.insert(trace.end(), {"--bvh-leaf", std::to_string(r.value("bvh_leaf_size", 0))});
-    }
+    fx::forEachTraversalUnit([&](auto unit) {
+      if (job.unit != decltype(unit)::kNames.unit) return;
+      for (const fx::BuildOption& o : decltype(unit)::buildOptions()) {
+        const int64_t value = r.value(o.reportKeys.front(), 0);
+        for (const char* key : o.reportKeys) comparable = comparable && r.value(key, 0) == value;
+        comparable = comparable && value > 0;
+        trace.insert(trace.end(), {o.flag, std::to_string(value)});
+      }
+    });
     if (comparable) {
       if (std::string e = step(trace, "lancer trace"); !e.empty()) return e;
       result["reference_trace"] = readJson(work + "/trace.json");
