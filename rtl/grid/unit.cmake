@@ -8,5 +8,7 @@ if(NOT LANCER_GRID_CELL_QUEUE MATCHES "^(2|4|8)$")
 endif()
 set(unit_lib_sources)
 set(unit_sources rt_grid_setup.sv rt_grid.sv)
+# Its configuration port besides cfg_slots_i (the models bind it by name).
+set(unit_cfg_port cfg_res_i)
 set(unit_params CellQueue=${LANCER_GRID_CELL_QUEUE})
 set(unit_definitions LANCER_GRID_CELL_QUEUE=${LANCER_GRID_CELL_QUEUE})

@@ -3,5 +3,7 @@
 # of rtl/lib it shares with some other units, then its own.
 set(unit_lib_sources rt_mirror_pairs.sv)
 set(unit_sources rt_octree_setup.sv rt_octree.sv)
+# Its configuration port besides cfg_slots_i (the models bind it by name).
+set(unit_cfg_port cfg_root_i)
 set(unit_params)
 set(unit_definitions)

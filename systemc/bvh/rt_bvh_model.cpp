@@ -8,11 +8,9 @@
 
 namespace lancer::sc {
 
-using namespace bvh;
-
 namespace {
 
-constexpr size_t kNodeWords = size_t(fx::wireWords(NODE_W));
+constexpr size_t kNodeWords = size_t(fx::wireWords(rt_bvh_unit::NODE_W));
 constexpr size_t kRefWords = size_t(fx::wireWords(fx::kBvhRefBits));
 static_assert(fx::valueCount(fx::kBvhNodeFields) == 24, "bvh_node_t layout changed");
 static_assert(fx::valueCount(fx::kBvhRefFields) == 3, "bvh_ref_t layout changed");
@@ -66,7 +64,6 @@ void rt_bvh_model::seq() {
   if (g.visit >= 0) visit(g.visit);
   if (g.node >= 0) requestNode(g.node);
   if (res.valid) absorbResult(res);
-  if (g.idx >= 0) issueIndex(g.idx);
   if (g.check >= 0) check(g.check);
   if (answer.valid) takeBoxAnswer(answer);
   if (popping >= 0) pop(popping);
@@ -75,13 +72,12 @@ void rt_bvh_model::seq() {
   if (loadSlot() >= 0) load(loadSlot());
   if (g.alloc >= 0) setState(g.alloc, State::Setup);
 
-  endCycle(g, free_, enter_.any());
+  endCycle(g, enter_.any());
 }
 
 void rt_bvh_model::reset() {
   for (Slot& s : slots_) s.state = State::Free;
-  for (slot_mask* m : {&free_, &enter_, &nodeWant_, &idxWant_, &checkWant_, &pop_, &done_, &fetch_, &fin_}) m->clear();
-  for (int k = 0; k < N; ++k) free_.set(k);
+  for (slot_mask* m : {&enter_, &nodeWant_, &checkWant_, &pop_, &done_, &fetch_, &fin_}) m->clear();
   popArb_ = rt_rr_arb_model<N>{};
   popGranted_ = -1;
   boxLine_.fill(BoxAnswer{});
@@ -90,8 +86,7 @@ void rt_bvh_model::reset() {
 
 // rt_bvh_slots' want vectors: the state masks.
 rt_bvh_model::wants_t rt_bvh_model::wants() const {
-  return wants_t{.free = free_, .node = nodeWant_, .visit = enter_, .idx = idxWant_, .check = checkWant_,
-                 .done = done_, .expect = fetch_};
+  return wants_t{.node = nodeWant_, .visit = enter_, .check = checkWant_, .done = done_, .expect = fetch_};
 }
 
 // The pop lane's grant (registered: the slot pops in the next cycle), over the
@@ -113,7 +108,7 @@ rt_bvh_model::BoxAnswer rt_bvh_model::testNode() {
     fail(fmt::format("node response for slot {}, which does not wait for one", rsp.slot));
   }
   std::array<uint32_t, kNodeWords> wire{};
-  fromPort<NODE_W>(*rsp.data, wire);
+  fromPort<rt_bvh_unit::NODE_W>(*rsp.data, wire);
   const fx::BvhNode node = unpackNode(wire.data());
   BoxAnswer a;
   a.valid = true;
@@ -131,12 +126,10 @@ rt_bvh_model::BoxAnswer rt_bvh_model::testNode() {
 void rt_bvh_model::visit(int k) {
   Slot& s = slots_[size_t(k)];
   pushVisit(k, s.cur.ref.visitId());
-  ++s.nodes;
   if (!s.cur.ref.leaf) {
     setState(k, State::NodeReq);
   } else if (s.cur.ref.count > 0) {
-    s.tests += s.cur.ref.count;
-    s.issued = s.received = 0;
+    startRun(k, s.cur.ref.first, s.cur.ref.count);
     setState(k, State::Fetch);
   } else {
     setState(k, State::Pop);
@@ -152,16 +145,8 @@ void rt_bvh_model::requestNode(int k) {
 // One rt_isect result (the shell took it into the closest hit); the last one:
 // FETCH ends in the next cycle.
 void rt_bvh_model::absorbResult(const rt_isect_result& res) {
-  Slot& s = slots_[size_t(res.slot)];
-  if (s.received == s.issued) fail(fmt::format("rt_isect result for slot {}, which expects none", res.slot));
-  if (res.res.hit) s.hitSeen = true;
-  if (++s.received == s.cur.ref.count) fin_.set(res.slot);
-}
-
-void rt_bvh_model::issueIndex(int k) {
-  Slot& s = slots_[size_t(k)];
-  pushIdx(k, s.cur.ref.first + s.issued);
-  if (++s.issued == s.cur.ref.count) idxWant_.reset(k);
+  if (res.res.hit) slots_[size_t(res.slot)].hitSeen = true;
+  if (res.last) fin_.set(res.slot);
 }
 
 // The exit test's answer: culled (the bound lies before the candidate) -> POP, else ENTER.
@@ -183,7 +168,7 @@ void rt_bvh_model::takeBoxAnswer(const BoxAnswer& a) {
   }
   const size_t pick = both ? (a.hit[1].entry < a.hit[0].entry ? 1 : 0) : (a.hit[1].hit ? 1 : 0);
   if (both) {
-    if (s.sp >= STACK_DEPTH) fail(fmt::format("slot {}: the stack overflows ({} entries)", a.slot, STACK_DEPTH));
+    if (s.sp >= fx::kBvhStackDepth) fail(fmt::format("slot {}: the stack overflows ({} entries)", a.slot, fx::kBvhStackDepth));
     s.stack[size_t(s.sp++)] = Candidate{a.child[1 - pick], a.hit[1 - pick].entry};
   }
   candidate(a.slot, Candidate{a.child[pick], a.hit[pick].entry});
@@ -208,8 +193,7 @@ void rt_bvh_model::finishLeaves(const slot_mask& finishing) {
 }
 
 void rt_bvh_model::finish(int k) {
-  const Slot& s = slots_[size_t(k)];
-  pushResult(k, s.nodes, s.tests);
+  finishRay(k);
   setState(k, State::Free);
 }
 
@@ -228,15 +212,12 @@ void rt_bvh_model::setState(int k, State next) {
 
 // The sets a slot in state `st` belongs to, joined or left.
 void rt_bvh_model::mark(int k, State st, bool join) {
-  const Slot& s = slots_[size_t(k)];
   const auto put = [&](slot_mask& m) { join ? m.set(k) : m.reset(k); };
   switch (st) {
-    case State::Free: put(free_); break;
     case State::Enter: put(enter_); break;
     case State::NodeReq: put(nodeWant_); break;
     case State::Fetch:
       put(fetch_);
-      if (!join || s.issued != s.cur.ref.count) put(idxWant_);
       if (!join) fin_.reset(k);
       break;
     case State::Pop: put(pop_); break;
@@ -257,7 +238,6 @@ void rt_bvh_model::load(int k) {
   fromPort<fx::kBvhRefBits>(cfg_root_i.read(), root);
   s.cur = Candidate{unpackRef(root.data()), 0};
   s.sp = 0;
-  s.nodes = s.tests = s.issued = s.received = 0;
   setState(k, State::Enter);
 }
 

@@ -5,7 +5,6 @@
 
 #include <systemc>
 
-#include "bvh/rt_bvh_types.h"
 #include "bvh/rt_bvh_unit.h"
 #include "common/rt_trav_shell_model.h"
 #include "golden/bvh.h"
@@ -20,7 +19,7 @@ namespace lancer::sc {
 // exit tests, results) is rt_trav_shell_model's, without RegRsp (node and
 // triangle responses are used in the cycle they arrive); this model holds the
 // walk of rt_bvh_slots.sv, the box tester rt_bvh_box.sv as a delay line of
-// BVH_BOX_LATENCY cycles, and the setup of rt_bvh_setup.sv.
+// BVH_BOX_LATENCY cycles, and its setup (rt_mirror_pairs.sv).
 //
 //   seq()   SC_METHOD on clk_i.posedge (and rst_ni.negedge, the RTL's async
 //           reset): the cycle as an outline of named steps, each deciding from
@@ -56,8 +55,7 @@ class rt_bvh_model : public rt_trav_shell_model<rt_bvh_unit, /*RegRsp=*/false> {
     bool hitSeen = false;   // a result of the ray was a hit
     Candidate cur;
     int sp = 0;
-    std::array<Candidate, bvh::STACK_DEPTH> stack{};
-    uint32_t nodes = 0, tests = 0, issued = 0, received = 0;
+    std::array<Candidate, fx::kBvhStackDepth> stack{};
   };
 
   // rt_bvh_box's answer for one node response, BVH_BOX_LATENCY cycles later.
@@ -77,7 +75,6 @@ class rt_bvh_model : public rt_trav_shell_model<rt_bvh_unit, /*RegRsp=*/false> {
   void visit(int k);
   void requestNode(int k);
   void absorbResult(const rt_isect_result& res);
-  void issueIndex(int k);
   void check(int k);
   void takeBoxAnswer(const BoxAnswer& a);
   void pop(int k);
@@ -91,10 +88,10 @@ class rt_bvh_model : public rt_trav_shell_model<rt_bvh_unit, /*RegRsp=*/false> {
   std::array<Slot, N> slots_{};
   // Slots by what they wait for: the want vectors, and fin_ (FETCH with every
   // result in: it ends in the next cycle).
-  slot_mask free_, enter_, nodeWant_, idxWant_, checkWant_, pop_, done_, fetch_, fin_;
+  slot_mask enter_, nodeWant_, checkWant_, pop_, done_, fetch_, fin_;
   rt_rr_arb_model<N> popArb_{};
   int popGranted_ = -1;  // the pop lane's grant of the previous cycle: that slot pops now
-  rt_delay_line<BoxAnswer, size_t(bvh::BOX_LATENCY)> boxLine_;  // u_box
+  rt_delay_line<BoxAnswer, size_t(fx::kBvhBoxLatency)> boxLine_;  // u_box
 };
 
 }  // namespace lancer::sc

@@ -7,17 +7,23 @@
 // steps in this order, once per rising edge:
 //
 //   wants      the walk's want vectors, from the registers at the start of the cycle
-//   grant()    allocation, the five round-robin arbiters, FIFO room, credits;
-//              the FIFO heads taken in this cycle leave
+//   grant()    allocation (from the free slots), the five round-robin
+//              arbiters (the index reads' from the index runs), FIFO room,
+//              credits; the FIFO heads taken in this cycle leave
 //   nodeResponse()   the node/cell response of the cycle (registered when RegRsp)
 //   intersect()      u_isect: the triangle response enters with its slot's ray;
 //              u_closest: the result that left it CLOSEST_HIT_LATENCY cycles
-//              ago updates its slot's closest hit
-//   (events)   the walk's slot updates; at its grants it pushes the node request,
-//              the visit, the index request and the result (push*()), and loads
+//              ago updates its slot's closest hit, and counts in its run
+//   (events)   the walk's slot updates; at its grants it pushes the node request
+//              and the visit (push*()), starts index runs (startRun()), ends
+//              a ray (finishRay(): its result, the slot free again), and loads
 //              the ray leaving the setup pipeline (loadRay())
-//   endCycle() the index buffer and triangle requests, credits, arbiter
-//              pointers, the setup pipeline, the boundary registers, the outputs
+//   endCycle() the index request of the cycle's grant, the index buffer and
+//              triangle requests, credits, arbiter pointers, allocation, the
+//              setup pipeline, the boundary registers, the outputs
+//
+// As rt_trav_shell does, the shell keeps the free slots, the index runs and
+// the counts of the result record (regions entered, tests issued).
 //
 // Outputs are written only when they change (flags) or when a FIFO head
 // changes (data): the kernel calls are most of a cycle's cost.
@@ -223,10 +229,11 @@ struct rt_closest_record {
   }
 };
 
-// The walk's want vectors (rt_trav_shell's free_i, want_*_i, expect_i).
+// The walk's want vectors (rt_trav_shell's want_node, want_visit,
+// want_check, want_done, fetching).
 template <int N>
 struct rt_trav_wants {
-  rt_slot_mask<N> free, node, visit, idx, check, done;
+  rt_slot_mask<N> node, visit, check, done;
   rt_slot_mask<N> expect;  // slots that expect triangles and results (FETCH)
 };
 
@@ -238,11 +245,20 @@ struct rt_trav_grants {
   int alloc = -1, node = -1, visit = -1, idx = -1, check = -1, done = -1;
 };
 
-// The intersection result absorbed in this cycle.
+// The intersection result absorbed in this cycle; last: it completes its
+// slot's index run.
 struct rt_isect_result {
   bool valid = false;
   int slot = -1;
+  bool last = false;
   fx::IsectResult res;
+};
+
+// A slot's index run (a leaf's or a cell's triangles): where its index list
+// starts, how many it lists, the index reads issued and the results in
+// (rt_trav_shell's rt_idx_count).
+struct rt_index_run {
+  uint32_t first = 0, count = 0, issued = 0, received = 0;
 };
 
 // isect_tri_t {prim_id, v0[3], v1[3], v2[3]} from its wire image.
@@ -306,6 +322,10 @@ class rt_trav_shell_model : public sc_core::sc_module,
 
   // Reset: every register, and every output written.
   void resetShell() {
+    free_.clear();
+    for (int k = 0; k < N; ++k) free_.set(k);
+    idxWant_.clear();
+    run_.fill({});
     q_setup_.clear();
     nodeQ_.clear();
     idxQ_.clear();
@@ -323,7 +343,7 @@ class rt_trav_shell_model : public sc_core::sc_module,
     if (isect_) isect_->res_ready_i.write(true);  // rt_trav_shell takes every rt_isect result
     slot_mask all;
     for (int k = 0; k < N; ++k) all.set(k);
-    writeOutputs(true, all, false);
+    writeOutputs(true, false);
     isectFireStale_ = true;  // comb() writes it, its one writer
     state_changed_.notify();
   }
@@ -333,10 +353,10 @@ class rt_trav_shell_model : public sc_core::sc_module,
   rt_trav_grants grant(const wants_t& w) {
     rt_trav_grants g;
     const int usable = std::min<int>(int(this->cfg_slots_i.read()), N);
-    if (this->ray_valid_i.read()) g.alloc = w.free.lowestBelow(usable);
+    if (this->ray_valid_i.read()) g.alloc = free_.lowestBelow(usable);
     g.node = goes(nodeArb_.pick(w.node), !nodeQ_.full());
     g.visit = goes(visitArb_.pick(w.visit), !visitQ_.full());
-    g.idx = goes(idxArb_.pick(w.idx), !idxQ_.full() && credits_ != 0);
+    g.idx = goes(idxArb_.pick(idxWant_), !idxQ_.full() && credits_ != 0);
     // Exit tests (rt_trav_shell, rt_exit_test): this cycle's answer leaves the
     // delay line; a slot not under test may start one.
     g.check = checkLine_.out();
@@ -399,11 +419,14 @@ class rt_trav_shell_model : public sc_core::sc_module,
         fail(fmt::format("rt_isect result for slot {}, which expects none", leaving.slot));
       }
     }
-    const rt_isect_result out = closest_.out();
+    rt_isect_result out = closest_.out();
     closest_.push(leaving);
     if (out.valid) {
       rt_closest_record& hit = hit_[size_t(out.slot)];
       if (hit.takes(out.res)) hit.take(out.res);
+      rt_index_run& run = run_[size_t(out.slot)];
+      if (run.received == run.issued) fail(fmt::format("rt_isect result for slot {}, which expects none", out.slot));
+      out.last = ++run.received == run.count;
     }
     return out;
   }
@@ -422,26 +445,46 @@ class rt_trav_shell_model : public sc_core::sc_module,
     ray.id = uint32_t(k);
     ray_[size_t(k)] = ray;
     hit_[size_t(k)].start(ray);
+    visits_[size_t(k)] = 0;
+    tests_[size_t(k)] = 0;
     return ray;
+  }
+
+  // Slot k starts an index run of `count` triangles listed from `first` (a
+  // leaf's, a cell's): the shell counts them as tests and asks for their
+  // index reads; intersect() marks the result that completes the run.
+  void startRun(int k, uint32_t first, uint32_t count) {
+    run_[size_t(k)] = rt_index_run{first, count, 0, 0};
+    tests_[size_t(k)] += count;
+    if (count != 0) idxWant_.set(k);
   }
 
   // The records pushed at the grants of this cycle (each from its slot's
   // registers at the start of the cycle).
   void pushNode(int k, uint32_t addr) { push(nodeQ_, nodeHead_, rt_mem_req{addrOf(addr), uint32_t(k)}); }
-  void pushVisit(int k, uint32_t id) { push(visitQ_, visitHead_, rt_visit_entry{rayId_[size_t(k)], id}); }
-  void pushIdx(int k, uint32_t addr) { push(idxQ_, idxHead_, rt_mem_req{addrOf(addr), uint32_t(k)}); }
-  void pushResult(int k, uint32_t visited, uint64_t tests) {
-    const auto values = hit_[size_t(k)].resultValues(rayId_[size_t(k)], visited, tests);
+  void pushVisit(int k, uint32_t id) {
+    push(visitQ_, visitHead_, rt_visit_entry{rayId_[size_t(k)], id});
+    ++visits_[size_t(k)];
+  }
+  // The done grant: the ray's result record; the slot is free again.
+  void finishRay(int k) {
+    const auto values = hit_[size_t(k)].resultValues(rayId_[size_t(k)], visits_[size_t(k)], tests_[size_t(k)]);
     std::array<uint32_t, size_t(fx::wireWords(Unit::RESULT_W))> wire{};
     fx::packFields(Unit::kResFields, values, wire);
     push(resQ_, resHead_, toPort<Unit::RESULT_W>(wire));
+    free_.set(k);
   }
 
-  // The rest of the cycle: index buffer -> triangle requests, credits, arbiter
-  // pointers, setup pipeline, boundary registers; then the outputs, with the
-  // walk's free slots and whether a visit is wanted (perf_step_ready_o), both
-  // from the registers at the end of the cycle.
-  void endCycle(const rt_trav_grants& g, const slot_mask& free, bool stepReady) {
+  // The rest of the cycle: the granted index read, index buffer -> triangle
+  // requests, credits, arbiter pointers, allocation, setup pipeline, boundary
+  // registers; then the outputs, with whether a visit is wanted
+  // (perf_step_ready_o) from the registers at the end of the cycle.
+  void endCycle(const rt_trav_grants& g, bool stepReady) {
+    if (g.idx >= 0) {
+      rt_index_run& run = run_[size_t(g.idx)];
+      push(idxQ_, idxHead_, rt_mem_req{addrOf(run.first + run.issued), uint32_t(g.idx)});
+      if (++run.issued == run.count) idxWant_.reset(g.idx);
+    }
     if (idxBufPop_) {
       push(triQ_, triHead_, idxBuf_.front());
       idxBuf_.pop();
@@ -460,13 +503,16 @@ class rt_trav_shell_model : public sc_core::sc_module,
     ack(doneArb_, g.done);
 
     q_setup_.shift();
-    if (g.alloc >= 0) q_setup_.load(g.alloc, this->ray_data_i.read());
+    if (g.alloc >= 0) {
+      free_.reset(g.alloc);
+      q_setup_.load(g.alloc, this->ray_data_i.read());
+    }
 
     if constexpr (RegRsp) {
       registerResponse(nodeRsp_, this->node_rsp_valid_i, this->node_rsp_tag_i, this->node_rsp_data_i);
       registerResponse(triRsp_, this->tri_rsp_valid_i, this->tri_rsp_tag_i, this->tri_rsp_data_i);
     }
-    writeOutputs(false, free, stepReady);
+    writeOutputs(false, stepReady);
     if (RegRsp || isect_) state_changed_.notify();  // immediate: comb() runs in this evaluation phase
   }
 
@@ -577,7 +623,7 @@ class rt_trav_shell_model : public sc_core::sc_module,
     }
   }
 
-  void writeOutputs(bool all, const slot_mask& free, bool stepReady) {
+  void writeOutputs(bool all, bool stepReady) {
     writeRequest(this->node_req_valid_o, NODE_VALID, nodeQ_, nodeHead_, all, this->node_req_addr_o,
                  this->node_req_tag_o);
     writeRequest(this->idx_req_valid_o, IDX_VALID, idxQ_, idxHead_, all, this->idx_req_addr_o, this->idx_req_tag_o);
@@ -594,14 +640,20 @@ class rt_trav_shell_model : public sc_core::sc_module,
     nodeHead_ = idxHead_ = triHead_ = visitHead_ = resHead_ = false;
 
     const int usable = std::min<int>(int(this->cfg_slots_i.read()), N);
-    writeFlag(this->ray_ready_o, RAY_READY, free.lowestBelow(usable) >= 0, all);
+    writeFlag(this->ray_ready_o, RAY_READY, free_.lowestBelow(usable) >= 0, all);
     writeFlag(this->perf_step_ready_o, STEP_READY, stepReady, all);
   }
 
-  // Per slot: the ray's own id, its ray for u_isect (id = the slot index), its closest hit.
+  // Per slot: the ray's own id, its ray for u_isect (id = the slot index), its
+  // closest hit, its index run, the counts of its result record.
   std::array<uint32_t, N> rayId_{};
   std::array<fx::QRay, N> ray_{};
   std::array<rt_closest_record, N> hit_{};
+  std::array<rt_index_run, N> run_{};
+  std::array<uint32_t, N> visits_{};
+  std::array<uint64_t, N> tests_{};
+  slot_mask free_;     // FREE: allocation takes the lowest usable one
+  slot_mask idxWant_;  // index runs with reads left to issue
 
   rt_setup_pipe<Unit::SETUP_LATENCY> q_setup_;
   rt_fifo_model<rt_mem_req, MEMREQ_FIFO_DEPTH> nodeQ_, idxQ_, triQ_;

@@ -2,8 +2,9 @@
 
 // What the shared SystemC modules of a traversal unit (rt_trav_tb,
 // rt_trav_bench, rt_trav_top, rt_trav_shell_model; systemc/common/) need to
-// know of a unit: its traits class (grid/rt_grid_unit.h, octree/rt_octree_unit.h),
-// which derives from rt_trav_unit<RaysInFlight, Descriptor>. Everything but
+// know of a unit: its traits class rt_<unit>_unit (<unit>/rt_<unit>_unit.h,
+// generated from common/rt_trav_unit_traits.h.in), which derives from
+// rt_trav_unit<RaysInFlight, Descriptor>. Everything but
 // the cycle model and the DUT's own port names comes from the unit's
 // descriptor (golden/unit.h): names, records, the configuration port's value,
 // the node port's responses.
@@ -20,7 +21,9 @@
 //                               the Verilated class is named in
 //                               systemc/<unit>/rt_<unit>_system.cpp (rt_trav_rtl<Unit>)
 //   bindUnitPorts(dut, bench)   the DUT's configuration and node ports, by the
-//                               RTL's names (its C++ members carry them)
+//                               RTL's names (its C++ members carry them; the
+//                               configuration port's is the unit's
+//                               unit_cfg_port, rtl/<unit>/unit.cmake)
 
 #include <array>
 #include <cstdint>
@@ -122,19 +125,6 @@ struct rt_trav_unit {
     std::vector<uint32_t> wire_;
     std::vector<uint8_t> packed_;
   };
-};
-
-// The traits of a unit whose DUT takes cfg_root_i and the shared node port
-// (node_*): rt_octree, rt_bvh. Model: its cycle model.
-template <int RaysInFlight, class Desc, class Model>
-struct rt_root_node_unit : rt_trav_unit<RaysInFlight, Desc> {
-  using model_t = Model;
-
-  template <class Dut, class Bench>
-  static void bindUnitPorts(Dut& dut, Bench& b) {
-    dut.cfg_root_i(b.cfg_i);
-    b.bindNodePort(dut);
-  }
 };
 
 // The Verilated SystemC class of a unit (Vrt_grid_sc, ...), or void when the

@@ -33,13 +33,11 @@ void rt_grid_model::seq() {
   preparing_ = std::exchange(stepping_, g.node);
   if (g.visit >= 0) visitCell(g.visit, visitHeadIn);
   if (cell.waiting && cell.slot != g.visit) startCell(cell.slot, cell.data);
-  if (g.idx >= 0) issueIndex(g.idx);
-  if (res.valid) absorbResult(res.slot);
+  if (res.valid && res.last) cellDone(res.slot);
   if (g.check >= 0) check(g.check);
   if (g.done >= 0) finish(g.done);
 
-  const wants_t next = wants();
-  endCycle(g, next.free, next.visit.any());
+  endCycle(g, wants().visit.any());
 }
 
 void rt_grid_model::reset() {
@@ -55,14 +53,10 @@ rt_grid_model::wants_t rt_grid_model::wants() const {
   for (int k = 0; k < N; ++k) {
     const Slot& s = slots_[size_t(k)];
     switch (s.state) {
-      case State::Free: w.free.set(k); break;
       case State::Visit:
         if (s.queued > 0) w.visit.set(k);
         break;
-      case State::Fetch:
-        w.expect.set(k);
-        if (s.issued != s.count) w.idx.set(k);
-        break;
+      case State::Fetch: w.expect.set(k); break;
       case State::Check: w.check.set(k); break;
       case State::Done:
         if (s.outstanding == 0) w.done.set(k);
@@ -96,8 +90,8 @@ rt_grid_model::CellIn rt_grid_model::cellResponse() {
   if (in.waiting && s.outstanding != s.queued) {
     fail(fmt::format("cell response for slot {} in WAIT_CELL is not its head's", in.slot));
   }
-  std::array<uint32_t, size_t(fx::wireWords(GRID_CELL_W))> wire{};
-  fromPort<GRID_CELL_W>(*rsp.data, wire);
+  std::array<uint32_t, size_t(fx::wireWords(rt_grid_unit::NODE_W))> wire{};
+  fromPort<rt_grid_unit::NODE_W>(*rsp.data, wire);
   std::array<fx::u128, 2> v{};
   fx::unpackFields(fx::kGridCellFields, wire, v);
   in.data.first = uint32_t(v[0]);
@@ -107,8 +101,8 @@ rt_grid_model::CellIn rt_grid_model::cellResponse() {
 
 fx::GridRes rt_grid_model::resolution() const {
   const uint32_t cfg = uint32_t(cfg_res_i.read());
-  constexpr uint32_t mask = (uint32_t(1) << GRID_RESOLUTION_W) - 1;
-  return {int(cfg & mask), int((cfg >> GRID_RESOLUTION_W) & mask), int((cfg >> (2 * GRID_RESOLUTION_W)) & mask)};
+  constexpr uint32_t mask = (uint32_t(1) << fx::kGridResolutionBits) - 1;
+  return {int(cfg & mask), int((cfg >> fx::kGridResolutionBits) & mask), int((cfg >> (2 * fx::kGridResolutionBits)) & mask)};
 }
 
 // SETUP -> VISIT at the end of accept + GRID_SETUP_LATENCY: the DDA's setup (rt_grid_setup).
@@ -117,7 +111,6 @@ void rt_grid_model::load(int k) {
   s.frontier = fx::GridDda::setup(resolution(), loadRay(k));
   s.frontierValid = true;
   s.head = s.queued = 0;
-  s.cells = s.tests = 0;
   s.state = State::Visit;
 }
 
@@ -147,25 +140,11 @@ void rt_grid_model::requestCell(int k) {
 void rt_grid_model::visitCell(int k, bool headIn) {
   Slot& s = slots_[size_t(k)];
   pushVisit(k, s.queue[size_t(s.head)].cellId);
-  ++s.cells;
   if (headIn) {
     startCell(k, s.queue[size_t(s.head)].data);  // (filled above if it arrived now)
   } else {
     s.state = State::WaitCell;
   }
-}
-
-void rt_grid_model::issueIndex(int k) {
-  Slot& s = slots_[size_t(k)];
-  pushIdx(k, s.first + s.issued);
-  ++s.issued;
-}
-
-// One rt_isect result of the slot's current cell (the shell took it into the closest hit).
-void rt_grid_model::absorbResult(int k) {
-  Slot& s = slots_[size_t(k)];
-  ++s.received;
-  if (s.received == s.count) cellDone(k);
 }
 
 // The exit test in the current cell (no stepping axis: the ray ends anyway).
@@ -181,19 +160,14 @@ void rt_grid_model::check(int k) {
 }
 
 void rt_grid_model::finish(int k) {
-  Slot& s = slots_[size_t(k)];
-  pushResult(k, s.cells, s.tests);
-  s.state = State::Free;
+  finishRay(k);
+  slots_[size_t(k)].state = State::Free;
 }
 
 void rt_grid_model::startCell(int k, const fx::GridCell& data) {
-  Slot& s = slots_[size_t(k)];
-  s.first = data.first;
-  s.count = data.count;
-  s.tests += data.count;
-  s.issued = s.received = 0;
+  startRun(k, data.first, data.count);
   if (data.count > 0) {
-    s.state = State::Fetch;
+    slots_[size_t(k)].state = State::Fetch;
   } else {
     cellDone(k);
   }

@@ -9,10 +9,16 @@
 
 #include "common/rt_trav_shell_model.h"
 #include "golden/grid.h"
-#include "grid/rt_grid_types.h"
 #include "grid/rt_grid_unit.h"
 
+#ifndef LANCER_GRID_CELL_QUEUE
+#error "LANCER_GRID_CELL_QUEUE must come from the build (rtl/grid/unit.cmake)"
+#endif
+
 namespace lancer::sc {
+
+// rt_grid's CellQueue as the Verilated model is built: cells per slot read and not finished.
+inline constexpr int CELL_QUEUE = LANCER_GRID_CELL_QUEUE;
 
 // rt_grid_model: hand-written cycle model of rtl/grid/rt_grid.sv, meant to
 // match it cycle for cycle and bit for bit at its ports; docs/grid-unit.md is
@@ -67,8 +73,6 @@ class rt_grid_model : public rt_trav_shell_model<rt_grid_unit, /*RegRsp=*/true> 
     int head = 0;               // queue[head]: the cell being entered or visited
     int queued = 0;             // entries: cells requested and not finished
     int outstanding = 0;        // cell reads without their response (the newest entries)
-    uint32_t cells = 0, tests = 0;
-    uint32_t first = 0, count = 0, issued = 0, received = 0;  // the current cell
   };
 
   // The cell response of the cycle, decoded.
@@ -88,8 +92,6 @@ class rt_grid_model : public rt_trav_shell_model<rt_grid_unit, /*RegRsp=*/true> 
   void fillCell(const CellIn& in);
   void requestCell(int k);
   void visitCell(int k, bool headIn);
-  void issueIndex(int k);
-  void absorbResult(int k);
   void check(int k);
   void finish(int k);
   // A cell's data is in: its tests begin, or it is done at once (no triangles).

@@ -9,12 +9,10 @@
 
 namespace lancer::sc {
 
-using namespace octree;
-
 namespace {
 
-constexpr size_t kNodeWords = size_t(fx::wireWords(NODE_W));
-constexpr size_t kGroupWords = size_t(fx::wireWords(GROUP_W));
+constexpr size_t kNodeWords = size_t(fx::wireWords(rt_octree_unit::NODE_W));
+constexpr size_t kGroupWords = size_t(fx::wireWords(rt_octree_unit::NODE_DATA_W));
 static_assert(fx::valueCount(fx::kOctreeNodeFields) == 3, "octree_node_t layout changed");
 
 fx::OctreeNode unpackNode(const uint32_t* wire) {  // {leaf, count, first}
@@ -53,8 +51,7 @@ void rt_octree_model::seq() {
   if (g.visit >= 0) visit(g.visit);
   if (g.node >= 0) requestGroup(g.node);
   if (nodeSlot >= 0) takeGroup(nodeSlot);
-  if (res.valid) absorbResult(res.slot);
-  if (g.idx >= 0) issueIndex(g.idx);
+  if (res.valid && res.last) self_.set(res.slot);  // the leaf's last result: CHECK in the next cycle
   if (g.check >= 0) check(g.check);
   advanceLanes(lanes);
   actOnTheirOwn(self);
@@ -62,15 +59,12 @@ void rt_octree_model::seq() {
   if (loadSlot() >= 0) load(loadSlot());
   if (g.alloc >= 0) setState(g.alloc, State::Setup);
 
-  endCycle(g, free_, enter_.any());
+  endCycle(g, enter_.any());
 }
 
 void rt_octree_model::reset() {
   for (Slot& s : slots_) s.state = State::Free;
-  for (slot_mask* m : {&free_, &enter_, &nodeWant_, &idxWant_, &checkWant_, &advWant_, &done_, &fetch_, &self_}) {
-    m->clear();
-  }
-  for (int k = 0; k < N; ++k) free_.set(k);
+  for (slot_mask* m : {&enter_, &nodeWant_, &checkWant_, &advWant_, &done_, &fetch_, &self_}) m->clear();
   advArb_.fill(rt_rr_arb_model<N>{});
   granted_.fill(-1);
   resetShell();
@@ -78,8 +72,7 @@ void rt_octree_model::reset() {
 
 // rt_octree_slots' want vectors: the state masks.
 rt_octree_model::wants_t rt_octree_model::wants() const {
-  return wants_t{.free = free_, .node = nodeWant_, .visit = enter_, .idx = idxWant_, .check = checkWant_,
-                 .done = done_, .expect = fetch_};
+  return wants_t{.node = nodeWant_, .visit = enter_, .check = checkWant_, .done = done_, .expect = fetch_};
 }
 
 // The advance lanes' grants: lane l over what the lanes before it left.
@@ -127,7 +120,7 @@ void rt_octree_model::requestGroup(int k) {
 void rt_octree_model::takeGroup(int k) {
   Slot& s = slots_[size_t(k)];
   std::array<uint32_t, kGroupWords> wire{};
-  fromPort<GROUP_W>(*nodeResponse().data, wire);
+  fromPort<rt_octree_unit::NODE_DATA_W>(*nodeResponse().data, wire);
   for (size_t i = 0; i < size_t(fx::kOctreeChildren); ++i) s.group[i] = unpackNode(wire.data() + i * kNodeWords);
   s.groupValid = true;
   if (s.state == State::WaitGroup) {
@@ -136,19 +129,6 @@ void rt_octree_model::takeGroup(int k) {
     s.rec = s.group[size_t(s.stack[size_t(s.depth - 1)].child ^ s.setup.mirror)];
     setState(k, State::Enter);
   }
-}
-
-// One rt_isect result (the shell took it into the closest hit); the last one: CHECK in the next cycle.
-void rt_octree_model::absorbResult(int k) {
-  Slot& s = slots_[size_t(k)];
-  if (s.received == s.issued) fail(fmt::format("rt_isect result for slot {}, which expects none", k));
-  if (++s.received == s.rec.count) self_.set(k);
-}
-
-void rt_octree_model::issueIndex(int k) {
-  Slot& s = slots_[size_t(k)];
-  pushIdx(k, s.rec.first + s.issued);
-  if (++s.issued == s.rec.count) idxWant_.reset(k);
 }
 
 // The exit test; when the leaf does not end the ray, its lane advances the slot.
@@ -181,8 +161,7 @@ void rt_octree_model::actOnTheirOwn(const slot_mask& self) {
 }
 
 void rt_octree_model::finish(int k) {
-  const Slot& s = slots_[size_t(k)];
-  pushResult(k, s.nodes, s.tests);
+  finishRay(k);
   setState(k, State::Free);
 }
 
@@ -195,17 +174,14 @@ void rt_octree_model::setState(int k, State next) {
 
 // The sets a slot in state `st` belongs to, joined or left.
 void rt_octree_model::mark(int k, State st, bool join) {
-  const Slot& s = slots_[size_t(k)];
   const auto put = [&](slot_mask& m) { join ? m.set(k) : m.reset(k); };
   switch (st) {
-    case State::Free: put(free_); break;
     case State::Enter: put(enter_); break;
     case State::GroupReq:
     case State::RefillReq: put(nodeWant_); break;
     case State::Fetch:
       put(fetch_);
-      if (!join || s.issued != s.rec.count) put(idxWant_);
-      if (!join || s.received == s.rec.count) put(self_);
+      if (!join) self_.reset(k);  // (joined by the leaf's last result)
       break;
     case State::Check:
       if (join) {
@@ -230,11 +206,10 @@ void rt_octree_model::load(int k) {
   s.t1 = s.setup.t1;
   s.nodeId = 0;
   std::array<uint32_t, kNodeWords> root{};
-  fromPort<NODE_W>(cfg_root_i.read(), root);
+  fromPort<rt_octree_unit::NODE_W>(cfg_root_i.read(), root);
   s.rec = unpackNode(root.data());
   s.depth = 0;
   s.groupValid = false;
-  s.nodes = s.tests = s.issued = s.received = 0;
   const fx::OctT enter = std::max({s.t0[0], s.t0[1], s.t0[2]});
   const fx::OctT leave = std::min({s.t1[0], s.t1[1], s.t1[2]});
   setState(k, enter < leave ? State::Enter : State::Done);
@@ -242,13 +217,11 @@ void rt_octree_model::load(int k) {
 
 // ENTER on the visit grant (the visit record is pushed by the caller).
 void rt_octree_model::enter(int k) {
-  Slot& s = slots_[size_t(k)];
-  ++s.nodes;
+  const Slot& s = slots_[size_t(k)];
   if (!s.rec.leaf) {
     setState(k, State::GroupReq);
   } else if (s.rec.count > 0) {
-    s.tests += s.rec.count;
-    s.issued = s.received = 0;
+    startRun(k, s.rec.first, s.rec.count);
     setState(k, State::Fetch);
   } else {
     setState(k, State::Check);

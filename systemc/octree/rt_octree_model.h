@@ -8,7 +8,6 @@
 
 #include "common/rt_trav_shell_model.h"
 #include "golden/octree.h"
-#include "octree/rt_octree_types.h"
 #include "octree/rt_octree_unit.h"
 
 namespace lancer::sc {
@@ -52,7 +51,8 @@ class rt_octree_model : public rt_trav_shell_model<rt_octree_unit, /*RegRsp=*/fa
     Free, Setup, Enter, GroupReq, WaitGroup, Descend, Fetch, Check, Next, RefillReq, WaitRefill, Done
   };
 
-  static constexpr int MAX_STACK = octree::MAX_DEPTH;  // P entries: levels 0 .. P-1
+  static constexpr int MAX_STACK = fx::kOctreeMaxDepth;  // P entries: levels 0 .. P-1
+  static constexpr int ADV_LANES = 2;  // rt_octree's AdvLanes: shared advance lanes besides the exit test's
 
   struct StackEntry {
     uint32_t first = 0;  // the level's child-group base
@@ -71,10 +71,9 @@ class rt_octree_model : public rt_trav_shell_model<rt_octree_unit, /*RegRsp=*/fa
     std::array<StackEntry, MAX_STACK> stack{};
     std::array<fx::OctreeNode, fx::kOctreeChildren> group{};
     bool groupValid = false;
-    uint32_t nodes = 0, tests = 0, issued = 0, received = 0;
   };
 
-  using lanes_t = std::array<int, octree::ADV_LANES>;  // each advance lane's slot, or -1
+  using lanes_t = std::array<int, ADV_LANES>;  // each advance lane's slot, or -1
 
   // The steps of a cycle (seq), each named for what it does.
   void seq();
@@ -86,8 +85,6 @@ class rt_octree_model : public rt_trav_shell_model<rt_octree_unit, /*RegRsp=*/fa
   void visit(int k);
   void requestGroup(int k);
   void takeGroup(int k);
-  void absorbResult(int k);
-  void issueIndex(int k);
   void check(int k);
   void advanceLanes(const lanes_t& lanes);
   void actOnTheirOwn(const slot_mask& self);
@@ -103,8 +100,8 @@ class rt_octree_model : public rt_trav_shell_model<rt_octree_unit, /*RegRsp=*/fa
   // Slots by what they wait for or do this cycle.
   // advWant_: NEXT and CHECK without a hit, waiting for an advance lane;
   // self_: DESCEND and FETCH with every result in, acting on their own.
-  slot_mask free_, enter_, nodeWant_, idxWant_, checkWant_, advWant_, done_, fetch_, self_;
-  std::array<rt_rr_arb_model<N>, octree::ADV_LANES> advArb_{};  // lane l takes what lanes before it left
+  slot_mask enter_, nodeWant_, checkWant_, advWant_, done_, fetch_, self_;
+  std::array<rt_rr_arb_model<N>, ADV_LANES> advArb_{};  // lane l takes what lanes before it left
   // The lanes' grants of the previous cycle (rt_octree_slots registers them):
   // those slots advance in this cycle and are left out of its arbitration.
   lanes_t granted_{};
