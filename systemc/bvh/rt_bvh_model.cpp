@@ -42,17 +42,12 @@ fx::BvhRef unpackRef(const uint32_t* wire) {  // {leaf, count, first}
 
 }  // namespace
 
-rt_bvh_model::rt_bvh_model(sc_core::sc_module_name name) : rt_trav_shell_model(name, rt_isect_impl::model) {
-  SC_METHOD(seq);
-  sensitive << clk_i.pos() << rst_ni.neg();
-  dont_initialize();
-}
+rt_bvh_model::rt_bvh_model(sc_core::sc_module_name name) : rt_trav_shell_model(name, rt_isect_impl::model) {}
 
 // One cycle: the shell's grants and responses, then the walk's events — at
 // most one state-changing event per slot, each reading that slot's registers
 // as they were at the start of the cycle —, then the shell's registers and outputs.
-void rt_bvh_model::seq() {
-  if (!rst_ni.read()) return reset();
+void rt_bvh_model::cycle() {
   const rt_trav_grants g = grant(wants());
   const int popping = popGranted_;  // granted in the previous cycle: it pops now
   popGranted_ = grantPop(popping);
@@ -75,13 +70,12 @@ void rt_bvh_model::seq() {
   endCycle(g, enter_.any());
 }
 
-void rt_bvh_model::reset() {
+void rt_bvh_model::resetWalk() {
   for (Slot& s : slots_) s.state = State::Free;
   for (slot_mask* m : {&enter_, &nodeWant_, &checkWant_, &pop_, &done_, &fetch_, &fin_}) m->clear();
   popArb_ = rt_rr_arb_model<N>{};
   popGranted_ = -1;
   boxLine_.fill(BoxAnswer{});
-  resetShell();
 }
 
 // rt_bvh_slots' want vectors: the state masks.

@@ -21,8 +21,8 @@ namespace lancer::sc {
 // walk of rt_bvh_slots.sv, the box tester rt_bvh_box.sv as a delay line of
 // BVH_BOX_LATENCY cycles, and its setup (rt_mirror_pairs.sv).
 //
-//   seq()   SC_METHOD on clk_i.posedge (and rst_ni.negedge, the RTL's async
-//           reset): the cycle as an outline of named steps, each deciding from
+//   cycle() once per rising edge (the shell's SC_METHOD on clk_i.posedge;
+//           its rst_ni.negedge resets through resetWalk()): the cycle as an outline of named steps, each deciding from
 //           the registers at the start of the cycle and the inputs.
 //
 // No arithmetic is duplicated: the per-ray setup is fx::BvhRaySetup, the box
@@ -34,7 +34,6 @@ class rt_bvh_model : public rt_trav_shell_model<rt_bvh_unit, /*RegRsp=*/false> {
   // The unit's configuration port under its RTL name (the node port is the shell's node_*).
   sc_core::sc_in<cfg_t>& cfg_root_i = cfg_i;
 
-  SC_HAS_PROCESS(rt_bvh_model);
   explicit rt_bvh_model(sc_core::sc_module_name name);
 
  private:
@@ -67,8 +66,8 @@ class rt_bvh_model : public rt_trav_shell_model<rt_bvh_unit, /*RegRsp=*/false> {
   };
 
   // The steps of a cycle (seq), each named for what it does.
-  void seq();
-  void reset();
+  void cycle() override;
+  void resetWalk() override;
   wants_t wants() const;
   int grantPop(int popping);
   BoxAnswer testNode();

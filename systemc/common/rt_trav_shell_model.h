@@ -2,9 +2,10 @@
 
 // rt_trav_shell_model: the cycle model of rtl/lib/rt_trav_shell.sv, the part
 // of every traversal unit that is not its walk. A unit's cycle model
-// (rt_grid_model, rt_octree_model) derives from it and holds only its walk
-// (rt_<unit>_slots.sv) and its per-ray setup; its seq() calls the shell's
-// steps in this order, once per rising edge:
+// (rt_grid_model, rt_octree_model, rt_bvh_model) derives from it and holds
+// only its walk and its per-ray setup; its cycle(), which the shell's clocked
+// process calls once per rising edge out of reset, calls the shell's steps in
+// this order:
 //
 //   wants      the walk's want vectors, from the registers at the start of the cycle
 //   grant()    allocation (from the free slots), the five round-robin
@@ -318,7 +319,17 @@ class rt_trav_shell_model : public sc_core::sc_module,
       if (isect_) this->sensitive << this->tri_rsp_tag_i << this->tri_rsp_data_i;
     }
     if (isect_) this->sensitive << isect_->req_ready_o;
+    SC_METHOD(clocked);
+    this->sensitive << this->clk_i.pos() << this->rst_ni.neg();
+    this->dont_initialize();
   }
+  virtual ~rt_trav_shell_model() = default;
+
+  // The unit's cycle model provides these two: its cycle, once per rising
+  // edge out of reset (the shell's steps and its walk's, in the order above),
+  // and its walk's registers at reset (the shell resets its own after them).
+  virtual void cycle() = 0;
+  virtual void resetWalk() = 0;
 
   // Reset: every register, and every output written.
   void resetShell() {
@@ -541,6 +552,16 @@ class rt_trav_shell_model : public sc_core::sc_module,
     fx::IsectResult res;
   };
   enum Flag { NODE_VALID, IDX_VALID, TRI_VALID, VISIT_VALID, RES_VALID, RAY_READY, STEP_READY, ISECT_FIRE, FLAGS };
+
+  // SC_METHOD on clk_i.posedge and rst_ni.negedge (the RTL's asynchronous reset).
+  void clocked() {
+    if (!this->rst_ni.read()) {
+      resetWalk();
+      resetShell();
+      return;
+    }
+    cycle();
+  }
 
   static int goes(int granted, bool room) { return room ? granted : -1; }
   static void ack(rt_rr_arb_model<N>& arb, int granted) {

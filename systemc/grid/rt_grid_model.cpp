@@ -8,18 +8,13 @@
 namespace lancer::sc {
 
 rt_grid_model::rt_grid_model(sc_core::sc_module_name name, rt_isect_impl isect)
-    : rt_trav_shell_model(name, isect), slots_(size_t(N)) {
-  SC_METHOD(seq);
-  sensitive << clk_i.pos() << rst_ni.neg();
-  dont_initialize();
-}
+    : rt_trav_shell_model(name, isect), slots_(size_t(N)) {}
 
 // One cycle: the shell's grants and responses, then the walk's events slot
 // by slot (each names another slot, except the cell grant and the cell
 // response, which touch only the queue bookkeeping and may meet any other
 // event of their slot), then the shell's registers and outputs.
-void rt_grid_model::seq() {
-  if (!rst_ni.read()) return reset();
+void rt_grid_model::cycle() {
   const wants_t w = wants();
   const rt_trav_grants g = grant(w);
   const CellIn cell = cellResponse();
@@ -40,11 +35,10 @@ void rt_grid_model::seq() {
   endCycle(g, wants().visit.any());
 }
 
-void rt_grid_model::reset() {
+void rt_grid_model::resetWalk() {
   for (Slot& s : slots_) s = Slot{};
   stepping_ = -1;
   preparing_ = -1;
-  resetShell();
 }
 
 // rt_grid_slots' want vectors, from the slot registers.

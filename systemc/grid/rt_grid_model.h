@@ -29,8 +29,8 @@ inline constexpr int CELL_QUEUE = LANCER_GRID_CELL_QUEUE;
 // response sampled at the edge ending cycle c is used in cycle c+1); this
 // model holds the walk of rt_grid_slots.sv and the setup of rt_grid_setup.sv.
 //
-//   seq()   SC_METHOD on clk_i.posedge (and rst_ni.negedge, the RTL's async
-//           reset): the cycle as an outline of named steps, each deciding from
+//   cycle() once per rising edge (the shell's SC_METHOD on clk_i.posedge;
+//           its rst_ni.negedge resets through resetWalk()): the cycle as an outline of named steps, each deciding from
 //           the registers at the start of the cycle and the inputs.
 //   u_isect rt_isect's timing inside the shell, or the Verilated Vrt_isect_sc
 //           (constructor argument: the mixed system).
@@ -50,7 +50,6 @@ class rt_grid_model : public rt_trav_shell_model<rt_grid_unit, /*RegRsp=*/true> 
   // The unit's configuration port under its RTL name (the shell's cfg_i).
   sc_core::sc_in<cfg_t>& cfg_res_i = cfg_i;
 
-  SC_HAS_PROCESS(rt_grid_model);
   explicit rt_grid_model(sc_core::sc_module_name name, rt_isect_impl isect = rt_isect_impl::model);
 
  private:
@@ -83,8 +82,8 @@ class rt_grid_model : public rt_trav_shell_model<rt_grid_unit, /*RegRsp=*/true> 
   };
 
   // The steps of a cycle (seq), each named for what it does.
-  void seq();
-  void reset();
+  void cycle() override;
+  void resetWalk() override;
   wants_t wants() const;
   bool headReady(int k) const;
   CellIn cellResponse();

@@ -30,17 +30,12 @@ constexpr fx::OctT kMinusInf{0, -1}, kPlusInf{0, 1};
 }  // namespace
 
 rt_octree_model::rt_octree_model(sc_core::sc_module_name name)
-    : rt_trav_shell_model(name, rt_isect_impl::model) {
-  SC_METHOD(seq);
-  sensitive << clk_i.pos() << rst_ni.neg();
-  dont_initialize();
-}
+    : rt_trav_shell_model(name, rt_isect_impl::model) {}
 
 // One cycle: the shell's grants and responses, then the walk's events — at
 // most one state-changing event per slot, each reading that slot's registers
 // as they were at the start of the cycle —, then the shell's registers and outputs.
-void rt_octree_model::seq() {
-  if (!rst_ni.read()) return reset();
+void rt_octree_model::cycle() {
   const rt_trav_grants g = grant(wants());
   const lanes_t lanes = granted_;  // granted in the previous cycle: they advance now
   granted_ = grantLanes(lanes);
@@ -62,12 +57,11 @@ void rt_octree_model::seq() {
   endCycle(g, enter_.any());
 }
 
-void rt_octree_model::reset() {
+void rt_octree_model::resetWalk() {
   for (Slot& s : slots_) s.state = State::Free;
   for (slot_mask* m : {&enter_, &nodeWant_, &checkWant_, &advWant_, &done_, &fetch_, &self_}) m->clear();
   advArb_.fill(rt_rr_arb_model<N>{});
   granted_.fill(-1);
-  resetShell();
 }
 
 // rt_octree_slots' want vectors: the state masks.

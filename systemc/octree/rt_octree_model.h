@@ -23,8 +23,8 @@ namespace lancer::sc {
 // rt_octree_slots.sv (its stack, child groups and advance lanes) and the setup
 // of rt_octree_setup.sv.
 //
-//   seq()   SC_METHOD on clk_i.posedge (and rst_ni.negedge, the RTL's async
-//           reset): the cycle as an outline of named steps, each deciding from
+//   cycle() once per rising edge (the shell's SC_METHOD on clk_i.posedge;
+//           its rst_ni.negedge resets through resetWalk()): the cycle as an outline of named steps, each deciding from
 //           the registers at the start of the cycle and the inputs.
 //
 // No arithmetic is duplicated: the per-ray setup is fx::OctreeRaySetup, the
@@ -43,7 +43,6 @@ class rt_octree_model : public rt_trav_shell_model<rt_octree_unit, /*RegRsp=*/fa
   // The unit's configuration port under its RTL name (the node port is the shell's node_*).
   sc_core::sc_in<cfg_t>& cfg_root_i = cfg_i;
 
-  SC_HAS_PROCESS(rt_octree_model);
   explicit rt_octree_model(sc_core::sc_module_name name);
 
  private:
@@ -76,8 +75,8 @@ class rt_octree_model : public rt_trav_shell_model<rt_octree_unit, /*RegRsp=*/fa
   using lanes_t = std::array<int, ADV_LANES>;  // each advance lane's slot, or -1
 
   // The steps of a cycle (seq), each named for what it does.
-  void seq();
-  void reset();
+  void cycle() override;
+  void resetWalk() override;
   wants_t wants() const;
   // This cycle's lane grants (each arbiter's pointer moves past its grant).
   lanes_t grantLanes(const lanes_t& advancing);

@@ -96,6 +96,13 @@ LatticePoint centroid(const QTriangle& t) {
   return c;
 }
 
+std::vector<QRay> randomLatticeRays(uint64_t seed, uint32_t count) {
+  std::mt19937_64 rng(seed);
+  std::vector<QRay> rays;
+  for (uint32_t i = 0; i < count; ++i) rays.push_back(randomLatticeRay(rng, i));
+  return rays;
+}
+
 void addRandomRays(std::vector<QRay>& rays, std::mt19937_64& rng, int count) {
   for (int i = 0; i < count; ++i) rays.push_back(randomLatticeRay(rng, 0));
 }

@@ -101,6 +101,8 @@ TraversalCase<Image> makeTraversalCase(std::string_view unit, std::string name, 
 // triangles (ids 0..count-1) with vertices within `spread` lattice units of a
 // random centre in [lo, hi]^3, clamped to the lattice.
 fx::QRay randomLatticeRay(std::mt19937_64& rng, uint32_t id);
+// `count` random lattice rays with ids 0..count-1, from a generator seeded with `seed`.
+std::vector<fx::QRay> randomLatticeRays(uint64_t seed, uint32_t count);
 std::vector<fx::QTriangle> randomLatticeTriangles(std::mt19937_64& rng, int count, int64_t lo, int64_t hi,
                                                   int64_t spread);
 

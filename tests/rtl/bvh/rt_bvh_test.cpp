@@ -4,7 +4,6 @@
 // configurations, its assertions, what only it has.
 #include <gtest/gtest.h>
 
-#include <random>
 
 #include <fmt/format.h>
 
@@ -29,9 +28,7 @@ const BvhCase& hardCase(const std::string& name) { return test::caseNamed<test::
 
 TEST(RtBvh, BunnyRandomRaysAtSeveralLeafSizes) {
   const test::QuantizedScene q = Bvh::bunny(1, 1);
-  std::mt19937_64 rng(2);
-  std::vector<QRay> rays;
-  for (uint32_t i = 0; i < 300; ++i) rays.push_back(test::randomLatticeRay(rng, i));
+  const std::vector<QRay> rays = test::randomLatticeRays(2, 300);
   for (const int leaf : {1, 4, 16, 255}) {
     SCOPED_TRACE(fmt::format("leaf {}", leaf));
     const std::vector<QRay> some(rays.begin(), rays.begin() + (leaf == 255 ? 60 : 300));

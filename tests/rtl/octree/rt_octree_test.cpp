@@ -4,7 +4,6 @@
 // configurations, its assertions, what only it has.
 #include <gtest/gtest.h>
 
-#include <random>
 
 #include <fmt/format.h>
 
@@ -30,9 +29,7 @@ const OctreeCase& hardCase(const std::string& name) { return test::caseNamed<tes
 
 TEST(RtOctree, BunnyRandomRaysAtSeveralDepthsAndLeafSizes) {
   const test::QuantizedScene q = Octree::bunny(1, 1);
-  std::mt19937_64 rng(2);
-  std::vector<QRay> rays;
-  for (uint32_t i = 0; i < 300; ++i) rays.push_back(test::randomLatticeRay(rng, i));
+  const std::vector<QRay> rays = test::randomLatticeRays(2, 300);
   for (const auto& [depth, leaf] : {std::pair{1, 8}, {4, 8}, {8, 1}, {fx::kOctreeMaxDepth, 2}}) {
     SCOPED_TRACE(fmt::format("depth {} leaf {}", depth, leaf));
     // A shallow tree tests hundreds of triangles per leaf: fewer rays there.
