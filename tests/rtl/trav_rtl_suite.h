@@ -3,7 +3,7 @@
 // What every Verilated traversal unit must do, as one typed suite over the
 // unit's descriptor (tests/support/unit_traits.h): the unit's hard cases with
 // all slots under jitter, stalls and bubbles and then with one slot; the
-// bunny's camera rays; one slot, all slots and no stalls, repeatable; an FST
+// bunny's random rays at several builds of the image; the bunny's camera rays; one slot, all slots and no stalls, repeatable; an FST
 // waveform on request; the performance sweep (disabled: figures, not a
 // check). A unit's test file instantiates it in one line and keeps only its
 // own cases: its timing, its bad configurations, its assertions.
@@ -16,6 +16,7 @@
 
 #include <fmt/format.h>
 
+#include "driver/devices.h"
 #include "support/trav_compare.h"
 #include "trav_test_support.h"
 
@@ -53,6 +54,19 @@ TYPED_TEST_P(RtTraversal, HardCasesMatchGolden) {
   }
 }
 
+// The bunny's random rays through the unit's image at several builds (a leaf
+// size, a depth, a resolution: UnitTraits::buildVariants).
+TYPED_TEST_P(RtTraversal, BunnyRandomRaysAtSeveralBuilds) {
+  using U = RtlUnit<TypeParam>;
+  const test::QuantizedScene q = U::bunny(1, 1);
+  const std::vector<QRay> rays = test::randomLatticeRays(2, 300);
+  for (const auto& v : U::Traits::buildVariants(q.triangles)) {
+    SCOPED_TRACE(v.name);
+    const std::vector<QRay> some(rays.begin(), rays.begin() + std::min(v.rays, rays.size()));
+    U::expectSameTraces(v.image, some, U::rough(v.seed));
+  }
+}
+
 TYPED_TEST_P(RtTraversal, BunnyCameraRays) {
   using U = RtlUnit<TypeParam>;
   const auto c = U::bunnyCase(40);
@@ -85,6 +99,28 @@ TYPED_TEST_P(RtTraversal, WritesAnFstWaveformWhenAsked) {
   U::expectSameTraces(c.image, rays, o);
 }
 
+// Bad input the unit shares with every other: a ray-slot count outside
+// 1..RaysInFlight, and a corrupt image (the unit's: a read outside its
+// tables), which fails the run with a message and leaves the device working;
+// the factory knows the device. (A unit's own bad input is in its test file.)
+TYPED_TEST_P(RtTraversal, RejectsBadInputAndRecovers) {
+  using U = RtlUnit<TypeParam>;
+  const auto image = U::Traits::empty();
+  const std::vector<QRay> one{QRay{0, {0, 0, 0}, {kDirMax, 0, 0}}};
+  expectRejectsRaysInFlight<typename U::Image>(U::rtl(), image, one, TypeParam::kNames.slotsOption);
+  const auto corrupt = U::Traits::corruptImage();
+  std::vector<fx::TraversalTrace> traces;
+  try {
+    U::rtl().run(corrupt.image, corrupt.rays, traces, TraversalRunOptions{});
+    FAIL() << "no runtime_error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(corrupt.name), std::string::npos) << e.what();
+  }
+  U::expectSameTraces(image, one, TraversalRunOptions{});
+  EXPECT_EQ(makeTraversalDevice<TypeParam>("rtl")->name(), "rtl");
+  EXPECT_EQ(makeTraversalDevice<TypeParam>("rtl")->maxRaysInFlight(), U::rtl().maxRaysInFlight());
+}
+
 // Performance sweep, not a check (the unit's doc has the table). Run with
 //   build/tests/rtl/rtl_<unit>_tests --gtest_also_run_disabled_tests --gtest_filter='*Sweep*'
 // LANCER_SWEEP_SIZE sets the image side (default 256).
@@ -96,7 +132,8 @@ TYPED_TEST_P(RtTraversal, DISABLED_Sweep) {
   printSweep<typename U::Image>(U::rtl(), c.image, c.rays);
 }
 
-REGISTER_TYPED_TEST_SUITE_P(RtTraversal, HardCasesMatchGolden, BunnyCameraRays, OneRayInFlightAllSlotsAndNoStalls,
-                            WritesAnFstWaveformWhenAsked, DISABLED_Sweep);
+REGISTER_TYPED_TEST_SUITE_P(RtTraversal, HardCasesMatchGolden, BunnyRandomRaysAtSeveralBuilds, BunnyCameraRays,
+                            OneRayInFlightAllSlotsAndNoStalls, WritesAnFstWaveformWhenAsked,
+                            RejectsBadInputAndRecovers, DISABLED_Sweep);
 
 }  // namespace lancer::rtltest

@@ -233,6 +233,23 @@ BvhCase cornellSegments() {
 
 }  // namespace
 
+// A root whose two children are empty leaves spanning the lattice.
+BvhImage bvhTwoEmptyLeaves() {
+  BvhImage image;
+  image.leafSize = 1;
+  const int shift = fx::bvhShiftFor(int64_t(1) << fx::kPosBits);
+  fx::BvhNode node;
+  node.shift = {shift, shift, shift};
+  for (int c = 0; c < fx::kBvhWidth; ++c) node.hi[size_t(c)] = {fx::kBvhPlaneMax, fx::kBvhPlaneMax, fx::kBvhPlaneMax};
+  node.child[0] = fx::BvhRef{true, 0, 0};
+  node.child[1] = fx::BvhRef{true, 0, 0};
+  image.nodes.push_back(node);
+  image.root = fx::BvhRef{false, 0, 0};
+  image.depth = 2;
+  image.leaves = 2;
+  return image;
+}
+
 BvhImage bvhChainImage(int levels) {
   BvhImage image;
   image.leafSize = 1;

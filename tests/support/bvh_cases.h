@@ -51,5 +51,7 @@ std::vector<BvhCase> bvhHardCases();
 // entries. kBvhMaxLevels fills the stack; one more is refused by checkImage,
 // and overflows the stack if it slips past (the RTL's a_stack_depth).
 fx::BvhImage bvhChainImage(int levels);
+// A root whose two children are empty leaves spanning the lattice.
+fx::BvhImage bvhTwoEmptyLeaves();
 
 }  // namespace lancer::test

@@ -74,6 +74,8 @@ struct UnitRuns {
   using Case = TraversalCase<Image>;
 
   static QuantizedScene bunny(int width, int height) { return quantizedCamera(bunnyScene(), width, height); }
+  // The unit's hard case of that name (Traits::hardCases, built once).
+  static const Case& hardCase(const std::string& name) { return caseNamed<&Traits::hardCases>(name); }
   static Case bunnyCase(int side) {
     const QuantizedScene q = bunny(side, side);
     return {fmt::format("bunny {}x{}", side, side), Traits::image(q.triangles), q.rays};

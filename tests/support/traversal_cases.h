@@ -31,6 +31,17 @@ struct TraversalCase {
   std::vector<fx::QRay> rays;
 };
 
+// One way to build a unit's image of a scene (a leaf size, a depth, a
+// resolution), with how many of a test's rays it takes (a coarse build tests
+// many triangles a ray) and the seed of its run's stimulus.
+template <class Image>
+struct BuildVariant {
+  std::string name;
+  Image image;
+  size_t rays = 0;
+  uint64_t seed = 0;
+};
+
 // A unit's hard cases (`Build`: bvhHardCases, octreeHardCases, ...) built once
 // for the test program, and found by name: a value-parameterized test runs
 // over caseNames<Build>() and looks its case up with caseNamed<Build>(name).

@@ -86,6 +86,21 @@ struct UnitTraits<fx::GridUnit> : UnitTraitsOf<fx::GridUnit, sc::rt_grid_unit, V
   using KernelPartner = fx::OctreeUnit;  // a unit whose SystemC runs interleave with its own
   static Image empty() { return fx::buildGridImage({}, {1, 1, 1}); }
   static std::vector<TraversalCase<Image>> hardCases() { return gridHardCases(); }
+  // A corrupt image: a cell whose triangles lie outside the index list (its
+  // name: what the run's error says).
+  static TraversalCase<Image> corruptImage() {
+    Image broken = empty();
+    broken.cells[0] = fx::GridCell{5, 1};
+    return {"index list read at 5", broken, {fx::QRay{0, {0, 0, 0}, {fx::kDirMax, 0, 0}}}};
+  }
+  static std::vector<BuildVariant<Image>> buildVariants(const std::vector<fx::QTriangle>& tris) {
+    std::vector<BuildVariant<Image>> out;
+    for (const int r : {1, 4, 16, 64}) {
+      out.push_back({fmt::format("res {}", r), fx::buildGridImage(tris, {r, r, r}), size_t(r == 1 ? 40 : 300),
+                     uint64_t(3 + r)});
+    }
+    return out;
+  }
   static std::string describeImage(const Image& image) {
     return fmt::format("grid {}x{}x{}", image.res[0], image.res[1], image.res[2]);
   }
@@ -97,6 +112,21 @@ struct UnitTraits<fx::OctreeUnit> : UnitTraitsOf<fx::OctreeUnit, sc::rt_octree_u
   using KernelPartner = fx::GridUnit;
   static Image empty() { return fx::buildOctreeImage({}, 1, 1); }
   static std::vector<TraversalCase<Image>> hardCases() { return octreeHardCases(); }
+  // A corrupt image: an interior node whose children lie outside the node table.
+  static TraversalCase<Image> corruptImage() {
+    Image broken = fx::buildOctreeImage({}, 1, 8);
+    broken.nodes[0] = fx::OctreeNode{false, 5, 0};
+    return {"outside the node table", broken, {fx::QRay{0, {0, 0, 0}, {fx::kDirMax, 0, 0}}}};
+  }
+  // A shallow tree tests hundreds of triangles per leaf: fewer rays there.
+  static std::vector<BuildVariant<Image>> buildVariants(const std::vector<fx::QTriangle>& tris) {
+    std::vector<BuildVariant<Image>> out;
+    for (const auto& [depth, leaf] : {std::pair{1, 8}, {4, 8}, {8, 1}, {fx::kOctreeMaxDepth, 2}}) {
+      out.push_back({fmt::format("depth {} leaf {}", depth, leaf), fx::buildOctreeImage(tris, depth, leaf),
+                     size_t(depth == 1 ? 40 : 300), uint64_t(3 + depth)});
+    }
+    return out;
+  }
   static std::string describeImage(const Image& image) { return fmt::format("octree depth {}", image.depth); }
 };
 
@@ -106,6 +136,20 @@ struct UnitTraits<fx::BvhUnit> : UnitTraitsOf<fx::BvhUnit, sc::rt_bvh_unit, Vrt_
   using KernelPartner = fx::OctreeUnit;
   static Image empty() { return fx::buildBvhImage({}, 4); }
   static std::vector<TraversalCase<Image>> hardCases() { return bvhHardCases(); }
+  // A corrupt image: an interior child that lies outside the node table.
+  static TraversalCase<Image> corruptImage() {
+    Image broken = bvhTwoEmptyLeaves();
+    broken.nodes[0].child[1] = fx::BvhRef{false, 0, 5};
+    return {"outside the node table", broken, {fx::QRay{0, {5, 5, 5}, {fx::kDirMax, 3, 7}}}};
+  }
+  static std::vector<BuildVariant<Image>> buildVariants(const std::vector<fx::QTriangle>& tris) {
+    std::vector<BuildVariant<Image>> out;
+    for (const int leaf : {1, 4, 16, 255}) {
+      out.push_back({fmt::format("leaf {}", leaf), fx::buildBvhImage(tris, leaf), size_t(leaf == 255 ? 60 : 300),
+                     uint64_t(3 + leaf)});
+    }
+    return out;
+  }
   static std::string describeImage(const Image& image) { return fmt::format("bvh depth {}", image.depth); }
 };
 
