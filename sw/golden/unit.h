@@ -44,12 +44,14 @@
 #include "common/error.h"
 #include "golden/record_bits.h"
 #include "golden/records.h"
+#include "golden/unit_kinds.h"  // generated from LANCER_TRAVERSAL_UNITS (cmake/Units.cmake)
 
 namespace lancer::fx {
 
 // The hardware paths of `lancer run --accel`: the host's BVH feeding the
-// intersection pipeline, and each traversal unit.
-enum class UnitKind { Isect, Grid, Octree, Bvh };
+// intersection pipeline, and each traversal unit (Grid, Octree, Bvh: the
+// kinds of LANCER_TRAVERSAL_UNITS).
+enum class UnitKind { Isect, LANCER_TRAVERSAL_UNIT_KINDS };
 
 // A descriptor's kind, types and records, from its lists
 // (golden/<unit>_formats.h): derive from UnitBase<kind, image, node, node

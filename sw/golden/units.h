@@ -1,19 +1,18 @@
 #pragma once
 
-// Every traversal unit, by its descriptor (golden/unit.h). A new unit adds its
-// descriptor to TraversalUnits (and its enumerator to fx::UnitKind).
+// Every traversal unit, by its descriptor (golden/unit.h), in the order of
+// LANCER_TRAVERSAL_UNITS (cmake/Units.cmake), whose generated golden/unit_list.h
+// includes them.
 
 #include <tuple>
 #include <type_traits>
 #include <vector>
 
-#include "golden/bvh_unit.h"
-#include "golden/grid_unit.h"
-#include "golden/octree_unit.h"
+#include "golden/unit_list.h"
 
 namespace lancer::fx {
 
-using TraversalUnits = std::tuple<GridUnit, OctreeUnit, BvhUnit>;
+using TraversalUnits = std::tuple<LANCER_TRAVERSAL_UNIT_DESCRIPTORS>;
 
 // Calls fn(U{}) for each descriptor U, in TraversalUnits order.
 template <class Fn>
