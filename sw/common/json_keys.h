@@ -29,6 +29,9 @@ template <class... Fs>
 struct Overloaded : Fs... {
   using Fs::operator()...;
 };
+// clang 14 deduces no aggregate's template arguments (C++20's P1816 came in clang 17).
+template <class... Fs>
+Overloaded(Fs...) -> Overloaded<Fs...>;
 
 struct Plain {
   template <class T>
