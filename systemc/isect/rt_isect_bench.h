@@ -9,7 +9,7 @@
 namespace lancer::sc {
 
 // rt_isect_bench: one implementation of rt_isect (Dut) on its own testbench and
-// signals. Dut is rt_isect_model or the Verilated Vrt_isect_sc: both have the
+// signals. Dut is rt_isect_pin_model or the Verilated Vrt_isect_sc: both have the
 // RTL's port names and Verilator's port types, so one binding serves both, and
 // the testbench, whose ports carry the same names, too. The binding below is
 // the wiring diagram: every signal is named after the RTL port it connects.

@@ -2,8 +2,8 @@
 
 #include <array>
 
-#include <systemc>
-
+#include "base/rt_value.h"
+#include "golden/records.h"
 #include "isect/rt_isect_ports.h"
 #include "isect/rt_isect_types.h"
 
@@ -21,35 +21,43 @@ namespace lancer::sc {
 //             res_ready_i), so bubbles are squeezed out during output stalls;
 //             req_ready_o = stage_ready[0] depends combinationally on res_ready_i;
 //             res_valid_o / res_data_o come from the last stage register.
-// Reset:      rst_ni clears the valid bits asynchronously; the data registers
-//             are not reset and load only with a valid item (as the RTL's).
+// Reset:      clears the valid bits; the data registers are not reset and load
+//             only with a valid item (as the RTL's).
 //
 // The arithmetic is not duplicated: the entry stage computes the whole result
 // with fx::intersect() (the golden model) and the other stages only carry it.
-// Ports (rt_isect_ports.h) carry the RTL's names and the port types Verilator generates for them
-// (rt_isect_types.h), so this module and Vrt_isect_sc bind identically.
-struct rt_isect_model : sc_core::sc_module, rt_isect_ports<sc_core::sc_in, sc_core::sc_out> {
+//
+// Plain C++ on value ports (base/rt_value.h), under the RTL's names: the run
+// loop clocks it directly (the fast path, sw/driver/isect_run.h), and
+// rt_isect_pin_model binds it to sc_in/sc_out. The caller orders evaluation:
+// set the inputs, settle() for req_ready_o, clock() at the rising edge.
+struct rt_isect_model : rt_isect_ports<rt_value, rt_value, value_t> {
   static constexpr int NUM_STAGES = ISECT_LATENCY;
 
-  sc_core::sc_in<bool> clk_i{"clk_i"};
-  sc_core::sc_in<bool> rst_ni{"rst_ni"};
-
-  SC_HAS_PROCESS(rt_isect_model);
-  explicit rt_isect_model(sc_core::sc_module_name name);
+  // rst_ni low: every stage empty; the outputs settled.
+  void reset();
+  // req_ready_o from res_ready_i and the registers.
+  void settle();
+  // The rising edge: the stages load from the inputs and the registers as they
+  // were before it; the registered outputs, then settle().
+  void clock();
 
  private:
-  // The stage registers: SC_METHOD on clk_i.posedge and rst_ni.negedge.
-  void seq();
-  // req_ready_o: SC_METHOD on res_ready_i and on every register update.
-  void comb();
+  using res_t = value_t<ISECT_RES_W>;
+
   // stage_ready[s] of the RTL, from the current registers and res_ready_i.
   std::array<bool, NUM_STAGES> stageReady() const;
-  // The entry stage: the golden result of the request on the ports.
-  isect_res_t compute() const;
+  // The entry stage: the golden result of the request on the ports, into `out`.
+  void compute(res_t& out);
+  void writeOutputs();
 
   std::array<bool, NUM_STAGES> valid_q_{};
-  std::array<isect_res_t, NUM_STAGES> data_q_{};
-  sc_core::sc_event state_changed_;
+  std::array<res_t, NUM_STAGES> data_q_{};
+  // The last request's ray, unpacked: a ray meets its candidate triangles in a
+  // row, and unpacking it each time cost a tenth of the fast path's time.
+  value_t<ISECT_RAY_W> rayPort_{};
+  fx::QRay ray_{};
+  bool rayValid_ = false;
 };
 
 }  // namespace lancer::sc

@@ -3,7 +3,7 @@
 #include <stdexcept>
 
 #include "isect/rt_isect_bench.h"
-#include "isect/rt_isect_model.h"
+#include "isect/rt_isect_pin_model.h"
 
 #if LANCER_SC_HAVE_RTL
 #include "Vrt_isect_sc.h"
@@ -16,7 +16,7 @@
 namespace lancer::sc {
 
 rt_isect_top::rt_isect_top(sc_core::sc_module_name name) : sc_core::sc_module(name) {
-  auto model = std::make_unique<rt_isect_bench<rt_isect_model>>("u_model");
+  auto model = std::make_unique<rt_isect_bench<rt_isect_pin_model>>("u_model");
   model_tb_ = &model->u_tb;
   model_ = std::move(model);
 #if LANCER_SC_HAVE_RTL
