@@ -14,7 +14,8 @@ class VerilatedUnit;
 
 // The Verilated RTL of rt_isect (rtl/isect/rt_isect.sv) behind the device
 // interface. run() drives the model one clock at a time through its valid/ready
-// ports: requests are offered in order (the producer idles with
+// ports (isect_run.h, the loop that clocks the SystemC cycle model too):
+// requests are offered in order (the producer idles with
 // StreamOptions::inputIdleProbability when it has nothing on offer, and holds
 // an offered request until it is taken), the consumer deasserts res_ready_i
 // with StreamOptions::outputStallProbability, both from StreamOptions::seed.
