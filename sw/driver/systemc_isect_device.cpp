@@ -1,32 +1,34 @@
 #include "driver/systemc_isect_device.h"
-#include "driver/wave_file.h"
 
-#include <cstdlib>
 #include <mutex>
 #include <stdexcept>
 
 #include <fmt/format.h>
 #include <systemc>
 
+#include "driver/isect_run.h"
+#include "driver/model_unit.h"
 #include "driver/systemc_kernel.h"
+#include "driver/wave_file.h"
+#include "isect/rt_isect_model.h"
 #include "isect/rt_isect_top.h"
 #include "isect/rt_isect_types.h"
 
 namespace lancer {
 
-namespace {
-
-// The process's one SystemC kernel and its systems, shared with the grid
-// device (sw/driver/systemc_kernel.h): elaborated together on first use.
-std::mutex& kernelMutex() { return systemc_kernel::mutex(); }
-sc::rt_isect_top& isectSystem() { return systemc_kernel::isectSystem(); }
-
-}  // namespace
-
 SystemCIsectDevice::SystemCIsectDevice(Impl impl) : impl_(impl) {
   if (impl_ == Impl::Rtl && !rtlAvailable()) {
     throw std::runtime_error("rtl-systemc is not part of this build (no LANCER_RTL_ISECT_SOURCES)");
   }
+}
+
+std::string_view SystemCIsectDevice::name() const {
+  switch (impl_) {
+    case Impl::Model: return "systemc";
+    case Impl::Pins: return "systemc-pins";
+    case Impl::Rtl: return "rtl-systemc";
+  }
+  return "systemc";
 }
 
 bool SystemCIsectDevice::rtlAvailable() { return sc::rt_isect_top::has_rtl(); }
@@ -41,6 +43,25 @@ StreamStats SystemCIsectDevice::run(std::span<const IsectRequest> requests,
                                               name(), p));
     }
   }
+  if (impl_ != Impl::Model) return runKernel(requests, results, options);
+
+  // A model of its own per run: reset, and free of other devices' runs (no kernel, no lock).
+  ModelUnit<sc::rt_isect_model> unit;
+  unit.reset(isect_detail::idleInputs<sc::rt_isect_model>);
+  StreamOptions noWave = options;  // the model has no RTL signals; no waveform name is taken
+  noWave.wavePath.clear();
+  const size_t resultsBefore = results.size();
+  try {
+    return runIsectStream(unit, requests, results, noWave, trace_);
+  } catch (...) {
+    results.resize(resultsBefore);
+    throw;
+  }
+}
+
+StreamStats SystemCIsectDevice::runKernel(std::span<const IsectRequest> requests,
+                                          std::vector<fx::IsectResult>& results,
+                                          const StreamOptions& options) {
   const bool wave = impl_ == Impl::Rtl && !options.wavePath.empty();
   if (wave && !wavesAvailable()) {
     throw std::runtime_error("rtl-systemc: this build has no FST tracing (LANCER_SC_RTL_WAVES=OFF)");
@@ -67,9 +88,11 @@ StreamStats SystemCIsectDevice::run(std::span<const IsectRequest> requests,
   const size_t resultsBefore = results.size();
   results.reserve(resultsBefore + requests.size());
 
-  const std::lock_guard<std::mutex> lock(kernelMutex());
-  sc::rt_isect_top& top = isectSystem();
-  sc::rt_isect_tb& tb = top.tb(impl_ == Impl::Model ? sc::rt_isect_impl::model : sc::rt_isect_impl::rtl);
+  // The process's one SystemC kernel and its systems, shared with the
+  // traversal devices (sw/driver/systemc_kernel.h): elaborated together on first use.
+  const std::lock_guard<std::mutex> lock(systemc_kernel::mutex());
+  sc::rt_isect_top& top = systemc_kernel::isectSystem();
+  sc::rt_isect_tb& tb = top.tb(impl_ == Impl::Rtl ? sc::rt_isect_impl::rtl : sc::rt_isect_impl::model);
   if (wave) top.open_wave(nextWaveFile(options.wavePath));
   try {
     tb.start(job);

@@ -1,6 +1,7 @@
-// The SystemC side of rt_isect: the cycle model ("systemc") and the Verilated
-// RTL in SystemC ("rtl-systemc") against the golden model, against each other
-// cycle for cycle, and against the C++ Verilated RTL device ("rtl").
+// The SystemC side of rt_isect: the cycle model on value ports ("systemc", the
+// fast path), the same model on pins in the kernel ("systemc-pins") and the
+// Verilated RTL in SystemC ("rtl-systemc") against the golden model, against
+// each other cycle for cycle, and against the C++ Verilated RTL device ("rtl").
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -71,10 +72,15 @@ class ScIsect : public ::testing::TestWithParam<Impl> {
 };
 
 std::string implName(const ::testing::TestParamInfo<Impl>& info) {
-  return info.param == Impl::Model ? "Model" : "Rtl";
+  switch (info.param) {
+    case Impl::Model: return "Model";
+    case Impl::Pins: return "Pins";
+    case Impl::Rtl: return "Rtl";
+  }
+  return "Unknown";
 }
 
-INSTANTIATE_TEST_SUITE_P(Impl, ScIsect, ::testing::Values(Impl::Model, Impl::Rtl), implName);
+INSTANTIATE_TEST_SUITE_P(Impl, ScIsect, ::testing::Values(Impl::Model, Impl::Pins, Impl::Rtl), implName);
 
 TEST_P(ScIsect, MatchesGoldenOnRandomPairsUnderBackpressure) {
   const auto requests = sctest::randomPairs(4000, 11);
@@ -213,37 +219,49 @@ TEST_P(ScIsect, EmptyRunAndInvalidOptions) {
   EXPECT_EQ(results.size(), requests.size());
 }
 
-// ---- The two implementations against each other -------------------------------
+// ---- The implementations against each other ----------------------------------
 
-// The cycle model is meant to be interchangeable with the RTL: the same ports,
-// sampled at every rising edge, for the same stimulus and stall pattern.
-TEST(ScCycleAccuracy, ModelMatchesVerilatedRtlCycleForCycle) {
-  if (!SystemCIsectDevice::rtlAvailable()) GTEST_SKIP() << "no Verilated RTL in this build";
+// Runs `a` and `b` on the same stimulus and stall patterns and expects the same
+// ports at every rising edge, the same stats and the same results.
+void expectSameCycles(Impl a, Impl b) {
   const auto requests = sctest::randomPairs(2500, 31);
-  SystemCIsectDevice model(Impl::Model), rtl(Impl::Rtl);
+  SystemCIsectDevice first(a), second(b);
   for (const StreamOptions& options :
        {StreamOptions{0.0, 0.0, 1, {}}, StreamOptions{0.5, 0.0, 2, {}}, StreamOptions{0.0, 0.5, 3, {}},
         StreamOptions{0.3, 0.3, 4, {}}, StreamOptions{0.9, 0.1, 5, {}}, StreamOptions{0.05, 0.95, 6, {}}}) {
     SCOPED_TRACE(optionsText(options));
-    std::vector<IsectCycle> modelTrace, rtlTrace;
-    model.setCycleTrace(&modelTrace);
-    rtl.setCycleTrace(&rtlTrace);
-    std::vector<fx::IsectResult> modelResults, rtlResults;
-    const StreamStats m = model.run(requests, modelResults, options);
-    const StreamStats r = rtl.run(requests, rtlResults, options);
-    EXPECT_EQ(m.cycles, r.cycles);
-    EXPECT_EQ(m.requests, r.requests);
-    EXPECT_EQ(m.results, r.results);
-    EXPECT_EQ(m.inputStalls, r.inputStalls);
-    EXPECT_EQ(modelResults, rtlResults);
-    ASSERT_EQ(modelTrace.size(), rtlTrace.size());
-    for (size_t i = 0; i < modelTrace.size(); ++i) {
-      const IsectCycle& a = modelTrace[i];
-      const IsectCycle& b = rtlTrace[i];
-      ASSERT_EQ(a, b) << "first difference between the model (a) and the RTL (b)";
+    std::vector<IsectCycle> firstTrace, secondTrace;
+    first.setCycleTrace(&firstTrace);
+    second.setCycleTrace(&secondTrace);
+    std::vector<fx::IsectResult> firstResults, secondResults;
+    const StreamStats f = first.run(requests, firstResults, options);
+    const StreamStats s = second.run(requests, secondResults, options);
+    EXPECT_EQ(f.cycles, s.cycles);
+    EXPECT_EQ(f.requests, s.requests);
+    EXPECT_EQ(f.results, s.results);
+    EXPECT_EQ(f.inputStalls, s.inputStalls);
+    EXPECT_EQ(firstResults, secondResults);
+    ASSERT_EQ(firstTrace.size(), secondTrace.size());
+    for (size_t i = 0; i < firstTrace.size(); ++i) {
+      ASSERT_EQ(firstTrace[i], secondTrace[i])
+          << "first difference between " << first.name() << " (a) and " << second.name() << " (b)";
     }
   }
 }
+
+// The cycle model, on value ports and on pins, is meant to be interchangeable
+// with the RTL: the same ports, sampled at every rising edge.
+class ScModelCycleAccuracy : public ::testing::TestWithParam<Impl> {};
+
+INSTANTIATE_TEST_SUITE_P(Impl, ScModelCycleAccuracy, ::testing::Values(Impl::Model, Impl::Pins), implName);
+
+TEST_P(ScModelCycleAccuracy, MatchesVerilatedRtlCycleForCycle) {
+  if (!SystemCIsectDevice::rtlAvailable()) GTEST_SKIP() << "no Verilated RTL in this build";
+  expectSameCycles(GetParam(), Impl::Rtl);
+}
+
+// Without the RTL too: the run loop's stimulus and sampling are the testbench's.
+TEST(ScCycleAccuracy, ValuePortsMatchPinsCycleForCycle) { expectSameCycles(Impl::Model, Impl::Pins); }
 
 // Every cycle-accurate device draws the same stimulus from the same options, so
 // the SystemC devices report what the C++ Verilated device ("rtl") reports.
@@ -252,6 +270,7 @@ TEST(ScCycleAccuracy, StatsEqualTheCxxVerilatedDevice) {
   VerilatorIsectDevice cxx;
   std::vector<SystemCIsectDevice> devices;
   devices.emplace_back(Impl::Model);
+  devices.emplace_back(Impl::Pins);
   if (SystemCIsectDevice::rtlAvailable()) devices.emplace_back(Impl::Rtl);
   for (const StreamOptions& options :
        {StreamOptions{0.0, 0.0, 1, {}}, StreamOptions{0.4, 0.3, 12, {}}, StreamOptions{0.85, 0.6, 13, {}}}) {
@@ -270,12 +289,12 @@ TEST(ScCycleAccuracy, StatsEqualTheCxxVerilatedDevice) {
   }
 }
 
-TEST(ScDevice, BothImplementationsInterleaveInOneProcess) {
+TEST(ScDevice, AllImplementationsInterleaveInOneProcess) {
   if (!SystemCIsectDevice::rtlAvailable()) GTEST_SKIP() << "no Verilated RTL in this build";
   for (int round = 0; round < 4; ++round) {
     const auto requests = sctest::randomPairs(100 + 150 * size_t(round), 50 + uint64_t(round));
     const auto expected = golden(requests);
-    for (const Impl impl : {Impl::Rtl, Impl::Model}) {
+    for (const Impl impl : {Impl::Rtl, Impl::Model, Impl::Pins}) {
       SystemCIsectDevice device(impl);  // constructed anew every time
       std::vector<fx::IsectResult> results;
       device.run(requests, results, StreamOptions{0.2 * round, 0.1, uint64_t(round), {}});
@@ -286,6 +305,7 @@ TEST(ScDevice, BothImplementationsInterleaveInOneProcess) {
 
 TEST(ScDevice, NamesAndAvailability) {
   EXPECT_EQ(SystemCIsectDevice(Impl::Model).name(), "systemc");
+  EXPECT_EQ(SystemCIsectDevice(Impl::Pins).name(), "systemc-pins");
   if (SystemCIsectDevice::rtlAvailable()) {
     EXPECT_EQ(SystemCIsectDevice(Impl::Rtl).name(), "rtl-systemc");
   } else {
@@ -298,12 +318,13 @@ TEST(ScDevice, WaveformsOfTheRtlOnRequest) {
   const auto dir = std::filesystem::path(::testing::TempDir()) / "lancer_sc_waves";
   std::filesystem::create_directories(dir);
   // The cycle model has no RTL signals: it ignores the option, as golden does.
-  {
-    SystemCIsectDevice model(Impl::Model);
+  for (const Impl impl : {Impl::Model, Impl::Pins}) {
+    SystemCIsectDevice model(impl);
     std::vector<fx::IsectResult> results;
     StreamOptions options;
-    options.wavePath = (dir / "model.fst").string();
+    options.wavePath = (dir / fmt::format("{}.fst", model.name())).string();
     model.run(requests, results, options);
+    EXPECT_EQ(results, golden(requests));
     EXPECT_FALSE(std::filesystem::exists(options.wavePath));
   }
   if (!SystemCIsectDevice::rtlAvailable()) GTEST_SKIP() << "no Verilated RTL in this build";
