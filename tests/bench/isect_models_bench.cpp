@@ -7,8 +7,11 @@
 //     host BVH (driver/candidates.h) — exactly the stream `lancer run --accel
 //     isect` feeds the pipeline. --pairs random: rtltest::randomPairs, the
 //     distinct random pairs of the RTL tests (43 % hits, every pair a new ray).
-//  2. Check pass: every model (makeIsectDevice) runs the pairs once; every
-//     result must equal golden's bit for bit, or the program exits 1.
+//  2. Check pass: every model (--models, makeIsectDevice names; by default all
+//     of isectDeviceNames(): golden, systemc (the cycle model on value ports,
+//     clocked by the RTL's run loop), systemc-pins (the same model on pins in
+//     the SystemC kernel), rtl, rtl-systemc) runs the pairs once; every result
+//     must equal golden's bit for bit, or the program exits 1.
 //  3. Timed passes: `--repetitions` rounds; each round runs every model once,
 //     the order rotated each round, so load from other work hits all models
 //     alike. A sample repeats the run until it lasts `--min-sample` seconds.
