@@ -562,8 +562,11 @@ void addRunCommand(CLI::App& app) {
                      fmt::join(names.begin() + 1, names.end(), ", ")))
       ->check(CLI::IsMember(names))
       ->default_str(std::string(toString(args->accel)));
-  cmd->add_option("--model", args->job.model, "Model of the hardware: golden, systemc, rtl, rtl-systemc")
-      ->check(CLI::IsMember({"golden", "systemc", "rtl", "rtl-systemc"}))
+  cmd->add_option("--model", args->job.model,
+                  "Model of the hardware: golden, systemc (cycle models on value ports), rtl (Verilated), "
+                  "rtl-systemc (Verilated in the SystemC kernel), systemc-pins (the cycle models on signals in the "
+                  "kernel; traversal units)")
+      ->check(CLI::IsMember({"golden", "systemc", "rtl", "rtl-systemc", "systemc-pins"}))
       ->capture_default_str();
   cmd->add_option_function<double>(
       "--clock-mhz", [args](double mhz) { args->clockMhz = mhz; },

@@ -47,11 +47,13 @@ std::unique_ptr<Base> pick(const std::vector<Model<Base>>& models, const std::st
       fmt::format("unknown model '{}' for the {} (available: {})", name, unit, fmt::join(namesOf(models), ", ")));
 }
 
-// golden, systemc, rtl, and rtl-systemc where the build has it.
+// golden, systemc, systemc-pins, rtl, and rtl-systemc where the build has it.
 std::vector<Model<IsectDevice>> isectModels() {
   std::vector<Model<IsectDevice>> models{{"golden", [] { return std::make_unique<GoldenIsectDevice>(); }}};
 #if LANCER_HW_MODELS
   models.push_back({"systemc", [] { return std::make_unique<SystemCIsectDevice>(SystemCIsectDevice::Impl::Model); }});
+  models.push_back(
+      {"systemc-pins", [] { return std::make_unique<SystemCIsectDevice>(SystemCIsectDevice::Impl::Pins); }});
   models.push_back({"rtl", [] { return std::make_unique<VerilatorIsectDevice>(); }});
   if (SystemCIsectDevice::rtlAvailable()) {
     models.push_back(
@@ -67,6 +69,7 @@ std::vector<Model<DeviceOf<Unit>>> traversalModels() {
       {"golden", [] { return std::make_unique<GoldenTraversalDevice<typename Unit::Image>>(); }}};
 #if LANCER_HW_MODELS
   models.push_back({"systemc", [] { return makeSystemCDevice<Unit>(SystemCImpl::Model); }});
+  models.push_back({"systemc-pins", [] { return makeSystemCDevice<Unit>(SystemCImpl::Pins); }});
   models.push_back({"rtl", [] { return makeVerilatorDevice<Unit>(); }});
   if (systemCRtlAvailable<Unit>()) {
     models.push_back({"rtl-systemc", [] { return makeSystemCDevice<Unit>(SystemCImpl::Rtl); }});

@@ -12,7 +12,7 @@
 namespace lancer {
 
 // The implementations of a SystemC traversal device (systemc_traversal_device.h).
-enum class SystemCImpl { Model, Rtl, ModelRtlIsect };
+enum class SystemCImpl { Model, Pins, Rtl, ModelRtlIsect };
 
 template <class Unit>
 using DeviceOf = TraversalDevice<typename Unit::Image>;

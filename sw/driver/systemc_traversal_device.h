@@ -1,5 +1,6 @@
 #pragma once
 
+#include <memory>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -10,20 +11,27 @@
 
 namespace lancer {
 
-// A traversal unit simulated in SystemC (systemc/common/rt_trav_top.h over the
-// unit's traits, systemc/<unit>/rt_<unit>_unit.h), behind the unit's
-// TraversalDevice interface: traversal unit -> memory, one system per process
-// (sw/driver/systemc_kernel.h). Implementations:
-//   "systemc"      Impl::Model: the unit's hand-written cycle model
-//                  (rt_grid_model with rt_isect_model inside; rt_octree_model
-//                  with rt_isect's timing inside);
-//   "rtl-systemc"  Impl::Rtl: the unit's RTL (with its own rt_isect)
-//                  Verilated with --sc (Vrt_grid_sc, Vrt_octree_sc);
-//   (unnamed)      Impl::ModelRtlIsect: the cycle model with the Verilated
-//                  rt_isect (Vrt_isect_sc) inside, for mixed runs (rt_grid).
-// Each is a chip of up to kScChipUnits units on the chip's memory system
-// (rt_trav_tb over memory/system.h), driven as the C++ Verilated devices
-// drive theirs, cycle for cycle, in the same unit order: reset per run, ray
+template <class Model>
+class ModelUnit;
+
+// A traversal unit's SystemC models (systemc/: the unit's cycle model,
+// Unit::model_t, and its RTL Verilated with --sc), behind the unit's
+// TraversalDevice interface. Implementations:
+//   "systemc"       Impl::Model: the unit's cycle model on value ports (the
+//                   fast path: base/rt_value.h), clocked by the run loop
+//                   that clocks the Verilated RTL (traversal_run.h over
+//                   ModelUnit): no kernel, up to kMaxUnits units;
+//   "systemc-pins"  Impl::Pins: the same model bound to sc_in/sc_out
+//                   (rt_trav_pin_model) in the SystemC kernel;
+//   "rtl-systemc"   Impl::Rtl: the unit's RTL (with its own rt_isect)
+//                   Verilated with --sc (Vrt_grid_sc, ...);
+//   (unnamed)       Impl::ModelRtlIsect: the pin-level cycle model with the
+//                   Verilated rt_isect (Vrt_isect_sc) inside, for mixed runs (rt_grid).
+// The kernel's (the last three) are a chip of up to kScChipUnits units on the
+// chip's memory system (systemc/common/rt_trav_top.h: rt_trav_tb over
+// memory/system.h, one system per process: sw/driver/systemc_kernel.h).
+// Every implementation is driven as the C++ Verilated devices drive theirs,
+// cycle for cycle, in the same unit order: reset per run, ray
 // ids = indices on the port, the same stimulus draws and memory response times
 // for the same TraversalRunOptions, and the same TraversalRunStats: cycles
 // from the first ray offered to the last result or visit taken, reads per
@@ -47,6 +55,9 @@ class SystemCTraversalDevice final : public TraversalDevice<Image> {
   using Impl = SystemCImpl;
 
   explicit SystemCTraversalDevice(Impl impl = Impl::Model);
+  ~SystemCTraversalDevice() override;
+  SystemCTraversalDevice(const SystemCTraversalDevice&) = delete;
+  SystemCTraversalDevice& operator=(const SystemCTraversalDevice&) = delete;
 
   std::string_view name() const override;
   int maxRaysInFlight() const override;
@@ -64,8 +75,12 @@ class SystemCTraversalDevice final : public TraversalDevice<Image> {
   static bool wavesAvailable();
 
  private:
+  TraversalRunStats runKernel(const Image& image, std::span<const fx::QRay> rays,
+                              std::vector<fx::TraversalTrace>& traces, const TraversalRunOptions& options);
+
   Impl impl_;
   std::vector<sc::TraversalCycle>* trace_ = nullptr;
+  std::vector<std::unique_ptr<ModelUnit<typename Unit::model_t>>> models_;  // Impl::Model's units, made as runs need them
 };
 
 }  // namespace lancer

@@ -12,10 +12,13 @@
 #include <systemc>
 
 #include "common/error.h"
+#include "common/rt_trav_shell_model.h"
 #include "common/rt_trav_top.h"
 #include "driver/chip.h"
+#include "driver/model_unit.h"
 #include "driver/systemc_kernel.h"
 #include "driver/systemc_traversal_device.h"
+#include "driver/traversal_run.h"
 #include "driver/wave_file.h"
 
 namespace lancer {
@@ -38,6 +41,26 @@ sc::rt_trav_top<Unit>& traversalSystem() {
 
 }  // namespace systemc_kernel
 
+// A traversal unit's cycle model (rt_trav_shell_model's ports: node_*, cfg_i)
+// as a clocked top of the run loop (traversal_run.h): the same for every unit.
+template <class Model>
+concept TraversalCycleModel = requires { typename Model::unit_t; } &&
+    std::is_base_of_v<sc::rt_trav_shell_model<typename Model::unit_t, Model::kRegisteredResponses>, Model>;
+
+template <TraversalCycleModel Model>
+struct TraversalTop<Model> {
+  using Desc = typename Model::unit_t::descriptor;
+  static constexpr int kMaxSlots = Model::unit_t::RAYS_IN_FLIGHT;
+  static auto nodePort(Model& m) {
+    return std::tie(m.node_req_valid_o, m.node_req_addr_o, m.node_req_tag_o, m.node_req_ready_i, m.node_rsp_valid_i,
+                    m.node_rsp_data_i, m.node_rsp_tag_i);
+  }
+  static auto& configPort(Model& m) { return m.cfg_i; }
+};
+
+template <class Image, class Unit>
+SystemCTraversalDevice<Image, Unit>::~SystemCTraversalDevice() = default;
+
 template <class Image, class Unit>
 SystemCTraversalDevice<Image, Unit>::SystemCTraversalDevice(Impl impl) : impl_(impl) {
   if (impl_ == Impl::Rtl && !rtlAvailable()) {
@@ -54,6 +77,7 @@ template <class Image, class Unit>
 std::string_view SystemCTraversalDevice<Image, Unit>::name() const {
   switch (impl_) {
     case Impl::Model: return "systemc";
+    case Impl::Pins: return "systemc-pins";
     case Impl::Rtl: return "rtl-systemc";
     case Impl::ModelRtlIsect: return "systemc+rtl-isect";
   }
@@ -85,19 +109,8 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
                                                            std::vector<fx::TraversalTrace>& traces,
                                                            const TraversalRunOptions& options) {
   using Desc = fx::UnitFor<Image>;
-  const int maxSlots = maxRaysInFlight();
-  if (options.raysInFlight < 0 || options.raysInFlight > maxSlots) {
-    throw InputError(fmt::format("rays in flight {} is out of range: the SystemC {} unit ({}) has {} ray slots "
-                                 "(use 1..{}, or 0 for all; rebuild with -D{} for more)",
-                                 options.raysInFlight, Desc::kNames.unit, name(), maxSlots, maxSlots,
-                                 Desc::kNames.slotsOption));
-  }
-  if (options.memLatency < 1 || options.memLatencyJitter < 0) {
-    throw InputError(fmt::format("memory latency {} (jitter {}) is out of range: latency >= 1, jitter >= 0",
-                                 options.memLatency, options.memLatencyJitter));
-  }
-  checkChipOptions(options);
-  if (options.units > sc::kScChipUnits) {
+  checkTraversalOptions(options, name(), maxRaysInFlight(), Desc::kNames.unit, Desc::kNames.slotsOption);
+  if (impl_ != Impl::Model && options.units > sc::kScChipUnits) {
     throw InputError(fmt::format("--units {}: the SystemC chip of this build has {} units (CMake "
                                  "LANCER_SC_CHIP_UNITS; --model rtl takes up to {})",
                                  options.units, sc::kScChipUnits, kMaxUnits));
@@ -107,6 +120,11 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
     if (!(p >= 0.0 && p < 1.0)) {
       throw InputError(fmt::format("{}: stall and idle probabilities must lie in [0, 1), got {}", name(), p));
     }
+  }
+  if (impl_ == Impl::Model) {
+    using Model = typename Unit::model_t;
+    return runTraversalChip(
+        models_, [] { return std::make_unique<ModelUnit<Model>>(); }, image, rays, traces, options, trace_);
   }
   const bool wave = impl_ == Impl::Rtl && !options.stream.wavePath.empty();
   if (wave && !wavesAvailable()) {
@@ -130,7 +148,7 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
     job.rays.push_back(sc::toPort<sc::ISECT_RAY_W>(wire));
     job.rayIds.push_back(rays[k].id);
   }
-  job.slots = uint32_t(options.raysInFlight == 0 ? maxSlots : options.raysInFlight);
+  job.slots = uint32_t(options.raysInFlight == 0 ? maxRaysInFlight() : options.raysInFlight);
   job.inputIdleProbability = options.stream.inputIdleProbability;
   job.outputStallProbability = options.stream.outputStallProbability;
   job.seed = options.stream.seed;

@@ -1,13 +1,11 @@
 #pragma once
 
 // What every Verilated device (VerilatorIsectDevice, and the traversal
-// devices of verilator_traversal_device.h: rt_grid, rt_octree) does the same
-// way around its own ports: owning the Verilated model in a VerilatedContext
-// of its own, clocking it one cycle at a time with two evaluations per cycle,
-// the FST waveform, turning a failed SVA assertion into an exception; for the
-// traversal units also checking the run options, and the seeded stimulus
-// (input bubbles, output stalls, the three memory read ports) that every
-// model of a unit draws in the same order.
+// devices of verilator_traversal_device.h) does the same way around its own
+// ports: owning the Verilated model in a VerilatedContext of its own,
+// clocking it one cycle at a time with two evaluations per cycle, the FST
+// waveform, turning a failed SVA assertion into an exception. (The traversal
+// units' run loop, options and stimulus: traversal_run.h.)
 
 #include <cstdint>
 #include <memory>
@@ -38,6 +36,9 @@ namespace lancer {
 template <class Top>
 class VerilatedUnit {
  public:
+  using top_type = Top;
+  static constexpr const char* kModel = "rtl";
+
   explicit VerilatedUnit(std::string name) : name_(std::move(name)), context_(std::make_unique<VerilatedContext>()) {
     context_->traceEverOn(true);
     context_->fatalOnError(false);  // a failed assertion becomes an exception (checkAssertions)
@@ -142,43 +143,5 @@ class VerilatedUnit {
   std::unique_ptr<VerilatedFstC> wave_;
   uint64_t cycle_ = 0;
 };
-
-// InputError for options a Verilated traversal unit cannot run: raysInFlight
-// outside 0..maxSlots, a memory latency below 1, a negative jitter.
-// `unit` names it ("grid", "octree"), `cmakeVariable` the build option for more slots.
-inline void checkTraversalOptions(const TraversalRunOptions& options, int maxSlots, const char* unit,
-                                  const char* cmakeVariable) {
-  if (options.raysInFlight < 0 || options.raysInFlight > maxSlots) {
-    throw InputError(fmt::format("rays in flight {} is out of range: the RTL {} unit was built with {} ray slots "
-                                 "(use 1..{}, or 0 for all; rebuild with -D{} for more)",
-                                 options.raysInFlight, unit, maxSlots, maxSlots, cmakeVariable));
-  }
-  if (options.memLatency < 1 || options.memLatencyJitter < 0) {
-    throw InputError(fmt::format("memory latency {} (jitter {}) is out of range: latency >= 1, jitter >= 0",
-                                 options.memLatency, options.memLatencyJitter));
-  }
-  checkChipOptions(options);
-}
-
-// The seeded stream stimulus of one unit of a traversal-unit run, drawn in
-// the same order by every model: per cycle one draw each for the input bubble
-// (only while no ray is on offer), the result stall and the visit stall. Unit
-// u draws from mem::unitSeed(seed, u) (unit 0: the stream's seed).
-// (The memory ports are the chip's memory system: memory/system.h.)
-struct TraversalStimulus {
-  TraversalStimulus(const TraversalRunOptions& o, int unit)
-      : rng(mem::unitSeed(o.stream.seed, unit)),
-        idle(o.stream.inputIdleProbability, rng),
-        stallRes(o.stream.outputStallProbability, rng),
-        stallVisit(o.stream.outputStallProbability, rng) {}
-  TraversalStimulus(const TraversalStimulus&) = delete;
-  TraversalStimulus& operator=(const TraversalStimulus&) = delete;
-
-  std::mt19937_64 rng;
-  fx::Coin idle, stallRes, stallVisit;
-};
-
-// No progress (a ray accepted, a test, a visit or a result) for this many cycles ends a run.
-inline constexpr uint64_t kTraversalWatchdogCycles = 1000000;
 
 }  // namespace lancer

@@ -12,14 +12,16 @@ namespace lancer {
 
 template <class Top>
 class VerilatedUnit;
+namespace sc {
+struct TraversalCycle;
+}
 
-// What a Verilated traversal unit (`Top`, e.g. Vrt_grid) brings to
-// VerilatorTraversalDevice: specialized once per unit in its device's .cpp
-// (verilator_grid_device.cpp, verilator_octree_device.cpp), next to the
-// explicit instantiation, so that every member is inlined into the run loop.
-// verilator_traversal_run.h lists the members a specialization defines.
+// What a Verilated traversal unit (`Top`, e.g. Vrt_grid) brings to the run
+// loop: specialized once per unit in its device's .cpp, next to the explicit
+// instantiation, so that every member is inlined into the loop.
+// traversal_run.h lists the members a specialization defines.
 template <class Top>
-struct VerilatedTraversalUnit;
+struct TraversalTop;
 
 // The Verilated RTL of a traversal unit (rt_grid, rt_octree: a traversal with
 // its memory ports and its rt_isect) behind TraversalDevice<Image>, name
@@ -57,8 +59,14 @@ class VerilatorTraversalDevice final : public TraversalDevice<Image> {
   TraversalRunStats run(const Image& image, std::span<const fx::QRay> rays, std::vector<fx::TraversalTrace>& traces,
                         const TraversalRunOptions& options = {}) override;
 
+  // Records unit 0's port activity in every cycle of the following runs into
+  // *trace (appended; nullptr turns it off), from the first ray offered, as
+  // SystemCTraversalDevice::setCycleTrace does.
+  void setCycleTrace(std::vector<sc::TraversalCycle>* trace) { portTrace_ = trace; }
+
  private:
   std::vector<std::unique_ptr<VerilatedUnit<Top>>> units_;  // the chip's units, made as a run needs them
+  std::vector<sc::TraversalCycle>* portTrace_ = nullptr;
 };
 
 }  // namespace lancer

@@ -1,89 +1,26 @@
 #pragma once
 
 // The members of VerilatorTraversalDevice<Top, Image>. Included by the .cpp of
-// each unit's device only, after its VerilatedTraversalUnit<Top>
-// specialization and the Verilated header, followed by
-//   template class VerilatorTraversalDevice<Top, Image>;
-//
-// LANCER_VERILATED_TRAVERSAL_UNIT (below) writes the specialization
-// VerilatedTraversalUnit<Top>, which defines (all static, inline) only what
-// names the Verilated model's own members:
-//   Desc               the unit's descriptor (golden/unit.h): names, records,
-//                      node packing, configuration, image checks
-//   kMaxSlots          RaysInFlight, from the unit's compile definition
-//   nodePort(top)      std::tie of the node port: req valid, addr, tag,
-//                      req ready, rsp valid, data, tag
-//   configPort(top)    its configuration port besides cfg_slots_i
+// each unit's device only, after the Verilated header, followed by
+// LANCER_VERILATED_TRAVERSAL_UNIT (below), which writes the specialization
+// TraversalTop<Top> (traversal_run.h lists its members), the device's
+// explicit instantiation and its factory. The run loop is traversal_run.h's,
+// over VerilatedUnit<Top>.
 
-#include <algorithm>
-#include <array>
-#include <atomic>
-#include <cstdint>
-#include <deque>
-#include <exception>
-#include <stdexcept>
-#include <string>
+#include <memory>
+#include <span>
 #include <tuple>
-#include <thread>
-#include <type_traits>
+#include <vector>
 
-#include <fmt/format.h>
-
-#include "common/error.h"
-#include "driver/chip.h"
-#include "driver/cycle_barrier.h"
-#include "driver/verilated_port.h"
+#include "driver/traversal_run.h"
 #include "driver/verilated_unit.h"
 #include "driver/verilator_traversal_device.h"
-#include "driver/wave_file.h"
 
 namespace lancer {
 
-namespace trav_detail {
-
-// The unit's configuration port for `image` (an empty Image at reset).
-template <class Top, class Image>
-void configure(Top& top, const Image& image) {
-  using Desc = typename VerilatedTraversalUnit<Top>::Desc;
-  std::array<uint32_t, size_t(fx::wireWords(fx::kCfgBitsOf<Desc>))> wire{};
-  fx::packConfig<Desc>(image, wire);
-  auto& port = VerilatedTraversalUnit<Top>::configPort(top);
-  static_assert(portWords<std::remove_reference_t<decltype(port)>>() == wire.size(),
-                "the configuration port does not match the descriptor's kCfgFields: rebuild rt_pkg");
-  writePort(port, wire.data(), wire.size());
-}
-
-// Bit offset of field `index` in a record: the first field is the most significant.
-constexpr int fieldLsb(std::span<const fx::FieldSpec> fields, size_t index) {
-  int lsb = 0;
-  for (size_t i = index + 1; i < fields.size(); ++i) lsb += fields[i].width * fields[i].count;
-  return lsb;
-}
-
-// Every input at its idle value: nothing offered, nothing taken, the memory
-// ports ready and silent, all slots, the unit's idle configuration.
-template <class Top>
-void idleInputs(Top& top) {
-  using Unit = VerilatedTraversalUnit<Top>;
-  auto [reqValid, reqAddr, reqTag, reqReady, rspValid, rspData, rspTag] = Unit::nodePort(top);
-  top.ray_valid_i = 0;
-  top.res_ready_i = 0;
-  top.visit_ready_i = 0;
-  reqReady = 1;
-  top.idx_req_ready_i = 1;
-  top.tri_req_ready_i = 1;
-  rspValid = 0;
-  top.idx_rsp_valid_i = 0;
-  top.tri_rsp_valid_i = 0;
-  top.cfg_slots_i = Unit::kMaxSlots;
-  configure(top, typename Unit::Desc::Image{});
-}
-
-}  // namespace trav_detail
-
 template <class Top, class Image>
 VerilatorTraversalDevice<Top, Image>::VerilatorTraversalDevice() {
-  units_.push_back(std::make_unique<VerilatedUnit<Top>>(VerilatedTraversalUnit<Top>::Desc::kNames.module));
+  units_.push_back(std::make_unique<VerilatedUnit<Top>>(TraversalTop<Top>::Desc::kNames.module));
   units_.front()->reset(trav_detail::idleInputs<Top>);
 }
 
@@ -92,419 +29,18 @@ VerilatorTraversalDevice<Top, Image>::~VerilatorTraversalDevice() = default;
 
 template <class Top, class Image>
 int VerilatorTraversalDevice<Top, Image>::maxRaysInFlight() const {
-  return VerilatedTraversalUnit<Top>::kMaxSlots;
+  return TraversalTop<Top>::kMaxSlots;
 }
-
-namespace trav_detail {
-
-// The image as the unit's ports carry it, packed once per run and read by
-// every unit of the chip.
-template <class Top, class Image>
-struct PortImage {
-  using Desc = typename VerilatedTraversalUnit<Top>::Desc;
-  static constexpr size_t kTriWords = fx::kIsectTriWords;
-  static constexpr size_t kNodeWords = size_t(fx::wireWords(fx::kNodeBitsOf<Desc>));
-  static constexpr size_t kGroupWords = Desc::kGroup * kNodeWords;
-
-  explicit PortImage(const Image& im) : image(im), nodes(Desc::nodes(im)) {
-    nodeWire.resize(nodes.size() * kNodeWords);
-    for (size_t i = 0; i < nodes.size(); ++i) {
-      fx::packNode<Desc>(nodes[i], std::span<uint32_t>(nodeWire).subspan(kNodeWords * i, kNodeWords));
-    }
-    triWire.resize(image.triangles.size() * kTriWords);
-    for (size_t i = 0; i < image.triangles.size(); ++i) {
-      fx::packWire(image.triangles[i], std::span<uint32_t>(triWire).subspan(i * kTriWords, kTriWords));
-    }
-  }
-
-  const Image& image;
-  const std::remove_cvref_t<decltype(Desc::nodes(std::declval<const Image&>()))>& nodes;
-  std::vector<uint32_t> nodeWire, triWire;
-};
-
-// What the units of a run share: the rays and their traces (each written only
-// by the unit that took the ray), and the dispatcher.
-struct ChipRays {
-  ChipRays(std::span<const fx::QRay> r, std::vector<fx::TraversalTrace>& t, int units, int batch)
-      : rays(r), traces(t), owner(r.size(), -1), finished(r.size(), 0), resultElements(r.size(), 0),
-        dispatcher(r.size(), units, batch) {}
-  std::span<const fx::QRay> rays;
-  std::vector<fx::TraversalTrace>& traces;
-  std::vector<int> owner;  // the unit that took each ray (-1: none yet)
-  std::vector<uint8_t> finished;
-  std::vector<uint32_t> resultElements;
-  Dispatcher dispatcher;
-};
-
-// One Verilated unit of a chip, cycle by cycle: it offers the rays the
-// dispatcher hands it, serves its three memory ports from the chip's memory
-// system, takes its visits and results. cycle() touches only this unit's
-// state, its own rays' traces and the memory system's calls for this unit,
-// so the units of a chip may run it on threads of their own. Every member is
-// inlined into the loop; nothing is allocated per cycle.
-template <class Top, class Image>
-class UnitRun {
-  using Unit = VerilatedTraversalUnit<Top>;
-  using Desc = typename Unit::Desc;
-  using Ports = PortImage<Top, Image>;
-
-  // The records of the two narrow streams, taken straight from their ports.
-  static constexpr auto kVisitFields = Desc::kVisitFields;
-  static_assert(fx::recordBits(kVisitFields) <= 64 && kVisitFields.size() == 2, "a visit is {ray_id, element}");
-  static constexpr int kVisitRayLsb = fieldLsb(kVisitFields, 0);
-  static constexpr int kVisitIdLsb = fieldLsb(kVisitFields, 1);
-  static constexpr int kVisitIdBits = kVisitFields[1].width;
-  static_assert(kVisitFields[0].width == 32 && kVisitIdBits <= 32 && kVisitRayLsb + 32 == fx::recordBits(kVisitFields));
-  static constexpr uint64_t kVisitIdMask = (uint64_t(1) << kVisitIdBits) - 1;
-  static constexpr size_t kResWords = size_t(fx::wireWords(fx::recordBits(Desc::kResFields)));
-
- public:
-  UnitRun(VerilatedUnit<Top>& unit, int index, const Ports& ports, ChipRays& shared, const TraversalRunOptions& options)
-      : unit_(unit), top_(unit.top()), index_(index), ports_(ports), shared_(shared), options_(options),
-        stim_(options, index) {
-    static_assert(portWords<std::remove_reference_t<decltype(std::get<5>(Unit::nodePort(top_)))>>() ==
-                      Ports::kGroupWords,
-                  "the node response port does not carry kGroup nodes of the descriptor: rebuild rt_pkg");
-    static_assert(portWords<std::remove_reference_t<decltype(top_.res_data_o)>>() >= kResWords,
-                  "res_data_o does not match the unit's result record: rebuild rt_pkg");
-  }
-
-  // The run's slots and the unit's configuration port.
-  void configure() {
-    top_.cfg_slots_i = options_.raysInFlight == 0 ? Unit::kMaxSlots : options_.raysInFlight;
-    trav_detail::configure(top_, ports_.image);
-  }
-
-  // One cycle of the chip: the memory's responses and this unit's offer, the
-  // inputs settled, the handshakes, the rising edge. True if the unit made
-  // progress (a ray accepted, a test, a visit or a result).
-  bool cycle(mem::MemorySystem& memory) {
-    unit_.select();
-    const uint64_t now = memory.cycle();
-    offerRay(now);
-    const bool resReady = !stim_.stallRes();
-    const bool visitReady = !stim_.stallVisit();
-    top_.res_ready_i = resReady;
-    top_.visit_ready_i = visitReady;
-    driveResponses(memory);
-    unit_.settle();
-    // Handshakes of this cycle, read with the inputs settled (perf_isect_fire_o
-    // is combinational in tri_rsp_valid_i).
-    const bool rayFire = offering_ && top_.ray_ready_o;
-    bool progress = takeRequests(memory) || rayFire;
-    if (top_.visit_valid_o && visitReady) progress = takeVisit(now);
-    if (top_.res_valid_o && resReady) progress = takeResult(now);
-    if (accepted_ > results_) ++busyCycles_;
-    unit_.tick();
-    if (rayFire) {
-      offering_ = false;
-      shared_.owner[offeredRay_] = index_;
-      shared_.dispatcher.taken(index_);
-      ++accepted_;
-    }
-    return progress;
-  }
-
-  // No ray of this unit in flight, nothing on its visit port.
-  bool drained() const { return accepted_ == results_ && !offering_ && !top_.visit_valid_o; }
-  uint64_t results() const { return results_; }
-  uint64_t accepted() const { return accepted_; }
-  bool started() const { return started_; }
-  uint64_t firstCycle() const { return firstCycle_; }
-  uint64_t lastCycle() const { return lastCycle_; }
-  uint64_t busyCycles() const { return busyCycles_; }
-  const TraversalRunStats& stats() const { return stats_; }
-
- private:
-  [[noreturn]] static void fail(const std::string& what) { throw std::runtime_error("rtl: " + what); }
-
-  // Producer: the next ray the dispatcher handed this unit, unless idling; an
-  // offer holds until taken. The ray crosses the port with its index in the
-  // run as its id.
-  void offerRay(uint64_t now) {
-    if (!offering_ && shared_.dispatcher.holds(index_) && !stim_.idle()) {
-      offeredRay_ = shared_.dispatcher.next(index_);
-      fx::QRay wireRay = shared_.rays[offeredRay_];
-      wireRay.id = uint32_t(offeredRay_);
-      fx::packWire(wireRay, rayWire_);
-      writePort(top_.ray_data_i, rayWire_.data(), fx::kIsectRayWords);
-      offering_ = true;
-      if (!started_) {
-        started_ = true;
-        firstCycle_ = now;
-      }
-    }
-    top_.ray_valid_i = offering_;
-  }
-
-  // The memory responses of this cycle on the three ports, and their readiness.
-  void driveResponses(mem::MemorySystem& memory) {
-    auto [reqValid, reqAddr, reqTag, reqReady, rspValid, rspData, rspTag] = Unit::nodePort(top_);
-    const Image& image = ports_.image;
-    uint32_t addr = 0, tag = 0;
-    rspValid = memory.response(index_, mem::Port::Node, addr, tag);
-    if (rspValid) {
-      if (uint64_t(addr) + Desc::kGroup > ports_.nodes.size()) {
-        fail(fmt::format("{} read at {} outside the {} ({} entries)", Desc::kNames.nodeRead, addr,
-                         Desc::kNames.nodeTable, ports_.nodes.size()));
-      }
-      writePort(rspData, &ports_.nodeWire[size_t(addr) * Ports::kNodeWords], Ports::kGroupWords);
-      rspTag = tag;
-    }
-    top_.idx_rsp_valid_i = memory.response(index_, mem::Port::Index, addr, tag);
-    if (top_.idx_rsp_valid_i) {
-      if (addr >= image.indices.size()) {
-        fail(fmt::format("index list read at {} outside the image ({} entries)", addr, image.indices.size()));
-      }
-      top_.idx_rsp_data_i = image.indices[addr];
-      top_.idx_rsp_tag_i = tag;
-    }
-    top_.tri_rsp_valid_i = memory.response(index_, mem::Port::Triangle, addr, tag);
-    if (top_.tri_rsp_valid_i) {
-      if (addr >= image.triangles.size()) {
-        fail(fmt::format("triangle table read at {} outside the image ({} entries)", addr, image.triangles.size()));
-      }
-      writePort(top_.tri_rsp_data_i, &ports_.triWire[size_t(addr) * Ports::kTriWords], Ports::kTriWords);
-      top_.tri_rsp_tag_i = tag;
-    }
-    reqReady = memory.ready(index_, mem::Port::Node);
-    top_.idx_req_ready_i = memory.ready(index_, mem::Port::Index);
-    top_.tri_req_ready_i = memory.ready(index_, mem::Port::Triangle);
-  }
-
-  // One port's request of this cycle: to the memory if it is ready.
-  template <class Valid, class Ready>
-  bool request(mem::MemorySystem& memory, mem::Port port, const Valid& valid, const Ready& ready, uint32_t addr,
-               uint32_t tag) {
-    if (!valid) return false;
-    if (!ready) {
-      memory.blocked(index_, port);
-      return false;
-    }
-    memory.request(index_, port, addr, tag);
-    return true;
-  }
-
-  // The memory requests, the pipeline's test and the step-ready count of this
-  // cycle; true if a test entered the pipeline.
-  bool takeRequests(mem::MemorySystem& memory) {
-    auto [reqValid, reqAddr, reqTag, reqReady, rspValid, rspData, rspTag] = Unit::nodePort(top_);
-    stats_.nodeReads += request(memory, mem::Port::Node, reqValid, reqReady, reqAddr, reqTag);
-    stats_.indexReads += request(memory, mem::Port::Index, top_.idx_req_valid_o, top_.idx_req_ready_i,
-                                 top_.idx_req_addr_o, top_.idx_req_tag_o);
-    stats_.triangleReads += request(memory, mem::Port::Triangle, top_.tri_req_valid_o, top_.tri_req_ready_i,
-                                    top_.tri_req_addr_o, top_.tri_req_tag_o);
-    if (started_ && top_.perf_step_ready_o) ++stats_.stepReadyCycles;
-    if (!top_.perf_isect_fire_o) return false;
-    ++stats_.isectTests;
-    ++stats_.isectBusyCycles;
-    return true;
-  }
-
-  // The ray of a visit or result record: one this unit took (visits may
-  // trail the ray's result; a second result is an error).
-  size_t ownRay(uint64_t id, const char* what, bool result) const {
-    const size_t k = size_t(id);
-    if (k >= shared_.rays.size() || shared_.owner[k] != index_ || (result && shared_.finished[k])) {
-      fail(fmt::format("unit {}: a {} for ray {} that is not in flight in it", index_, what, k));
-    }
-    return k;
-  }
-
-  bool takeVisit(uint64_t now) {
-    const uint64_t visit = top_.visit_data_o;  // {ray_id, element}
-    const size_t k = ownRay(uint32_t(visit >> kVisitRayLsb), "visit record", false);
-    shared_.traces[k].visits.push_back(uint32_t((visit >> kVisitIdLsb) & kVisitIdMask));
-    ++stats_.steps;
-    lastCycle_ = now;
-    return true;
-  }
-
-  bool takeResult(uint64_t now) {
-    readPort(top_.res_data_o, resWire_.data(), kResWords);
-    fx::unpackFields(Desc::kResFields, resWire_, res_);
-    const size_t k = ownRay(uint64_t(res_[0]), "result", true);
-    shared_.finished[k] = 1;
-    shared_.resultElements[k] = fx::takeTraversalResult(res_, shared_.rays[k].id, shared_.traces[k]);
-    ++results_;
-    lastCycle_ = now;
-    return true;
-  }
-
-  VerilatedUnit<Top>& unit_;
-  Top& top_;
-  int index_;
-  const Ports& ports_;
-  ChipRays& shared_;
-  const TraversalRunOptions& options_;
-  TraversalStimulus stim_;
-  std::array<uint32_t, kResWords> resWire_{};
-  std::array<fx::u128, fx::valueCount(Desc::kResFields)> res_{};
-  fx::RayWire rayWire_{};
-  TraversalRunStats stats_;
-  size_t offeredRay_ = 0;
-  uint64_t accepted_ = 0, results_ = 0, busyCycles_ = 0;
-  bool offering_ = false, started_ = false;
-  uint64_t firstCycle_ = 0, lastCycle_ = 0;
-};
-
-// A chip's run: its units clocked in lockstep with the memory system, one
-// cycle at a time, until every ray has its result and the memory is quiet.
-// With more than one host thread, each thread clocks its share of the units
-// (unit u on thread u % threads) and a barrier ends each cycle; the memory
-// system's tick and the dispatcher run alone in the barrier's completion, in
-// unit order, so a run is the same whatever the threads.
-template <class Top, class Image>
-class ChipRun {
- public:
-  ChipRun(std::deque<UnitRun<Top, Image>>& units, mem::MemorySystem& memory, ChipRays& shared, int threads)
-      : units_(units), memory_(memory), shared_(shared), threads_(threads), progress_(units.size(), 0) {}
-
-  void run() {
-    shared_.dispatcher.refill();
-    // The path's memory system counts on from its earlier runs.
-    lastProgress_ = memory_.cycle();
-    if (threads_ <= 1) {
-      while (!stop_) {
-        for (size_t u = 0; u < units_.size(); ++u) progress_[u] = units_[u].cycle(memory_);
-        endCycle();
-      }
-      return;
-    }
-    CycleBarrier sync(threads_);
-    std::vector<std::exception_ptr> errors(static_cast<size_t>(threads_));
-    const auto work = [&](int t) {
-      while (true) {
-        if (!errors[size_t(t)]) {
-          try {
-            for (size_t u = size_t(t); u < units_.size(); u += size_t(threads_)) progress_[u] = units_[u].cycle(memory_);
-          } catch (...) {
-            errors[size_t(t)] = std::current_exception();
-            failed_.store(true);
-          }
-        }
-        sync.arriveAndWait([this] { endCycle(); });
-        if (stop_) return;
-      }
-    };
-    std::vector<std::jthread> pool;
-    for (int t = 1; t < threads_; ++t) pool.emplace_back(work, t);
-    work(0);
-    pool.clear();
-    for (const std::exception_ptr& e : errors) {
-      if (e) std::rethrow_exception(e);
-    }
-  }
-
- private:
-  // The end of every cycle, alone: the memory's work, the dispatcher, the
-  // end of the run, the watchdog.
-  void endCycle() {
-    memory_.tick();
-    shared_.dispatcher.refill();
-    bool progress = false;
-    bool drained = memory_.idle();
-    uint64_t results = 0;
-    for (size_t u = 0; u < units_.size(); ++u) {
-      progress |= progress_[u] != 0;
-      drained &= units_[u].drained();
-      results += units_[u].results();
-    }
-    if (progress) lastProgress_ = memory_.cycle();
-    if (failed_.load()) {
-      stop_ = true;
-    } else if (results == shared_.rays.size() && drained) {
-      stop_ = true;
-    } else if (memory_.cycle() - lastProgress_ > kTraversalWatchdogCycles) {
-      stop_ = true;
-      watchdog_ = fmt::format("rtl: no progress for {} cycles ({} of {} rays have results)", kTraversalWatchdogCycles,
-                              results, shared_.rays.size());
-    }
-  }
-
- public:
-  const std::string& watchdog() const { return watchdog_; }
-
- private:
-  std::deque<UnitRun<Top, Image>>& units_;
-  mem::MemorySystem& memory_;
-  ChipRays& shared_;
-  int threads_;
-  std::vector<uint8_t> progress_;
-  bool stop_ = false;
-  std::atomic<bool> failed_{false};
-  uint64_t lastProgress_ = 0;
-  std::string watchdog_;
-};
-
-}  // namespace trav_detail
 
 template <class Top, class Image>
 TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, std::span<const fx::QRay> rays,
                                                             std::vector<fx::TraversalTrace>& traces,
                                                             const TraversalRunOptions& options) {
-  using Desc = typename VerilatedTraversalUnit<Top>::Desc;
-  checkTraversalOptions(options, maxRaysInFlight(), Desc::kNames.unit, Desc::kNames.slotsOption);
-  Desc::checkImage(image, rays);
-  traces.assign(rays.size(), fx::TraversalTrace{});
-  if (rays.empty()) return TraversalRunStats{};
-
-  const int units = options.units;
-  while (int(units_.size()) < units) {
-    units_.push_back(std::make_unique<VerilatedUnit<Top>>(Desc::kNames.module));
-  }
-  std::unique_ptr<mem::MemorySystem> own;
-  mem::MemorySystem& memory = memoryFor<Desc>(options, image, own);
-  const trav_detail::PortImage<Top, Image> ports(image);
-  trav_detail::ChipRays shared(rays, traces, units, options.dispatchBatch);
-  std::deque<trav_detail::UnitRun<Top, Image>> runs;  // (not movable: a deque grows in place)
-  for (int u = 0; u < units; ++u) {
-    VerilatedUnit<Top>& unit = *units_[size_t(u)];
-    runs.emplace_back(unit, u, ports, shared, options);
-    unit.reset(trav_detail::idleInputs<Top>);
-    runs.back().configure();
-    unit.settle();
-  }
-  // The waveform is unit 0's.
-  units_.front()->openWave(nextWaveFile(options.stream.wavePath));
-  const int threads = options.hostThreads > 0
-                          ? std::min(options.hostThreads, units)
-                          : std::min(units, std::max(1, int(std::thread::hardware_concurrency())));
-  trav_detail::ChipRun<Top, Image> chip(runs, memory, shared, threads);
-  try {
-    chip.run();
-  } catch (...) {
-    units_.front()->closeWave();
-    throw;
-  }
-  for (int u = 0; u < units; ++u) {
-    VerilatedUnit<Top>& unit = *units_[size_t(u)];
-    trav_detail::idleInputs(unit.top());
-    runs[size_t(u)].configure();
-    unit.settle();
-  }
-  units_.front()->closeWave();
-  if (!chip.watchdog().empty()) throw std::runtime_error(chip.watchdog());
-
-  TraversalRunStats stats;
-  uint64_t first = UINT64_MAX, last = 0;
-  for (const auto& run : runs) {
-    stats += run.stats();
-    stats.unitRays.push_back(run.accepted());
-    stats.unitBusyCycles.push_back(run.busyCycles());
-    if (run.started()) first = std::min(first, run.firstCycle());
-    last = std::max(last, run.lastCycle());
-  }
-  stats.rays = rays.size();
-  stats.cycles = last - first + 1;
-  stats.memory = memory.stats();
-  for (size_t k = 0; k < rays.size(); ++k) {
-    if (shared.resultElements[k] != traces[k].visits.size()) {
-      throw std::runtime_error(fmt::format("rtl: ray {} reports {} {} but {} visit records came out", k,
-                                           shared.resultElements[k], Desc::kNames.elements, traces[k].visits.size()));
-    }
-  }
-  return stats;
+  using Desc = typename TraversalTop<Top>::Desc;
+  checkTraversalOptions(options, name(), maxRaysInFlight(), Desc::kNames.unit, Desc::kNames.slotsOption);
+  return runTraversalChip(
+      units_, [] { return std::make_unique<VerilatedUnit<Top>>(Desc::kNames.module); }, image, rays, traces, options,
+      portTrace_);
 }
 
 }  // namespace lancer
@@ -516,7 +52,7 @@ TraversalRunStats VerilatorTraversalDevice<Top, Image>::run(const Image& image, 
 #define LANCER_VERILATED_TRAVERSAL_UNIT(Top, Descriptor, Slots, CfgPort)                                 \
   namespace lancer {                                                                                             \
   template <>                                                                                                    \
-  struct VerilatedTraversalUnit<Top> {                                                                           \
+  struct TraversalTop<Top> {                                                                                     \
     using Desc = Descriptor;                                                                                     \
     static constexpr int kMaxSlots = Slots;                                                                      \
     static auto nodePort(Top& t) {                                                                               \

@@ -11,7 +11,6 @@ namespace lancer::sc {
 namespace {
 
 constexpr size_t kNodeWords = size_t(fx::wireWords(rt_bvh_unit::NODE_W));
-constexpr size_t kRefWords = size_t(fx::wireWords(fx::kBvhRefBits));
 static_assert(fx::valueCount(fx::kBvhNodeFields) == 24, "bvh_node_t layout changed");
 static_assert(fx::valueCount(fx::kBvhRefFields) == 3, "bvh_ref_t layout changed");
 
@@ -42,7 +41,7 @@ fx::BvhRef unpackRef(const uint32_t* wire) {  // {leaf, count, first}
 
 }  // namespace
 
-rt_bvh_model::rt_bvh_model(sc_core::sc_module_name name) : rt_trav_shell_model(name, rt_isect_impl::model) {}
+rt_bvh_model::rt_bvh_model() : rt_trav_shell_model(rt_isect_impl::model) {}
 
 // One cycle: the shell's grants and responses, then the walk's events — at
 // most one state-changing event per slot, each reading that slot's registers
@@ -102,7 +101,7 @@ rt_bvh_model::BoxAnswer rt_bvh_model::testNode() {
     fail(fmt::format("node response for slot {}, which does not wait for one", rsp.slot));
   }
   std::array<uint32_t, kNodeWords> wire{};
-  fromPort<rt_bvh_unit::NODE_W>(*rsp.data, wire);
+  fromValue<rt_bvh_unit::NODE_DATA_W>(*rsp.data, wire);
   const fx::BvhNode node = unpackNode(wire.data());
   BoxAnswer a;
   a.valid = true;
@@ -228,8 +227,8 @@ void rt_bvh_model::load(int k) {
   s.setup = fx::BvhRaySetup::setup(ray);
   s.anyHit = ray.anyHit;
   s.hitSeen = false;
-  std::array<uint32_t, kRefWords> root{};
-  fromPort<fx::kBvhRefBits>(cfg_root_i.read(), root);
+  std::array<uint32_t, size_t(fx::wireWords(rt_bvh_unit::CFG_W))> root{};
+  fromValue<rt_bvh_unit::CFG_W>(cfg_i.read(), root);
   s.cur = Candidate{unpackRef(root.data()), 0};
   s.sp = 0;
   setState(k, State::Enter);

@@ -3,7 +3,6 @@
 #include <array>
 #include <cstdint>
 
-#include <systemc>
 
 #include "bvh/rt_bvh_unit.h"
 #include "common/rt_trav_shell_model.h"
@@ -21,8 +20,8 @@ namespace lancer::sc {
 // walk of rt_bvh_slots.sv, the box tester rt_bvh_box.sv as a delay line of
 // BVH_BOX_LATENCY cycles, and its setup (rt_mirror_pairs.sv).
 //
-//   cycle() once per rising edge (the shell's SC_METHOD on clk_i.posedge;
-//           its rst_ni.negedge resets through resetWalk()): the cycle as an outline of named steps, each deciding from
+//   cycle() once per rising edge (the shell's clock(); its reset() calls
+//           resetWalk()): the cycle as an outline of named steps, each deciding from
 //           the registers at the start of the cycle and the inputs.
 //
 // No arithmetic is duplicated: the per-ray setup is fx::BvhRaySetup, the box
@@ -31,10 +30,7 @@ namespace lancer::sc {
 // scheduled as the RTL schedules it.
 class rt_bvh_model : public rt_trav_shell_model<rt_bvh_unit, /*RegRsp=*/false> {
  public:
-  // The unit's configuration port under its RTL name (the node port is the shell's node_*).
-  sc_core::sc_in<cfg_t>& cfg_root_i = cfg_i;
-
-  explicit rt_bvh_model(sc_core::sc_module_name name);
+  rt_bvh_model();
 
  private:
   enum class State : uint8_t { Free, Setup, Enter, NodeReq, WaitNode, Box, Fetch, Pop, Check, Done };

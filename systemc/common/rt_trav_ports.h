@@ -3,16 +3,20 @@
 // The ports every traversal unit has (rtl/lib/rt_trav_ports.svh and the
 // shell's node port), declared once for each side that meets them: In and Out
 // are what the unit's inputs and outputs are on that side, so one list serves
-//   the unit (cycle model)   <sc_in, sc_out>
+//   the unit's cycle model   <rt_value, rt_value, value_t> (base/rt_value.h: plain values)
+//   its pin-level module     <sc_in, sc_out>
 //   the memory               <sc_out, sc_in>   (node and memory ports)
 //   the testbench            <sc_out, sc_in>   (host ports), <sc_in, sc_in> (node and memory ports, observed)
 //   the bench                <rt_signal, rt_signal>
+// Bits<W> is the type of a W-bit port: Verilator's --sc types (vl_port_t) on
+// signals, value_t on plain values.
 // Port names are the RTL's (the node port's prefix is the unit's: cell_* for
 // rt_grid), and one bind function per group binds any side to a bench's
 // signals, the Verilated class too, whose members carry the same names.
 
 #include <systemc>
 
+#include "base/rt_value.h"
 #include "common/rt_trav_unit.h"
 #include "isect/rt_isect_ports.h"
 #include "isect/rt_isect_types.h"
@@ -20,23 +24,23 @@
 namespace lancer::sc {
 
 // Clock, reset, cfg_slots_i, the ray, result and visit streams, the performance outputs.
-template <class Unit, template <class> class In, template <class> class Out>
+template <class Unit, template <class> class In, template <class> class Out, template <int> class Bits = vl_port_t>
 struct rt_trav_host_ports {
   In<bool> clk_i{"clk_i"};
   In<bool> rst_ni{"rst_ni"};
-  In<typename Unit::cfg_slots_t> cfg_slots_i{"cfg_slots_i"};
+  In<Bits<Unit::CFG_SLOTS_W>> cfg_slots_i{"cfg_slots_i"};
 
   In<bool> ray_valid_i{"ray_valid_i"};
   Out<bool> ray_ready_o{"ray_ready_o"};
-  In<isect_ray_t> ray_data_i{"ray_data_i"};
+  In<Bits<ISECT_RAY_W>> ray_data_i{"ray_data_i"};
 
   Out<bool> res_valid_o{"res_valid_o"};
   In<bool> res_ready_i{"res_ready_i"};
-  Out<typename Unit::res_t> res_data_o{"res_data_o"};
+  Out<Bits<Unit::RESULT_W>> res_data_o{"res_data_o"};
 
   Out<bool> visit_valid_o{"visit_valid_o"};
   In<bool> visit_ready_i{"visit_ready_i"};
-  Out<typename Unit::visit_t> visit_data_o{"visit_data_o"};
+  Out<Bits<Unit::VISIT_W>> visit_data_o{"visit_data_o"};
 
   Out<bool> perf_isect_fire_o{"perf_isect_fire_o"};
   Out<bool> perf_step_ready_o{"perf_step_ready_o"};
@@ -45,14 +49,14 @@ struct rt_trav_host_ports {
 // One read port's seven ports, <p>_req_valid_o .. <p>_rsp_tag_i: requests
 // {addr, tag} valid/ready, responses {data, tag} without ready. (A macro: the
 // names are the RTL's.)
-#define LANCER_SC_READ_PORT(p, data_t)                                   \
+#define LANCER_SC_READ_PORT(p, data_w)                                   \
   Out<bool> p##_req_valid_o{#p "_req_valid_o"};                          \
   In<bool> p##_req_ready_i{#p "_req_ready_i"};                           \
-  Out<typename Unit::mem_addr_t> p##_req_addr_o{#p "_req_addr_o"};       \
-  Out<typename Unit::slot_t> p##_req_tag_o{#p "_req_tag_o"};             \
+  Out<Bits<MEM_ADDR_W>> p##_req_addr_o{#p "_req_addr_o"};       \
+  Out<Bits<Unit::SLOT_W>> p##_req_tag_o{#p "_req_tag_o"};             \
   In<bool> p##_rsp_valid_i{#p "_rsp_valid_i"};                           \
-  In<data_t> p##_rsp_data_i{#p "_rsp_data_i"};                           \
-  In<typename Unit::slot_t> p##_rsp_tag_i{#p "_rsp_tag_i"}
+  In<Bits<data_w>> p##_rsp_data_i{#p "_rsp_data_i"};                           \
+  In<Bits<Unit::SLOT_W>> p##_rsp_tag_i{#p "_rsp_tag_i"}
 
 // Binds read port p of `a` to the same of `b`.
 #define LANCER_SC_BIND_READ_PORT(a, b, p)                                                     \
@@ -62,16 +66,16 @@ struct rt_trav_host_ports {
       (a).p##_rsp_tag_i((b).p##_rsp_tag_i)
 
 // The node read port (a grid's cells, an octree's child groups, a BVH's nodes).
-template <class Unit, template <class> class In, template <class> class Out>
+template <class Unit, template <class> class In, template <class> class Out, template <int> class Bits = vl_port_t>
 struct rt_trav_node_port {
-  LANCER_SC_READ_PORT(node, typename Unit::node_data_t);
+  LANCER_SC_READ_PORT(node, Unit::NODE_DATA_W);
 };
 
 // The index and triangle read ports.
-template <class Unit, template <class> class In, template <class> class Out>
+template <class Unit, template <class> class In, template <class> class Out, template <int> class Bits = vl_port_t>
 struct rt_trav_mem_ports {
-  LANCER_SC_READ_PORT(idx, typename Unit::idx_data_t);
-  LANCER_SC_READ_PORT(tri, isect_tri_t);
+  LANCER_SC_READ_PORT(idx, 32);
+  LANCER_SC_READ_PORT(tri, ISECT_TRI_W);
 };
 
 // Binds one side's ports (a module's, or a parent's) to another's of the same

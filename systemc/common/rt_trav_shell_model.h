@@ -26,15 +26,22 @@
 // As rt_trav_shell does, the shell keeps the free slots, the index runs and
 // the counts of the result record (regions entered, tests issued).
 //
-// Outputs are written only when they change (flags) or when a FIFO head
-// changes (data): the kernel calls are most of a cycle's cost.
+// The model is plain C++ on plain values (base/rt_value.h): its ports are
+// rt_values under the RTL's names, so whoever steps it sets the inputs,
+// calls settle() (the combinational outputs: perf_isect_fire_o, and u_isect's
+// request when it is outside) and clock() (the rising edge), and reads the
+// outputs, as with a Verilated model. The run loop of the Verilated units
+// does exactly that (the fast path, sw/driver/traversal_run.h);
+// rt_trav_pin_model binds the same model to sc_in/sc_out for the SystemC
+// kernel (the testbench's pin-level co-simulation with the Verilated RTL).
 //
 // u_isect (constructor argument rt_isect_impl): `model` is rt_isect's timing
-// inside this module (it never stalls and its results are always taken, so it
-// is an ISECT_LATENCY-deep delay line of fx::intersect); `rtl` is the
-// Verilated rt_isect on signals (the mixed system). RegRsp is the RTL's
-// parameter: node and triangle responses are used in the cycle after they
-// arrive (rt_grid) or in it (rt_octree).
+// inside this model (it never stalls and its results are always taken, so it
+// is an ISECT_LATENCY-deep delay line of fx::intersect); `rtl` is an rt_isect
+// outside, on the `isect` ports (the Verilated rt_isect the pin-level module
+// holds: the mixed system). RegRsp is the RTL's parameter: node and triangle
+// responses are used in the cycle after they arrive (rt_grid) or in it
+// (rt_octree).
 
 #include <algorithm>
 #include <array>
@@ -46,8 +53,8 @@
 #include <utility>
 
 #include <fmt/format.h>
-#include <systemc>
 
+#include "base/rt_value.h"
 #include "common/rt_record_bits.h"
 #include "common/rt_trav_ports.h"
 #include "common/rt_trav_unit.h"
@@ -173,7 +180,7 @@ struct rt_setup_pipe {
   struct stage {
     bool valid = false;
     int slot = 0;
-    isect_ray_t ray{};
+    value_t<ISECT_RAY_W> ray{};
   };
   std::array<stage, Stages> s{};
 
@@ -191,7 +198,7 @@ struct rt_setup_pipe {
     }
     s[0].valid = false;
   }
-  void load(int slot, const isect_ray_t& ray) {
+  void load(int slot, const value_t<ISECT_RAY_W>& ray) {
     s[0].valid = true;
     s[0].slot = slot;
     s[0].ray = ray;
@@ -274,22 +281,56 @@ inline fx::QTriangle unpackTriangle(const uint32_t* wire) {
 }
 
 template <class Unit, bool RegRsp>
-class rt_trav_shell_model : public sc_core::sc_module,
-                            public rt_trav_host_ports<Unit, sc_core::sc_in, sc_core::sc_out>,
-                            public rt_trav_node_port<Unit, sc_core::sc_in, sc_core::sc_out>,
-                            public rt_trav_mem_ports<Unit, sc_core::sc_in, sc_core::sc_out> {
+class rt_trav_shell_model : public rt_trav_host_ports<Unit, rt_value, rt_value, value_t>,
+                            public rt_trav_node_port<Unit, rt_value, rt_value, value_t>,
+                            public rt_trav_mem_ports<Unit, rt_value, rt_value, value_t> {
  public:
-  using cfg_t = typename Unit::cfg_t;
-  using slot_t = typename Unit::slot_t;
-  using mem_addr_t = typename Unit::mem_addr_t;
-  using node_data_t = typename Unit::node_data_t;
-  using res_t = typename Unit::res_t;
   static constexpr int N = Unit::RAYS_IN_FLIGHT;
+  static constexpr bool kRegisteredResponses = RegRsp;
   using slot_mask = rt_slot_mask<N>;
   using wants_t = rt_trav_wants<N>;
+  using unit_t = Unit;
+  using node_data_t = value_t<Unit::NODE_DATA_W>;
+  using res_t = value_t<Unit::RESULT_W>;
 
   // The unit's configuration port (its RTL name: Unit::kNames.cfgPort).
-  sc_core::sc_in<cfg_t> cfg_i{Unit::kNames.cfgPort};
+  rt_value<value_t<Unit::CFG_W>> cfg_i;
+  // u_isect's ports when it is outside (rt_isect_impl::rtl); unused otherwise.
+  rt_isect_ports<rt_value, rt_value, value_t> isect;
+
+  explicit rt_trav_shell_model(rt_isect_impl isect) : outsideIsect_(isect == rt_isect_impl::rtl) {}
+  virtual ~rt_trav_shell_model() = default;
+  rt_trav_shell_model(const rt_trav_shell_model&) = delete;
+  rt_trav_shell_model& operator=(const rt_trav_shell_model&) = delete;
+
+  bool outsideIsect() const { return outsideIsect_; }
+
+  // rst_ni low: every register; every output written.
+  void reset() {
+    resetWalk();
+    resetShell();
+  }
+  // The combinational outputs from the inputs and the registers:
+  // perf_isect_fire_o, and u_isect's request when it is outside.
+  void settle() {
+    const tri_in in = triInput();
+    if (outsideIsect_) {
+      if (in.valid && in.slot < N) {
+        std::array<uint32_t, fx::kIsectRayWords> wire{};
+        fx::packWire(ray_[size_t(in.slot)], wire);
+        isect.req_ray_i = toValue<ISECT_RAY_W>(wire);
+        isect.req_tri_i = *in.data;
+      }
+      isect.req_valid_i = in.valid;
+    }
+    this->perf_isect_fire_o = in.valid && (!outsideIsect_ || isect.req_ready_o);
+  }
+  // The rising edge at the end of the cycle (rst_ni high), from the inputs as
+  // they stand; then settle() for the outputs of the next cycle.
+  void clock() {
+    cycle();
+    settle();
+  }
 
  protected:
   static constexpr uint32_t SLOT_MASK = (uint32_t(1) << Unit::SLOT_W) - 1;
@@ -305,25 +346,6 @@ class rt_trav_shell_model : public sc_core::sc_module,
     int slot = -1;
     const node_data_t* data = nullptr;
   };
-
-  SC_HAS_PROCESS(rt_trav_shell_model);
-  rt_trav_shell_model(sc_core::sc_module_name name, rt_isect_impl isect) : sc_core::sc_module(name) {
-    if (isect == rt_isect_impl::rtl) {
-      isect_ = std::make_unique<rt_isect_signals>();
-      u_isect = make_rtl_isect("u_isect", this->clk_i, this->rst_ni, *isect_);
-    }
-    SC_METHOD(comb);
-    this->sensitive << state_changed_;
-    if constexpr (!RegRsp) {
-      this->sensitive << this->tri_rsp_valid_i;
-      if (isect_) this->sensitive << this->tri_rsp_tag_i << this->tri_rsp_data_i;
-    }
-    if (isect_) this->sensitive << isect_->req_ready_o;
-    SC_METHOD(clocked);
-    this->sensitive << this->clk_i.pos() << this->rst_ni.neg();
-    this->dont_initialize();
-  }
-  virtual ~rt_trav_shell_model() = default;
 
   // The unit's cycle model provides these two: its cycle, once per rising
   // edge out of reset (the shell's steps and its walk's, in the order above),
@@ -351,12 +373,9 @@ class rt_trav_shell_model : public sc_core::sc_module,
     nodeRsp_.valid = triRsp_.valid = false;
     pipe_.fill(isect_stage{});
     closest_.fill({});
-    if (isect_) isect_->res_ready_i.write(true);  // rt_trav_shell takes every rt_isect result
-    slot_mask all;
-    for (int k = 0; k < N; ++k) all.set(k);
-    writeOutputs(true, false);
-    isectFireStale_ = true;  // comb() writes it, its one writer
-    state_changed_.notify();
+    isect.res_ready_i = true;  // rt_trav_shell takes every rt_isect result
+    writeOutputs(false);
+    settle();
   }
 
   // Allocation, the arbiters' grants that go (FIFO room, a credit), the checks
@@ -376,9 +395,9 @@ class rt_trav_shell_model : public sc_core::sc_module,
     idxBufPop_ = !idxBuf_.empty() && !triQ_.full();
     if (this->idx_rsp_valid_i.read() && idxBuf_.full()) fail("index response with the index buffer full (credit error)");
 
-    nodeHead_ |= popOnReady(nodeQ_, this->node_req_ready_i);
-    idxHead_ |= popOnReady(idxQ_, this->idx_req_ready_i);
-    triHead_ |= popOnReady(triQ_, this->tri_req_ready_i);
+    popOnReady(nodeQ_, this->node_req_ready_i);
+    popOnReady(idxQ_, this->idx_req_ready_i);
+    popOnReady(triQ_, this->tri_req_ready_i);
     visitHead_ |= popOnReady(visitQ_, this->visit_ready_i);
     resHead_ |= popOnReady(resQ_, this->res_ready_i);
     return g;
@@ -406,11 +425,11 @@ class rt_trav_shell_model : public sc_core::sc_module,
       fail(fmt::format("triangle response for slot {}, which is not fetching", in.slot));
     }
     rt_isect_result leaving;
-    if (isect_) {
-      leaving.valid = isect_->res_valid_o.read();
+    if (outsideIsect_) {
+      leaving.valid = isect.res_valid_o;
       if (leaving.valid) {
         std::array<uint32_t, fx::kIsectResWords> wire{};
-        fromPort<ISECT_RES_W>(isect_->res_data_o.read(), wire);
+        fromValue<ISECT_RES_W>(isect.res_data_o, wire);
         fx::unpackResult(wire, leaving.res);
       }
     } else {
@@ -419,7 +438,7 @@ class rt_trav_shell_model : public sc_core::sc_module,
       isect_stage stage{in.valid, {}};
       if (in.valid) {
         std::array<uint32_t, fx::kIsectTriWords> wire{};
-        fromPort<ISECT_TRI_W>(*in.data, wire);
+        fromValue<ISECT_TRI_W>(*in.data, wire);
         stage.res = fx::intersect(ray_[size_t(in.slot)], unpackTriangle(wire.data()));
       }
       pipe_.push(stage);
@@ -450,7 +469,7 @@ class rt_trav_shell_model : public sc_core::sc_module,
   fx::QRay loadRay(int k) {
     fx::QRay ray;
     std::array<uint32_t, fx::kIsectRayWords> wire{};
-    fromPort<ISECT_RAY_W>(q_setup_.last().ray, wire);
+    fromValue<ISECT_RAY_W>(q_setup_.last().ray, wire);
     fx::unpackRay(wire, ray);
     rayId_[size_t(k)] = ray.id;
     ray.id = uint32_t(k);
@@ -472,7 +491,7 @@ class rt_trav_shell_model : public sc_core::sc_module,
 
   // The records pushed at the grants of this cycle (each from its slot's
   // registers at the start of the cycle).
-  void pushNode(int k, uint32_t addr) { push(nodeQ_, nodeHead_, rt_mem_req{addrOf(addr), uint32_t(k)}); }
+  void pushNode(int k, uint32_t addr) { nodeQ_.push(rt_mem_req{addrOf(addr), uint32_t(k)}); }
   void pushVisit(int k, uint32_t id) {
     push(visitQ_, visitHead_, rt_visit_entry{rayId_[size_t(k)], id});
     ++visits_[size_t(k)];
@@ -482,7 +501,7 @@ class rt_trav_shell_model : public sc_core::sc_module,
     const auto values = hit_[size_t(k)].resultValues(rayId_[size_t(k)], visits_[size_t(k)], tests_[size_t(k)]);
     std::array<uint32_t, size_t(fx::wireWords(Unit::RESULT_W))> wire{};
     fx::packFields(Unit::kResFields, values, wire);
-    push(resQ_, resHead_, toPort<Unit::RESULT_W>(wire));
+    push(resQ_, resHead_, toValue<Unit::RESULT_W>(wire));
     free_.set(k);
   }
 
@@ -493,11 +512,11 @@ class rt_trav_shell_model : public sc_core::sc_module,
   void endCycle(const rt_trav_grants& g, bool stepReady) {
     if (g.idx >= 0) {
       rt_index_run& run = run_[size_t(g.idx)];
-      push(idxQ_, idxHead_, rt_mem_req{addrOf(run.first + run.issued), uint32_t(g.idx)});
+      idxQ_.push(rt_mem_req{addrOf(run.first + run.issued), uint32_t(g.idx)});
       if (++run.issued == run.count) idxWant_.reset(g.idx);
     }
     if (idxBufPop_) {
-      push(triQ_, triHead_, idxBuf_.front());
+      triQ_.push(idxBuf_.front());
       idxBuf_.pop();
     }
     if (this->idx_rsp_valid_i.read()) {
@@ -523,15 +542,13 @@ class rt_trav_shell_model : public sc_core::sc_module,
       registerResponse(nodeRsp_, this->node_rsp_valid_i, this->node_rsp_tag_i, this->node_rsp_data_i);
       registerResponse(triRsp_, this->tri_rsp_valid_i, this->tri_rsp_tag_i, this->tri_rsp_data_i);
     }
-    writeOutputs(false, stepReady);
-    if (RegRsp || isect_) state_changed_.notify();  // immediate: comb() runs in this evaluation phase
+    writeOutputs(stepReady);
   }
 
   const rt_closest_record& hit(int k) const { return hit_[size_t(k)]; }
 
   [[noreturn]] void fail(const std::string& what) const {
-    SC_REPORT_ERROR(this->name(), what.c_str());
-    throw std::runtime_error(what);  // not reached with SC_THROW
+    throw std::runtime_error(fmt::format("{}: {}", Unit::kNames.module, what));
   }
 
  private:
@@ -545,30 +562,19 @@ class rt_trav_shell_model : public sc_core::sc_module,
   struct tri_in {
     bool valid = false;
     int slot = -1;
-    const isect_tri_t* data = nullptr;
+    const value_t<ISECT_TRI_W>* data = nullptr;
   };
   struct isect_stage {
     bool valid = false;
     fx::IsectResult res;
   };
-  enum Flag { NODE_VALID, IDX_VALID, TRI_VALID, VISIT_VALID, RES_VALID, RAY_READY, STEP_READY, ISECT_FIRE, FLAGS };
-
-  // SC_METHOD on clk_i.posedge and rst_ni.negedge (the RTL's asynchronous reset).
-  void clocked() {
-    if (!this->rst_ni.read()) {
-      resetWalk();
-      resetShell();
-      return;
-    }
-    cycle();
-  }
 
   static int goes(int granted, bool room) { return room ? granted : -1; }
   static void ack(rt_rr_arb_model<N>& arb, int granted) {
     if (granted >= 0) arb.ack(granted);
   }
   template <class Fifo>
-  static bool popOnReady(Fifo& q, const sc_core::sc_in<bool>& ready) {
+  static bool popOnReady(Fifo& q, const rt_value<bool>& ready) {
     const bool pop = !q.empty() && ready.read();
     if (pop) q.pop();
     return pop;
@@ -579,7 +585,7 @@ class rt_trav_shell_model : public sc_core::sc_module,
     q.push(v);
   }
   template <class Reg, class Tag, class Data>
-  static void registerResponse(Reg& r, const sc_core::sc_in<bool>& valid, const Tag& tag, const Data& data) {
+  static void registerResponse(Reg& r, const rt_value<bool>& valid, const Tag& tag, const Data& data) {
     r.valid = valid.read();
     if (r.valid) {
       r.tag = uint32_t(tag.read());
@@ -596,23 +602,6 @@ class rt_trav_shell_model : public sc_core::sc_module,
     }
   }
 
-  // The combinational paths: the triangle with its slot's ray into the
-  // Verilated u_isect, and perf_isect_fire_o (rt_isect never stalls here).
-  void comb() {
-    const tri_in in = triInput();
-    if (isect_) {
-      if (in.valid && in.slot < N) {
-        std::array<uint32_t, fx::kIsectRayWords> wire{};
-        fx::packWire(ray_[size_t(in.slot)], wire);
-        isect_->req_ray_i.write(toPort<ISECT_RAY_W>(wire));
-        isect_->req_tri_i.write(*in.data);
-      }
-      isect_->req_valid_i.write(in.valid);
-    }
-    writeFlag(this->perf_isect_fire_o, ISECT_FIRE, isectFire(in), isectFireStale_);
-    isectFireStale_ = false;
-  }
-
   // The slots whose exit test is in flight (rt_trav_shell's testing_q),
   // the one answering in this cycle included: they ask for no other.
   slot_mask underTest() const {
@@ -623,47 +612,38 @@ class rt_trav_shell_model : public sc_core::sc_module,
     return m;
   }
 
-  bool isectFire(const tri_in& in) const { return in.valid && (!isect_ || isect_->req_ready_o.read()); }
-
-  // A flag output is written only when it changes (the signal keeps its value);
-  // `all` (reset) writes every output.
-  void writeFlag(sc_core::sc_out<bool>& port, Flag f, bool value, bool all) {
-    if (all || flags_[f] != value) {
-      port.write(value);
-      flags_[f] = value;
+  template <class Fifo, class Valid, class Addr, class Tag>
+  static void writeRequest(const Fifo& q, Valid& valid, Addr& addr, Tag& tag) {
+    valid = !q.empty();
+    if (!q.empty()) {
+      addr = q.front().addr;
+      tag = q.front().slot;
     }
   }
 
-  template <class Fifo>
-  void writeRequest(sc_core::sc_out<bool>& valid, Flag f, const Fifo& q, bool head, bool all,
-                    sc_core::sc_out<mem_addr_t>& addr, sc_core::sc_out<slot_t>& tag) {
-    writeFlag(valid, f, !q.empty(), all);
-    if (!q.empty() && (head || all)) {
-      addr.write(mem_addr_t(q.front().addr));
-      tag.write(slot_t(q.front().slot));
-    }
-  }
-
-  void writeOutputs(bool all, bool stepReady) {
-    writeRequest(this->node_req_valid_o, NODE_VALID, nodeQ_, nodeHead_, all, this->node_req_addr_o,
-                 this->node_req_tag_o);
-    writeRequest(this->idx_req_valid_o, IDX_VALID, idxQ_, idxHead_, all, this->idx_req_addr_o, this->idx_req_tag_o);
-    writeRequest(this->tri_req_valid_o, TRI_VALID, triQ_, triHead_, all, this->tri_req_addr_o, this->tri_req_tag_o);
-    writeFlag(this->visit_valid_o, VISIT_VALID, !visitQ_.empty(), all);
-    if (!visitQ_.empty() && (visitHead_ || all)) {
+  // The outputs from the registers at the end of the cycle; a record output's
+  // data only when its FIFO's head changed (ports hold their value).
+  void writeOutputs(bool stepReady) {
+    writeRequest(nodeQ_, this->node_req_valid_o, this->node_req_addr_o, this->node_req_tag_o);
+    writeRequest(idxQ_, this->idx_req_valid_o, this->idx_req_addr_o, this->idx_req_tag_o);
+    writeRequest(triQ_, this->tri_req_valid_o, this->tri_req_addr_o, this->tri_req_tag_o);
+    this->visit_valid_o = !visitQ_.empty();
+    if (!visitQ_.empty() && visitHead_) {
       std::array<uint32_t, size_t(fx::wireWords(Unit::VISIT_W))> wire{};
       putField<Unit::kVisitFields, 0>(wire.data(), visitQ_.front().rayId);
       putField<Unit::kVisitFields, 1>(wire.data(), visitQ_.front().id);
-      this->visit_data_o.write(toPort<Unit::VISIT_W>(wire));
+      this->visit_data_o = toValue<Unit::VISIT_W>(wire);
     }
-    writeFlag(this->res_valid_o, RES_VALID, !resQ_.empty(), all);
-    if (!resQ_.empty() && (resHead_ || all)) this->res_data_o.write(resQ_.front());
-    nodeHead_ = idxHead_ = triHead_ = visitHead_ = resHead_ = false;
+    this->res_valid_o = !resQ_.empty();
+    if (!resQ_.empty() && resHead_) this->res_data_o = resQ_.front();
+    visitHead_ = resHead_ = false;
 
     const int usable = std::min<int>(int(this->cfg_slots_i.read()), N);
-    writeFlag(this->ray_ready_o, RAY_READY, free_.lowestBelow(usable) >= 0, all);
-    writeFlag(this->perf_step_ready_o, STEP_READY, stepReady, all);
+    this->ray_ready_o = free_.lowestBelow(usable) >= 0;
+    this->perf_step_ready_o = stepReady;
   }
+
+  const bool outsideIsect_;
 
   // Per slot: the ray's own id, its ray for u_isect (id = the slot index), its
   // closest hit, its index run, the counts of its result record.
@@ -689,18 +669,13 @@ class rt_trav_shell_model : public sc_core::sc_module,
   rt_delay_line<int, fx::kExitTestLatency> checkLine_;
   int checkGrant_ = -1;  // this cycle's grant
   boundary_reg<node_data_t> nodeRsp_;  // RegRsp only
-  boundary_reg<isect_tri_t> triRsp_;
+  boundary_reg<value_t<ISECT_TRI_W>> triRsp_;
 
   rt_delay_line<isect_stage, ISECT_LATENCY> pipe_;  // u_isect inside (rt_isect_impl::model)
-  std::unique_ptr<rt_isect_signals> isect_;  // u_isect on signals (rt_isect_impl::rtl)
   rt_delay_line<rt_isect_result, fx::kClosestHitLatency> closest_;  // u_closest's stages R to Y
-  std::unique_ptr<sc_core::sc_module> u_isect;
 
-  // Which FIFO heads changed since the outputs were last written.
-  bool nodeHead_ = true, idxHead_ = true, triHead_ = true, visitHead_ = true, resHead_ = true;
-  std::array<bool, FLAGS> flags_{};  // the flag outputs as last written
-  bool isectFireStale_ = true;       // perf_isect_fire_o to be written whatever flags_ says
-  sc_core::sc_event state_changed_;
+  // Whether a record FIFO's head changed since its data output was written.
+  bool visitHead_ = true, resHead_ = true;
 };
 
 }  // namespace lancer::sc

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "common/rt_trav_bench.h"
+#include "common/rt_trav_pin_model.h"
 #include "common/rt_trav_top.h"
 #include "isect/rt_isect_rtl.h"
 
@@ -26,8 +27,7 @@ namespace lancer::sc {
 // Whether the unit's cycle model can hold the Verilated rt_isect (a constructor
 // taking an rt_isect_impl, as rt_grid_model's): the mixed implementation.
 template <class Unit>
-inline constexpr bool kModelTakesIsect =
-    std::is_constructible_v<typename Unit::model_t, const char*, rt_isect_impl>;
+inline constexpr bool kModelTakesIsect = std::is_constructible_v<typename Unit::model_t, rt_isect_impl>;
 
 template <class Unit>
 template <class Dut, class... DutArgs>
@@ -41,9 +41,9 @@ template <class Unit>
 rt_trav_top<Unit>::rt_trav_top(sc_core::sc_module_name name) : sc_core::sc_module(name) {
   using rtl_t = typename rt_trav_rtl<Unit>::type;
   use_verilated_context();
-  keep<typename Unit::model_t>(model_, "u_model");
+  keep<rt_trav_pin_model<Unit>>(model_, "u_model");
   if constexpr (kModelTakesIsect<Unit>) {
-    if (has_rtl_isect()) keep<typename Unit::model_t>(mixed_, "u_mixed", rt_isect_impl::rtl);
+    if (has_rtl_isect()) keep<rt_trav_pin_model<Unit>>(mixed_, "u_mixed", rt_isect_impl::rtl);
   }
   if constexpr (!std::is_void_v<rtl_t>) {
     if (rt_fst_wave::available()) Verilated::traceEverOn(true);  // before the Verilated model is built

@@ -60,6 +60,7 @@ struct rt_trav_unit {
   static constexpr int RAYS_IN_FLIGHT = RaysInFlight;
   static constexpr int SETUP_LATENCY = Desc::kSetupLatency;
   static constexpr int SLOT_W = RaysInFlight > 1 ? clog2(RaysInFlight) : 1;
+  static constexpr int CFG_SLOTS_W = clog2(RaysInFlight + 1);
   static constexpr int NODE_W = fx::kNodeBitsOf<Desc>;
   static constexpr int NODE_DATA_W = NODE_W * int(Desc::kGroup);
   static constexpr int CFG_W = fx::kCfgBitsOf<Desc>;
@@ -71,7 +72,7 @@ struct rt_trav_unit {
 
   using descriptor = Desc;
   using image_t = typename Desc::Image;
-  using cfg_slots_t = vl_port_t<clog2(RaysInFlight + 1)>;
+  using cfg_slots_t = vl_port_t<CFG_SLOTS_W>;
   using cfg_t = vl_port_t<CFG_W>;
   using slot_t = vl_port_t<SLOT_W>;
   using mem_addr_t = vl_port_t<MEM_ADDR_W>;

@@ -7,8 +7,7 @@
 
 namespace lancer::sc {
 
-rt_grid_model::rt_grid_model(sc_core::sc_module_name name, rt_isect_impl isect)
-    : rt_trav_shell_model(name, isect), slots_(size_t(N)) {}
+rt_grid_model::rt_grid_model(rt_isect_impl isect) : rt_trav_shell_model(isect), slots_(size_t(N)) {}
 
 // One cycle: the shell's grants and responses, then the walk's events slot
 // by slot (each names another slot, except the cell grant and the cell
@@ -31,37 +30,48 @@ void rt_grid_model::cycle() {
   if (res.valid && res.last) cellDone(res.slot);
   if (g.check >= 0) check(g.check);
   if (g.done >= 0) finish(g.done);
+  for (const int k : {g.alloc, loadSlot(), cell.slot, g.node, g.visit, res.valid ? res.slot : -1, g.check, g.done}) {
+    if (k >= 0) refreshWants(k);
+  }
 
-  endCycle(g, wants().visit.any());
+  endCycle(g, held_.visit.any());
 }
 
 void rt_grid_model::resetWalk() {
   for (Slot& s : slots_) s = Slot{};
+  held_ = wants_t{};
   stepping_ = -1;
   preparing_ = -1;
 }
 
-// rt_grid_slots' want vectors, from the slot registers.
+// rt_grid_slots' want vectors: the slots' own, less the slots stepping or
+// preparing a step (they ask for no cell).
 rt_grid_model::wants_t rt_grid_model::wants() const {
-  wants_t w;
-  for (int k = 0; k < N; ++k) {
-    const Slot& s = slots_[size_t(k)];
-    switch (s.state) {
-      case State::Visit:
-        if (s.queued > 0) w.visit.set(k);
-        break;
-      case State::Fetch: w.expect.set(k); break;
-      case State::Check: w.check.set(k); break;
-      case State::Done:
-        if (s.outstanding == 0) w.done.set(k);
-        break;
-      default: break;
-    }
-    const bool inFlight = s.state == State::Visit || s.state == State::WaitCell || s.state == State::Fetch ||
-                          s.state == State::Check;
-    if (inFlight && s.frontierValid && s.queued < CELL_QUEUE && k != stepping_ && k != preparing_) w.node.set(k);
+  wants_t w = held_;
+  for (const int k : {stepping_, preparing_}) {
+    if (k >= 0) w.node.reset(k);
   }
   return w;
+}
+
+// Slot k's bits of the want vectors, from its registers.
+void rt_grid_model::refreshWants(int k) {
+  const Slot& s = slots_[size_t(k)];
+  for (slot_mask* m : {&held_.node, &held_.visit, &held_.check, &held_.done, &held_.expect}) m->reset(k);
+  switch (s.state) {
+    case State::Visit:
+      if (s.queued > 0) held_.visit.set(k);
+      break;
+    case State::Fetch: held_.expect.set(k); break;
+    case State::Check: held_.check.set(k); break;
+    case State::Done:
+      if (s.outstanding == 0) held_.done.set(k);
+      break;
+    default: break;
+  }
+  const bool inFlight = s.state == State::Visit || s.state == State::WaitCell || s.state == State::Fetch ||
+                        s.state == State::Check;
+  if (inFlight && s.frontierValid && s.queued < CELL_QUEUE) held_.node.set(k);
 }
 
 // The head entry's cell data is in (its response came in an earlier cycle).
@@ -85,7 +95,7 @@ rt_grid_model::CellIn rt_grid_model::cellResponse() {
     fail(fmt::format("cell response for slot {} in WAIT_CELL is not its head's", in.slot));
   }
   std::array<uint32_t, size_t(fx::wireWords(rt_grid_unit::NODE_W))> wire{};
-  fromPort<rt_grid_unit::NODE_W>(*rsp.data, wire);
+  fromValue<rt_grid_unit::NODE_DATA_W>(*rsp.data, wire);
   std::array<fx::u128, 2> v{};
   fx::unpackFields(fx::kGridCellFields, wire, v);
   in.data.first = uint32_t(v[0]);
@@ -94,7 +104,7 @@ rt_grid_model::CellIn rt_grid_model::cellResponse() {
 }
 
 fx::GridRes rt_grid_model::resolution() const {
-  const uint32_t cfg = uint32_t(cfg_res_i.read());
+  const uint32_t cfg = uint32_t(cfg_i.read());
   constexpr uint32_t mask = (uint32_t(1) << fx::kGridResolutionBits) - 1;
   return {int(cfg & mask), int((cfg >> fx::kGridResolutionBits) & mask), int((cfg >> (2 * fx::kGridResolutionBits)) & mask)};
 }

@@ -5,7 +5,6 @@
 #include <string>
 #include <vector>
 
-#include <systemc>
 
 #include "common/rt_trav_shell_model.h"
 #include "golden/grid.h"
@@ -29,8 +28,8 @@ inline constexpr int CELL_QUEUE = LANCER_GRID_CELL_QUEUE;
 // response sampled at the edge ending cycle c is used in cycle c+1); this
 // model holds the walk of rt_grid_slots.sv and the setup of rt_grid_setup.sv.
 //
-//   cycle() once per rising edge (the shell's SC_METHOD on clk_i.posedge;
-//           its rst_ni.negedge resets through resetWalk()): the cycle as an outline of named steps, each deciding from
+//   cycle() once per rising edge (the shell's clock(); its reset() calls
+//           resetWalk()): the cycle as an outline of named steps, each deciding from
 //           the registers at the start of the cycle and the inputs.
 //   u_isect rt_isect's timing inside the shell, or the Verilated Vrt_isect_sc
 //           (constructor argument: the mixed system).
@@ -47,10 +46,7 @@ inline constexpr int CELL_QUEUE = LANCER_GRID_CELL_QUEUE;
 // update, one exit test and one result.
 class rt_grid_model : public rt_trav_shell_model<rt_grid_unit, /*RegRsp=*/true> {
  public:
-  // The unit's configuration port under its RTL name (the shell's cfg_i).
-  sc_core::sc_in<cfg_t>& cfg_res_i = cfg_i;
-
-  explicit rt_grid_model(sc_core::sc_module_name name, rt_isect_impl isect = rt_isect_impl::model);
+  explicit rt_grid_model(rt_isect_impl isect = rt_isect_impl::model);
 
  private:
   enum class State : uint8_t { Free, Setup, Visit, WaitCell, Fetch, Check, Done };
@@ -85,6 +81,7 @@ class rt_grid_model : public rt_trav_shell_model<rt_grid_unit, /*RegRsp=*/true> 
   void cycle() override;
   void resetWalk() override;
   wants_t wants() const;
+  void refreshWants(int k);
   bool headReady(int k) const;
   CellIn cellResponse();
   void load(int k);
@@ -102,6 +99,11 @@ class rt_grid_model : public rt_trav_shell_model<rt_grid_unit, /*RegRsp=*/true> 
   fx::GridRes resolution() const;
 
   std::vector<Slot> slots_;
+  // The want vectors as the slot registers stand, stepping and preparing
+  // slots included: a cycle refreshes the slots its events touched (at most
+  // one event a slot names per arbiter, allocation, setup, response), so no
+  // cycle scans every slot.
+  wants_t held_;
   // The slots granted a cell one and two cycles ago: rt_grid_slots steps the
   // first's frontier in this cycle and prepares the second's next step
   // (step_q), so neither asks for a cell now.

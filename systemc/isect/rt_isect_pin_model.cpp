@@ -2,29 +2,6 @@
 
 namespace lancer::sc {
 
-namespace {
-
-// A pin's value (Verilator's --sc type) -> the model's value, and back.
-template <int W>
-void fromPin(const vl_port_t<W>& pin, value_t<W>& v) {
-  if constexpr (W <= 64) {
-    v = pin;
-  } else {
-    fromPort<W>(pin, v);
-  }
-}
-
-template <int W>
-vl_port_t<W> toPin(const value_t<W>& v) {
-  if constexpr (W <= 64) {
-    return v;
-  } else {
-    return toPort<W>(v);
-  }
-}
-
-}  // namespace
-
 rt_isect_pin_model::rt_isect_pin_model(sc_core::sc_module_name name) : sc_core::sc_module(name) {
   SC_METHOD(clocked);
   sensitive << clk_i.pos() << rst_ni.neg();
@@ -56,8 +33,8 @@ void rt_isect_pin_model::comb() {
 void rt_isect_pin_model::readInputs() {
   model_.req_valid_i = req_valid_i.read();
   if (model_.req_valid_i) {  // the model reads the request only when valid
-    fromPin<ISECT_RAY_W>(req_ray_i.read(), model_.req_ray_i.value);
-    fromPin<ISECT_TRI_W>(req_tri_i.read(), model_.req_tri_i.value);
+    pinToValue<ISECT_RAY_W>(req_ray_i.read(), model_.req_ray_i.value);
+    pinToValue<ISECT_TRI_W>(req_tri_i.read(), model_.req_tri_i.value);
   }
   model_.res_ready_i = res_ready_i.read();
 }
@@ -69,7 +46,7 @@ void rt_isect_pin_model::writeOutputs(bool all) {
   }
   if (all || lastResData_ != model_.res_data_o.value) {
     lastResData_ = model_.res_data_o;
-    res_data_o.write(toPin<ISECT_RES_W>(lastResData_));
+    res_data_o.write(pinOf<ISECT_RES_W>(lastResData_));
   }
 }
 

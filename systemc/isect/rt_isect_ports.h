@@ -3,7 +3,8 @@
 // rt_isect's request and result streams, declared once for each side that
 // meets them: In and Out are what rt_isect's inputs and outputs are there —
 // <sc_in, sc_out> in the cycle model, <sc_out, sc_in> in the testbench,
-// <sc_signal, sc_signal> in a bench or a traversal unit that holds rt_isect.
+// <sc_signal, sc_signal> in a bench or a traversal unit that holds rt_isect,
+// <rt_value, rt_value, value_t> (plain values) in a cycle model stepped directly.
 // Clock and reset are each side's own (a bench's signals, a unit's ports).
 
 #include <systemc>
@@ -12,18 +13,18 @@
 
 namespace lancer::sc {
 
-template <template <class> class In, template <class> class Out>
+template <template <class> class In, template <class> class Out, template <int> class Bits = vl_port_t>
 struct rt_isect_ports {
   // Requests: one ray-triangle pair per transfer.
   In<bool> req_valid_i{"req_valid_i"};
   Out<bool> req_ready_o{"req_ready_o"};
-  In<isect_ray_t> req_ray_i{"req_ray_i"};
-  In<isect_tri_t> req_tri_i{"req_tri_i"};
+  In<Bits<ISECT_RAY_W>> req_ray_i{"req_ray_i"};
+  In<Bits<ISECT_TRI_W>> req_tri_i{"req_tri_i"};
 
   // Results, in request order.
   Out<bool> res_valid_o{"res_valid_o"};
   In<bool> res_ready_i{"res_ready_i"};
-  Out<isect_res_t> res_data_o{"res_data_o"};
+  Out<Bits<ISECT_RES_W>> res_data_o{"res_data_o"};
 };
 
 // sc_signal under one template parameter, for the In/Out of a port list.

@@ -23,6 +23,7 @@
 
 #include <systemc>
 
+#include "base/rt_value.h"
 #include "golden/records.h"
 
 namespace lancer::sc {
@@ -85,6 +86,26 @@ fx::Wire fromPort(const vl_port_t<W>& value) {
   fx::Wire wire(size_t(fx::wireWords(W)), 0);
   fromPort<W>(value, wire);
   return wire;
+}
+
+// A port value as Verilator's --sc types hold it <-> the value a cycle model
+// holds (base/rt_value.h): what a pin-level module copies at its ports.
+template <int W>
+void pinToValue(const vl_port_t<W>& pin, value_t<W>& v) {
+  if constexpr (W <= 64) {
+    v = pin;
+  } else {
+    fromPort<W>(pin, v);
+  }
+}
+
+template <int W>
+vl_port_t<W> pinOf(const value_t<W>& v) {
+  if constexpr (W <= 64) {
+    return v;
+  } else {
+    return toPort<W>(v);
+  }
 }
 
 }  // namespace lancer::sc

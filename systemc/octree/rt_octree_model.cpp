@@ -29,8 +29,7 @@ constexpr fx::OctT kMinusInf{0, -1}, kPlusInf{0, 1};
 
 }  // namespace
 
-rt_octree_model::rt_octree_model(sc_core::sc_module_name name)
-    : rt_trav_shell_model(name, rt_isect_impl::model) {}
+rt_octree_model::rt_octree_model() : rt_trav_shell_model(rt_isect_impl::model) {}
 
 // One cycle: the shell's grants and responses, then the walk's events — at
 // most one state-changing event per slot, each reading that slot's registers
@@ -114,7 +113,7 @@ void rt_octree_model::requestGroup(int k) {
 void rt_octree_model::takeGroup(int k) {
   Slot& s = slots_[size_t(k)];
   std::array<uint32_t, kGroupWords> wire{};
-  fromPort<rt_octree_unit::NODE_DATA_W>(*nodeResponse().data, wire);
+  fromValue<rt_octree_unit::NODE_DATA_W>(*nodeResponse().data, wire);
   for (size_t i = 0; i < size_t(fx::kOctreeChildren); ++i) s.group[i] = unpackNode(wire.data() + i * kNodeWords);
   s.groupValid = true;
   if (s.state == State::WaitGroup) {
@@ -199,8 +198,8 @@ void rt_octree_model::load(int k) {
   s.t0 = s.setup.t0;
   s.t1 = s.setup.t1;
   s.nodeId = 0;
-  std::array<uint32_t, kNodeWords> root{};
-  fromPort<rt_octree_unit::NODE_W>(cfg_root_i.read(), root);
+  std::array<uint32_t, size_t(fx::wireWords(rt_octree_unit::CFG_W))> root{};
+  fromValue<rt_octree_unit::CFG_W>(cfg_i.read(), root);
   s.rec = unpackNode(root.data());
   s.depth = 0;
   s.groupValid = false;

@@ -4,7 +4,6 @@
 #include <cstdint>
 #include <string>
 
-#include <systemc>
 
 #include "common/rt_trav_shell_model.h"
 #include "golden/octree.h"
@@ -23,8 +22,8 @@ namespace lancer::sc {
 // rt_octree_slots.sv (its stack, child groups and advance lanes) and the setup
 // of rt_octree_setup.sv.
 //
-//   cycle() once per rising edge (the shell's SC_METHOD on clk_i.posedge;
-//           its rst_ni.negedge resets through resetWalk()): the cycle as an outline of named steps, each deciding from
+//   cycle() once per rising edge (the shell's clock(); its reset() calls
+//           resetWalk()): the cycle as an outline of named steps, each deciding from
 //           the registers at the start of the cycle and the inputs.
 //
 // No arithmetic is duplicated: the per-ray setup is fx::OctreeRaySetup, the
@@ -40,10 +39,7 @@ namespace lancer::sc {
 // an advance lane are visited.
 class rt_octree_model : public rt_trav_shell_model<rt_octree_unit, /*RegRsp=*/false> {
  public:
-  // The unit's configuration port under its RTL name (the node port is the shell's node_*).
-  sc_core::sc_in<cfg_t>& cfg_root_i = cfg_i;
-
-  explicit rt_octree_model(sc_core::sc_module_name name);
+  rt_octree_model();
 
  private:
   enum class State : uint8_t {

@@ -147,8 +147,8 @@ TEST_P(ChipOfUnits, ImpossibleChipsNameTheirOption) {
   config.memory.dram.gbps = 0;
   fails(config, "--dram-gbps");
   config = smallHierarchy(17);
-  config.model = "systemc";
-  fails(config, "--units");  // the SystemC chips have 16 units (LANCER_SC_CHIP_UNITS)
+  config.model = "systemc-pins";
+  fails(config, "--units");  // the SystemC kernel's chips have 16 units (LANCER_SC_CHIP_UNITS)
 }
 
 INSTANTIATE_TEST_SUITE_P(Units, ChipOfUnits, ::testing::Values(fx::UnitKind::Grid, fx::UnitKind::Octree),

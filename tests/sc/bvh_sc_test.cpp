@@ -16,7 +16,7 @@ using fx::QRay;
 
 class ScBvh : public test::ScTraversalTest<SystemCBvhDevice> {};
 
-INSTANTIATE_TEST_SUITE_P(Impl, ScBvh, ::testing::Values(SystemCImpl::Model, SystemCImpl::Rtl),
+INSTANTIATE_TEST_SUITE_P(Impl, ScBvh, ::testing::Values(SystemCImpl::Model, SystemCImpl::Pins, SystemCImpl::Rtl),
                          test::implName<SystemCImpl>);
 
 // One ray through a root whose two children are empty leaves spanning the

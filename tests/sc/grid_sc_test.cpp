@@ -17,7 +17,8 @@ namespace {
 using Grid = test::ScUnit<fx::GridUnit>;
 
 TEST(ScGridDevice, GridAndIsectDevicesShareOneKernel) {
-  // Either unit's SystemC system may run first; both are elaborated together.
+  // Either unit's SystemC system may run first; both are elaborated together
+  // (the pin-level models: the value-port ones use no kernel).
   const test::QuantizedScene q = Grid::bunny(4, 4);
   const fx::GridImage image = fx::buildGridImage(q.triangles, {8, 8, 8});
   std::vector<IsectRequest> pairs;
@@ -25,11 +26,11 @@ TEST(ScGridDevice, GridAndIsectDevicesShareOneKernel) {
   std::vector<fx::IsectResult> want, got;
   GoldenIsectDevice().run(pairs, want);
   for (int round = 0; round < 2; ++round) {
-    SystemCIsectDevice isect;
+    SystemCIsectDevice isect(SystemCIsectDevice::Impl::Pins);
     got.clear();
     isect.run(pairs, got);
     EXPECT_EQ(got, want);
-    SystemCGridDevice grid;
+    SystemCGridDevice grid(SystemCImpl::Pins);
     Grid::expectSameTraces(grid, image, q.rays, Grid::rough(40 + round), "interleaved");
   }
 }

@@ -18,7 +18,7 @@ using fx::QTriangle;
 
 class ScOctree : public test::ScTraversalTest<SystemCOctreeDevice> {};
 
-INSTANTIATE_TEST_SUITE_P(Impl, ScOctree, ::testing::Values(SystemCImpl::Model, SystemCImpl::Rtl),
+INSTANTIATE_TEST_SUITE_P(Impl, ScOctree, ::testing::Values(SystemCImpl::Model, SystemCImpl::Pins, SystemCImpl::Rtl),
                          test::implName<SystemCImpl>);
 
 // ---- The timing the micro-architecture prescribes (docs/octree-unit.md) ---------------

@@ -63,6 +63,7 @@ template <class Impl>
 std::string implName(const ::testing::TestParamInfo<Impl>& info) {
   switch (info.param) {
     case Impl::Model: return "Model";
+    case Impl::Pins: return "Pins";
     case Impl::Rtl: return "Rtl";
     case Impl::ModelRtlIsect: return "ModelRtlIsect";
   }
@@ -109,11 +110,12 @@ inline void expectSameStats(const TraversalRunStats& a, const TraversalRunStats&
   EXPECT_EQ(a.isectBusyCycles, b.isectBusyCycles) << what;
 }
 
-// The cycle model and the Verilated RTL (Device: a SystemCTraversalDevice) on
-// the same run: the same counters and traces, and the same port activity in
-// every cycle (the first three differing cycles reported).
-template <class Device, class Image>
-void expectSamePortTraces(Device& model, Device& rtl, const Image& image, const std::vector<fx::QRay>& rays,
+// Two devices that record port traces (SystemCTraversalDevice,
+// VerilatorTraversalDevice) on the same run: the same counters and traces,
+// and the same port activity in every cycle (the first three differing cycles
+// reported).
+template <class ModelDevice, class RtlDevice, class Image>
+void expectSamePortTraces(ModelDevice& model, RtlDevice& rtl, const Image& image, const std::vector<fx::QRay>& rays,
                           const TraversalRunOptions& o, const std::string& what) {
   std::vector<sc::TraversalCycle> mt, rt;
   std::vector<fx::TraversalTrace> a, b;
@@ -137,16 +139,29 @@ void expectSamePortTraces(Device& model, Device& rtl, const Image& image, const 
   EXPECT_EQ(differing, 0u) << what << ": cycles whose port activity differs";
 }
 
-// Every case under every timing setting, the cycle model against the Verilated
-// RTL (expectSamePortTraces). Skipped without the Verilated unit.
-template <class Device, class Case>
+// Every case under every timing setting, port for port (expectSamePortTraces):
+// the cycle model on value ports against the C++ Verilated RTL (`Cxx`, both
+// clocked by one run loop), and, in the SystemC kernel, the cycle model on
+// signals and the value-port model against the Verilated RTL there (so the
+// kernel's testbench and the C++ loop drive alike). The kernel's part is
+// skipped without the unit Verilated for SystemC.
+template <class Device, class Cxx, class Case>
 void expectModelMatchesRtlCycleForCycle(const std::vector<Case>& cases,
                                         const std::vector<TraversalRunOptions>& settings) {
-  if (!Device::rtlAvailable()) GTEST_SKIP() << "no Verilated unit in this build";
-  Device model(Device::Impl::Model), rtl(Device::Impl::Rtl);
+  Device model(Device::Impl::Model);
+  Cxx cxx;
   for (const Case& c : cases) {
     for (const TraversalRunOptions& o : settings) {
-      expectSamePortTraces(model, rtl, c.image, c.rays, o, c.name + ", " + optionsText(o));
+      expectSamePortTraces(model, cxx, c.image, c.rays, o, c.name + ", " + optionsText(o) + ", systemc vs rtl");
+    }
+  }
+  if (!Device::rtlAvailable()) GTEST_SKIP() << "no Verilated unit for SystemC in this build";
+  Device pins(Device::Impl::Pins), rtl(Device::Impl::Rtl);
+  for (const Case& c : cases) {
+    for (const TraversalRunOptions& o : settings) {
+      const std::string what = c.name + ", " + optionsText(o);
+      expectSamePortTraces(pins, rtl, c.image, c.rays, o, what + ", systemc-pins vs rtl-systemc");
+      expectSamePortTraces(model, rtl, c.image, c.rays, o, what + ", systemc vs rtl-systemc");
     }
   }
 }

@@ -129,7 +129,8 @@ TYPED_TEST_P(ScTraversal, EmptyRunAndInvalidOptions) {
 
 TYPED_TEST_P(ScTraversal, ModelMatchesVerilatedRtlCycleForCycle) {
   using U = ScUnit<TypeParam>;
-  expectModelMatchesRtlCycleForCycle<typename U::Device>(U::cycleCases(), U::timingSettings());
+  expectModelMatchesRtlCycleForCycle<typename U::Device, typename U::Traits::Verilator>(U::cycleCases(),
+                                                                                       U::timingSettings());
 }
 
 TYPED_TEST_P(ScTraversal, StatsEqualTheCxxVerilatedDevice) {
@@ -154,7 +155,8 @@ TYPED_TEST_P(ScTraversal, WaveformOfTheRtlOnRequest) {
 }
 
 // Any SystemC system may run first; all are elaborated together in one kernel:
-// the unit's runs interleaved with another unit's.
+// the unit's runs interleaved with another unit's (the pin-level models, which
+// run in the kernel, and the value-port model between them).
 TYPED_TEST_P(ScTraversal, SharesTheKernelWithAnotherUnit) {
   using U = ScUnit<TypeParam>;
   using P = ScUnit<typename U::Traits::KernelPartner>;
@@ -164,10 +166,12 @@ TYPED_TEST_P(ScTraversal, SharesTheKernelWithAnotherUnit) {
   for (int round = 0; round < 2; ++round) {
     std::vector<fx::TraversalTrace> want, got;
     typename P::Traits::Golden().run(theirs, q.rays, want);
-    typename P::Device().run(theirs, q.rays, got, U::rough(40 + round));
+    typename P::Device(SystemCImpl::Pins).run(theirs, q.rays, got, U::rough(40 + round));
     EXPECT_EQ(got, want);
-    typename U::Device device;
-    U::expectSameTraces(device, mine, q.rays, U::rough(50 + round), "interleaved");
+    for (const SystemCImpl impl : {SystemCImpl::Pins, SystemCImpl::Model}) {
+      typename U::Device device(impl);
+      U::expectSameTraces(device, mine, q.rays, U::rough(50 + round), "interleaved");
+    }
   }
 }
 

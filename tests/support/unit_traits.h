@@ -82,7 +82,7 @@ struct GridWalkTraits {
 template <>
 struct UnitTraits<fx::GridUnit> : UnitTraitsOf<fx::GridUnit, sc::rt_grid_unit, Vrt_grid, GridWalkTraits> {
   // The cycle model, the Verilated RTL, and the cycle model holding the Verilated rt_isect.
-  static constexpr std::array kScImpls{SystemCImpl::Model, SystemCImpl::Rtl, SystemCImpl::ModelRtlIsect};
+  static constexpr std::array kScImpls{SystemCImpl::Model, SystemCImpl::Pins, SystemCImpl::Rtl, SystemCImpl::ModelRtlIsect};
   using KernelPartner = fx::OctreeUnit;  // a unit whose SystemC runs interleave with its own
   static Image empty() { return fx::buildGridImage({}, {1, 1, 1}); }
   static std::vector<TraversalCase<Image>> hardCases() { return gridHardCases(); }
@@ -108,7 +108,7 @@ struct UnitTraits<fx::GridUnit> : UnitTraitsOf<fx::GridUnit, sc::rt_grid_unit, V
 
 template <>
 struct UnitTraits<fx::OctreeUnit> : UnitTraitsOf<fx::OctreeUnit, sc::rt_octree_unit, Vrt_octree> {
-  static constexpr std::array kScImpls{SystemCImpl::Model, SystemCImpl::Rtl};
+  static constexpr std::array kScImpls{SystemCImpl::Model, SystemCImpl::Pins, SystemCImpl::Rtl};
   using KernelPartner = fx::GridUnit;
   static Image empty() { return fx::buildOctreeImage({}, 1, 1); }
   static std::vector<TraversalCase<Image>> hardCases() { return octreeHardCases(); }
@@ -132,7 +132,7 @@ struct UnitTraits<fx::OctreeUnit> : UnitTraitsOf<fx::OctreeUnit, sc::rt_octree_u
 
 template <>
 struct UnitTraits<fx::BvhUnit> : UnitTraitsOf<fx::BvhUnit, sc::rt_bvh_unit, Vrt_bvh> {
-  static constexpr std::array kScImpls{SystemCImpl::Model, SystemCImpl::Rtl};
+  static constexpr std::array kScImpls{SystemCImpl::Model, SystemCImpl::Pins, SystemCImpl::Rtl};
   using KernelPartner = fx::OctreeUnit;
   static Image empty() { return fx::buildBvhImage({}, 4); }
   static std::vector<TraversalCase<Image>> hardCases() { return bvhHardCases(); }
