@@ -198,6 +198,7 @@ class UnitRun {
   static constexpr uint64_t kVisitIdMask = (uint64_t(1) << kVisitIdBits) - 1;
   static constexpr size_t kResWords = size_t(fx::wireWords(fx::recordBits(Desc::kResFields)));
   static constexpr size_t kVisitWords = size_t(fx::wireWords(fx::recordBits(kVisitFields)));
+  static constexpr size_t kFirstVisits = 16;  // a ray's visit list starts this long
 
  public:
   UnitRun(Clocked& unit, int index, const Ports& ports, ChipRays& shared, const TraversalRunOptions& options,
@@ -287,7 +288,7 @@ class UnitRun {
     auto [reqValid, reqAddr, reqTag, reqReady, rspValid, rspData, rspTag] = Unit::nodePort(top_);
     const Image& image = ports_.image;
     uint32_t addr = 0, tag = 0;
-    rspValid = memory.response(index_, mem::Port::Node, addr, tag);
+    rspValid = response(memory, mem::Port::Node, addr, tag);
     if (rspValid) {
       if (uint64_t(addr) + Desc::kGroup > ports_.nodes.size()) {
         fail(fmt::format("{} read at {} outside the {} ({} entries)", Desc::kNames.nodeRead, addr,
@@ -296,7 +297,7 @@ class UnitRun {
       writePort(rspData, &ports_.nodeWire[size_t(addr) * Ports::kNodeWords], Ports::kGroupWords);
       rspTag = tag;
     }
-    top_.idx_rsp_valid_i = memory.response(index_, mem::Port::Index, addr, tag);
+    top_.idx_rsp_valid_i = response(memory, mem::Port::Index, addr, tag);
     if (top_.idx_rsp_valid_i) {
       if (addr >= image.indices.size()) {
         fail(fmt::format("index list read at {} outside the image ({} entries)", addr, image.indices.size()));
@@ -304,7 +305,7 @@ class UnitRun {
       top_.idx_rsp_data_i = image.indices[addr];
       top_.idx_rsp_tag_i = tag;
     }
-    top_.tri_rsp_valid_i = memory.response(index_, mem::Port::Triangle, addr, tag);
+    top_.tri_rsp_valid_i = response(memory, mem::Port::Triangle, addr, tag);
     if (top_.tri_rsp_valid_i) {
       if (addr >= image.triangles.size()) {
         fail(fmt::format("triangle table read at {} outside the image ({} entries)", addr, image.triangles.size()));
@@ -327,6 +328,16 @@ class UnitRun {
       return false;
     }
     memory.request(index_, port, addr, tag);
+    ++pending_[size_t(port)];
+    return true;
+  }
+
+  // The port's response of this cycle, asked of the memory only while one of
+  // its reads is outstanding (most cycles, some port has none).
+  bool response(mem::MemorySystem& memory, mem::Port port, uint32_t& addr, uint32_t& tag) {
+    uint64_t& pending = pending_[size_t(port)];
+    if (pending == 0 || !memory.response(index_, port, addr, tag)) return false;
+    --pending;
     return true;
   }
 
@@ -392,7 +403,9 @@ class UnitRun {
   bool takeVisit(uint64_t now) {
     const uint64_t visit = top_.visit_data_o;  // {ray_id, element}
     const size_t k = ownRay(uint32_t(visit >> kVisitRayLsb), "visit record", false);
-    shared_.traces[k].visits.push_back(uint32_t((visit >> kVisitIdLsb) & kVisitIdMask));
+    std::vector<uint32_t>& visits = shared_.traces[k].visits;
+    if (visits.empty()) visits.reserve(kFirstVisits);  // one allocation for most walks, not five
+    visits.push_back(uint32_t((visit >> kVisitIdLsb) & kVisitIdMask));
     ++stats_.steps;
     lastCycle_ = now;
     return true;
@@ -416,6 +429,7 @@ class UnitRun {
   ChipRays& shared_;
   const TraversalRunOptions& options_;
   TraversalStimulus stim_;
+  std::array<uint64_t, mem::kPorts> pending_{};  // reads requested and not yet answered, per port
   std::vector<sc::TraversalCycle>* portTrace_;  // unit 0's, when asked for
   std::array<uint32_t, kResWords> resWire_{};
   std::array<fx::u128, fx::valueCount(Desc::kResFields)> res_{};

@@ -138,6 +138,26 @@ struct rt_delay_line {
   }
 };
 
+// A delay line whose entries are mostly empty (the intersection pipeline's
+// results): an empty cycle copies nothing.
+template <class T, size_t Latency>
+struct rt_sparse_delay_line {
+  std::array<T, Latency> items{};
+  std::array<bool, Latency> full{};
+  size_t pos = 0;
+  bool outValid() const { return full[pos]; }
+  const T& out() const { return items[pos]; }  // while outValid()
+  void push(bool valid, const T& v) {
+    full[pos] = valid;
+    if (valid) items[pos] = v;
+    pos = pos + 1 == Latency ? 0 : pos + 1;
+  }
+  void clear() {
+    full.fill(false);
+    pos = 0;
+  }
+};
+
 // rt_fifo: Depth entries; in_ready = !full, out_valid = !empty, from the
 // occupancy at the start of the cycle.
 template <class T, size_t Depth>
@@ -326,11 +346,8 @@ class rt_trav_shell_model : public rt_trav_host_ports<Unit, rt_value, rt_value, 
     this->perf_isect_fire_o = in.valid && (!outsideIsect_ || isect.req_ready_o);
   }
   // The rising edge at the end of the cycle (rst_ni high), from the inputs as
-  // they stand; then settle() for the outputs of the next cycle.
-  void clock() {
-    cycle();
-    settle();
-  }
+  // they stand. (The combinational outputs follow the next settle().)
+  void clock() { cycle(); }
 
  protected:
   static constexpr uint32_t SLOT_MASK = (uint32_t(1) << Unit::SLOT_W) - 1;
@@ -371,8 +388,8 @@ class rt_trav_shell_model : public rt_trav_host_ports<Unit, rt_value, rt_value, 
     checkLine_.fill(-1);
     checkGrant_ = -1;
     nodeRsp_.valid = triRsp_.valid = false;
-    pipe_.fill(isect_stage{});
-    closest_.fill({});
+    pipe_.clear();
+    closest_.clear();
     isect.res_ready_i = true;  // rt_trav_shell takes every rt_isect result
     writeOutputs(false);
     settle();
@@ -433,15 +450,15 @@ class rt_trav_shell_model : public rt_trav_host_ports<Unit, rt_value, rt_value, 
         fx::unpackResult(wire, leaving.res);
       }
     } else {
-      leaving.valid = pipe_.out().valid;
-      leaving.res = pipe_.out().res;
-      isect_stage stage{in.valid, {}};
+      leaving.valid = pipe_.outValid();
+      if (leaving.valid) leaving.res = pipe_.out();
+      fx::IsectResult entering;
       if (in.valid) {
         std::array<uint32_t, fx::kIsectTriWords> wire{};
         fromValue<ISECT_TRI_W>(*in.data, wire);
-        stage.res = fx::intersect(ray_[size_t(in.slot)], unpackTriangle(wire.data()));
+        entering = fx::intersect(ray_[size_t(in.slot)], unpackTriangle(wire.data()));
       }
-      pipe_.push(stage);
+      pipe_.push(in.valid, entering);
     }
     if (leaving.valid) {
       leaving.slot = int(leaving.res.rayId & SLOT_MASK);
@@ -449,8 +466,9 @@ class rt_trav_shell_model : public rt_trav_host_ports<Unit, rt_value, rt_value, 
         fail(fmt::format("rt_isect result for slot {}, which expects none", leaving.slot));
       }
     }
-    rt_isect_result out = closest_.out();
-    closest_.push(leaving);
+    rt_isect_result out;
+    if (closest_.outValid()) out = closest_.out();
+    closest_.push(leaving.valid, leaving);
     if (out.valid) {
       rt_closest_record& hit = hit_[size_t(out.slot)];
       if (hit.takes(out.res)) hit.take(out.res);
@@ -564,10 +582,6 @@ class rt_trav_shell_model : public rt_trav_host_ports<Unit, rt_value, rt_value, 
     int slot = -1;
     const value_t<ISECT_TRI_W>* data = nullptr;
   };
-  struct isect_stage {
-    bool valid = false;
-    fx::IsectResult res;
-  };
 
   static int goes(int granted, bool room) { return room ? granted : -1; }
   static void ack(rt_rr_arb_model<N>& arb, int granted) {
@@ -671,8 +685,8 @@ class rt_trav_shell_model : public rt_trav_host_ports<Unit, rt_value, rt_value, 
   boundary_reg<node_data_t> nodeRsp_;  // RegRsp only
   boundary_reg<value_t<ISECT_TRI_W>> triRsp_;
 
-  rt_delay_line<isect_stage, ISECT_LATENCY> pipe_;  // u_isect inside (rt_isect_impl::model)
-  rt_delay_line<rt_isect_result, fx::kClosestHitLatency> closest_;  // u_closest's stages R to Y
+  rt_sparse_delay_line<fx::IsectResult, ISECT_LATENCY> pipe_;  // u_isect inside (rt_isect_impl::model)
+  rt_sparse_delay_line<rt_isect_result, fx::kClosestHitLatency> closest_;  // u_closest's stages R to Y
 
   // Whether a record FIFO's head changed since its data output was written.
   bool visitHead_ = true, resHead_ = true;
