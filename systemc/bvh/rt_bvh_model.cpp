@@ -51,8 +51,10 @@ void rt_bvh_model::cycle() {
   const int popping = popGranted_;  // granted in the previous cycle: it pops now
   popGranted_ = grantPop(popping);
   const slot_mask finishing = fin_;
-  const BoxAnswer answer = boxLine_.out();
-  boxLine_.push(testNode());
+  BoxAnswer answer;
+  if (boxLine_.outValid()) answer = boxLine_.out();
+  const BoxAnswer tested = testNode();
+  boxLine_.push(tested.valid, tested);
   const rt_isect_result res = intersect(fetch_);
 
   if (g.visit >= 0) visit(g.visit);
@@ -74,7 +76,7 @@ void rt_bvh_model::resetWalk() {
   for (slot_mask* m : {&enter_, &nodeWant_, &checkWant_, &pop_, &done_, &fetch_, &fin_}) m->clear();
   popArb_ = rt_rr_arb_model<N>{};
   popGranted_ = -1;
-  boxLine_.fill(BoxAnswer{});
+  boxLine_.clear();
 }
 
 // rt_bvh_slots' want vectors: the state masks.

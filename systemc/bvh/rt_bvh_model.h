@@ -86,7 +86,7 @@ class rt_bvh_model : public rt_trav_shell_model<rt_bvh_unit, /*RegRsp=*/false> {
   slot_mask enter_, nodeWant_, checkWant_, pop_, done_, fetch_, fin_;
   rt_rr_arb_model<N> popArb_{};
   int popGranted_ = -1;  // the pop lane's grant of the previous cycle: that slot pops now
-  rt_delay_line<BoxAnswer, size_t(fx::kBvhBoxLatency)> boxLine_;  // u_box
+  rt_sparse_delay_line<BoxAnswer, size_t(fx::kBvhBoxLatency)> boxLine_;  // u_box
 };
 
 }  // namespace lancer::sc

@@ -17,9 +17,7 @@ namespace lancer::sc {
 // testbench, named after the RTL ports they carry (common/rt_trav_ports.h).
 template <class Unit>
 class rt_trav_wires : public sc_core::sc_module,
-                      public rt_trav_host_ports<Unit, rt_signal, rt_signal>,
-                      public rt_trav_node_port<Unit, rt_signal, rt_signal>,
-                      public rt_trav_mem_ports<Unit, rt_signal, rt_signal> {
+                      public rt_trav_unit_ports<Unit, rt_signal, rt_signal> {
  public:
   sc_core::sc_signal<typename Unit::cfg_t> cfg_i{Unit::kNames.cfgPort};
 

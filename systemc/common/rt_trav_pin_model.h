@@ -18,27 +18,20 @@
 // model's `isect` ports. A model's failure (std::runtime_error) becomes an
 // SC_REPORT_ERROR under this module's name.
 
-#include <array>
-#include <exception>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 
 #include <systemc>
 
-#include "base/rt_value.h"
 #include "common/rt_trav_ports.h"
-#include "common/rt_trav_unit.h"
-#include "isect/rt_isect_ports.h"
 #include "isect/rt_isect_rtl.h"
-#include "isect/rt_isect_types.h"
 
 namespace lancer::sc {
 
 template <class Unit>
-class rt_trav_pin_model : public sc_core::sc_module,
-                          public rt_trav_host_ports<Unit, sc_core::sc_in, sc_core::sc_out>,
-                          public rt_trav_node_port<Unit, sc_core::sc_in, sc_core::sc_out>,
-                          public rt_trav_mem_ports<Unit, sc_core::sc_in, sc_core::sc_out> {
+class rt_trav_pin_model : public sc_core::sc_module, public rt_trav_unit_ports<Unit, sc_core::sc_in, sc_core::sc_out> {
   using model_t = typename Unit::model_t;
 
  public:
@@ -187,11 +180,7 @@ class rt_trav_pin_model : public sc_core::sc_module,
   }
 
   std::unique_ptr<model_t> model_;
-  // The outputs as last written.
-  struct last_outputs : rt_trav_host_ports<Unit, rt_value, rt_value, value_t>,
-                        rt_trav_node_port<Unit, rt_value, rt_value, value_t>,
-                        rt_trav_mem_ports<Unit, rt_value, rt_value, value_t> {};
-  last_outputs last_;
+  rt_trav_unit_ports<Unit, rt_value, rt_value, value_t> last_;  // the outputs as last written
   bool combWritten_ = false;  // perf_isect_fire_o written since reset
   std::unique_ptr<rt_isect_signals> isect_;  // u_isect on signals (rt_isect_impl::rtl)
   std::unique_ptr<sc_core::sc_module> u_isect;

@@ -78,6 +78,13 @@ struct rt_trav_mem_ports {
   LANCER_SC_READ_PORT(tri, ISECT_TRI_W);
 };
 
+// All of them: what a unit's cycle model, its pin-level module, the
+// testbench's side of it and the bench's wires each hold.
+template <class Unit, template <class> class In, template <class> class Out, template <int> class Bits = vl_port_t>
+struct rt_trav_unit_ports : rt_trav_host_ports<Unit, In, Out, Bits>,
+                            rt_trav_node_port<Unit, In, Out, Bits>,
+                            rt_trav_mem_ports<Unit, In, Out, Bits> {};
+
 // Binds one side's ports (a module's, or a parent's) to another's of the same
 // names (a bench's signals). The node port of a unit whose C++ names are not
 // node_* (rt_grid's Verilated class) is its traits' to bind (bindUnitPorts).

@@ -301,9 +301,7 @@ inline fx::QTriangle unpackTriangle(const uint32_t* wire) {
 }
 
 template <class Unit, bool RegRsp>
-class rt_trav_shell_model : public rt_trav_host_ports<Unit, rt_value, rt_value, value_t>,
-                            public rt_trav_node_port<Unit, rt_value, rt_value, value_t>,
-                            public rt_trav_mem_ports<Unit, rt_value, rt_value, value_t> {
+class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, value_t> {
  public:
   static constexpr int N = Unit::RAYS_IN_FLIGHT;
   static constexpr bool kRegisteredResponses = RegRsp;

@@ -28,9 +28,7 @@ namespace lancer::sc {
 // result and visit streams, and the memory side of its three read ports.
 template <class Unit>
 class rt_trav_side : public sc_core::sc_module,
-                     public rt_trav_host_ports<Unit, sc_core::sc_out, sc_core::sc_in>,
-                     public rt_trav_node_port<Unit, sc_core::sc_out, sc_core::sc_in>,
-                     public rt_trav_mem_ports<Unit, sc_core::sc_out, sc_core::sc_in> {
+                     public rt_trav_unit_ports<Unit, sc_core::sc_out, sc_core::sc_in> {
  public:
   sc_core::sc_out<typename Unit::cfg_t> cfg_i{Unit::kNames.cfgPort};
   rt_gated_clock u_clk{"u_clk"};

@@ -48,16 +48,8 @@ using isect_res_t = vl_port_t<ISECT_RES_W>;
 // Wire image (fx::wireWords(W) words) -> port value. Bits above W are dropped.
 template <int W>
 vl_port_t<W> toPort(std::span<const uint32_t> wire) {
-  if constexpr (W == 1) {
-    return (wire[0] & 1u) != 0;
-  } else if constexpr (W < 32) {
-    return wire[0] & ((uint32_t(1) << W) - 1);
-  } else if constexpr (W == 32) {
-    return wire[0];
-  } else if constexpr (W < 64) {
-    return (uint64_t(wire[0]) | (uint64_t(wire[1]) << 32)) & ((uint64_t(1) << W) - 1);
-  } else if constexpr (W == 64) {
-    return uint64_t(wire[0]) | (uint64_t(wire[1]) << 32);
+  if constexpr (W <= 64) {
+    return toValue<W>(wire);  // the same type (base/rt_value.h)
   } else {
     sc_dt::sc_bv<W> value;
     for (int i = 0; i < fx::wireWords(W); ++i) value.set_word(i, wire[size_t(i)]);
@@ -70,11 +62,8 @@ vl_port_t<W> toPort(std::span<const uint32_t> wire) {
 // (allocates nothing; the devices use this form on every cycle).
 template <int W>
 void fromPort(const vl_port_t<W>& value, std::span<uint32_t> wire) {
-  if constexpr (W <= 32) {
-    wire[0] = uint32_t(value);
-  } else if constexpr (W <= 64) {
-    wire[0] = uint32_t(value);
-    wire[1] = uint32_t(value >> 32);
+  if constexpr (W <= 64) {
+    fromValue<W>(value, wire);
   } else {
     for (int i = 0; i < fx::wireWords(W); ++i) wire[size_t(i)] = value.get_word(i);
   }
