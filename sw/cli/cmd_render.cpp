@@ -35,7 +35,7 @@ void renderWhitted(const Scene& scene, const Accel& accel, const PinholeCamera& 
       result.eyeHitRays, result.reflectRays, result.refractRays, result.totalInternalReflections,
       result.shadowRays, result.shadowRaysBlocked, result.selfHits, result.waveRays.size(), seconds, out);
   report = result.toJson();
-  for (int c = 0; c < kRayClassCount; ++c) {
+  for (int c = 0; c < kWhittedClassCount; ++c) {
     const RayClass cls = RayClass(c);
     auto& j = report["classes"][std::string(toString(cls))];
     j["intersection_tests"] = tracer.stats(cls).triangleTests;

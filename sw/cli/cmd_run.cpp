@@ -21,6 +21,8 @@
 #include "driver/silicon.h"
 #include "driver/traversal_job.h"
 #include "driver/wave_tracer.h"
+#include "effects/ao.h"
+#include "effects/integrator.h"
 #include "effects/ref_tracer.h"
 #include "effects/whitted.h"
 #include "golden/bvh.h"
@@ -43,6 +45,8 @@ struct Args {
   JobConfig job;
   ChipArgs chip;
   EffectsArgs effects;
+  std::string integrator = "whitted";  // --integrator whitted|ao
+  AoOptions ao;
   std::optional<double> clockMhz;  // --clock-mhz; else the estimated clock (driver/clocks.h)
   int posBits = fx::kPosBits;
   int dirBits = fx::kDirBits;
@@ -173,29 +177,32 @@ std::vector<std::pair<const char*, uint64_t>> spdCounts(const WhittedResult& r) 
           {"shadow_rays_blocked", r.shadowRaysBlocked}, {"self_hits", r.selfHits}};
 }
 
-// Every figure of an effects run: the summary and the report are both written from it.
-struct EffectsFigures {
+// Every figure of a run of waves (the Whitted loop, ambient occlusion): what
+// the hardware did per class, against the float reference, on the chip; the
+// summary and the report are both written from it. The integrator's own
+// lines and keys come from its caller.
+struct WaveRunFigures {
   const Args& args;
   const RunClock& clock;
   const Scene& scene;
-  const EffectsPlan& plan;
   Sampling sampling;
   const PinholeCamera& camera;
   size_t eyeRays;
   const HardwareWaveTracer& tracer;
-  const WhittedResult& hw;   // the loop on the hardware's hits
-  const WhittedResult& ref;  // the same loop on the float reference
+  std::vector<ClassKey> classes;   // the classes to report, in order
+  std::vector<uint64_t> waveRays;  // the rays of each wave on the hardware
   double hostSeconds;
 
   double clockHz() const { return clock.hz(); }
   uint64_t cycles() const {
     uint64_t total = 0;
-    for (int c = 0; c < kRayClassCount; ++c) total += tracer.stats(RayClass(c)).cycles;
+    for (const ClassKey cls : tracer.classes()) total += tracer.stats(cls).cycles;
     return total;
   }
-  uint64_t waveRays() const { return std::accumulate(hw.waveRays.begin(), hw.waveRays.end(), uint64_t(0)); }
+  uint64_t allWaveRays() const { return std::accumulate(waveRays.begin(), waveRays.end(), uint64_t(0)); }
 
-  void print() const {
+  // `integratorLines` prints what only the integrator knows, after the classes.
+  void print(const std::function<void()>& integratorLines) const {
     fmt::print("run: {} ({} triangles), {} {} samples {}x{}, model {}, accel {}, formats pos {} / dir {} bits\n",
                scene.name, scene.size(), eyeRays, toString(sampling), camera.width(), camera.height(),
                args.job.model, toString(args.accel), fx::kPosBits, fx::kDirBits);
@@ -204,22 +211,22 @@ struct EffectsFigures {
     printClasses();
     printComparisons();
     printAnyHitSaving();
-    printCounts();
+    integratorLines();
     fmt::print("  host                {:.2f} s in all; simulated {:.1f} us at {:g} MHz for {} cycles\n", hostSeconds,
                double(cycles()) / clockHz() * 1e6, clock.mhz, cycles());
     if (const auto c = chip()) {
-      fmt::print("{}", c->summary(cycles(), waveRays(), clockHz()));
-      printSilicon(clock, *c, cycles(), waveRays());
+      fmt::print("{}", c->summary(cycles(), allWaveRays(), clockHz()));
+      printSilicon(clock, *c, cycles(), allWaveRays());
     }
-    fmt::print("  bit-exact vs golden {} rays in {} waves, {} mismatches\n", waveRays(), hw.waveRays.size(),
+    fmt::print("  bit-exact vs golden {} rays in {} waves, {} mismatches\n", allWaveRays(), waveRays.size(),
                tracer.mismatches());
   }
 
   // The chip's figures over every class.
   std::optional<ChipFigures> chip() const {
     std::optional<ChipFigures> all;
-    for (int c = 0; c < kRayClassCount; ++c) {
-      const auto& mine = tracer.stats(RayClass(c)).chip;
+    for (const ClassKey cls : tracer.classes()) {
+      const auto& mine = tracer.stats(cls).chip;
       if (!mine) continue;
       if (all) {
         *all += *mine;
@@ -243,7 +250,7 @@ struct EffectsFigures {
   void printClasses() const {
     fmt::print("  {:<11} {:>9} {:>9} {:>11} {:>10} {:>11} {:>11} {:>10}\n", "class", "rays", "hits", "tests",
                "steps", "cycles", "sim us", "mismatch");
-    for (const RayClass cls : planned()) {
+    for (const ClassKey cls : classes) {
       const ClassHardwareStats& s = tracer.stats(cls);
       fmt::print("  {:<11} {:>9} {:>9} {:>11} {:>10} {:>11} {:>11.1f} {:>10}\n", toString(cls), s.rays, s.hits,
                  s.intersectionTests, s.steps, s.cycles, double(s.cycles) / clockHz() * 1e6, s.mismatches);
@@ -254,7 +261,7 @@ struct EffectsFigures {
   void printComparisons() const {
     fmt::print("  {:<11} {:>9} {:>9} {:>9}   {:<34} {}\n", "class", "vs ref", "hit/miss", "triangle",
                "arbiter: reference correct/tie/rnd/wrong", "hardware correct/tie/bound/beyond");
-    for (const RayClass cls : planned()) {
+    for (const ClassKey cls : classes) {
       const ReferenceComparison& cmp = tracer.comparison(cls);
       const ArbiterCounts& a = cmp.arbiter;
       fmt::print("  {:<11} {:>9} {:>9} {:>9}   {:<34} {}\n", toString(cls), cmp.disagreements, cmp.hitMissDiffers,
@@ -266,23 +273,21 @@ struct EffectsFigures {
     if (!tracer.cycleAccurate()) fmt::print("  (golden model: no cycle timing)\n");
   }
 
-  // What the shadow rays saved by stopping at their first hit (traversal units).
+  // What the any-hit rays (shadow, occlusion) saved by stopping at their first hit (traversal units).
   void printAnyHitSaving() const {
-    const ClassHardwareStats& shadow = tracer.stats(RayClass::Shadow);
-    if (!shadow.rays || args.accel == fx::UnitKind::Isect) return;
-    fmt::print("  any-hit saving      shadow rays took {} steps and {} tests; as closest-hit rays {} and {} ({:.1f}% "
-               "fewer steps)\n",
-               shadow.steps, shadow.intersectionTests, shadow.closestHitSteps, shadow.closestHitTests,
-               shadow.closestHitSteps ? 100.0 * (1.0 - double(shadow.steps) / double(shadow.closestHitSteps)) : 0.0);
+    if (args.accel == fx::UnitKind::Isect) return;
+    for (const ClassKey cls : {ClassKey(RayClass::Shadow), ClassKey(RayClass::Ao)}) {
+      const ClassHardwareStats& s = tracer.stats(cls);
+      if (!s.rays) continue;
+      fmt::print("  any-hit saving      {} rays took {} steps and {} tests; as closest-hit rays {} and {} ({:.1f}% "
+                 "fewer steps)\n",
+                 toString(cls), s.steps, s.intersectionTests, s.closestHitSteps, s.closestHitTests,
+                 s.closestHitSteps ? 100.0 * (1.0 - double(s.steps) / double(s.closestHitSteps)) : 0.0);
+    }
   }
 
-  // The SPD counts beside the float reference's, and the secondary origins' fixes.
-  void printCounts() const {
-    fmt::print("  {:<20} {:>10} {:>10}\n", "SPD count", "hardware", "float ref");
-    const auto hwCounts = spdCounts(hw), refCounts = spdCounts(ref);
-    for (size_t k = 0; k < hwCounts.size(); ++k) {
-      fmt::print("  {:<20} {:>10} {:>10}\n", hwCounts[k].first, hwCounts[k].second, refCounts[k].second);
-    }
+  // The secondary origins' fixes.
+  void printOrigins() const {
     if (tracer.sideFlips()) {
       fmt::print("  {} secondary origins moved to the other side of their triangle (the lattice ray would have met "
                  "it again)\n",
@@ -294,9 +299,9 @@ struct EffectsFigures {
   }
 
   nlohmann::json toJson() const {
-    nlohmann::json classes;
-    for (const RayClass cls : planned()) {
-      nlohmann::json& c = classes[std::string(toString(cls))] = tracer.stats(cls).toJson(clockHz());
+    nlohmann::json perClass;
+    for (const ClassKey cls : classes) {
+      nlohmann::json& c = perClass[toString(cls)] = tracer.stats(cls).toJson(clockHz());
       c.update(lancer::toJson(tracer.comparison(cls)));
     }
     nlohmann::json report = reportHeader(args, scene, clock);
@@ -304,8 +309,7 @@ struct EffectsFigures {
                    {"width", camera.width()},
                    {"height", camera.height()},
                    {"eye_rays", eyeRays},
-                   {"plan", plan.toJson()},
-                   {"classes", classes},
+                   {"classes", perClass},
                    {"cycles", cycles()},
                    {"cycle_accurate", tracer.cycleAccurate()},
                    {"clock_hz", clockHz()},
@@ -314,21 +318,15 @@ struct EffectsFigures {
                    {"origin_offset_lattice_units", tracer.offsetUnits()},
                    {"origins_outside_lattice", tracer.originsOutside()},
                    {"secondary_side_flips", tracer.sideFlips()},
-                   {"wave_rays", hw.waveRays},
-                   {"total_internal_reflections", hw.totalInternalReflections},
-                   {"refraction_rays_traced", hw.refractionsTraced},
+                   {"wave_rays", waveRays},
                    {"beyond_bound", tracer.beyondBound()}});
     nlohmann::json structure = nlohmann::json::object();
     for (const JobCounter& c : tracer.structure()) structure[c.key] = counterJson(c.value);
     report["structure"] = structure;
     if (const auto c = chip()) {
-      report.update(c->toJson(cycles(), waveRays(), clockHz()));
-      if (const auto si = chipSilicon(clock, *c, cycles(), waveRays())) report.update(si->toJson());
+      report.update(c->toJson(cycles(), allWaveRays(), clockHz()));
+      if (const auto si = chipSilicon(clock, *c, cycles(), allWaveRays())) report.update(si->toJson());
     }
-    for (const auto& [key, value] : spdCounts(hw)) report[key] = value;
-    nlohmann::json refJson;
-    for (const auto& [key, value] : spdCounts(ref)) refJson[key] = value;
-    report["float_reference"] = refJson;
     if (const auto& m = tracer.firstMismatch()) {
       report["first_mismatch"] = {{"generation", m->generation}, {"class", toString(m->cls)}, {"index", m->index},
                                   {"report", m->details}};
@@ -340,14 +338,30 @@ struct EffectsFigures {
     return report;
   }
 
-  std::vector<RayClass> planned() const {
-    std::vector<RayClass> classes;
-    for (int c = 0; c < kRayClassCount; ++c) {
-      if (plan.has(RayClass(c))) classes.push_back(RayClass(c));
-    }
-    return classes;
+  // Writes the report, then fails the run on a mismatch or an answer beyond the bound.
+  void finish(const nlohmann::json& report) const {
+    if (const auto& m = tracer.firstMismatch()) fmt::print(stderr, "{}", m->details);
+    writeReport(args.report, report);
+    failMismatches(args, tracer.mismatches(), "wave rays");
+    failBeyondBound(tracer.beyondBound(), "wave rays");
   }
 };
+
+// The classes a Whitted plan traces, in the plan's order.
+std::vector<ClassKey> plannedClasses(const EffectsPlan& plan) {
+  std::vector<ClassKey> classes;
+  for (int c = 0; c < kWhittedClassCount; ++c) {
+    if (plan.has(RayClass(c))) classes.push_back(RayClass(c));
+  }
+  return classes;
+}
+
+// The wave lines of a run on a terminal.
+WaveProgress waveLines(const Args& args) {
+  return [&args](int generation, size_t n) {
+    fmt::print("  wave {}: {} rays on {} {}\n", generation, n, toString(args.accel), args.job.model);
+  };
+}
 
 // An effects run (docs/effects.md): the Whitted loop's waves through the
 // hardware, every wave checked against the golden model bit for bit, and the
@@ -359,22 +373,69 @@ void runEffects(const Args& args, const RunClock& clock, const Scene& scene, con
   const std::vector<Ray> eye = camera.generateRays(sampling);
   const Bvh reference(scene, AccelOptions{});
   HardwareWaveTracer tracer(args.accel, scene, quantizer, args.job, &reference);
-  const WhittedResult hw = traceWhitted(scene, plan, eye, tracer, [&](int generation, size_t n) {
-    fmt::print("  wave {}: {} rays on {} {}\n", generation, n, toString(args.accel), args.job.model);
-  });
+  const WhittedResult hw = traceWhitted(scene, plan, eye, tracer, waveLines(args));
   RefWaveTracer refTracer(scene, reference);
   const WhittedResult ref = traceWhitted(scene, plan, eye, refTracer);
-  const EffectsFigures figures{args, clock, scene, plan, sampling, camera, eye.size(), tracer, hw, ref,
-                               secondsSince(hostStart)};
-  figures.print();
+  const WaveRunFigures figures{args,   clock,   scene, sampling, camera, eye.size(), tracer, plannedClasses(plan),
+                               hw.waveRays, secondsSince(hostStart)};
+  figures.print([&] {
+    fmt::print("  {:<20} {:>10} {:>10}\n", "SPD count", "hardware", "float ref");
+    const auto hwCounts = spdCounts(hw), refCounts = spdCounts(ref);
+    for (size_t k = 0; k < hwCounts.size(); ++k) {
+      fmt::print("  {:<20} {:>10} {:>10}\n", hwCounts[k].first, hwCounts[k].second, refCounts[k].second);
+    }
+    figures.printOrigins();
+  });
   if (!args.image.empty()) {
     writePng(samplesToImage(hw.samples, camera.width(), camera.height(), sampling), args.image);
     fmt::print("  image               {} (shaded from the model's hits)\n", args.image);
   }
-  if (const auto& m = tracer.firstMismatch()) fmt::print(stderr, "{}", m->details);
-  writeReport(args.report, figures.toJson());
-  failMismatches(args, tracer.mismatches(), "wave rays");
-  failBeyondBound(tracer.beyondBound(), "wave rays");
+  nlohmann::json report = figures.toJson();
+  report.update({{"integrator", "whitted"},
+                 {"plan", plan.toJson()},
+                 {"total_internal_reflections", hw.totalInternalReflections},
+                 {"refraction_rays_traced", hw.refractionsTraced}});
+  for (const auto& [key, value] : spdCounts(hw)) report[key] = value;
+  nlohmann::json refJson;
+  for (const auto& [key, value] : spdCounts(ref)) refJson[key] = value;
+  report["float_reference"] = refJson;
+  figures.finish(report);
+}
+
+// An ambient-occlusion run (docs/incoherent.md): the camera wave and the
+// occlusion wave through the hardware, each checked against the golden model
+// bit for bit; the same waves on the float reference, and the image's error
+// against it.
+void runAo(const Args& args, const RunClock& clock, const Scene& scene, const Quantizer& quantizer,
+           std::chrono::steady_clock::time_point hostStart) {
+  const Sampling sampling = args.effects.parsedSampling();
+  const PinholeCamera camera = frameScene(scene, args.source.camera.resolve());
+  const std::vector<Ray> eye = camera.generateRays(sampling);
+  const Bvh reference(scene, AccelOptions{});
+  HardwareWaveTracer tracer(args.accel, scene, quantizer, args.job, &reference);
+  const IntegratorResult hw = traceAo(scene, args.ao, eye, tracer, waveLines(args));
+  RefWaveTracer refTracer(scene, reference);
+  const IntegratorResult ref = traceAo(scene, args.ao, eye, refTracer);
+  const double mse = relativeMse(hw.samples, ref.samples);
+  const WaveRunFigures figures{args, clock, scene, sampling, camera, eye.size(), tracer, tracer.classes(),
+                               hw.waveRays, secondsSince(hostStart)};
+  figures.print([&] {
+    fmt::print("  ambient occlusion   {} rays a hit within {:g}; image rel. MSE vs float reference {:.3g}; "
+               "self-hits {}\n",
+               args.ao.rays, args.ao.distanceFor(scene), mse, hw.selfHits);
+    figures.printOrigins();
+  });
+  if (!args.image.empty()) {
+    writePng(samplesToImage(hw.samples, camera.width(), camera.height(), sampling), args.image);
+    fmt::print("  image               {} (occlusion from the model's hits)\n", args.image);
+  }
+  nlohmann::json report = figures.toJson();
+  report.update({{"integrator", "ao"},
+                 {"ao", args.ao.toJson(scene)},
+                 {"image_rel_mse", mse},
+                 {"self_hits", hw.selfHits},
+                 {"float_reference", ref.toJson()}});
+  figures.finish(report);
 }
 
 // Every figure of a plain run (one job over camera or file rays): the summary
@@ -518,8 +579,14 @@ void run(Args args) {
   args.job.memory.clockMhz = clock.mhz;  // DRAM's nanoseconds in the run's cycles
   const auto hostStart = std::chrono::steady_clock::now();
   const Scene scene = args.scene.load();
-  const EffectsPlan plan = planEffects(scene, args.effects.options());
   const Quantizer quantizer(scene.bounds, args.latticeMargin);
+  if (args.integrator == "ao") {
+    if (!args.source.fromCamera()) throw InputError("--integrator ao traces from camera rays: it takes no --rays file");
+    checkAoOptions(args.ao);
+    runAo(args, clock, scene, quantizer, hostStart);
+    return;
+  }
+  const EffectsPlan plan = planEffects(scene, args.effects.options());
   fmt::print("{}", plan.describe());
   const bool secondary =
       plan.has(RayClass::Shadow) || plan.has(RayClass::Reflection) || plan.has(RayClass::Refraction);
@@ -599,6 +666,18 @@ void addRunCommand(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::Range(2, 24));
   args->effects.add(*cmd);
+  cmd->add_option("--integrator", args->integrator,
+                  "What the camera rays' hits spawn: whitted (the SPD's loop, --effects) or ao (ambient occlusion: "
+                  "--ao-rays any-hit segments a hit; docs/incoherent.md)")
+      ->check(CLI::IsMember({"whitted", "ao"}))
+      ->capture_default_str();
+  cmd->add_option("--ao-rays", args->ao.rays, "ao: occlusion rays a hit (1..4096)")->capture_default_str();
+  cmd->add_option("--ao-distance", args->ao.distance,
+                  "ao: their length in scene units (default: a tenth of the scene's diagonal)");
+  cmd->add_option("--sampler-seed", args->ao.seed,
+                  "Key of the integrators' counter-based sampler (the same rays for every model, unit count and "
+                  "thread count)")
+      ->capture_default_str();
   args->chip.add(*cmd, args->job);
   cmd->add_option("--lattice-margin", args->latticeMargin,
                   "Lattice units between the scene's bounds and the lattice cube's faces (0: the faces coincide, "

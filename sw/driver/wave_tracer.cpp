@@ -73,21 +73,39 @@ nlohmann::json ClassHardwareStats::toJson(double clockHz) const {
   return j;
 }
 
+std::vector<ClassKey> HardwareWaveTracer::classes() const {
+  std::vector<ClassKey> keys;
+  for (const auto& [key, record] : classes_) keys.push_back(key);
+  return keys;
+}
+
+const ClassHardwareStats& HardwareWaveTracer::stats(ClassKey cls) const {
+  static const ClassHardwareStats kNone;
+  const auto it = classes_.find(cls);
+  return it == classes_.end() ? kNone : it->second.stats;
+}
+
+const ReferenceComparison& HardwareWaveTracer::comparison(ClassKey cls) const {
+  static const ReferenceComparison kNone;
+  const auto it = classes_.find(cls);
+  return it == classes_.end() ? kNone : it->second.comparison;
+}
+
 uint64_t HardwareWaveTracer::beyondBound() const {
   uint64_t n = 0;
-  for (const ReferenceComparison& c : comparisons_) n += c.arbiter.beyondBound();
+  for (const auto& [key, record] : classes_) n += record.comparison.arbiter.beyondBound();
   return n;
 }
 
 uint64_t HardwareWaveTracer::mismatches() const {
   uint64_t n = 0;
-  for (const ClassHardwareStats& s : stats_) n += s.mismatches;
+  for (const auto& [key, record] : classes_) n += record.stats.mismatches;
   return n;
 }
 
 std::optional<QuantizedRay> HardwareWaveTracer::latticeRay(const WaveRay& ray, uint32_t index) {
   std::optional<QuantizedRay> q;
-  if (ray.cls == RayClass::Primary || ray.parent >= wave_.size() || !wave_[ray.parent] || !waveHits_[ray.parent]) {
+  if (fromCamera(ray.cls) || ray.parent >= wave_.size() || !wave_[ray.parent] || !waveHits_[ray.parent]) {
     q = quantizer_.quantize(ray.ray, index);
   } else {
     // The parent's hit on the lattice, exactly where the hardware found it, moved
@@ -134,16 +152,12 @@ void HardwareWaveTracer::trace(int generation, std::span<const WaveRay> rays, st
   std::vector<std::optional<fx::IsectResult>> waveHits(rays.size());
   for (uint32_t i = 0; i < rays.size(); ++i) {
     wave[i] = latticeRay(rays[i], i);
-    if (!wave[i] && rays[i].cls != RayClass::Primary) ++originsOutside_;
+    if (!wave[i] && !fromCamera(rays[i].cls)) ++originsOutside_;
   }
-  // One job per class, so each class's cycles and steps are its own.
-  for (int c = 0; c < kRayClassCount; ++c) {
-    const RayClass cls = RayClass(c);
-    std::vector<uint32_t> members;
-    for (uint32_t i = 0; i < rays.size(); ++i) {
-      if (rays[i].cls == cls) members.push_back(i);
-    }
-    if (members.empty()) continue;
+  // One job per class (bounces by number), so each class's cycles and steps are its own.
+  std::map<ClassKey, std::vector<uint32_t>> byClass;
+  for (uint32_t i = 0; i < rays.size(); ++i) byClass[keyOf(rays[i])].push_back(i);
+  for (const auto& [cls, members] : byClass) {
     QuantizedRays batch(members.size());
     bool anyHitRays = false;
     for (size_t k = 0; k < members.size(); ++k) {
@@ -151,7 +165,7 @@ void HardwareWaveTracer::trace(int generation, std::span<const WaveRay> rays, st
       anyHitRays |= rays[members[k]].anyHit;
     }
     const JobResult job = path_->run(batch);
-    ClassHardwareStats& s = stats_[size_t(c)];
+    ClassHardwareStats& s = record(cls).stats;
     s.add(job, batch);
     cycleAccurate_ = cycleAccurate_ && job.cycleAccurate;
     if (job.firstMismatch && !firstMismatch_) {
@@ -178,7 +192,7 @@ void HardwareWaveTracer::trace(int generation, std::span<const WaveRay> rays, st
   waveHits_ = std::move(waveHits);
 }
 
-void HardwareWaveTracer::compare(int generation, RayClass cls, std::span<const WaveRay> rays,
+void HardwareWaveTracer::compare(int generation, ClassKey cls, std::span<const WaveRay> rays,
                                  std::span<const uint32_t> members, const QuantizedRays& batch, const JobResult& job) {
   // The question the hardware was asked, in scene space: a primary ray as
   // given; a secondary one from its lattice origin (so t = 0 there), along the
@@ -191,11 +205,11 @@ void HardwareWaveTracer::compare(int generation, RayClass cls, std::span<const W
   bool anyHit = false;
   for (size_t k = 0; k < members.size(); ++k) {
     const WaveRay& ray = rays[members[k]];
-    if (!batch[k] && ray.cls != RayClass::Primary) continue;
+    if (!batch[k] && !fromCamera(ray.cls)) continue;
     anyHit = ray.anyHit;
     Ray question = ray.ray;
     std::optional<QuantizedRay> q = batch[k];
-    if (ray.cls != RayClass::Primary) {
+    if (!fromCamera(ray.cls)) {
       question.origin = glm::vec3(quantizer_.sceneOrigin(q->q));
       question.tMax = kInfinity;
       if (q->q.bounded()) {
@@ -222,7 +236,7 @@ void HardwareWaveTracer::compare(int generation, RayClass cls, std::span<const W
                     generation, toString(cls), index[*first], r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y,
                     r.dir.z, r.tMax, anyHit ? ", any hit" : "")};
   }
-  comparisons_[size_t(cls)] += cmp;
+  record(cls).comparison += cmp;
 }
 
 }  // namespace lancer

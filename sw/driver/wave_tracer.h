@@ -9,6 +9,7 @@
 // origins").
 
 #include <array>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -64,7 +65,7 @@ struct ClassHardwareStats {
 // The first wave ray on which the model and the golden model disagree.
 struct WaveMismatch {
   int generation = 0;
-  RayClass cls = RayClass::Primary;
+  ClassKey cls;
   uint32_t index = 0;  // in its wave
   std::string details;
 };
@@ -80,10 +81,12 @@ class HardwareWaveTracer final : public WaveTracer {
 
   void trace(int generation, std::span<const WaveRay> rays, std::vector<std::optional<Hit>>& hits) override;
 
-  const ClassHardwareStats& stats(RayClass cls) const { return stats_[size_t(cls)]; }
+  // The classes traced so far (bounces by number), in order.
+  std::vector<ClassKey> classes() const;
+  const ClassHardwareStats& stats(ClassKey cls) const;
   // The class's rays against the reference on the same rays: a secondary ray as
   // the hardware traced it (from its lattice origin, to its segment's end).
-  const ReferenceComparison& comparison(RayClass cls) const { return comparisons_[size_t(cls)]; }
+  const ReferenceComparison& comparison(ClassKey cls) const;
   // Answers beyond the hardware's bound, over every class.
   uint64_t beyondBound() const;
   // The first of them: its wave, class and the scene ray asked, as a reproducer.
@@ -104,19 +107,25 @@ class HardwareWaveTracer final : public WaveTracer {
  private:
   std::optional<QuantizedRay> latticeRay(const WaveRay& ray, uint32_t index);
   // Compares one class's job with the reference (members: the class's rays in the wave).
-  void compare(int generation, RayClass cls, std::span<const WaveRay> rays, std::span<const uint32_t> members,
+  void compare(int generation, ClassKey cls, std::span<const WaveRay> rays, std::span<const uint32_t> members,
                const QuantizedRays& batch, const JobResult& job);
+  // What a class did: its stats and its comparison with the reference.
+  struct ClassRecord {
+    ClassHardwareStats stats;
+    ReferenceComparison comparison;
+  };
+  ClassRecord& record(ClassKey cls) { return classes_[cls]; }
 
   const Quantizer& quantizer_;
   std::unique_ptr<HardwarePath> path_;
   std::unique_ptr<HardwarePath> golden_;  // closest-hit steps of any-hit rays (traversal units only)
   double offset_;
   std::vector<glm::dvec3> normals_;  // unit geometric normal of every quantized triangle, lattice space
-  std::array<ClassHardwareStats, kRayClassCount> stats_{};
+
   const Scene& scene_;
   const Bvh* reference_;
   TriangleCandidates candidates_;  // the exact arbiter's, from reference_
-  std::array<ReferenceComparison, kRayClassCount> comparisons_{};
+  std::map<ClassKey, ClassRecord> classes_;
   std::optional<WaveMismatch> firstMismatch_, firstBeyond_;
   uint64_t originsOutside_ = 0;
   uint64_t sideFlips_ = 0;

@@ -14,13 +14,20 @@ std::string_view toString(RayClass cls) {
     case RayClass::Shadow: return "shadow";
     case RayClass::Reflection: return "reflection";
     case RayClass::Refraction: return "refraction";
+    case RayClass::Camera: return "camera";
+    case RayClass::Bounce: return "bounce";
+    case RayClass::Ao: return "ao";
   }
   return "?";
 }
 
+std::string toString(ClassKey key) {
+  return key.cls == RayClass::Bounce ? fmt::format("bounce{}", key.bounce) : std::string(toString(key.cls));
+}
+
 namespace {
 
-constexpr std::array<RayClass, kRayClassCount> kClasses = {RayClass::Primary, RayClass::Shadow,
+constexpr std::array<RayClass, kWhittedClassCount> kClasses = {RayClass::Primary, RayClass::Shadow,
                                                           RayClass::Reflection, RayClass::Refraction};
 
 std::string_view kindName(Light::Kind kind) {
@@ -86,7 +93,7 @@ EffectsPlan planEffects(const Scene& scene, const EffectsOptions& options) {
   if (options.lightSamples < 1) {
     throw InputError(fmt::format("--light-samples {} must be >= 1", options.lightSamples));
   }
-  std::array<bool, kRayClassCount> wanted{};
+  std::array<bool, kWhittedClassCount> wanted{};
   wanted.fill(options.effects.empty());
   wanted[size_t(RayClass::Primary)] = true;
   for (const std::string& name : options.effects) {

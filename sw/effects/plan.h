@@ -34,14 +34,14 @@ struct EffectsPlan {
     bool enabled = false;               // and --effects keeps it
     std::vector<std::string> reasons;   // the lights / materials that call for it
   };
-  std::array<Class, kRayClassCount> classes;
+  std::array<Class, kWhittedClassCount> classes;
   int maxDepth = 5;
   int lightSamples = 1;
   size_t lights = 0;              // point, spot and directional lights
   size_t emissiveTriangles = 0;   // area-light triangles
   bool restricted = false;        // --effects was given
 
-  bool has(RayClass cls) const { return classes[size_t(cls)].enabled; }
+  bool has(RayClass cls) const { return size_t(cls) < classes.size() && classes[size_t(cls)].enabled; }
   // A short block for the terminal, one line per class.
   std::string describe() const;
   nlohmann::json toJson() const;

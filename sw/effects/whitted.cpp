@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "effects/integrator.h"
+#include "effects/surface.h"
 
 namespace lancer {
 
@@ -58,17 +60,11 @@ class Loop {
   void shade(const WaveRay& r, const Hit& h, uint32_t k, std::vector<WaveRay>& next);
 
  private:
-  // A hit as shading sees it: the ray, its wave index, the point and the normals.
-  struct Surface {
+  // A hit as shading sees it: the point and the normals, the ray and its wave index.
+  struct Surface : SurfacePoint {
     const WaveRay& ray;
     const Hit& hit;
-    uint32_t index;       // of the ray in its wave
-    const Material& material;
-    glm::vec3 point;      // from the barycentrics: on the triangle's plane to float rounding
-    glm::vec3 dir;        // the ray's unit direction
-    glm::vec3 geometric;  // unit geometric normal (-dir for a degenerate triangle)
-    glm::vec3 normal;     // shading normal, turned to the side the ray arrives on
-    bool front;           // the ray arrives on the geometric normal's side
+    uint32_t index;  // of the ray in its wave
   };
   Surface surfaceAt(const WaveRay& r, const Hit& h, uint32_t k) const;
   void addLocalTerms(const Surface& s);
@@ -109,24 +105,9 @@ void Loop::shade(const WaveRay& r, const Hit& h, uint32_t k, std::vector<WaveRay
 }
 
 Loop::Surface Loop::surfaceAt(const WaveRay& r, const Hit& h, uint32_t k) const {
-  const Triangle& tri = scene_.triangles[h.prim];
-  const float w0 = 1.0f - h.u - h.v;
-  const glm::vec3 p = w0 * tri.v0 + h.u * tri.v1 + h.v * tri.v2;
-  const glm::vec3 d = glm::normalize(r.ray.dir);
-  const glm::vec3 cross = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
-  const float crossLength = glm::length(cross);
-  const glm::vec3 ng = crossLength > 0.0f ? cross / crossLength : -d;
-  const bool front = glm::dot(d, ng) < 0.0f;
-  glm::vec3 ns = ng;
-  if (!scene_.normals.empty()) {
-    const ShadingNormals& sn = scene_.normals[h.prim];
-    const glm::vec3 n = w0 * sn.n0 + h.u * sn.n1 + h.v * sn.n2;
-    if (glm::length(n) > 0.0f) ns = glm::normalize(n);
-  }
-  // Both normals turned to the side the ray arrives on. An opaque triangle hit
-  // from behind is shaded as if two-sided (docs/effects.md): SPD rule 2 allows
-  // one-sided opaque primitives, and in its closed scenes no eye ray meets a back.
-  return {r, h, k, scene_.materials[scene_.materialOf[h.prim]], p, d, ng, front ? ns : -ns, front};
+  // An opaque triangle hit from behind is shaded as if two-sided: SPD rule 2
+  // allows one-sided opaque primitives, and in its closed scenes no eye ray meets a back.
+  return {lancer::surfaceAt(scene_, r.ray, h), r, h, k};
 }
 
 // Ambient for every object (as the SPD suggests), and emission seen from the front.
@@ -147,8 +128,7 @@ WaveRay Loop::child(const Surface& s, RayClass cls, const Ray& ray, const glm::v
   c.weight = s.ray.weight * weight;
   c.parent = s.index;
   c.originPrim = s.hit.prim;
-  const float side = glm::dot(ray.dir, s.geometric);
-  c.side = side > 0.0f ? 1 : side < 0.0f ? -1 : (s.front ? 1 : -1);
+  c.side = s.sideOf(ray.dir);
   return c;
 }
 
@@ -272,16 +252,7 @@ WhittedResult traceWhitted(const Scene& scene, const EffectsPlan& plan, std::spa
   }
   WhittedResult out;
   out.samples.assign(cameraSamples.size(), glm::vec3(0.0f));
-  std::vector<WaveRay> wave(cameraSamples.size());
-  for (size_t s = 0; s < cameraSamples.size(); ++s) {
-    const Ray& ray = cameraSamples[s];
-    if (!allFinite(ray.origin) || !allFinite(ray.dir)) {
-      throw InputError(fmt::format("camera ray {}: NaN or infinite origin or direction", s));
-    }
-    if (ray.dir == glm::vec3(0.0f)) throw InputError(fmt::format("camera ray {}: zero direction", s));
-    wave[s].ray = Ray{ray.origin, ray.dir, kInfinity};
-    wave[s].sample = uint32_t(s);
-  }
+  std::vector<WaveRay> wave = cameraWave(cameraSamples, RayClass::Primary);
   Loop loop(scene, plan, out);
   std::vector<std::optional<Hit>> hits;
   std::vector<WaveRay> next;
@@ -352,7 +323,7 @@ Image samplesToImage(std::span<const glm::vec3> samples, int width, int height, 
 
 nlohmann::json WhittedResult::toJson() const {
   nlohmann::json cls = nlohmann::json::object();
-  for (int c = 0; c < kRayClassCount; ++c) {
+  for (int c = 0; c < kWhittedClassCount; ++c) {
     cls[std::string(toString(RayClass(c)))] = {{"rays", classes[c].rays}, {"hits", classes[c].hits}};
   }
   return {{"classes", cls},

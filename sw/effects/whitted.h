@@ -36,6 +36,11 @@ struct WaveRay {
   uint32_t targetPrim = UINT32_MAX;
 };
 
+// The class a ray is counted under: bounces by their number (depth - 1).
+inline ClassKey keyOf(const WaveRay& r) {
+  return r.cls == RayClass::Bounce ? ClassKey(r.cls, uint16_t(r.depth - 1)) : ClassKey(r.cls);
+}
+
 // What traces a wave: the float reference (effects/ref_tracer.h) or a model of the hardware.
 // Secondary rays start exactly on the surface they leave (origin = the hit point); keeping them
 // from hitting it again (offset, t_min, exclusion of originPrim) is the tracer's business.
@@ -54,7 +59,7 @@ struct WhittedResult {
     uint64_t rays = 0;
     uint64_t hits = 0;
   };
-  std::array<ClassCounts, kRayClassCount> classes;
+  std::array<ClassCounts, kWhittedClassCount> classes;
   uint64_t eyeHitRays = 0;          // primary rays that hit an object
   uint64_t reflectRays = 0;         // reflection rays spawned, those of total internal reflection included
   uint64_t refractRays = 0;         // SPD's count: refraction rays traced plus total internal reflections

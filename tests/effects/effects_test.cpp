@@ -162,7 +162,7 @@ TEST(EffectsPlan, BadOptionsNameTheOption) {
 // Every ray of wave g+1 names its parent in wave g, the triangle that parent hit,
 // and the side of its geometric normal it leaves on; the counts add up.
 void expectContract(const Scene& scene, const RecordingTracer& t, const WhittedResult& r, int maxDepth) {
-  uint64_t byClass[kRayClassCount] = {};
+  uint64_t byClass[kWhittedClassCount] = {};
   for (size_t g = 0; g < t.waves.size(); ++g) {
     for (size_t k = 0; k < t.waves[g].size(); ++k) {
       const WaveRay& w = t.waves[g][k];
