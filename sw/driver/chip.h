@@ -8,6 +8,7 @@
 // protocol it documents.
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -31,17 +32,23 @@ constexpr uint32_t nodeReadBytes() {
   return recordBytes(fx::kNodeBitsOf<Desc>) * uint32_t(Desc::kGroup);
 }
 
-// The image of descriptor `Desc` in the chip's address space: its node table
-// (records of the node's bits rounded up to bytes, kGroup of them per read),
-// the index list (32-bit triangle ids), the triangle table (the triangle
-// record's bits rounded up to bytes). InputError if it does not fit.
+// The regions of descriptor `Desc`'s image, in port order, not yet placed:
+// its node table (records of the node's bits rounded up to bytes, kGroup of
+// them per read), the index list (32-bit triangle ids), the triangle table
+// (the triangle record's bits rounded up to bytes).
+template <class Desc>
+std::array<mem::Region, mem::kPorts> regionsOf(const typename Desc::Image& image) {
+  return {mem::Region{Desc::kNames.nodeTable, 0, recordBytes(fx::kNodeBitsOf<Desc>), uint32_t(Desc::kGroup),
+                      uint64_t(Desc::nodes(image).size())},
+          mem::Region{"index list", 0, 4, 1, uint64_t(image.indices.size())},
+          mem::Region{"triangle table", 0, recordBytes(fx::kIsectTriBits), 1, uint64_t(image.triangles.size())}};
+}
+
+// The image of descriptor `Desc` in the chip's address space (regionsOf).
+// InputError if it does not fit.
 template <class Desc>
 mem::AddressMap addressMapOf(const typename Desc::Image& image) {
-  return mem::AddressMap({mem::Region{Desc::kNames.nodeTable, 0, recordBytes(fx::kNodeBitsOf<Desc>), uint32_t(Desc::kGroup),
-                                      uint64_t(Desc::nodes(image).size())},
-                          mem::Region{"index list", 0, 4, 1, uint64_t(image.indices.size())},
-                          mem::Region{"triangle table", 0, recordBytes(fx::kIsectTriBits), 1,
-                                      uint64_t(image.triangles.size())}});
+  return mem::AddressMap(regionsOf<Desc>(image));
 }
 
 // The memory system a run of a device uses: the hardware path's

@@ -6,9 +6,12 @@
 // unit; what differs per unit (names, image counters) is its descriptor
 // (golden/unit.h).
 
+#include <algorithm>
+#include <bit>
 #include <string>
 #include <vector>
 
+#include "driver/chip.h"
 #include "driver/job.h"
 #include "driver/traversal_device.h"
 
@@ -23,12 +26,24 @@ typename Unit::Image buildImageFor(const Scene& scene, const Quantizer& quantize
 }
 
 // The descriptor's figures of a unit's image (Unit::imageCounters: the grid's
-// resolution, the octree's depth and nodes, ...) as counters for the summary
-// and the report.
+// resolution, the octree's depth and nodes, ...), then its size in memory:
+// each region's bytes, the whole image's (without the pages' padding), and
+// the address bits its largest region needs (at most fx::kMemAddrBits, or the
+// build would have refused it), as counters for the summary and the report.
 template <class Unit>
 std::vector<JobCounter> imageFigures(const typename Unit::Image& image) {
   std::vector<JobCounter> figures;
   for (const fx::ImageCounter& c : Unit::imageCounters(image)) figures.push_back({c.key, c.label, c.value});
+  uint64_t bytes = 0, records = 1;
+  for (const mem::Region& r : regionsOf<Unit>(image)) {
+    std::string key = r.name + "_image_bytes";
+    std::replace(key.begin(), key.end(), ' ', '_');
+    figures.push_back({key, "image: " + r.name, double(r.bytes())});
+    bytes += r.bytes();
+    records = std::max(records, r.records);
+  }
+  figures.push_back({"image_bytes", "image bytes", double(bytes)});
+  figures.push_back({"address_bits_needed", "address bits needed", double(std::bit_width(records - 1))});
   return figures;
 }
 

@@ -46,9 +46,9 @@ std::vector<uint32_t> Scene::emissiveTriangles() const {
 Scene loadScene(const std::string& nameOrPath) {
   if (nameOrPath == kDefaultSceneName || nameOrPath == "cornell") return makeCornellBox();
   if (nameOrPath == "builtin:cube") return makeCube();
-  if (nameOrPath.starts_with("builtin:spd-")) return makeSpdScene(nameOrPath.substr(12));
+  if (nameOrPath.starts_with("builtin:spd-")) return loadSpdScene(nameOrPath.substr(12));
   if (nameOrPath.starts_with("builtin:")) {
-    throw InputError(fmt::format("unknown built-in scene '{}' (available: {}, builtin:cube, builtin:spd-tetra, builtin:spd-gears)", nameOrPath,
+    throw InputError(fmt::format("unknown built-in scene '{}' (available: {}, builtin:cube, builtin:spd-tetra[@N], builtin:spd-gears[@N])", nameOrPath,
                                  kDefaultSceneName));
   }
   // The formats Lancer reads itself, whose numbers are correctly rounded

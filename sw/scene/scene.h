@@ -118,7 +118,7 @@ inline constexpr const char* kDefaultSceneName = "builtin:cornell";
 inline constexpr const char* kSceneFormats =
     "OBJ (.obj, with its .mtl), PLY (.ply), STL (.stl), glTF 2.0 (.gltf, .glb), NFF (.nff), every other format "
     "assimp 5.2 imports (.blend, .fbx, .dae, .3ds, .ifc, ...), or builtin:cornell, builtin:cube, builtin:spd-tetra, "
-    "builtin:spd-gears";
+    "builtin:spd-gears (builtin:spd-NAME@N: the SPD's size factor N)";
 
 // Loads a scene file by its extension (kSceneFormats; docs/scenes.md): OBJ,
 // PLY, STL and NFF by Lancer's own readers with correctly rounded numbers,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -170,26 +171,41 @@ std::string gearsNff(int sizeFactor) {
 std::vector<std::string> spdSceneNames() { return {"tetra", "gears"}; }
 
 std::string generateSpdNff(std::string_view name, int sizeFactor) {
-  if (name == "tetra") {
-    if (sizeFactor == 0) sizeFactor = 6;
-    if (sizeFactor < 1 || sizeFactor > 8) {
-      throw InputError(fmt::format("SPD tetra: size factor {} out of range (1..8)", sizeFactor));
+  // The largest size factors keep the text near 100 MB (spd.h).
+  const auto checked = [&](int defaultFactor, int maxFactor) {
+    if (sizeFactor == 0) sizeFactor = defaultFactor;
+    if (sizeFactor < 1 || sizeFactor > maxFactor) {
+      throw InputError(fmt::format("SPD {}: size factor {} out of range (1..{})", name, sizeFactor, maxFactor));
     }
-    return tetraNff(sizeFactor);
-  }
-  if (name == "gears") {
-    if (sizeFactor == 0) sizeFactor = 4;
-    if (sizeFactor < 1 || sizeFactor > 8) {
-      throw InputError(fmt::format("SPD gears: size factor {} out of range (1..8)", sizeFactor));
-    }
-    return gearsNff(sizeFactor);
-  }
+    return sizeFactor;
+  };
+  if (name == "tetra") return tetraNff(checked(6, 10));
+  if (name == "gears") return gearsNff(checked(4, 16));
   throw InputError(fmt::format("unknown SPD scene '{}' (available: {})", name, fmt::join(spdSceneNames(), ", ")));
 }
 
 Scene makeSpdScene(std::string_view name, int sizeFactor) {
+  // The string moves into the stream: a 1 M-triangle tetra's text is not held twice.
   std::istringstream in(generateSpdNff(name, sizeFactor));
-  return readNff(in, fmt::format("builtin:spd-{}", name));
+  return readNff(in, sizeFactor == 0 ? fmt::format("builtin:spd-{}", name)
+                                     : fmt::format("builtin:spd-{}@{}", name, sizeFactor));
+}
+
+Scene loadSpdScene(std::string_view spec) {
+  const size_t at = spec.find('@');
+  if (at == std::string_view::npos) return makeSpdScene(spec);
+  const std::string_view name = spec.substr(0, at), factor = spec.substr(at + 1);
+  int sizeFactor = 0;
+  const auto [end, error] = std::from_chars(factor.data(), factor.data() + factor.size(), sizeFactor);
+  if (factor.empty() || error != std::errc() || end != factor.data() + factor.size() || sizeFactor < 1) {
+    throw InputError(fmt::format("builtin:spd-{}: the size factor '{}' after '@' is not a whole number >= 1", spec,
+                                 factor));
+  }
+  try {
+    return makeSpdScene(name, sizeFactor);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("builtin:spd-{}: {}", spec, e.what()));
+  }
 }
 
 }  // namespace lancer

@@ -15,20 +15,30 @@ namespace lancer {
 // through the same NFF reader and are bit-identical.
 //
 //   tetra  the recursive tetrahedral pyramid: 4^sizeFactor triangles (default
-//          size factor 6: 4096), one light, no reflection.
+//          size factor 6: 4096; 1..10, 10 being 1 048 576), one light, no
+//          reflection.
 //   gears  sizeFactor^3 meshed gears with 144-vertex concave faces (default 4:
-//          64 gears, 9345 polygons), every fifth one a transmitter, over a
-//          reflective square; five lights.
+//          64 gears, 9345 polygons; 1..16), every fifth one a transmitter,
+//          over a reflective square; five lights.
+//
+// The largest size factors keep the NFF text (which the built-in scene is read
+// from) near 100 MB: tetra 10 is 1 M triangles, gears 16 is 2.3 M.
 //
 // The SPD writes index of refraction 0 for opaque materials; Lancer's NFF
 // reader asks for > 0, so these files say 1 (meaningless where T = 0).
 
 // The names generateSpdNff() accepts.
 std::vector<std::string> spdSceneNames();
-// Throws InputError for an unknown name or a size factor out of range (1..8; 0 picks
-// the SPD default: tetra 6, gears 4).
+// Throws InputError for an unknown name or a size factor out of range (tetra
+// 1..10, gears 1..16; 0 picks the SPD default: tetra 6, gears 4).
 std::string generateSpdNff(std::string_view name, int sizeFactor = 0);
-// The generated scene read back, named "builtin:spd-<name>".
+// The generated scene read back, named "builtin:spd-<name>", or
+// "builtin:spd-<name>@<sizeFactor>" for a size factor other than 0.
 Scene makeSpdScene(std::string_view name, int sizeFactor = 0);
+// The scene of a built-in name's part after "builtin:spd-": "NAME" (the SPD's
+// size factor) or "NAME@N" (size factor N, as `lancer spd NAME --size-factor N`).
+// Throws InputError naming the scene for an unknown name or a size factor that
+// is not a whole number in the scene's range.
+Scene loadSpdScene(std::string_view spec);
 
 }  // namespace lancer

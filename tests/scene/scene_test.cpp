@@ -11,6 +11,7 @@
 
 #include "common/error.h"
 #include "scene/scene.h"
+#include "scene/spd.h"
 #include "support/test_paths.h"
 
 namespace lancer {
@@ -595,6 +596,31 @@ TEST(Scene, BadFilesAreClearErrors) {
   EXPECT_TRUE(contains(loadError(test::kAssimpModels + "/invalid/empty.obj"), "empty.obj: scene has no triangles"));
   EXPECT_THROW(loadScene("builtin:nothing"), InputError);
   EXPECT_TRUE(contains(loadError(test::kAssimpModels + "/invalid/empty.ply"), "empty.ply:1: the header has no end_header"));
+}
+
+// builtin:spd-NAME@N is the SPD scene at size factor N (the triangles `lancer
+// spd NAME --size-factor N` writes), named so in reports; a bad size factor is
+// one line naming the scene.
+TEST(Scene, BuiltinSpdScenesTakeASizeFactor) {
+  const Scene tetra = loadScene("builtin:spd-tetra@3");
+  EXPECT_EQ(tetra.name, "builtin:spd-tetra@3");
+  const Scene generated = makeSpdScene("tetra", 3);
+  ASSERT_EQ(tetra.size(), 64u);
+  ASSERT_EQ(generated.size(), 64u);
+  for (size_t t = 0; t < tetra.size(); ++t) {
+    EXPECT_EQ(tetra.triangles[t].v0, generated.triangles[t].v0);
+    EXPECT_EQ(tetra.triangles[t].v1, generated.triangles[t].v1);
+    EXPECT_EQ(tetra.triangles[t].v2, generated.triangles[t].v2);
+  }
+  EXPECT_EQ(loadScene("builtin:spd-tetra").name, "builtin:spd-tetra");
+  EXPECT_EQ(loadScene("builtin:spd-gears@1").size(), 2u + 2u * 142u + 144u * 2u);
+  EXPECT_EQ(loadError("builtin:spd-tetra@11"), "builtin:spd-tetra@11: SPD tetra: size factor 11 out of range (1..10)");
+  EXPECT_EQ(loadError("builtin:spd-gears@17"), "builtin:spd-gears@17: SPD gears: size factor 17 out of range (1..16)");
+  for (const std::string factor : {"0", "", "x", "-2", "+3", "3.0", " 3", "3 ", "99999999999"}) {
+    EXPECT_EQ(loadError("builtin:spd-tetra@" + factor),
+              fmt::format("builtin:spd-tetra@{0}: the size factor '{0}' after '@' is not a whole number >= 1", factor));
+  }
+  EXPECT_EQ(loadError("builtin:spd-balls@2"), "builtin:spd-balls@2: unknown SPD scene 'balls' (available: tetra, gears)");
 }
 
 // Lancer reads the formats whose numbers it reads correctly rounded
