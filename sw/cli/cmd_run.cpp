@@ -21,7 +21,9 @@
 #include "driver/silicon.h"
 #include "driver/traversal_job.h"
 #include "driver/wave_tracer.h"
+#include "common/pfm.h"
 #include "effects/ao.h"
+#include "effects/path.h"
 #include "effects/integrator.h"
 #include "effects/ref_tracer.h"
 #include "effects/whitted.h"
@@ -45,8 +47,11 @@ struct Args {
   JobConfig job;
   ChipArgs chip;
   EffectsArgs effects;
-  std::string integrator = "whitted";  // --integrator whitted|ao
+  std::string integrator = "whitted";  // --integrator whitted|ao|path
   AoOptions ao;
+  PathOptions path;
+  uint64_t samplerSeed = 1;            // --sampler-seed: the integrators' sampler key
+  std::string pfm;                     // --pfm: the linear image
   std::optional<double> clockMhz;  // --clock-mhz; else the estimated clock (driver/clocks.h)
   int posBits = fx::kPosBits;
   int dirBits = fx::kDirBits;
@@ -402,36 +407,47 @@ void runEffects(const Args& args, const RunClock& clock, const Scene& scene, con
   figures.finish(report);
 }
 
-// An ambient-occlusion run (docs/incoherent.md): the camera wave and the
-// occlusion wave through the hardware, each checked against the golden model
-// bit for bit; the same waves on the float reference, and the image's error
-// against it.
-void runAo(const Args& args, const RunClock& clock, const Scene& scene, const Quantizer& quantizer,
-           std::chrono::steady_clock::time_point hostStart) {
+// A run of an integrator that samples (ambient occlusion, the path tracer;
+// docs/incoherent.md): its waves through the hardware, each checked against
+// the golden model bit for bit; the same waves on the float reference, and the
+// image's error against it. `trace` runs the integrator on a tracer;
+// `options` and `describe` are its report entry and its summary line.
+void runSampled(const Args& args, const RunClock& clock, const Scene& scene, const Quantizer& quantizer,
+                std::chrono::steady_clock::time_point hostStart,
+                const std::function<IntegratorResult(std::span<const Ray>, WaveTracer&, const WaveProgress&)>& trace,
+                const nlohmann::json& options, const std::string& describe) {
   const Sampling sampling = args.effects.parsedSampling();
   const PinholeCamera camera = frameScene(scene, args.source.camera.resolve());
   const std::vector<Ray> eye = camera.generateRays(sampling);
   const Bvh reference(scene, AccelOptions{});
   HardwareWaveTracer tracer(args.accel, scene, quantizer, args.job, &reference);
-  const IntegratorResult hw = traceAo(scene, args.ao, eye, tracer, waveLines(args));
+  const IntegratorResult hw = trace(eye, tracer, waveLines(args));
   RefWaveTracer refTracer(scene, reference);
-  const IntegratorResult ref = traceAo(scene, args.ao, eye, refTracer);
+  const IntegratorResult ref = trace(eye, refTracer, {});
   const double mse = relativeMse(hw.samples, ref.samples);
-  const WaveRunFigures figures{args, clock, scene, sampling, camera, eye.size(), tracer, tracer.classes(),
+  // The classes in a path's order: camera, the bounces, then the any-hit rays.
+  std::vector<ClassKey> classes = tracer.classes();
+  const auto rank = [](ClassKey k) { return std::pair(k.cls == RayClass::Shadow || k.cls == RayClass::Ao, k); };
+  std::sort(classes.begin(), classes.end(), [&](ClassKey a, ClassKey b) { return rank(a) < rank(b); });
+  const WaveRunFigures figures{args,   clock,   scene, sampling, camera, eye.size(), tracer, std::move(classes),
                                hw.waveRays, secondsSince(hostStart)};
   figures.print([&] {
-    fmt::print("  ambient occlusion   {} rays a hit within {:g}; image rel. MSE vs float reference {:.3g}; "
-               "self-hits {}\n",
-               args.ao.rays, args.ao.distanceFor(scene), mse, hw.selfHits);
+    fmt::print("  {:<19} {}; image rel. MSE vs float reference {:.3g}; self-hits {}\n", args.integrator, describe,
+               mse, hw.selfHits);
     figures.printOrigins();
   });
   if (!args.image.empty()) {
     writePng(samplesToImage(hw.samples, camera.width(), camera.height(), sampling), args.image);
-    fmt::print("  image               {} (occlusion from the model's hits)\n", args.image);
+    fmt::print("  image               {} (from the model's hits)\n", args.image);
+  }
+  if (!args.pfm.empty()) {
+    writePfm(samplesToPixels(hw.samples, camera.width(), camera.height(), sampling), camera.width(), camera.height(),
+             args.pfm);
+    fmt::print("  linear image        {} (PFM)\n", args.pfm);
   }
   nlohmann::json report = figures.toJson();
-  report.update({{"integrator", "ao"},
-                 {"ao", args.ao.toJson(scene)},
+  report.update({{"integrator", args.integrator},
+                 {args.integrator, options},
                  {"image_rel_mse", mse},
                  {"self_hits", hw.selfHits},
                  {"float_reference", ref.toJson()}});
@@ -580,10 +596,30 @@ void run(Args args) {
   const auto hostStart = std::chrono::steady_clock::now();
   const Scene scene = args.scene.load();
   const Quantizer quantizer(scene.bounds, args.latticeMargin);
-  if (args.integrator == "ao") {
-    if (!args.source.fromCamera()) throw InputError("--integrator ao traces from camera rays: it takes no --rays file");
-    checkAoOptions(args.ao);
-    runAo(args, clock, scene, quantizer, hostStart);
+  if (args.integrator != "whitted") {
+    if (!args.source.fromCamera()) {
+      throw InputError(fmt::format("--integrator {} traces from camera rays: it takes no --rays file", args.integrator));
+    }
+    args.ao.seed = args.path.seed = args.samplerSeed;
+    args.path.maxDepth = args.effects.maxDepth;
+    if (args.integrator == "ao") {
+      checkAoOptions(args.ao);
+      runSampled(args, clock, scene, quantizer, hostStart,
+                 [&](std::span<const Ray> eye, WaveTracer& t, const WaveProgress& p) {
+                   return traceAo(scene, args.ao, eye, t, p);
+                 },
+                 args.ao.toJson(scene),
+                 fmt::format("{} occlusion rays a hit within {:g}", args.ao.rays, args.ao.distanceFor(scene)));
+    } else {
+      checkPathOptions(args.path);
+      runSampled(args, clock, scene, quantizer, hostStart,
+                 [&](std::span<const Ray> eye, WaveTracer& t, const WaveProgress& p) {
+                   return tracePath(scene, args.path, eye, t, p);
+                 },
+                 args.path.toJson(),
+                 fmt::format("{} paths a sample, depth {}, Russian roulette from bounce {}", args.path.spp,
+                             args.path.maxDepth, args.path.rrDepth));
+    }
     return;
   }
   const EffectsPlan plan = planEffects(scene, args.effects.options());
@@ -667,14 +703,19 @@ void addRunCommand(CLI::App& app) {
       ->check(CLI::Range(2, 24));
   args->effects.add(*cmd);
   cmd->add_option("--integrator", args->integrator,
-                  "What the camera rays' hits spawn: whitted (the SPD's loop, --effects) or ao (ambient occlusion: "
-                  "--ao-rays any-hit segments a hit; docs/incoherent.md)")
-      ->check(CLI::IsMember({"whitted", "ao"}))
+                  "What the camera rays' hits spawn: whitted (the SPD's loop, --effects), ao (ambient occlusion: "
+                  "--ao-rays any-hit segments a hit) or path (a path tracer: --spp, --max-depth, --rr-depth); "
+                  "docs/incoherent.md")
+      ->check(CLI::IsMember({"whitted", "ao", "path"}))
       ->capture_default_str();
   cmd->add_option("--ao-rays", args->ao.rays, "ao: occlusion rays a hit (1..4096)")->capture_default_str();
   cmd->add_option("--ao-distance", args->ao.distance,
                   "ao: their length in scene units (default: a tenth of the scene's diagonal)");
-  cmd->add_option("--sampler-seed", args->ao.seed,
+  cmd->add_option("--spp", args->path.spp, "path: paths a camera sample (1..65536)")->capture_default_str();
+  cmd->add_option("--rr-depth", args->path.rrDepth, "path: the first bounce Russian roulette may end a path at")
+      ->capture_default_str();
+  cmd->add_option("--pfm", args->pfm, "ao, path: the linear image as PFM (the PNG of --image is tone-mapped)");
+  cmd->add_option("--sampler-seed", args->samplerSeed,
                   "Key of the integrators' counter-based sampler (the same rays for every model, unit count and "
                   "thread count)")
       ->capture_default_str();

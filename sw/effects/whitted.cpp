@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "effects/integrator.h"
+#include "effects/lights.h"
 #include "effects/surface.h"
 
 namespace lancer {
@@ -33,26 +34,10 @@ glm::vec2 jitter(uint64_t key) {
   return {float(h >> 40) * 0x1.0p-24f, float((h >> 16) & 0xFFFFFF) * 0x1.0p-24f};
 }
 
-struct Emitter {
-  uint32_t prim;
-  glm::vec3 normal;  // unit geometric normal: the side it emits on
-  float area;
-  glm::vec3 emission;
-};
-
 class Loop {
  public:
   Loop(const Scene& scene, const EffectsPlan& plan, WhittedResult& result)
-      : scene_(scene), plan_(plan), out_(result) {
-    for (uint32_t t = 0; t < scene.size(); ++t) {
-      const Material& m = scene.materials[scene.materialOf[t]];
-      if (m.emission == glm::vec3(0.0f)) continue;
-      const Triangle& tri = scene.triangles[t];
-      const glm::vec3 c = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
-      const float twice = glm::length(c);
-      if (twice == 0.0f) continue;  // a degenerate emitter has no area to sample
-      emitters_.push_back({t, c / twice, 0.5f * twice, m.emission});
-    }
+      : scene_(scene), plan_(plan), out_(result), emitters_(emittersOf(scene)) {
     intensity_ = WhittedShading::lightIntensity(scene.lights.size() + emitters_.size());
   }
 
@@ -149,28 +134,12 @@ void Loop::light(const Surface& s, const glm::vec3& contribution, const glm::vec
 // shading normal faces away from the light (SPD rule 10, transmitters too).
 void Loop::lightByLights(const Surface& s, std::vector<WaveRay>& next) {
   for (const Light& l : scene_.lights) {
-    glm::vec3 dir;
-    float dist = kInfinity;
-    if (l.kind == Light::Kind::Directional) {
-      dir = -glm::normalize(l.direction);
-    } else {
-      const glm::vec3 toLight = l.position - s.point;
-      dist = glm::length(toLight);
-      if (!(dist > 0.0f)) continue;
-      dir = toLight / dist;
-    }
-    const float cosine = glm::dot(s.normal, dir);
+    const std::optional<LightPath> p = pathToLight(l, s.point);  // none outside a spot's cone: no ray
+    if (!p) continue;
+    const float cosine = glm::dot(s.normal, p->dir);
     if (!(cosine > 0.0f)) continue;
-    float cone = 1.0f;
-    if (l.kind == Light::Kind::Spot) {
-      const float c = glm::dot(-dir, glm::normalize(l.direction));
-      if (c <= l.outerConeCos) continue;  // outside the cone no light arrives: no ray
-      cone = l.innerConeCos > l.outerConeCos
-                 ? std::clamp((c - l.outerConeCos) / (l.innerConeCos - l.outerConeCos), 0.0f, 1.0f)
-                 : 1.0f;
-    }
-    light(s, intensity_ * cone * l.color * phong(s.material, s.normal, dir, -s.dir, cosine), dir, dist, UINT32_MAX,
-          next);
+    light(s, intensity_ * p->color * phong(s.material, s.normal, p->dir, -s.dir, cosine), p->dir, p->distance,
+          UINT32_MAX, next);
   }
 }
 
@@ -188,8 +157,7 @@ void Loop::lightByEmitters(const Surface& s, std::vector<WaveRay>& next) {
           splitmix64((uint64_t(s.ray.sample) << 32) ^ s.index) ^ (uint64_t(e.prim) << 20) ^ uint64_t(i);
       const glm::vec2 xi = jitter(key);
       const float a = (float(i % cols) + xi.x) / float(cols), b = (float(i / cols) + xi.y) / float(rows);
-      const float ra = std::sqrt(a);  // uniform on the triangle
-      const glm::vec3 q = (1.0f - ra) * et.v0 + ra * (1.0f - b) * et.v1 + ra * b * et.v2;
+      const glm::vec3 q = pointOnTriangle(et, {a, b});
       const glm::vec3 toLight = q - s.point;
       const float dist = glm::length(toLight);
       if (!(dist > 0.0f)) continue;
@@ -297,27 +265,30 @@ WhittedResult traceWhitted(const Scene& scene, const EffectsPlan& plan, std::spa
   return out;
 }
 
-Image samplesToImage(std::span<const glm::vec3> samples, int width, int height, Sampling sampling) {
+std::vector<glm::vec3> samplesToPixels(std::span<const glm::vec3> samples, int width, int height, Sampling sampling) {
   const size_t expected = sampling == Sampling::Centers ? size_t(width) * size_t(height)
                                                         : size_t(width + 1) * size_t(height + 1);
   if (samples.size() != expected) {
     throw std::logic_error(fmt::format("{} samples for a {}x{} image sampled at {}", samples.size(), width, height,
                                        toString(sampling)));
   }
-  Image image(width, height);
+  if (sampling == Sampling::Centers) return {samples.begin(), samples.end()};
+  std::vector<glm::vec3> pixels(size_t(width) * size_t(height));
+  const size_t row = size_t(width) + 1;
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
-      glm::vec3 c;
-      if (sampling == Sampling::Centers) {
-        c = samples[size_t(y) * size_t(width) + size_t(x)];
-      } else {
-        const size_t row = size_t(width) + 1;
-        const size_t at = size_t(y) * row + size_t(x);
-        c = 0.25f * (samples[at] + samples[at + 1] + samples[at + row] + samples[at + row + 1]);
-      }
-      image.set(size_t(y) * size_t(width) + size_t(x), c.r, c.g, c.b);
+      const size_t at = size_t(y) * row + size_t(x);
+      pixels[size_t(y) * size_t(width) + size_t(x)] =
+          0.25f * (samples[at] + samples[at + 1] + samples[at + row] + samples[at + row + 1]);
     }
   }
+  return pixels;
+}
+
+Image samplesToImage(std::span<const glm::vec3> samples, int width, int height, Sampling sampling) {
+  const std::vector<glm::vec3> pixels = samplesToPixels(samples, width, height, sampling);
+  Image image(width, height);
+  for (size_t p = 0; p < pixels.size(); ++p) image.set(p, pixels[p].r, pixels[p].g, pixels[p].b);
   return image;
 }
 

@@ -34,6 +34,11 @@ struct WaveRay {
   int8_t side = 0;
   // Shadow rays to an area light: the emitting triangle the segment ends on (else UINT32_MAX).
   uint32_t targetPrim = UINT32_MAX;
+  // The path integrator: the ray's pass (--spp) of its camera sample, and
+  // whether it left a mirror or glass (its hit's emission then counts: no
+  // light sample could have found that light).
+  uint32_t pass = 0;
+  bool specular = false;
 };
 
 // The class a ray is counted under: bounces by their number (depth - 1).
@@ -93,8 +98,10 @@ using WaveProgress = std::function<void(int generation, size_t rays)>;
 WhittedResult traceWhitted(const Scene& scene, const EffectsPlan& plan, std::span<const Ray> cameraSamples,
                            WaveTracer& tracer, const WaveProgress& progress = {});
 
-// The image of a run's samples: Centers, one sample a pixel; Corners,
-// (width + 1) x (height + 1) samples, each pixel the mean of its four corners.
+// The pixels of a run's samples, linear: Centers, one sample a pixel;
+// Corners, (width + 1) x (height + 1) samples, each pixel the mean of its four
+// corners. samplesToImage encodes them for the PNG.
+std::vector<glm::vec3> samplesToPixels(std::span<const glm::vec3> samples, int width, int height, Sampling sampling);
 Image samplesToImage(std::span<const glm::vec3> samples, int width, int height, Sampling sampling);
 
 }  // namespace lancer
