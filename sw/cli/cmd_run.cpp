@@ -52,6 +52,7 @@ struct Args {
   PathOptions path;
   uint64_t samplerSeed = 1;            // --sampler-seed: the integrators' sampler key
   std::string pfm;                     // --pfm: the linear image
+  std::string refImage;                // --ref-image: the float reference's image
   std::optional<double> clockMhz;  // --clock-mhz; else the estimated clock (driver/clocks.h)
   int posBits = fx::kPosBits;
   int dirBits = fx::kDirBits;
@@ -440,6 +441,10 @@ void runSampled(const Args& args, const RunClock& clock, const Scene& scene, con
     writePng(samplesToImage(hw.samples, camera.width(), camera.height(), sampling), args.image);
     fmt::print("  image               {} (from the model's hits)\n", args.image);
   }
+  if (!args.refImage.empty()) {
+    writePng(samplesToImage(ref.samples, camera.width(), camera.height(), sampling), args.refImage);
+    fmt::print("  reference image     {} (the same integrator on the float reference)\n", args.refImage);
+  }
   if (!args.pfm.empty()) {
     writePfm(samplesToPixels(hw.samples, camera.width(), camera.height(), sampling), camera.width(), camera.height(),
              args.pfm);
@@ -715,6 +720,7 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--rr-depth", args->path.rrDepth, "path: the first bounce Russian roulette may end a path at")
       ->capture_default_str();
   cmd->add_option("--pfm", args->pfm, "ao, path: the linear image as PFM (the PNG of --image is tone-mapped)");
+  cmd->add_option("--ref-image", args->refImage, "ao, path: the float reference's image (PNG), beside --image");
   cmd->add_option("--sampler-seed", args->samplerSeed,
                   "Key of the integrators' counter-based sampler (the same rays for every model, unit count and "
                   "thread count)")

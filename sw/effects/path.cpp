@@ -189,6 +189,11 @@ class PathLoop {
 IntegratorResult tracePath(const Scene& scene, const PathOptions& options, std::span<const Ray> cameraSamples,
                            WaveTracer& tracer, const WaveProgress& progress) {
   checkPathOptions(options);
+  if (scene.lights.empty() && emittersOf(scene).empty() && scene.background == glm::vec3(0.0f)) {
+    throw InputError(fmt::format("{}: nothing lights the scene for the path integrator (no lights, no emissive "
+                                 "triangles and a black background, which is its environment light)",
+                                 scene.name));
+  }
   if (uint64_t(cameraSamples.size()) * uint64_t(options.spp) > kMaxWaveRays) {
     throw InputError(fmt::format("--spp {}: {} camera samples x {} paths is more than {} rays a wave: lower --spp or "
                                  "the resolution",

@@ -22,7 +22,10 @@ namespace lancer {
 // its largest throughput channel). Every number comes from the counter-based
 // sampler (effects/sampler.h) keyed by the camera sample, the pass, the
 // bounce and the dimension: the same paths whatever the tracer, given the
-// same hits.
+// same hits. The scene's background is its environment light: a camera or
+// bounce ray that meets nothing adds it (times the path's throughput).
+// Lights (point, spot, directional) answer as the Whitted loop's do, without
+// falloff; emissive triangles are radiance, sampled by area.
 struct PathOptions {
   int spp = 1;        // paths a camera sample
   int maxDepth = 5;   // the camera ray has depth 1
@@ -42,7 +45,9 @@ void checkPathOptions(const PathOptions& options);
 
 // Waves: the camera rays of every pass (class Camera), then each bounce's
 // shadow rays (Shadow) and continuation rays (Bounce, numbered by bounce),
-// until no path goes on. A sample's colour is the mean of its paths'.
+// until no path goes on. A sample's colour is the mean of its paths'. Throws
+// InputError for a scene nothing lights (no light, no emitter, a black
+// background), or a camera wave of more than 2^24 rays.
 IntegratorResult tracePath(const Scene& scene, const PathOptions& options, std::span<const Ray> cameraSamples,
                            WaveTracer& tracer, const WaveProgress& progress = {});
 
