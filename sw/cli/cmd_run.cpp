@@ -21,6 +21,7 @@
 #include "driver/silicon.h"
 #include "driver/traversal_job.h"
 #include "driver/wave_tracer.h"
+#include "cli/shards.h"
 #include "common/pfm.h"
 #include "effects/ao.h"
 #include "effects/path.h"
@@ -53,6 +54,7 @@ struct Args {
   uint64_t samplerSeed = 1;            // --sampler-seed: the integrators' sampler key
   std::string pfm;                     // --pfm: the linear image
   std::string refImage;                // --ref-image: the float reference's image
+  std::string shard;                   // --shard I/N: a part of the frame (cli/shards.h)
   std::optional<double> clockMhz;  // --clock-mhz; else the estimated clock (driver/clocks.h)
   int posBits = fx::kPosBits;
   int dirBits = fx::kDirBits;
@@ -413,18 +415,25 @@ void runEffects(const Args& args, const RunClock& clock, const Scene& scene, con
 // the golden model bit for bit; the same waves on the float reference, and the
 // image's error against it. `trace` runs the integrator on a tracer;
 // `options` and `describe` are its report entry and its summary line.
+// A shard (--shard I/N) traces its part of the frame's samples, keyed as in
+// the whole frame, and leaves its samples beside its report for lancer merge.
+using SampledTrace =
+    std::function<IntegratorResult(std::span<const Ray>, WaveTracer&, const WaveProgress&, uint32_t firstSample)>;
+
 void runSampled(const Args& args, const RunClock& clock, const Scene& scene, const Quantizer& quantizer,
-                std::chrono::steady_clock::time_point hostStart,
-                const std::function<IntegratorResult(std::span<const Ray>, WaveTracer&, const WaveProgress&)>& trace,
+                std::chrono::steady_clock::time_point hostStart, const SampledTrace& trace,
                 const nlohmann::json& options, const std::string& describe) {
   const Sampling sampling = args.effects.parsedSampling();
   const PinholeCamera camera = frameScene(scene, args.source.camera.resolve());
-  const std::vector<Ray> eye = camera.generateRays(sampling);
+  const std::vector<Ray> frame = camera.generateRays(sampling);
+  const std::optional<cli::Shard> shard = args.shard.empty() ? std::nullopt : std::optional(cli::parseShard(args.shard));
+  const auto [first, last] = shard ? cli::shardRange(*shard, frame.size()) : std::pair<size_t, size_t>(0, frame.size());
+  const std::span<const Ray> eye = std::span(frame).subspan(first, last - first);
   const Bvh reference(scene, AccelOptions{});
   HardwareWaveTracer tracer(args.accel, scene, quantizer, args.job, &reference);
-  const IntegratorResult hw = trace(eye, tracer, waveLines(args));
+  const IntegratorResult hw = trace(eye, tracer, waveLines(args), uint32_t(first));
   RefWaveTracer refTracer(scene, reference);
-  const IntegratorResult ref = trace(eye, refTracer, {});
+  const IntegratorResult ref = trace(eye, refTracer, {}, uint32_t(first));
   const double mse = relativeMse(hw.samples, ref.samples);
   // The classes in a path's order: camera, the bounces, then the any-hit rays.
   std::vector<ClassKey> classes = tracer.classes();
@@ -437,6 +446,28 @@ void runSampled(const Args& args, const RunClock& clock, const Scene& scene, con
                mse, hw.selfHits);
     figures.printOrigins();
   });
+  nlohmann::json report = figures.toJson();
+  report.update({{"integrator", args.integrator},
+                 {args.integrator, options},
+                 {"image_rel_mse", mse},
+                 {"self_hits", hw.selfHits},
+                 {"float_reference", ref.toJson()}});
+  if (shard) {
+    // What makes two shards parts of one run, for lancer merge.
+    report["run_key"] = {{"scene", scene.name},          {"accel", toString(args.accel)},
+                         {"model", args.job.model},      {"integrator", args.integrator},
+                         {args.integrator, options},      {"width", camera.width()},
+                         {"height", camera.height()},    {"sampling", toString(sampling)},
+                         {"pos_bits", fx::kPosBits},     {"dir_bits", fx::kDirBits},
+                         {"units", args.job.units},      {"memory", args.chip.memory}};
+    report["shard"] = {{"index", shard->index},   {"count", shard->count}, {"first_sample", first},
+                       {"samples", last - first}, {"total_samples", frame.size()}};
+    cli::writeShardSamples(cli::samplesFileOf(args.report), hw.samples, ref.samples);
+    fmt::print("  shard               {}/{}: samples {}..{} of {} (samples in {})\n", shard->index, shard->count,
+               first, last, frame.size(), cli::samplesFileOf(args.report));
+    figures.finish(report);
+    return;
+  }
   if (!args.image.empty()) {
     writePng(samplesToImage(hw.samples, camera.width(), camera.height(), sampling), args.image);
     fmt::print("  image               {} (from the model's hits)\n", args.image);
@@ -450,12 +481,6 @@ void runSampled(const Args& args, const RunClock& clock, const Scene& scene, con
              args.pfm);
     fmt::print("  linear image        {} (PFM)\n", args.pfm);
   }
-  nlohmann::json report = figures.toJson();
-  report.update({{"integrator", args.integrator},
-                 {args.integrator, options},
-                 {"image_rel_mse", mse},
-                 {"self_hits", hw.selfHits},
-                 {"float_reference", ref.toJson()}});
   figures.finish(report);
 }
 
@@ -601,6 +626,13 @@ void run(Args args) {
   const auto hostStart = std::chrono::steady_clock::now();
   const Scene scene = args.scene.load();
   const Quantizer quantizer(scene.bounds, args.latticeMargin);
+  if (!args.shard.empty()) {
+    cli::parseShard(args.shard);
+    if (args.integrator == "whitted") {
+      throw InputError("--shard: the Whitted loop's area-light samples follow the waves' order; shard an ao or path run");
+    }
+    if (args.report.empty()) throw InputError("--shard needs --report: lancer merge reads the shards' reports");
+  }
   if (args.integrator != "whitted") {
     if (!args.source.fromCamera()) {
       throw InputError(fmt::format("--integrator {} traces from camera rays: it takes no --rays file", args.integrator));
@@ -610,16 +642,16 @@ void run(Args args) {
     if (args.integrator == "ao") {
       checkAoOptions(args.ao);
       runSampled(args, clock, scene, quantizer, hostStart,
-                 [&](std::span<const Ray> eye, WaveTracer& t, const WaveProgress& p) {
-                   return traceAo(scene, args.ao, eye, t, p);
+                 [&](std::span<const Ray> eye, WaveTracer& t, const WaveProgress& p, uint32_t first) {
+                   return traceAo(scene, args.ao, eye, t, p, first);
                  },
                  args.ao.toJson(scene),
                  fmt::format("{} occlusion rays a hit within {:g}", args.ao.rays, args.ao.distanceFor(scene)));
     } else {
       checkPathOptions(args.path);
       runSampled(args, clock, scene, quantizer, hostStart,
-                 [&](std::span<const Ray> eye, WaveTracer& t, const WaveProgress& p) {
-                   return tracePath(scene, args.path, eye, t, p);
+                 [&](std::span<const Ray> eye, WaveTracer& t, const WaveProgress& p, uint32_t first) {
+                   return tracePath(scene, args.path, eye, t, p, first);
                  },
                  args.path.toJson(),
                  fmt::format("{} paths a sample, depth {}, Russian roulette from bounce {}", args.path.spp,
@@ -721,6 +753,9 @@ void addRunCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--pfm", args->pfm, "ao, path: the linear image as PFM (the PNG of --image is tone-mapped)");
   cmd->add_option("--ref-image", args->refImage, "ao, path: the float reference's image (PNG), beside --image");
+  cmd->add_option("--shard", args->shard,
+                  "ao, path: trace shard I of N of the frame's camera samples (I/N); lancer merge joins the shards' "
+                  "reports into the whole frame's, bit for bit");
   cmd->add_option("--sampler-seed", args->samplerSeed,
                   "Key of the integrators' counter-based sampler (the same rays for every model, unit count and "
                   "thread count)")

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   lancer::cli::addTraceCommand(app);
   lancer::cli::addBenchCommand(app);
   lancer::cli::addRunCommand(app);
+  lancer::cli::addMergeCommand(app);
   lancer::cli::addSpdCommand(app);
   lancer::cli::addConvertCommand(app);
   lancer::cli::addSweepCommand(app);

@@ -114,6 +114,7 @@ void addRenderCommand(CLI::App& app);
 void addTraceCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addRunCommand(CLI::App& app);
+void addMergeCommand(CLI::App& app);
 void addSpdCommand(CLI::App& app);
 void addConvertCommand(CLI::App& app);
 void addSweepCommand(CLI::App& app);  // sweep, sweep-job, sweep-merge, crack-rays

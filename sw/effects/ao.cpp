@@ -29,7 +29,7 @@ void checkAoOptions(const AoOptions& options) {
 }
 
 IntegratorResult traceAo(const Scene& scene, const AoOptions& options, std::span<const Ray> cameraSamples,
-                         WaveTracer& tracer, const WaveProgress& progress) {
+                         WaveTracer& tracer, const WaveProgress& progress, uint32_t firstSample) {
   checkAoOptions(options);
   const Sampler sampler(options.seed);
   const float distance = options.distanceFor(scene);
@@ -47,7 +47,7 @@ IntegratorResult traceAo(const Scene& scene, const AoOptions& options, std::span
     }
     const SurfacePoint s = surfaceAt(scene, r.ray, *h);
     for (int i = 0; i < options.rays; ++i) {
-      const glm::vec2 u = sampler.uniform2(r.sample, /*pass=*/0, /*bounce=*/0, uint32_t(i));
+      const glm::vec2 u = sampler.uniform2(firstSample + r.sample, /*pass=*/0, /*bounce=*/0, uint32_t(i));
       const glm::vec3 dir = glm::normalize(aboutNormal(s.normal, cosineHemisphere(u)));
       WaveRay ao;
       ao.ray = Ray{s.point, dir, distance};

@@ -34,8 +34,9 @@ void checkAoOptions(const AoOptions& options);
 // Two waves: the camera rays (class Camera), then the occlusion rays of
 // their hits (class Ao), drawn from the counter-based sampler (effects/sampler.h)
 // keyed by the camera sample and the ray's index: the same rays whatever the
-// tracer, given the same hits.
+// tracer, given the same hits. `cameraSamples` are the frame's samples from
+// number `firstSample` on (a shard of it: lancer run --shard).
 IntegratorResult traceAo(const Scene& scene, const AoOptions& options, std::span<const Ray> cameraSamples,
-                         WaveTracer& tracer, const WaveProgress& progress = {});
+                         WaveTracer& tracer, const WaveProgress& progress = {}, uint32_t firstSample = 0);
 
 }  // namespace lancer

@@ -36,8 +36,9 @@ float largest(const glm::vec3& v) { return std::max({v.x, v.y, v.z}); }
 // The integrator's state across waves: the scene's lights and the sampler.
 class PathLoop {
  public:
-  PathLoop(const Scene& scene, const PathOptions& options, IntegratorResult& out)
-      : scene_(scene), options_(options), out_(out), sampler_(options.seed), emitters_(emittersOf(scene)) {}
+  PathLoop(const Scene& scene, const PathOptions& options, IntegratorResult& out, uint32_t firstSample)
+      : scene_(scene), options_(options), out_(out), sampler_(options.seed), emitters_(emittersOf(scene)),
+        firstSample_(firstSample) {}
 
   void answer(const WaveRay& r, const std::optional<Hit>& h, uint32_t k, std::vector<WaveRay>& next) {
     if (r.cls == RayClass::Shadow) {
@@ -53,8 +54,9 @@ class PathLoop {
     // camera, or through a mirror or glass.
     if (s.front && (fromCamera(r.cls) || r.specular)) out_.samples[r.sample] += r.weight * s.material.emission;
     const uint32_t bounce = r.depth - 1;  // the camera ray's hit is bounce 0's
-    const std::array<float, 4> u0 = sampler_.uniform4(r.sample, r.pass, bounce, 0);  // light, its point, lobe
-    const std::array<float, 4> u1 = sampler_.uniform4(r.sample, r.pass, bounce, 1);  // direction, roulette
+    const uint32_t sample = firstSample_ + r.sample;  // the frame's, whatever the shard
+    const std::array<float, 4> u0 = sampler_.uniform4(sample, r.pass, bounce, 0);  // light, its point, lobe
+    const std::array<float, 4> u1 = sampler_.uniform4(sample, r.pass, bounce, 1);  // direction, roulette
     sampleLight(r, s, *h, k, {u0[0], u0[1], u0[2]}, next);
     if (int(r.depth) < options_.maxDepth) continuePath(r, s, *h, k, u0[3], {u1[0], u1[1]}, u1[2], next);
   }
@@ -182,12 +184,13 @@ class PathLoop {
   IntegratorResult& out_;
   Sampler sampler_;
   std::vector<Emitter> emitters_;
+  uint32_t firstSample_;
 };
 
 }  // namespace
 
 IntegratorResult tracePath(const Scene& scene, const PathOptions& options, std::span<const Ray> cameraSamples,
-                           WaveTracer& tracer, const WaveProgress& progress) {
+                           WaveTracer& tracer, const WaveProgress& progress, uint32_t firstSample) {
   checkPathOptions(options);
   if (scene.lights.empty() && emittersOf(scene).empty() && scene.background == glm::vec3(0.0f)) {
     throw InputError(fmt::format("{}: nothing lights the scene for the path integrator (no lights, no emissive "
@@ -211,7 +214,7 @@ IntegratorResult tracePath(const Scene& scene, const PathOptions& options, std::
       wave.push_back(r);
     }
   }
-  PathLoop loop(scene, options, out);
+  PathLoop loop(scene, options, out, firstSample);
   traceWaves(std::move(wave), tracer, out,
              [&](const WaveRay& r, const std::optional<Hit>& h, uint32_t k, std::vector<WaveRay>& next) {
                loop.answer(r, h, k, next);

@@ -48,7 +48,9 @@ void checkPathOptions(const PathOptions& options);
 // until no path goes on. A sample's colour is the mean of its paths'. Throws
 // InputError for a scene nothing lights (no light, no emitter, a black
 // background), or a camera wave of more than 2^24 rays.
+// `cameraSamples` are the frame's samples from number `firstSample` on (a
+// shard of it: lancer run --shard).
 IntegratorResult tracePath(const Scene& scene, const PathOptions& options, std::span<const Ray> cameraSamples,
-                           WaveTracer& tracer, const WaveProgress& progress = {});
+                           WaveTracer& tracer, const WaveProgress& progress = {}, uint32_t firstSample = 0);
 
 }  // namespace lancer
