@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "common/progress.h"
 #include "driver/candidates.h"
 #include "driver/report.h"
 #include "golden/isect.h"
@@ -154,7 +155,9 @@ void HardwareWaveTracer::trace(int generation, std::span<const WaveRay> rays, st
     wave[i] = latticeRay(rays[i], i);
     if (!wave[i] && !fromCamera(rays[i].cls)) ++originsOutside_;
   }
-  // One job per class (bounces by number), so each class's cycles and steps are its own.
+  // One job per class (bounces by number), so each class's cycles and steps
+  // are its own; a bar over the wave on a terminal.
+  Progress progress(fmt::format("wave {}", generation), rays.size());
   std::map<ClassKey, std::vector<uint32_t>> byClass;
   for (uint32_t i = 0; i < rays.size(); ++i) byClass[keyOf(rays[i])].push_back(i);
   for (const auto& [cls, members] : byClass) {
@@ -164,7 +167,7 @@ void HardwareWaveTracer::trace(int generation, std::span<const WaveRay> rays, st
       batch[k] = wave[members[k]];
       anyHitRays |= rays[members[k]].anyHit;
     }
-    const JobResult job = path_->run(batch);
+    const JobResult job = path_->run(batch, [&](size_t n) { progress.advance(n); });
     ClassHardwareStats& s = record(cls).stats;
     s.add(job, batch);
     cycleAccurate_ = cycleAccurate_ && job.cycleAccurate;
@@ -188,6 +191,7 @@ void HardwareWaveTracer::trace(int generation, std::span<const WaveRay> rays, st
       s.closestHitTests += closest.intersectionTests;
     }
   }
+  progress.finish();
   wave_ = std::move(wave);
   waveHits_ = std::move(waveHits);
 }
