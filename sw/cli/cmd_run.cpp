@@ -705,7 +705,7 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--model", args->job.model,
                   "Model of the hardware: golden, systemc (cycle models on value ports), rtl (Verilated), "
                   "rtl-systemc (Verilated in the SystemC kernel), systemc-pins (the cycle models on signals in the "
-                  "kernel; traversal units)")
+                  "kernel)")
       ->check(CLI::IsMember({"golden", "systemc", "rtl", "rtl-systemc", "systemc-pins"}))
       ->capture_default_str();
   cmd->add_option_function<double>(
