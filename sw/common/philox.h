@@ -7,7 +7,7 @@
 // directly, on any thread, in any order: what makes the integrators' rays
 // independent of the model, the unit count, the dispatch order, the threads
 // and the shard (docs/incoherent.md). Checked against the Random123 library's
-// known-answer vectors (tests/effects/sampler_test.cpp).
+// known-answer vectors (tests/effects/integrators_test.cpp).
 
 #include <array>
 #include <cstdint>

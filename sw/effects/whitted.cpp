@@ -220,48 +220,27 @@ WhittedResult traceWhitted(const Scene& scene, const EffectsPlan& plan, std::spa
   }
   WhittedResult out;
   out.samples.assign(cameraSamples.size(), glm::vec3(0.0f));
-  std::vector<WaveRay> wave = cameraWave(cameraSamples, RayClass::Primary);
   Loop loop(scene, plan, out);
-  std::vector<std::optional<Hit>> hits;
-  std::vector<WaveRay> next;
-  for (int generation = 0; !wave.empty(); ++generation) {
-    hits.assign(wave.size(), std::nullopt);
-    tracer.trace(generation, wave, hits);
-    if (hits.size() != wave.size()) {
-      throw std::logic_error(fmt::format("wave tracer answered {} of the {} rays of generation {}", hits.size(),
-                                         wave.size(), generation));
+  IntegratorResult waves;
+  const auto answer = [&](const WaveRay& r, const std::optional<Hit>& h, uint32_t k, std::vector<WaveRay>& next) {
+    if (!h) {
+      out.samples[r.sample] += r.cls == RayClass::Shadow ? r.weight : r.weight * scene.background;  // a light seen
+      return;
     }
-    out.waveRays.push_back(wave.size());
-    next.clear();
-    for (uint32_t k = 0; k < wave.size(); ++k) {
-      const WaveRay& r = wave[k];
-      const std::optional<Hit>& h = hits[k];
-      auto& counts = out.classes[size_t(r.cls)];
-      ++counts.rays;
-      if (!h) {
-        if (r.cls == RayClass::Shadow) {
-          out.samples[r.sample] += r.weight;  // the light is visible
-        } else {
-          out.samples[r.sample] += r.weight * scene.background;
-        }
-        continue;
-      }
-      ++counts.hits;
-      if (h->prim >= scene.size()) {
-        throw std::logic_error(fmt::format("wave tracer: ray {} of generation {} hit triangle {} of {}", k,
-                                           generation, h->prim, scene.size()));
-      }
-      if (r.cls != RayClass::Primary && h->prim == r.originPrim) ++out.selfHits;
-      if (r.cls == RayClass::Shadow) {
-        ++out.shadowRaysBlocked;
-        continue;
-      }
-      if (r.cls == RayClass::Primary) ++out.eyeHitRays;
-      loop.shade(r, *h, k, next);
+    if (h->prim >= scene.size()) {
+      throw std::logic_error(fmt::format("wave tracer: ray {} hit triangle {} of {}", k, h->prim, scene.size()));
     }
-    if (progress) progress(generation, wave.size());
-    wave.swap(next);
-  }
+    if (r.cls == RayClass::Shadow) {
+      ++out.shadowRaysBlocked;
+      return;
+    }
+    if (r.cls == RayClass::Primary) ++out.eyeHitRays;
+    loop.shade(r, *h, k, next);
+  };
+  traceWaves(cameraWave(cameraSamples, RayClass::Primary), tracer, waves, answer, progress);
+  for (const auto& [key, counts] : waves.classes) out.classes[size_t(key.cls)] = {counts.rays, counts.hits};
+  out.waveRays = std::move(waves.waveRays);
+  out.selfHits = waves.selfHits;
   return out;
 }
 

@@ -6,10 +6,8 @@
 # fails with why.
 # Usage: render_shards_slurm.sh BUILD WORKDIR
 set -euo pipefail
-build=$1; work=$2
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
-source "$root/tests/support/slurm_cluster.sh"
-start_slurm_cluster "$work"
+source "$(dirname "${BASH_SOURCE[0]}")/../support/slurm_cluster.sh"
+begin_slurm_test "$@"
 "$root/scripts/render-shards" --short --build "$build" --out "$work/local"
 "$root/scripts/render-shards" --short --build "$build" --out "$work/slurm" --executor slurm --wait
 cmp "$work/local/frame.png" "$work/slurm/frame.png"

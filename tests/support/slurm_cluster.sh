@@ -17,3 +17,11 @@ start_slurm_cluster() {
   fi
   export SLURM_CONF=$SLURM_CLUSTER_DIR/slurm.conf
 }
+
+# A Slurm test's start, for tests called as `test.sh BUILD WORKDIR`: sets
+# `build`, `work` and `root` (the source tree) and starts the cluster in WORKDIR.
+begin_slurm_test() {
+  build=$1; work=$2
+  root=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
+  start_slurm_cluster "$work"
+}

@@ -1,7 +1,8 @@
-// The integrators' counter-based sampler (effects/sampler.h) and ambient
-// occlusion on the float reference (effects/ao.h): Philox4x32-10 against the
-// Random123 library's known answers, the directions it draws, and AO's waves,
-// counts, determinism and bad options.
+// The integrators on the float reference: their counter-based sampler
+// (effects/sampler.h: Philox4x32-10 against the Random123 library's known
+// answers, the directions it draws); ambient occlusion (effects/ao.h) and the
+// path tracer (effects/path.h): their waves and classes, determinism,
+// convergence, and bad options.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 #include "common/error.h"
 #include "common/philox.h"
 #include "effects/ao.h"
+#include "effects/path.h"
 #include "effects/ref_tracer.h"
 #include "effects/sampler.h"
 #include "ref/bvh.h"
@@ -76,27 +78,37 @@ TEST(Sampler, CosineHemisphereAboutAnyNormal) {
 
 // ---- Ambient occlusion on the float reference ------------------------------------
 
-struct AoRun {
+// The Cornell box's camera samples, size x size, and the integrators on the float reference.
+struct CornellRun {
   Scene scene = makeCornellBox();
   std::vector<Ray> camera;
-  AoRun() {
+  explicit CornellRun(int size = 24) {
     CameraOptions o;
-    o.width = 24;
-    o.height = 24;
+    o.width = size;
+    o.height = size;
     camera = frameScene(scene, o).generateRays(Sampling::Centers);
   }
-  IntegratorResult run(const AoOptions& options) {
+  IntegratorResult ao(const AoOptions& options) {
+    return trace([&](WaveTracer& t) { return traceAo(scene, options, camera, t); });
+  }
+  IntegratorResult path(const PathOptions& options) {
+    return trace([&](WaveTracer& t) { return tracePath(scene, options, camera, t); });
+  }
+
+ private:
+  template <class Integrator>
+  IntegratorResult trace(Integrator integrator) {
     const Bvh bvh(scene, AccelOptions{});
     RefWaveTracer tracer(scene, bvh);
-    return traceAo(scene, options, camera, tracer);
+    return integrator(tracer);
   }
 };
 
 TEST(AmbientOcclusion, TwoWavesOfTheirClassesAndValuesInTheUnitInterval) {
-  AoRun r;
+  CornellRun r;
   AoOptions o;
   o.rays = 6;
-  const IntegratorResult result = r.run(o);
+  const IntegratorResult result = r.ao(o);
   ASSERT_EQ(result.waveRays.size(), 2u);
   const auto& camera = result.classes.at(RayClass::Camera);
   const auto& ao = result.classes.at(RayClass::Ao);
@@ -115,32 +127,101 @@ TEST(AmbientOcclusion, TwoWavesOfTheirClassesAndValuesInTheUnitInterval) {
 }
 
 TEST(AmbientOcclusion, TheSameImageEveryRunAndAnotherForAnotherSeed) {
-  AoRun r;
+  CornellRun r;
   AoOptions o;
   o.rays = 4;
-  const IntegratorResult a = r.run(o), b = r.run(o);
+  const IntegratorResult a = r.ao(o), b = r.ao(o);
   EXPECT_EQ(a.samples, b.samples);
   EXPECT_EQ(relativeMse(a.samples, b.samples), 0.0);
   o.seed = 2;
-  const IntegratorResult c = r.run(o);
+  const IntegratorResult c = r.ao(o);
   EXPECT_NE(a.samples, c.samples);
   EXPECT_GT(relativeMse(c.samples, a.samples), 0.0);
   EXPECT_LT(relativeMse(c.samples, a.samples), 0.2);  // the same picture, other noise
 }
 
 TEST(AmbientOcclusion, BadOptionsNameTheOption) {
-  AoRun r;
+  CornellRun r;
   for (const auto& [rays, distance, option] : {std::tuple{0, 0.0f, "--ao-rays 0"}, {kMaxAoRays + 1, 0.0f, "--ao-rays"},
                                                {4, -1.0f, "--ao-distance -1"}, {4, NAN, "--ao-distance nan"}}) {
     AoOptions o;
     o.rays = rays;
     o.distance = distance;
     try {
-      r.run(o);
+      r.ao(o);
       ADD_FAILURE() << option << ": accepted";
     } catch (const InputError& e) {
       EXPECT_EQ(std::string(e.what()).rfind(option, 0), 0u) << e.what();
     }
+  }
+}
+
+// ---- The path tracer on the float reference -----------------------------------------
+
+TEST(PathTracer, CameraRaysThenBouncesAndShadowRaysUpToTheDepth) {
+  CornellRun r(16);
+  PathOptions o;
+  o.spp = 3;
+  o.maxDepth = 4;
+  const IntegratorResult result = r.path(o);
+  EXPECT_EQ(result.classes.at(RayClass::Camera).rays, r.camera.size() * 3);
+  EXPECT_GT(result.classes.at(RayClass::Shadow).rays, 0u);  // the box's lamp and point light
+  EXPECT_GT(result.classes.at(ClassKey(RayClass::Bounce, 1)).rays, 0u);
+  EXPECT_TRUE(result.classes.contains(ClassKey(RayClass::Bounce, 3)));
+  EXPECT_FALSE(result.classes.contains(ClassKey(RayClass::Bounce, 4)));  // depth 4: the camera ray and 3 bounces
+  EXPECT_LE(result.waveRays.size(), 5u);
+  EXPECT_EQ(result.selfHits, 0u);
+  for (const glm::vec3& v : result.samples) {
+    EXPECT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z));
+    EXPECT_GE(std::min({v.x, v.y, v.z}), 0.0f);
+  }
+  o.maxDepth = 1;  // direct light only
+  const IntegratorResult direct = r.path(o);
+  EXPECT_FALSE(direct.classes.contains(ClassKey(RayClass::Bounce, 1)));
+}
+
+TEST(PathTracer, TheSameImageEveryRunAndConvergingWithMorePaths) {
+  CornellRun r(16);
+  PathOptions o;
+  o.spp = 2;
+  EXPECT_EQ(r.path(o).samples, r.path(o).samples);
+  o.spp = 64;
+  const IntegratorResult reference = r.path(o);
+  o.spp = 1;
+  const double one = relativeMse(r.path(o).samples, reference.samples);
+  o.spp = 8;
+  const double eight = relativeMse(r.path(o).samples, reference.samples);
+  EXPECT_GT(one, 0.0);
+  EXPECT_LT(eight, 0.5 * one);  // the error falls about as 1 / spp
+}
+
+TEST(PathTracer, BadOptionsNameTheOption) {
+  CornellRun r(16);
+  const auto fails = [&](PathOptions o, const std::string& start) {
+    try {
+      r.path(o);
+      ADD_FAILURE() << start << ": accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(start, 0), 0u) << e.what();
+    }
+  };
+  PathOptions o;
+  o.spp = 0;
+  fails(o, "--spp 0");
+  o = {};
+  o.maxDepth = kMaxPathDepth + 1;
+  fails(o, "--max-depth");
+  o = {};
+  o.rrDepth = 0;
+  fails(o, "--rr-depth 0");
+  o = {};
+  o.spp = kMaxSpp;  // 576 samples x 65536 paths: more than one wave may hold
+  CornellRun big(24);
+  try {
+    big.path(o);
+    ADD_FAILURE() << "--spp 65536 at 24x24: accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("--spp 65536: 576 camera samples", 0), 0u) << e.what();
   }
 }
 
