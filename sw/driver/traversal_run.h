@@ -496,7 +496,7 @@ class ChipRun {
     memory_.tick();
     shared_.dispatcher.refill();
     bool progress = false;
-    bool drained = memory_.idle();
+    bool drained = true;
     uint64_t results = 0;
     for (size_t u = 0; u < units_.size(); ++u) {
       progress |= progress_[u] != 0;
@@ -506,7 +506,7 @@ class ChipRun {
     if (progress) lastProgress_ = memory_.cycle();
     if (failed_.load()) {
       stop_ = true;
-    } else if (results == shared_.rays.size() && drained) {
+    } else if (results == shared_.rays.size() && drained && memory_.idle()) {  // (the memory's scan last: it is long)
       stop_ = true;
     } else if (memory_.cycle() - lastProgress_ > kTraversalWatchdogCycles) {
       stop_ = true;
