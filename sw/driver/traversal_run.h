@@ -223,6 +223,12 @@ class UnitRun {
   // progress (a ray accepted, a test, a visit or a result).
   bool cycle(mem::MemorySystem& memory) {
     unit_.select();
+    // A visit on offer (a registered output) goes to its ray's trace below: the
+    // trace is a cache miss, fetched while the inputs settle.
+    if (top_.visit_valid_o) {
+      const size_t k = size_t(uint32_t(uint64_t(portValue(top_.visit_data_o)) >> kVisitRayLsb));
+      if (k < shared_.traces.size()) __builtin_prefetch(&shared_.traces[k]);
+    }
     const uint64_t now = memory.cycle();
     offerRay(now);
     const bool resReady = !stim_.stallRes();
