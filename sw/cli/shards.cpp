@@ -1,6 +1,5 @@
 #include "cli/shards.h"
 
-#include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <fstream>

@@ -199,6 +199,7 @@ class UnitRun {
   static constexpr size_t kResWords = size_t(fx::wireWords(fx::recordBits(Desc::kResFields)));
   static constexpr size_t kVisitWords = size_t(fx::wireWords(fx::recordBits(kVisitFields)));
   static constexpr size_t kFirstVisits = 16;  // a ray's visit list starts this long
+  static size_t visitRay(uint64_t visit) { return uint32_t(visit >> kVisitRayLsb); }  // {ray_id, element}
 
  public:
   UnitRun(Clocked& unit, int index, const Ports& ports, ChipRays& shared, const TraversalRunOptions& options,
@@ -226,7 +227,7 @@ class UnitRun {
     // A visit on offer (a registered output) goes to its ray's trace below: the
     // trace is a cache miss, fetched while the inputs settle.
     if (top_.visit_valid_o) {
-      const size_t k = size_t(uint32_t(uint64_t(portValue(top_.visit_data_o)) >> kVisitRayLsb));
+      const size_t k = visitRay(uint64_t(portValue(top_.visit_data_o)));
       if (k < shared_.traces.size()) __builtin_prefetch(&shared_.traces[k]);
     }
     const uint64_t now = memory.cycle();
@@ -408,7 +409,7 @@ class UnitRun {
 
   bool takeVisit(uint64_t now) {
     const uint64_t visit = top_.visit_data_o;  // {ray_id, element}
-    const size_t k = ownRay(uint32_t(visit >> kVisitRayLsb), "visit record", false);
+    const size_t k = ownRay(visitRay(visit), "visit record", false);
     std::vector<uint32_t>& visits = shared_.traces[k].visits;
     if (visits.empty()) visits.reserve(kFirstVisits);  // one allocation for most walks, not five
     visits.push_back(uint32_t((visit >> kVisitIdLsb) & kVisitIdMask));

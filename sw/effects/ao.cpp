@@ -1,5 +1,6 @@
 #include "effects/ao.h"
 
+#include <array>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -46,8 +47,10 @@ IntegratorResult traceAo(const Scene& scene, const AoOptions& options, std::span
       return;
     }
     const SurfacePoint s = surfaceAt(scene, r.ray, *h);
+    std::array<float, 4> draws{};  // one Philox evaluation serves two rays (dimensions 2i, 2i + 1)
     for (int i = 0; i < options.rays; ++i) {
-      const glm::vec2 u = sampler.uniform2(firstSample + r.sample, /*pass=*/0, /*bounce=*/0, uint32_t(i));
+      if (i % 2 == 0) draws = sampler.uniform4(firstSample + r.sample, /*pass=*/0, /*bounce=*/0, uint32_t(i / 2));
+      const glm::vec2 u = i % 2 == 0 ? glm::vec2(draws[0], draws[1]) : glm::vec2(draws[2], draws[3]);
       const glm::vec3 dir = glm::normalize(aboutNormal(s.normal, cosineHemisphere(u)));
       WaveRay ao;
       ao.ray = Ray{s.point, dir, distance};

@@ -64,6 +64,12 @@ class PathLoop {
  private:
   size_t lightCount() const { return scene_.lights.size() + emitters_.size(); }
 
+ public:
+  // Something lights the scene: a light, an emitter, or the background.
+  bool lit() const { return lightCount() != 0 || scene_.background != glm::vec3(0.0f); }
+
+ private:
+
   // The lobes a light sample can meet (diffuse, glossy) at wi, times pi: the
   // response to a light of unit colour from wi, cos excluded.
   glm::vec3 response(const SurfacePoint& s, const glm::vec3& wi) const {
@@ -192,7 +198,9 @@ class PathLoop {
 IntegratorResult tracePath(const Scene& scene, const PathOptions& options, std::span<const Ray> cameraSamples,
                            WaveTracer& tracer, const WaveProgress& progress, uint32_t firstSample) {
   checkPathOptions(options);
-  if (scene.lights.empty() && emittersOf(scene).empty() && scene.background == glm::vec3(0.0f)) {
+  IntegratorResult out;
+  PathLoop loop(scene, options, out, firstSample);
+  if (!loop.lit()) {
     throw InputError(fmt::format("{}: nothing lights the scene for the path integrator (no lights, no emissive "
                                  "triangles and a black background, which is its environment light)",
                                  scene.name));
@@ -202,7 +210,6 @@ IntegratorResult tracePath(const Scene& scene, const PathOptions& options, std::
                                  "the resolution",
                                  options.spp, cameraSamples.size(), options.spp, kMaxWaveRays));
   }
-  IntegratorResult out;
   out.samples.assign(cameraSamples.size(), glm::vec3(0.0f));
   const std::vector<WaveRay> camera = cameraWave(cameraSamples, RayClass::Camera);
   std::vector<WaveRay> wave;
@@ -214,7 +221,6 @@ IntegratorResult tracePath(const Scene& scene, const PathOptions& options, std::
       wave.push_back(r);
     }
   }
-  PathLoop loop(scene, options, out, firstSample);
   traceWaves(std::move(wave), tracer, out,
              [&](const WaveRay& r, const std::optional<Hit>& h, uint32_t k, std::vector<WaveRay>& next) {
                loop.answer(r, h, k, next);
