@@ -459,7 +459,8 @@ void runSampled(const Args& args, const RunClock& clock, const Scene& scene, con
                          {args.integrator, options},      {"width", camera.width()},
                          {"height", camera.height()},    {"sampling", toString(sampling)},
                          {"pos_bits", fx::kPosBits},     {"dir_bits", fx::kDirBits},
-                         {"units", args.job.units},      {"memory", args.chip.memory}};
+                         {"units", args.job.units},      {"memory", args.chip.memory},
+                         {"schedule", toString(args.job.schedule)}};
     report["shard"] = {{"index", shard->index},   {"count", shard->count}, {"first_sample", first},
                        {"samples", last - first}, {"total_samples", frame.size()}};
     cli::writeShardSamples(cli::samplesFileOf(args.report), hw.samples, ref.samples);

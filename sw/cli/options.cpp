@@ -185,14 +185,21 @@ void ChipArgs::add(CLI::App& app, JobConfig& job) {
   opt("--dram-channels", job.memory.dram.channels, "hierarchy: DRAM channels (lines interleaved)");
   opt("--dram-queue", job.memory.dram.queueDepth, "hierarchy: requests queued per DRAM channel");
   opt("--dispatch-batch", job.dispatchBatch, "Consecutive rays the dispatcher hands a unit at once");
+  opt("--schedule", schedule,
+      "The order the dispatcher hands a wave's rays out: fifo (as they come) or sorted (by direction octant and "
+      "origin; docs/scheduling.md)");
   opt("--host-threads", job.hostThreads, "Host threads clocking the units (0: one per core, at most one per unit; docs/chip.md)");
 }
 
-void ChipArgs::apply(JobConfig& job) const { job.memory.kind = mem::parseMemoryKind(memory); }
+void ChipArgs::apply(JobConfig& job) const {
+  job.memory.kind = mem::parseMemoryKind(memory);
+  job.schedule = parseSchedule(schedule);
+}
 
 std::string ChipArgs::replayOptions(const JobConfig& job) {
   std::string out;
   if (job.units != 1) out += fmt::format(" --units {}", job.units);
+  if (job.schedule != Schedule::Fifo) out += fmt::format(" --schedule {}", toString(job.schedule));
   if (job.memory.kind == mem::MemoryKind::Fixed) return out;
   const mem::MemoryConfig& m = job.memory;
   return out + fmt::format(" --memory hierarchy --l1-kib {} --l1-ways {} --l1-line-bytes {} --l1-mshrs {} --l1-latency {} "

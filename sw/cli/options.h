@@ -81,8 +81,9 @@ struct RaySource {
 // job starts (checkChipOptions), each message naming its option.
 struct ChipArgs {
   std::string memory = "fixed";
+  std::string schedule = "fifo";
   void add(CLI::App& app, JobConfig& job);
-  // The memory kind into `job` (InputError for an unknown --memory).
+  // The memory kind and the schedule into `job` (InputError for an unknown --memory or --schedule).
   void apply(JobConfig& job) const;
   // The chip's options as typed, for a replay command (empty for one unit on the fixed memory).
   static std::string replayOptions(const JobConfig& job);

@@ -26,6 +26,8 @@ ChipFigures& ChipFigures::operator+=(const ChipFigures& o) {
   addPerUnit(unitRays, o.unitRays);
   addPerUnit(unitBusyCycles, o.unitBusyCycles);
   stats += o.stats;
+  schedule = o.schedule;
+  sort += o.sort;
   return *this;
 }
 
@@ -56,9 +58,17 @@ nlohmann::json ChipFigures::toJson(uint64_t cycles, uint64_t rays, double clockH
                       {"rays_per_second", r.raysPerSecond},
                       {"dram_bytes", stats.dramBytes},
                       {"dram_bytes_per_ray", r.dramBytesPerRay},
+                      {"footprint_bytes_per_ray", ratio(double(stats.footprintBytes), double(rays))},
                       {"dram_gbps_used", r.dramGbps},
                       {"memory", memory},
-                      {"memory_stats", stats}};
+                      {"memory_stats", stats},
+                      {"schedule", toString(schedule)}};
+  if (schedule == Schedule::Sorted) {
+    // The rate with the chip's estimated sort added to the cycles, beside the rate without it.
+    j["sort"] = sort;
+    j["rays_per_second_with_sort"] = ratio(double(rays), double(cycles + sort.chipCycles) / clockHz);
+    j["dram_bytes_per_ray_with_sort"] = ratio(double(stats.dramBytes + sort.dramBytes), double(rays));
+  }
   if (memory.kind == mem::MemoryKind::Hierarchy) {
     j["l1_hit_rate"] = stats.l1Total().hitRate();
     j["l2_hit_rate"] = stats.l2.hitRate();
@@ -77,6 +87,14 @@ std::string ChipFigures::summary(uint64_t cycles, uint64_t rays, double clockHz)
   std::string out = fmt::format("  chip                {} unit{}, {:.1f} M rays/s; units busy {:.0f}% on average (least {:.0f}%)\n",
                                 units(), units() == 1 ? "" : "s", r.raysPerSecond / 1e6,
                                 100.0 * ratio(busySum, double(units())), 100.0 * busyMin);
+  if (schedule == Schedule::Sorted) {
+    out += fmt::format("  schedule            sorted: {} rays in {} sorts; host sort {:.3f} s; a chip's sort "
+                       "~{} cycles, {:.1f} MB of DRAM (estimate; {:.1f} M rays/s with it)\n",
+                       sort.rays, sort.sorts, sort.hostSeconds, sort.chipCycles, double(sort.dramBytes) / 1e6,
+                       ratio(double(rays), double(cycles + sort.chipCycles) / clockHz) / 1e6);
+  } else {
+    out += "  schedule            fifo: rays in the order they come\n";
+  }
   if (memory.kind == mem::MemoryKind::Fixed) {
     return out + fmt::format("  memory              fixed, {} cycles (+0..{} jitter)\n", memory.fixedLatency,
                              memory.fixedJitter);
@@ -85,8 +103,10 @@ std::string ChipFigures::summary(uint64_t cycles, uint64_t rays, double clockHz)
                      "DRAM {:g} GB/s\n",
                      memory.l1.kib, 100.0 * stats.l1Total().hitRate(), memory.l2.kib, 100.0 * stats.l2.hitRate(),
                      memory.dram.gbps);
-  out += fmt::format("  DRAM                {:.1f} MB, {:.0f} bytes/ray, {:.2f} GB/s used ({:.0f}% of the bandwidth)\n",
-                     double(stats.dramBytes) / 1e6, r.dramBytesPerRay, r.dramGbps, 100.0 * r.dramGbps / memory.dram.gbps);
+  out += fmt::format("  DRAM                {:.1f} MB, {:.0f} bytes/ray, {:.2f} GB/s used ({:.0f}% of the bandwidth); "
+                     "footprint {:.0f} bytes/ray\n",
+                     double(stats.dramBytes) / 1e6, r.dramBytesPerRay, r.dramGbps, 100.0 * r.dramGbps / memory.dram.gbps,
+                     ratio(double(stats.footprintBytes), double(rays)));
   out += fmt::format("  stalls (cycles)     L1 full {}, L2 bank {}, L2 MSHRs {}, DRAM queue full {}, DRAM queued {}\n",
                      stats.l1FullCycles, stats.l2BankWaitCycles, stats.l2MshrFullCycles, stats.dramQueueFullCycles,
                      stats.dramQueueWaitCycles);

@@ -16,6 +16,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "driver/schedule.h"
 #include "driver/traversal_device.h"
 #include "golden/unit.h"
 #include "memory/address_map.h"
@@ -73,6 +74,8 @@ struct ChipFigures {
   mem::MemoryConfig memory;
   std::vector<uint64_t> unitRays, unitBusyCycles;  // per unit
   mem::MemoryStats stats;
+  Schedule schedule = Schedule::Fifo;
+  SortCost sort;  // schedule sorted: what ordering the rays cost
 
   int units() const { return int(unitRays.size()); }
   ChipFigures& operator+=(const ChipFigures& o);

@@ -133,7 +133,13 @@ std::unique_ptr<HardwarePath> makeHardwarePath(fx::UnitKind path, const Scene& s
     using Unit = decltype(unit);
     if (Unit::kKind == path) made = std::make_unique<TraversalPath<Unit>>(scene, quantizer, config);
   });
-  return made ? std::move(made) : std::make_unique<IsectPath>(scene, quantizer, config);
+  if (made) return made;
+  if (config.schedule != Schedule::Fifo) {
+    throw InputError(fmt::format("--schedule {}: the isect path has no dispatcher (the host's BVH hands the pipeline "
+                                 "its pairs ray by ray); schedules are for the traversal units",
+                                 toString(config.schedule)));
+  }
+  return std::make_unique<IsectPath>(scene, quantizer, config);
 }
 
 JobResult runJob(fx::UnitKind path, const Scene& scene, std::span<const Ray> rays,

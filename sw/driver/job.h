@@ -68,6 +68,7 @@ struct JobConfig {
   // clockMhz is the run's; the fixed model's latency is memLatency's.
   int units = 1;
   int dispatchBatch = 32;
+  Schedule schedule = Schedule::Fifo;  // the order the dispatcher hands rays out (driver/schedule.h)
   int hostThreads = 1;
   mem::MemoryConfig memory;
   // Rays per model run, per unit: a chip of N units runs N times as many at

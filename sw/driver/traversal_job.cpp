@@ -76,25 +76,32 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
                                  config.memLatencyJitter));
   }
   JobResult job;
-  job.rays.resize(rays.size());
+  job.rays.assign(rays.begin(), rays.end());
   job.hits.resize(rays.size());
+  for (size_t i = 0; i < rays.size(); ++i) {
+    if (job.rays[i]) job.rays[i]->q.id = uint32_t(i);
+  }
   TraversalRunOptions options = traversalOptionsOf(config);
   checkChipOptions(options);
   options.sharedMemory = sharedMemory;
+  // The schedule's order of the whole job; the batches are its runs.
+  auto start = std::chrono::steady_clock::now();
+  const std::vector<uint32_t> order = dispatchOrder(config.schedule, job.rays);
+  SortCost sort;
+  if (config.schedule == Schedule::Sorted) {
+    sort = chipSortCost(order.size(), memoryConfigOf(options));
+    sort.hostSeconds = secondsSince(start);
+  }
+  if (onProgress && order.size() < rays.size()) onProgress(rays.size() - order.size());  // outside the lattice
   TraversalRunStats total;
   std::vector<fx::QRay> batch;
   std::vector<fx::TraversalTrace> modelTraces, goldenTraces;
   const size_t raysPerBatch = config.raysPerBatch * size_t(config.units);
-  for (size_t begin = 0; begin < rays.size(); begin += raysPerBatch) {
-    const size_t end = std::min(rays.size(), begin + raysPerBatch);
+  for (size_t begin = 0; begin < order.size(); begin += raysPerBatch) {
+    const size_t end = std::min(order.size(), begin + raysPerBatch);
     batch.clear();
-    for (size_t i = begin; i < end; ++i) {
-      job.rays[i] = rays[i];
-      if (!job.rays[i]) continue;
-      job.rays[i]->q.id = uint32_t(i);
-      batch.push_back(job.rays[i]->q);
-    }
-    auto start = std::chrono::steady_clock::now();
+    for (size_t k = begin; k < end; ++k) batch.push_back(job.rays[order[k]]->q);
+    start = std::chrono::steady_clock::now();
     total += model.run(image, batch, modelTraces, options);
     job.modelSeconds += secondsSince(start);
     start = std::chrono::steady_clock::now();
@@ -139,7 +146,8 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
     job.addCounter("rays_in_flight", "rays in flight",
                    config.raysInFlight ? config.raysInFlight : model.maxRaysInFlight());
     if (!total.unitRays.empty()) {
-      job.chip = ChipFigures{memoryConfigOf(options), total.unitRays, total.unitBusyCycles, total.memory};
+      job.chip = ChipFigures{memoryConfigOf(options), total.unitRays, total.unitBusyCycles, total.memory,
+                             config.schedule, sort};
     }
   }
   return job;

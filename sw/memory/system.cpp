@@ -1,6 +1,8 @@
 #include "memory/system.h"
 
 #include <algorithm>
+#include <atomic>
+#include <bit>
 #include <cmath>
 #include <deque>
 #include <unordered_map>
@@ -40,6 +42,8 @@ MemoryStats& MemoryStats::operator+=(const MemoryStats& o) {
   reads += o.reads;
   dramLines += o.dramLines;
   dramBytes += o.dramBytes;
+  footprintLines += o.footprintLines;
+  footprintBytes += o.footprintBytes;
   l1FullCycles += o.l1FullCycles;
   l2BankWaitCycles += o.l2BankWaitCycles;
   l2MshrFullCycles += o.l2MshrFullCycles;
@@ -57,6 +61,8 @@ void to_json(nlohmann::json& j, const MemoryStats& s) {
   j = {{"reads", s.reads},
        {"dram_lines", s.dramLines},
        {"dram_bytes", s.dramBytes},
+       {"footprint_lines", s.footprintLines},
+       {"footprint_bytes", s.footprintBytes},
        {"stall_cycles",
         {{"l1_full", s.l1FullCycles},
          {"l2_bank_wait", s.l2BankWaitCycles},
@@ -128,6 +134,8 @@ class HierarchyMemory final : public MemorySystem {
       : MemorySystem(units), config_(c), map_(map), banks_(size_t(c.l2.banks)), channels_(size_t(c.dram.channels)),
         l2Tags_(uint64_t(c.l2.kib) * 1024, c.l2.ways, c.l1.lineBytes) {
     lineBytes_ = uint64_t(c.l1.lineBytes);
+    firstLine_ = AddressMap::kBase / lineBytes_;
+    touched_ = std::vector<std::atomic<uint64_t>>(size_t((map.end() / lineBytes_ + 1 - firstLine_ + 63) / 64));
     for (int p = 0; p < kPorts; ++p) {
       const uint32_t bytes = map.span(Port(p), 0).bytes;
       maxLines_[size_t(p)] = int((bytes + lineBytes_ - 2) / lineBytes_ + 1);  // a read at any offset
@@ -157,6 +165,7 @@ class HierarchyMemory final : public MemorySystem {
     const uint64_t seq = c.headSeq + c.queue.size();
     Entry& e = c.queue.emplace_back(Entry{record, tag, 0, now_ + uint64_t(config_.l1.hitLatency)});
     for (uint64_t line = span.first / lineBytes_; line <= (span.first + span.bytes - 1) / lineBytes_; ++line) {
+      touch(line);
       ++c.stats.accesses;
       if (c.tags.lookup(line)) {
         ++c.stats.hits;
@@ -216,6 +225,7 @@ class HierarchyMemory final : public MemorySystem {
   }
 
   void clearStats() override {
+    for (std::atomic<uint64_t>& w : touched_) w.store(0, std::memory_order_relaxed);
     stats_ = MemoryStats{};
     stats_.l1.assign(size_t(units_), {});
     for (L1& c : l1s_) {
@@ -231,6 +241,8 @@ class HierarchyMemory final : public MemorySystem {
       s.reads += l1s_[i].reads;
       s.l1FullCycles += l1s_[i].refusedCycles;
     }
+    for (const std::atomic<uint64_t>& w : touched_) s.footprintLines += uint64_t(std::popcount(w.load(std::memory_order_relaxed)));
+    s.footprintBytes = s.footprintLines * lineBytes_;
     return s;
   }
 
@@ -279,6 +291,14 @@ class HierarchyMemory final : public MemorySystem {
   size_t bankOf(uint64_t line) const { return size_t(line % banks_.size()); }
   size_t channelOf(uint64_t line) const { return size_t((line / banks_.size()) % channels_.size()); }
   double nowPs() const { return double(now_) * periodPs_; }
+  // The line into the run's footprint. Units may call request() on threads of
+  // their own: the bitmap's words are set atomically (a union, whatever the order).
+  void touch(uint64_t line) {
+    const uint64_t i = line - firstLine_;
+    std::atomic<uint64_t>& word = touched_[size_t(i / 64)];
+    const uint64_t bit = uint64_t(1) << (i % 64);
+    if (!(word.load(std::memory_order_relaxed) & bit)) word.fetch_or(bit, std::memory_order_relaxed);
+  }
 
   // One lookup per bank and cycle, oldest first: a hit goes back to its L1
   // `latency` cycles later; a miss takes an MSHR and a place in its DRAM
@@ -365,6 +385,8 @@ class HierarchyMemory final : public MemorySystem {
   MemoryConfig config_;
   AddressMap map_;
   uint64_t lineBytes_;
+  uint64_t firstLine_;                          // the image's first line (AddressMap::kBase)
+  std::vector<std::atomic<uint64_t>> touched_;  // a bit per line of the image: read in this run
   std::array<int, kPorts> maxLines_{};
   std::vector<L1> l1s_;  // unit-major: l1s_[unit * kPorts + port]
   std::vector<Bank> banks_;

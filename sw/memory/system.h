@@ -43,6 +43,11 @@ struct MemoryStats {
   uint64_t reads = 0;          // requests the units made
   uint64_t dramLines = 0;      // lines DRAM returned
   uint64_t dramBytes = 0;
+  // The lines of the image the units read, each counted once per run: a run's
+  // footprint. No schedule of the run's rays reads fewer from DRAM than its
+  // footprint less what the caches held when it began (docs/scheduling.md).
+  uint64_t footprintLines = 0;
+  uint64_t footprintBytes = 0;
   // Stall causes, in cycles summed over what waited:
   uint64_t l1FullCycles = 0;       // a unit's request refused: its L1 had no free MSHR or queue entry
   uint64_t l2BankWaitCycles = 0;   // line requests waiting behind another in an L2 bank

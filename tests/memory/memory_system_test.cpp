@@ -178,6 +178,11 @@ TEST(HierarchyMemory, EveryRequestAnsweredOnceInOrderAndTheCountersBalance) {
     EXPECT_EQ(s.l2.accesses, s.l2.hits + s.l2.misses + s.l2.merges);
     EXPECT_EQ(s.dramLines, s.l2.misses);
     EXPECT_EQ(s.dramBytes, s.dramLines * uint64_t(c.l1.lineBytes));
+    // The footprint: each line read counted once; a cold system read each from DRAM at least once.
+    EXPECT_GT(s.footprintLines, 0u);
+    EXPECT_LE(s.footprintLines, l1.misses);
+    EXPECT_LE(s.footprintLines, s.dramLines);
+    EXPECT_EQ(s.footprintBytes, s.footprintLines * uint64_t(c.l1.lineBytes));
     EXPECT_GT(l1.hits, 0u);
     EXPECT_GT(s.l2.misses, 0u);
     all += s;
@@ -237,6 +242,13 @@ TEST(HierarchyMemory, AColdReadTakesEveryLevelsLatency) {
   EXPECT_EQ(memory->cycle() - asked, 2u);
   EXPECT_EQ(record, 1u);
   EXPECT_EQ(memory->stats().l1Total().hits, 1u);
+  // Two reads of one line: a footprint of one line, until the stats are cleared.
+  EXPECT_EQ(memory->stats().footprintLines, 1u);
+  EXPECT_EQ(memory->stats().footprintBytes, 64u);
+  memory->clearStats();
+  EXPECT_EQ(memory->stats().footprintLines, 0u);
+  memory->request(0, Port::Triangle, 0, 7);
+  EXPECT_GE(memory->stats().footprintLines, 1u);
 }
 
 // Unit 0 of the fixed model is the single-unit run's three ports.
