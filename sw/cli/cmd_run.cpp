@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <algorithm>
+#include <limits>
 #include <memory>
 #include <numeric>
 #include <optional>
@@ -718,7 +719,7 @@ void addRunCommand(CLI::App& app) {
   fx::forEachTraversalUnit([&](auto unit) {
     for (const fx::BuildOption& o : decltype(unit)::buildOptions()) {
       CLI::Option* option = cmd->add_option(o.flag, args->job.accel.*o.field, o.help);
-      if (o.positive) option->check(CLI::PositiveNumber);
+      option->check(o.positive ? CLI::Range(1, std::numeric_limits<int>::max()) : CLI::Range(0, std::numeric_limits<int>::max()));
     }
   });
   cmd->add_option("--mem-latency", args->job.memLatency, "Memory latency of the traversal units, in cycles")

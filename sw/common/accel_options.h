@@ -10,6 +10,7 @@ struct AccelOptions {
   int octreeMaxDepth = 0;  // 1..kMaxOctreeDepth
   int octreeLeafSize = 0;  // split a node holding more triangles than this
   int bvhLeafSize = 4;     // largest leaf the SAH builder may make
+  int bvhTreeletBytes = 0; // BVH unit: the treelet layout's node bytes per treelet (0: depth-first layout)
 };
 
 }  // namespace lancer

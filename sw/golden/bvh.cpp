@@ -1,6 +1,9 @@
 #include "golden/bvh.h"
 
 #include <algorithm>
+#include <bit>
+#include <limits>
+#include <queue>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -184,6 +187,89 @@ BvhImage buildBvhImage(std::vector<QTriangle> triangles, int leafSize) {
   }
   checkBvhImageFits(image);
   return image;
+}
+
+namespace {
+
+// The surface area of child c's box as its parent frames it: the share of
+// rays that enter it, up to a constant (the greedy treelets' priority).
+double childArea(const BvhNode& node, int c) {
+  const std::array<int64_t, 3> lo = node.childLo(c), hi = node.childHi(c);
+  const double x = double(hi[0] - lo[0]), y = double(hi[1] - lo[1]), z = double(hi[2] - lo[2]);
+  return x * y + y * z + z * x;
+}
+
+// The treelets of the tree, each its nodes in depth-first order; treelets in
+// the depth-first order of their roots.
+std::vector<std::vector<uint32_t>> formTreelets(const std::vector<BvhNode>& nodes, uint32_t blockNodes) {
+  std::vector<std::vector<uint32_t>> treelets;
+  if (nodes.empty()) return treelets;
+  std::priority_queue<uint32_t, std::vector<uint32_t>, std::greater<>> roots;
+  roots.push(0);
+  using Frontier = std::pair<double, uint32_t>;  // (area, ~index): the largest area, then the lowest index
+  while (!roots.empty()) {
+    const uint32_t root = roots.top();
+    roots.pop();
+    std::vector<uint32_t> members{root};
+    std::priority_queue<Frontier> frontier;
+    const auto open = [&](uint32_t index) {
+      for (int c = 0; c < kBvhWidth; ++c) {
+        const BvhRef& ref = nodes[index].child[size_t(c)];
+        if (!ref.leaf) frontier.emplace(childArea(nodes[index], c), ~ref.first);
+      }
+    };
+    open(root);
+    while (members.size() < blockNodes && !frontier.empty()) {
+      const uint32_t next = ~frontier.top().second;
+      frontier.pop();
+      members.push_back(next);
+      open(next);
+    }
+    for (; !frontier.empty(); frontier.pop()) roots.push(~frontier.top().second);
+    std::sort(members.begin(), members.end());
+    treelets.push_back(std::move(members));
+  }
+  return treelets;
+}
+
+}  // namespace
+
+void layoutBvhTreelets(BvhImage& image, uint32_t blockNodes) {
+  if (!std::has_single_bit(blockNodes)) {
+    throw InputError(fmt::format("BVH treelet blocks of {} nodes: a block must be a power of two", blockNodes));
+  }
+  // Triangles in leaf order.
+  std::vector<QTriangle> triangles(image.indices.size());
+  for (size_t i = 0; i < image.indices.size(); ++i) {
+    triangles[i] = image.triangles[image.indices[i]];
+    image.indices[i] = uint32_t(i);
+  }
+  image.triangles = std::move(triangles);
+  // Treelets, packed next-fit into the blocks.
+  const std::vector<std::vector<uint32_t>> treelets = formTreelets(image.nodes, blockNodes);
+  std::vector<uint32_t> placed(image.nodes.size());
+  uint64_t block = 0, used = 0;
+  for (const std::vector<uint32_t>& t : treelets) {
+    if (used + t.size() > blockNodes) {
+      ++block;
+      used = 0;
+    }
+    for (size_t k = 0; k < t.size(); ++k) placed[t[k]] = uint32_t(block * blockNodes + used + k);
+    used += t.size();
+  }
+  std::vector<BvhNode> nodes(image.nodes.empty() ? 0 : size_t(block * blockNodes + used));
+  for (size_t i = 0; i < image.nodes.size(); ++i) {
+    BvhNode node = image.nodes[i];
+    for (BvhRef& child : node.child) {
+      if (!child.leaf) child.first = placed[child.first];
+    }
+    nodes[placed[i]] = node;
+  }
+  image.paddingNodes = nodes.size() - image.nodes.size();
+  image.nodes = std::move(nodes);
+  image.treeletNodes = blockNodes;
+  image.treelets = treelets.size();
+  checkBvhImageFits(image);
 }
 
 void checkBvhImageFits(const BvhImage& image, int addrBits) {

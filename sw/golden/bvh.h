@@ -48,6 +48,12 @@ struct BvhImage {
   std::vector<QTriangle> triangles;  // by triangle id
   int depth = 0;                     // levels, root = 1
   size_t leaves = 0;
+  // The treelet layout (layoutBvhTreelets); 0 treeletNodes: the depth-first layout.
+  uint32_t treeletNodes = 0;         // node-table entries of a treelet block (a power of two)
+  size_t treelets = 0;               // connected subtrees, packed into the blocks
+  size_t paddingNodes = 0;           // unused entries inside the blocks (never read)
+  // The treelet block of interior node `index` (the treelet layout only).
+  uint32_t blockOf(uint32_t index) const { return index / treeletNodes; }
 };
 
 inline constexpr int kDefaultBvhLeafSize = 4;
@@ -57,6 +63,20 @@ inline constexpr int kDefaultBvhLeafSize = 4;
 // Throws InputError for a leaf size outside 1..kBvhMaxLeafSize, or an image
 // that does not fit kMemAddrBits.
 BvhImage buildBvhImage(std::vector<QTriangle> triangles, int leafSize);
+
+// The treelet layout (docs/scheduling.md, "The treelet layout"): the tree
+// cut greedily into treelets of at most `blockNodes` interior nodes (Aila &
+// Karras 2010: from a treelet's root, the frontier child with the largest
+// surface area joins until the treelet is full; the children left over root
+// new treelets), packed in depth-first order into aligned blocks of
+// `blockNodes` node-table entries (a block may hold several small treelets;
+// entries left over are padding, never read), each treelet's nodes in
+// depth-first order inside its block. The triangle table is put in leaf order
+// (the index list then counts 0, 1, 2, ...), so a leaf's triangles are
+// adjacent. Every ray walks the same nodes in the same order to the same hit;
+// only the node-table indices and the triangles' places change.
+// `blockNodes` must be a power of two (InputError otherwise).
+void layoutBvhTreelets(BvhImage& image, uint32_t blockNodes);
 
 // Throws InputError, naming the first region that overflows, unless the node
 // table, the index list and the triangle table each fit `addrBits` address

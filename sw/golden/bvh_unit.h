@@ -35,16 +35,31 @@ struct BvhUnit : UnitBase<UnitKind::Bvh, BvhImage, BvhNode, kBvhNodeFields, kBvh
     return {image.root.leaf ? 1u : 0u, image.root.count, image.root.first};
   }
 
-  // --bvh-leaf: the largest leaf the SAH builder may make.
+  // --bvh-leaf: the largest leaf the SAH builder may make; --bvh-treelet-bytes:
+  // the treelet layout (layoutBvhTreelets), blocks of the most nodes (a power
+  // of two) in that many bytes.
   static std::vector<BuildOption> buildOptions() {
     return {{"--bvh-leaf", &AccelOptions::bvhLeafSize,
              fmt::format("BVH unit's largest leaf, 1..{} triangles (default {})", kBvhMaxLeafSize,
                          kDefaultBvhLeafSize),
-             true, {"bvh_leaf_size"}}};
+             true, {"bvh_leaf_size"}},
+            {"--bvh-treelet-bytes", &AccelOptions::bvhTreeletBytes,
+             fmt::format("BVH unit's treelet layout: node bytes of a treelet block, at least one node ({} bytes); "
+                         "0: depth-first (docs/scheduling.md)", kNodeBytes),
+             false, {"bvh_treelet_bytes"}, false}};
   }
+  static constexpr uint32_t kNodeBytes = uint32_t(kBvhNodeBits + 7) / 8;
   static_assert(AccelOptions{}.bvhLeafSize == kDefaultBvhLeafSize, "a replay omits --bvh-leaf at the default");
   static Image build(std::vector<QTriangle> triangles, const AccelOptions& options) {
-    return buildBvhImage(std::move(triangles), options.bvhLeafSize ? options.bvhLeafSize : kDefaultBvhLeafSize);
+    Image image = buildBvhImage(std::move(triangles), options.bvhLeafSize ? options.bvhLeafSize : kDefaultBvhLeafSize);
+    if (options.bvhTreeletBytes != 0) {
+      if (options.bvhTreeletBytes < int(kNodeBytes)) {
+        throw InputError(fmt::format("--bvh-treelet-bytes {}: a treelet holds at least one node ({} bytes)",
+                                     options.bvhTreeletBytes, kNodeBytes));
+      }
+      layoutBvhTreelets(image, std::bit_floor(uint32_t(options.bvhTreeletBytes) / kNodeBytes));
+    }
+    return image;
   }
 
   static void checkImage(const Image& image, std::span<const QRay> rays) {
@@ -73,8 +88,11 @@ struct BvhUnit : UnitBase<UnitKind::Bvh, BvhImage, BvhNode, kBvhNodeFields, kBvh
   static std::vector<ImageCounter> imageCounters(const Image& image) {
     return {{"bvh_depth", "BVH depth", double(image.depth)},
             {"bvh_leaf_size", "BVH leaf size", double(image.leafSize)},
-            {"bvh_nodes", "BVH interior nodes", double(image.nodes.size())},
-            {"bvh_leaves", "BVH leaves", double(image.leaves)}};
+            {"bvh_nodes", "BVH interior nodes", double(image.nodes.size() - image.paddingNodes)},
+            {"bvh_leaves", "BVH leaves", double(image.leaves)},
+            {"bvh_treelet_bytes", "BVH treelet block bytes", double(image.treeletNodes * kNodeBytes)},
+            {"bvh_treelets", "BVH treelets", double(image.treelets)},
+            {"bvh_treelet_padding_nodes", "BVH treelet padding nodes", double(image.paddingNodes)}};
   }
 };
 

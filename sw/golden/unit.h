@@ -145,13 +145,15 @@ constexpr UnitNames unitNames(const UnitWords& words) {
 // the image was built with. A replay's command line repeats it where it differs
 // from AccelOptions' default; the sweep's reference trace passes the reported
 // value to `lancer trace` (the float structure takes the same flag) when the
-// counters agree.
+// counters agree, for the options that shape the tree (not the ones that only
+// lay it out in memory).
 struct BuildOption {
   const char* flag;
   int AccelOptions::*field;
   std::string help;                     // in `lancer run --help`
-  bool positive;                        // refused unless > 0
+  bool positive;                        // refused unless > 0 (else unless >= 0)
   std::vector<const char*> reportKeys;  // "bvh_leaf_size"; the grid's three axes
+  bool shapesReference = true;          // the float structure takes it too (`lancer trace`); not a layout's
 };
 
 // A figure of a unit's memory image (the grid's resolution, the octree's depth).

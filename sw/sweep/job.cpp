@@ -107,6 +107,7 @@ std::string executeJob(const std::string& out, const Spec& spec, const Job& job)
     fx::forEachTraversalUnit([&](auto unit) {
       if (job.unit != decltype(unit)::kNames.unit) return;
       for (const fx::BuildOption& o : decltype(unit)::buildOptions()) {
+        if (!o.shapesReference) continue;
         const int64_t value = r.value(o.reportKeys.front(), 0);
         for (const char* key : o.reportKeys) comparable = comparable && r.value(key, 0) == value;
         comparable = comparable && value > 0;

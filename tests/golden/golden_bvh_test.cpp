@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
+#include <map>
 #include <random>
 
 #include <fmt/format.h>
@@ -399,6 +401,90 @@ TEST(GoldenBvh, AnImageBeyondTheAddressWidthIsOneLineError) {
   EXPECT_NE(nodes.find(fmt::format("the node table needs {} entries (at most 2)", image.nodes.size())),
             std::string::npos)
       << nodes;
+}
+
+}  // namespace
+}  // namespace lancer::fx
+
+namespace lancer::fx {
+namespace {
+
+// ---- The treelet layout (layoutBvhTreelets) --------------------------------------------------
+// The interior nodes reachable from `ref`, each with the block of its parent.
+void collectInterior(const BvhImage& image, const BvhRef& ref, std::vector<uint32_t>& out) {
+  if (ref.leaf) return;
+  out.push_back(ref.first);
+  for (const BvhRef& child : image.nodes[ref.first].child) collectInterior(image, child, out);
+}
+
+class GoldenBvhTreelets : public ::testing::TestWithParam<uint32_t> {};
+
+// Every ray walks the same path to the same hit: the same tests, the same
+// leaves (index-list entries) in the same order, the interior nodes mapped one
+// to one; every node reachable once, in the node table's blocks, each block
+// at most its size; the triangles in leaf order.
+TEST_P(GoldenBvhTreelets, EveryRayWalksTheSameTreeToTheSameHit) {
+  const uint32_t blockNodes = GetParam();
+  static const std::vector<QTriangle> tris = quantizeScene(loadScene(test::kBunny));
+  const BvhImage plain = buildBvhImage(tris, 4);
+  BvhImage laid = plain;
+  layoutBvhTreelets(laid, blockNodes);
+  EXPECT_EQ(laid.treeletNodes, blockNodes);
+  EXPECT_EQ(laid.nodes.size(), plain.nodes.size() + laid.paddingNodes);
+  EXPECT_GE(laid.treelets, (plain.nodes.size() + blockNodes - 1) / blockNodes);
+  EXPECT_EQ(laid.root.first, 0u) << "the root is node 0";
+  for (size_t i = 0; i < laid.indices.size(); ++i) {
+    ASSERT_EQ(laid.indices[i], i);
+    ASSERT_EQ(laid.triangles[i], plain.triangles[plain.indices[i]]) << "leaf order";
+  }
+  std::vector<uint32_t> reachable;
+  collectInterior(laid, laid.root, reachable);
+  ASSERT_EQ(reachable.size(), plain.nodes.size());
+  std::sort(reachable.begin(), reachable.end());
+  EXPECT_EQ(std::adjacent_find(reachable.begin(), reachable.end()), reachable.end()) << "each node once";
+  std::map<uint32_t, uint32_t> perBlock;
+  for (uint32_t n : reachable) ++perBlock[laid.blockOf(n)];
+  for (const auto& [block, count] : perBlock) EXPECT_LE(count, blockNodes) << "block " << block;
+  EXPECT_EQ(reachable.size() + laid.paddingNodes, laid.nodes.size());
+
+  std::mt19937_64 rng{blockNodes};
+  std::map<uint32_t, uint32_t> mapped;  // plain node -> laid node, as the walks meet them
+  for (uint32_t i = 0; i < 600; ++i) {
+    QRay ray = randomLatticeRay(rng, i);
+    ray.anyHit = i % 3 == 0;
+    const TraversalTrace a = traverseBvh(plain, ray), b = traverseBvh(laid, ray);
+    ASSERT_EQ(a.hit, b.hit) << "ray " << i;
+    ASSERT_EQ(a.tests, b.tests) << "ray " << i;
+    ASSERT_EQ(a.visits.size(), b.visits.size()) << "ray " << i;
+    for (size_t k = 0; k < a.visits.size(); ++k) {
+      const bool leaf = (a.visits[k] & kBvhLeafVisit) != 0;
+      ASSERT_EQ(leaf, (b.visits[k] & kBvhLeafVisit) != 0);
+      if (leaf) {
+        ASSERT_EQ(a.visits[k], b.visits[k]) << "ray " << i << " leaf " << k;
+      } else {
+        const auto [it, fresh] = mapped.try_emplace(a.visits[k], b.visits[k]);
+        ASSERT_EQ(it->second, b.visits[k]) << "ray " << i << ": node " << a.visits[k] << " maps to one node";
+      }
+    }
+  }
+}
+INSTANTIATE_TEST_SUITE_P(BlockSizes, GoldenBvhTreelets, ::testing::Values(1u, 2u, 16u, 256u, 4096u));
+
+TEST(GoldenBvhTreelets, TheBudgetIsAtLeastOneNodeAndBlocksArePowersOfTwo) {
+  const std::vector<QTriangle> tris = quantizeScene(makeCornellBox());
+  BvhImage image = buildBvhImage(tris, 2);
+  EXPECT_THROW(layoutBvhTreelets(image, 3), InputError);
+  AccelOptions options;
+  options.bvhTreeletBytes = int(BvhUnit::kNodeBytes) - 1;
+  try {
+    BvhUnit::build(tris, options);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), fmt::format("--bvh-treelet-bytes {}: a treelet holds at least one node ({} bytes)",
+                                                 BvhUnit::kNodeBytes - 1, BvhUnit::kNodeBytes));
+  }
+  options.bvhTreeletBytes = int(BvhUnit::kNodeBytes) * 5;  // 5 nodes: blocks of 4
+  EXPECT_EQ(BvhUnit::build(tris, options).treeletNodes, 4u);
 }
 
 }  // namespace
