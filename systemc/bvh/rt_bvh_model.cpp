@@ -41,8 +41,6 @@ fx::BvhRef unpackRef(const uint32_t* wire) {  // {leaf, count, first}
 
 }  // namespace
 
-rt_bvh_model::rt_bvh_model() : rt_trav_shell_model(rt_isect_impl::model) {}
-
 // One cycle: the shell's grants and responses, then the walk's events — at
 // most one state-changing event per slot, each reading that slot's registers
 // as they were at the start of the cycle —, then the shell's registers and outputs.
@@ -64,11 +62,7 @@ void rt_bvh_model::cycle() {
   if (answer.valid) takeBoxAnswer(answer);
   if (popping >= 0) pop(popping);
   finishLeaves(finishing);
-  if (g.done >= 0) finish(g.done);
-  if (loadSlot() >= 0) load(loadSlot());
-  if (g.alloc >= 0) setState(g.alloc, State::Setup);
-
-  endCycle(g, enter_.any());
+  endWalkCycle(g, enter_);
 }
 
 void rt_bvh_model::resetWalk() {
@@ -164,7 +158,7 @@ void rt_bvh_model::takeBoxAnswer(const BoxAnswer& a) {
   const size_t pick = both ? (a.hit[1].entry < a.hit[0].entry ? 1 : 0) : (a.hit[1].hit ? 1 : 0);
   if (both) {
     if (s.sp >= fx::kBvhStackDepth) fail(fmt::format("slot {}: the stack overflows ({} entries)", a.slot, fx::kBvhStackDepth));
-    s.stack[size_t(s.sp++)] = Candidate{a.child[1 - pick], a.hit[1 - pick].entry};
+    stacks_[size_t(a.slot)][size_t(s.sp++)] = Candidate{a.child[1 - pick], a.hit[1 - pick].entry};
   }
   candidate(a.slot, Candidate{a.child[pick], a.hit[pick].entry});
 }
@@ -176,7 +170,7 @@ void rt_bvh_model::pop(int k) {
     setState(k, State::Done);
     return;
   }
-  candidate(k, s.stack[size_t(--s.sp)]);
+  candidate(k, stacks_[size_t(k)][size_t(--s.sp)]);
 }
 
 // FETCH with every result in (as the cycle began): DONE for an any-hit ray with a hit, else POP.
@@ -187,22 +181,10 @@ void rt_bvh_model::finishLeaves(const slot_mask& finishing) {
   });
 }
 
-void rt_bvh_model::finish(int k) {
-  finishRay(k);
-  setState(k, State::Free);
-}
-
 // The candidate rule: CHECK if the slot is bound and the entry is not 0, else ENTER.
 void rt_bvh_model::candidate(int k, const Candidate& c) {
   slots_[size_t(k)].cur = c;
   setState(k, hit(k).wantsCheck() && c.entry != 0 ? State::Check : State::Enter);
-}
-
-// The state register with the request vectors derived from it.
-void rt_bvh_model::setState(int k, State next) {
-  mark(k, slots_[size_t(k)].state, false);
-  slots_[size_t(k)].state = next;
-  mark(k, next, true);
 }
 
 // The sets a slot in state `st` belongs to, joined or left.

@@ -5,7 +5,7 @@
 
 
 #include "bvh/rt_bvh_unit.h"
-#include "common/rt_trav_shell_model.h"
+#include "common/rt_walk_model.h"
 #include "golden/bvh.h"
 
 namespace lancer::sc {
@@ -28,11 +28,8 @@ namespace lancer::sc {
 // test fx::boxTest, the cull rule fx::culledBy, the closest-hit order
 // fx::closerResult, the test fx::intersect — the golden model's code,
 // scheduled as the RTL schedules it.
-class rt_bvh_model : public rt_trav_shell_model<rt_bvh_unit, /*RegRsp=*/false> {
- public:
-  rt_bvh_model();
-
- private:
+class rt_bvh_model : public rt_walk_model<rt_bvh_model, rt_bvh_unit, /*RegRsp=*/false> {
+  friend rt_walk_model;
   enum class State : uint8_t { Free, Setup, Enter, NodeReq, WaitNode, Box, Fetch, Pop, Check, Done };
 
   // A candidate node: its reference and its entry parameter.
@@ -50,8 +47,10 @@ class rt_bvh_model : public rt_trav_shell_model<rt_bvh_unit, /*RegRsp=*/false> {
     bool hitSeen = false;   // a result of the ray was a hit
     Candidate cur;
     int sp = 0;
-    std::array<Candidate, fx::kBvhStackDepth> stack{};
   };
+  // The stacks of all slots, one memory as in the RTL (and apart from the
+  // slots' registers, which every cycle reads: they stay small and near).
+  using Stack = std::array<Candidate, fx::kBvhStackDepth>;
 
   // rt_bvh_box's answer for one node response, BVH_BOX_LATENCY cycles later.
   struct BoxAnswer {
@@ -74,13 +73,13 @@ class rt_bvh_model : public rt_trav_shell_model<rt_bvh_unit, /*RegRsp=*/false> {
   void takeBoxAnswer(const BoxAnswer& a);
   void pop(int k);
   void finishLeaves(const slot_mask& finishing);
-  void finish(int k);
   void load(int k);
   void candidate(int k, const Candidate& c);
-  void setState(int k, State s);
+  State& stateOf(int k) { return slots_[size_t(k)].state; }
   void mark(int k, State st, bool join);
 
   std::array<Slot, N> slots_{};
+  std::array<Stack, N> stacks_{};
   // Slots by what they wait for: the want vectors, and fin_ (FETCH with every
   // result in: it ends in the next cycle).
   slot_mask enter_, nodeWant_, checkWant_, pop_, done_, fetch_, fin_;

@@ -29,8 +29,6 @@ constexpr fx::OctT kMinusInf{0, -1}, kPlusInf{0, 1};
 
 }  // namespace
 
-rt_octree_model::rt_octree_model() : rt_trav_shell_model(rt_isect_impl::model) {}
-
 // One cycle: the shell's grants and responses, then the walk's events — at
 // most one state-changing event per slot, each reading that slot's registers
 // as they were at the start of the cycle —, then the shell's registers and outputs.
@@ -49,11 +47,7 @@ void rt_octree_model::cycle() {
   if (g.check >= 0) check(g.check);
   advanceLanes(lanes);
   actOnTheirOwn(self);
-  if (g.done >= 0) finish(g.done);
-  if (loadSlot() >= 0) load(loadSlot());
-  if (g.alloc >= 0) setState(g.alloc, State::Setup);
-
-  endCycle(g, enter_.any());
+  endWalkCycle(g, enter_);
 }
 
 void rt_octree_model::resetWalk() {
@@ -151,18 +145,6 @@ void rt_octree_model::actOnTheirOwn(const slot_mask& self) {
       default: break;
     }
   });
-}
-
-void rt_octree_model::finish(int k) {
-  finishRay(k);
-  setState(k, State::Free);
-}
-
-// The state register with the request vectors and the self-acting set derived from it.
-void rt_octree_model::setState(int k, State next) {
-  mark(k, slots_[size_t(k)].state, false);
-  slots_[size_t(k)].state = next;
-  mark(k, next, true);
 }
 
 // The sets a slot in state `st` belongs to, joined or left.

@@ -5,7 +5,7 @@
 #include <string>
 
 
-#include "common/rt_trav_shell_model.h"
+#include "common/rt_walk_model.h"
 #include "golden/octree.h"
 #include "octree/rt_octree_unit.h"
 
@@ -37,11 +37,8 @@ namespace lancer::sc {
 // the arbiters find the next requester with bit scans, and only slots that act
 // on their own in a cycle (DESCEND, FETCH with every result in) or are granted
 // an advance lane are visited.
-class rt_octree_model : public rt_trav_shell_model<rt_octree_unit, /*RegRsp=*/false> {
- public:
-  rt_octree_model();
-
- private:
+class rt_octree_model : public rt_walk_model<rt_octree_model, rt_octree_unit, /*RegRsp=*/false> {
+  friend rt_walk_model;
   enum class State : uint8_t {
     Free, Setup, Enter, GroupReq, WaitGroup, Descend, Fetch, Check, Next, RefillReq, WaitRefill, Done
   };
@@ -83,9 +80,8 @@ class rt_octree_model : public rt_trav_shell_model<rt_octree_unit, /*RegRsp=*/fa
   void check(int k);
   void advanceLanes(const lanes_t& lanes);
   void actOnTheirOwn(const slot_mask& self);
-  void finish(int k);
   void load(int k);
-  void setState(int k, State s);
+  State& stateOf(int k) { return slots_[size_t(k)].state; }
   void mark(int k, State st, bool join);
   void enter(int k);
   void descend(int k);
