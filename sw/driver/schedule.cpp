@@ -73,11 +73,8 @@ std::vector<uint32_t> dispatchOrder(Schedule schedule, std::span<const std::opti
 }
 
 SortCost& SortCost::operator+=(const SortCost& o) {
-  rays += o.rays;
-  sorts += o.sorts;
-  hostSeconds += o.hostSeconds;
-  chipCycles += o.chipCycles;
-  dramBytes += o.dramBytes;
+  *this = {rays + o.rays, sorts + o.sorts, hostSeconds + o.hostSeconds, chipCycles + o.chipCycles,
+           dramBytes + o.dramBytes};
   return *this;
 }
 
@@ -96,14 +93,9 @@ SortCost chipSortCost(uint64_t rays, const mem::MemoryConfig& memory) {
 }
 
 void to_json(nlohmann::json& j, const SortCost& cost) {
-  j = {{"rays", cost.rays},
-       {"sorts", cost.sorts},
-       {"host_seconds", cost.hostSeconds},
-       {"chip_cycles_estimate", cost.chipCycles},
-       {"chip_dram_bytes_estimate", cost.dramBytes},
-       {"key_bits", kSortKeyBits},
-       {"passes", kSortPasses},
-       {"lanes", kSortLanes}};
+  j = {{"rays", cost.rays}, {"sorts", cost.sorts}, {"host_seconds", cost.hostSeconds},
+       {"chip_cycles_estimate", cost.chipCycles}, {"chip_dram_bytes_estimate", cost.dramBytes},
+       {"key_bits", kSortKeyBits}, {"passes", kSortPasses}, {"lanes", kSortLanes}};
 }
 
 }  // namespace lancer
