@@ -28,6 +28,7 @@ ChipFigures& ChipFigures::operator+=(const ChipFigures& o) {
   stats += o.stats;
   schedule = o.schedule;
   sort += o.sort;
+  treelets += o.treelets;
   return *this;
 }
 
@@ -63,6 +64,13 @@ nlohmann::json ChipFigures::toJson(uint64_t cycles, uint64_t rays, double clockH
                       {"memory", memory},
                       {"memory_stats", stats},
                       {"schedule", toString(schedule)}};
+  if (treelets.rays > 0) {
+    // Each crossing writes the walk's state to a queue and reads it back.
+    const double bytes = double(treelets.stateBits) / 8.0;
+    j["treelet_walk"] = {{"crossings_per_ray", ratio(double(treelets.crossings), double(treelets.rays))},
+                         {"state_bytes_per_crossing", ratio(bytes, double(treelets.crossings))},
+                         {"state_bytes_per_ray", ratio(bytes, double(treelets.rays))}};
+  }
   if (schedule == Schedule::Sorted) {
     // The rate with the chip's estimated sort added to the cycles, beside the rate without it.
     j["sort"] = sort;

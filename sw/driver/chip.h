@@ -76,6 +76,7 @@ struct ChipFigures {
   mem::MemoryStats stats;
   Schedule schedule = Schedule::Fifo;
   SortCost sort;  // schedule sorted: what ordering the rays cost
+  fx::TreeletCrossings treelets;  // a treelet layout: what a treelet schedule would move (golden walk)
 
   int units() const { return int(unitRays.size()); }
   ChipFigures& operator+=(const ChipFigures& o);

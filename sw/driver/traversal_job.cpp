@@ -94,6 +94,7 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
   }
   if (onProgress && order.size() < rays.size()) onProgress(rays.size() - order.size());  // outside the lattice
   TraversalRunStats total;
+  fx::TreeletCrossings treelets;
   std::vector<fx::QRay> batch;
   std::vector<fx::TraversalTrace> modelTraces, goldenTraces;
   const size_t raysPerBatch = config.raysPerBatch * size_t(config.units);
@@ -106,6 +107,9 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
     job.modelSeconds += secondsSince(start);
     start = std::chrono::steady_clock::now();
     golden.run(image, batch, goldenTraces, {});
+    if constexpr (requires { Unit::treeletCrossings(image, batch.front()); }) {
+      for (const fx::QRay& ray : batch) treelets += Unit::treeletCrossings(image, ray);
+    }
     job.goldenSeconds += secondsSince(start);
     for (size_t k = 0; k < batch.size(); ++k) {
       const uint32_t id = batch[k].id;
@@ -147,7 +151,7 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
                    config.raysInFlight ? config.raysInFlight : model.maxRaysInFlight());
     if (!total.unitRays.empty()) {
       job.chip = ChipFigures{memoryConfigOf(options), total.unitRays, total.unitBusyCycles, total.memory,
-                             config.schedule, sort};
+                             config.schedule, sort, treelets};
     }
   }
   return job;

@@ -83,6 +83,8 @@ struct Walker {
   const QRay& ray;
   const BvhRaySetup& setup;
   TraversalTrace& trace;
+  TreeletCrossings* crossings = nullptr;  // counted where the layout has treelet blocks
+  uint32_t block = 0;                      // the block the walk is in (the root's at the start)
 
   struct Entry {
     BvhRef ref;
@@ -98,6 +100,11 @@ struct Walker {
       next.reset();
       const auto bound = walkBound(ray, trace.hit);
       if (!(bound && culledBy(*bound, current.entry, setup))) {
+        if (crossings && !current.ref.leaf && image.blockOf(current.ref.first) != block) {
+          block = image.blockOf(current.ref.first);
+          ++crossings->crossings;
+          crossings->stateBits += uint64_t(bvhSuspendedBits(stack.size()));
+        }
         trace.visits.push_back(current.ref.visitId());
         if (current.ref.leaf) {
           if (testLeaf(current.ref)) return;
@@ -308,6 +315,16 @@ TraversalTrace traverseBvh(const BvhImage& image, const QRay& ray) {
   const BvhRaySetup setup = BvhRaySetup::setup(ray);
   Walker{image, ray, setup, trace}.run();
   return trace;
+}
+
+TreeletCrossings bvhTreeletCrossings(const BvhImage& image, const QRay& ray) {
+  TreeletCrossings crossings;
+  if (image.treeletNodes == 0) return crossings;
+  TraversalTrace trace;
+  const BvhRaySetup setup = BvhRaySetup::setup(ray);
+  Walker{image, ray, setup, trace, &crossings}.run();
+  crossings.rays = 1;
+  return crossings;
 }
 
 }  // namespace lancer::fx

@@ -6,6 +6,7 @@
 // it returns. docs/bvh-unit.md has the derivation.
 
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -77,6 +78,15 @@ BvhImage buildBvhImage(std::vector<QTriangle> triangles, int leafSize);
 // only the node-table indices and the triangles' places change.
 // `blockNodes` must be a power of two (InputError otherwise).
 void layoutBvhTreelets(BvhImage& image, uint32_t blockNodes);
+
+// The BVH walk's state when it leaves a treelet (TreeletCrossings): the ray,
+// its closest hit so far, the candidate node, the stack pointer and `stackEntries` entries.
+constexpr int bvhSuspendedBits(size_t stackEntries) {
+  constexpr int kEntry = kBvhRefBits + kBvhEntryBits;  // {reference, entry parameter}
+  return kIsectRayBits + kIsectResBits + kEntry * (1 + int(stackEntries)) + std::bit_width(unsigned(kBvhStackDepth));
+}
+// The crossings of `ray`'s walk over a treelet layout (none without one).
+TreeletCrossings bvhTreeletCrossings(const BvhImage& image, const QRay& ray);
 
 // Throws InputError, naming the first region that overflows, unless the node
 // table, the index list and the triangle table each fit `addrBits` address

@@ -74,6 +74,8 @@ struct BvhUnit : UnitBase<UnitKind::Bvh, BvhImage, BvhNode, kBvhNodeFields, kBvh
   }
 
   static TraversalTrace traverse(const Image& image, const QRay& ray) { return traverseBvh(image, ray); }
+  // The treelet layout's crossings of a ray's walk (none without the layout).
+  static TreeletCrossings treeletCrossings(const Image& image, const QRay& ray) { return bvhTreeletCrossings(image, ray); }
 
   // One node read per interior node entered (a leaf's reference is in its parent).
   struct NodeReads {

@@ -19,6 +19,21 @@ struct TraversalTrace {
   bool operator==(const TraversalTrace&) const = default;
 };
 
+// What a treelet schedule would move for rays (docs/scheduling.md, "The
+// treelet schedule"): how often their walks enter an interior node in another
+// treelet block than the one they are in (each a suspension and a
+// resumption), and the walk's state at each (the unit's own measure of it:
+// bvhSuspendedBits).
+struct TreeletCrossings {
+  uint64_t rays = 0;
+  uint64_t crossings = 0;
+  uint64_t stateBits = 0;  // summed over the crossings
+  TreeletCrossings& operator+=(const TreeletCrossings& o) {
+    *this = {rays + o.rays, crossings + o.crossings, stateBits + o.stateBits};
+    return *this;
+  }
+};
+
 // A traversal unit's result record, its fields unpacked in traversalResFields
 // order (ray id, elements visited, tests, hit, prim id, t_num, det, u_num,
 // v_num), into `trace` of the ray whose own id is `rayId`: the test count and

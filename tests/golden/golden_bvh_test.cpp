@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <functional>
 #include <map>
 #include <random>
@@ -469,6 +470,35 @@ TEST_P(GoldenBvhTreelets, EveryRayWalksTheSameTreeToTheSameHit) {
   }
 }
 INSTANTIATE_TEST_SUITE_P(BlockSizes, GoldenBvhTreelets, ::testing::Values(1u, 2u, 16u, 256u, 4096u));
+
+// A walk crosses into another block at each interior node of another block
+// than the one it is in: with one node a block, at every interior node but
+// the root; with one block for the whole tree, never; each crossing carries
+// at least the state of an empty stack.
+TEST(GoldenBvhTreelets, CrossingsAreTheInteriorNodesEnteredInAnotherBlock) {
+  const std::vector<QTriangle> tris = quantizeScene(makeCornellBox());
+  const BvhImage plain = buildBvhImage(tris, 1);
+  BvhImage single = plain, whole = plain;
+  layoutBvhTreelets(single, 1);
+  layoutBvhTreelets(whole, std::bit_ceil(uint32_t(plain.nodes.size())));
+  std::mt19937_64 rng{5};
+  TreeletCrossings all;
+  for (uint32_t i = 0; i < 300; ++i) {
+    const QRay ray = randomLatticeRay(rng, i);
+    EXPECT_EQ(bvhTreeletCrossings(plain, ray).rays, 0u) << "no layout, nothing counted";
+    EXPECT_EQ(bvhTreeletCrossings(whole, ray).crossings, 0u);
+    const TraversalTrace trace = traverseBvh(single, ray);
+    const uint64_t interior = uint64_t(std::count_if(trace.visits.begin(), trace.visits.end(),
+                                                     [](uint32_t v) { return (v & kBvhLeafVisit) == 0; }));
+    const TreeletCrossings c = bvhTreeletCrossings(single, ray);
+    ASSERT_EQ(c.rays, 1u);
+    ASSERT_EQ(c.crossings, interior > 0 ? interior - 1 : 0) << "ray " << i;
+    ASSERT_GE(c.stateBits, c.crossings * uint64_t(bvhSuspendedBits(0)));
+    all += c;
+  }
+  EXPECT_GT(all.crossings, 300u);
+  EXPECT_GT(all.stateBits, all.crossings * uint64_t(bvhSuspendedBits(0))) << "some crossings with a stack";
+}
 
 TEST(GoldenBvhTreelets, TheBudgetIsAtLeastOneNodeAndBlocksArePowersOfTwo) {
   const std::vector<QTriangle> tris = quantizeScene(makeCornellBox());
