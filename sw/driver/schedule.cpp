@@ -54,7 +54,7 @@ uint64_t rayOrderKey(const fx::QRay& ray) {
     octant |= uint64_t(ray.dir[size_t(a)] < 0) << a;
     morton |= spreadBits(uint64_t(ray.org[size_t(a)]) >> kDrop) << (2 - a);
   }
-  return (octant << (3 * kSortOriginBits)) | morton;
+  return (morton << 3) | octant;
 }
 
 std::vector<uint32_t> dispatchOrder(Schedule schedule, std::span<const std::optional<QuantizedRay>> rays) {

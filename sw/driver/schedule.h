@@ -27,10 +27,14 @@ std::string_view toString(Schedule schedule);
 Schedule parseSchedule(std::string_view name);
 std::vector<std::string> scheduleNames();
 
-// The `sorted` schedule's key of a ray: its direction octant (3 bits, the
-// most significant), then the Morton code of its origin's top kSortOriginBits
-// bits per axis. Rays with a key in common leave nearby points toward the same
-// octant, and so tend to enter the same nodes first.
+// The `sorted` schedule's key of a ray: the Morton code of its origin's top
+// kSortOriginBits bits per axis (x the most significant of each triple), then
+// its direction octant (3 bits, the least significant). Rays with a key in
+// common leave nearby points toward the same octant, and so tend to enter the
+// same nodes first; rays of neighbouring keys start near each other, so a run
+// of the chip covers a compact region of the scene (an octant-major key, which
+// spreads each run's rays over the whole scene, read more DRAM than fifo:
+// docs/scheduling.md).
 inline constexpr int kSortOriginBits = 10;
 inline constexpr int kSortKeyBits = 3 + 3 * kSortOriginBits;
 uint64_t rayOrderKey(const fx::QRay& ray);

@@ -32,21 +32,24 @@ TEST(Schedule, NamesRoundTripAndAnUnknownOneIsAnError) {
   }
 }
 
-TEST(Schedule, TheKeyIsTheOctantOverTheOriginsMortonCode) {
+TEST(Schedule, TheKeyIsTheOriginsMortonCodeOverTheOctant) {
   constexpr int kDrop = fx::kPosBits - kSortOriginBits;
   const std::array<int64_t, 3> plus{1, 1, 1};
   EXPECT_EQ(rayOrderKey(rayAt({0, 0, 0}, plus)), 0u);
-  // x is the most significant of each triple of Morton bits, z the least.
-  EXPECT_EQ(rayOrderKey(rayAt({int64_t(1) << kDrop, 0, 0}, plus)), 4u);
-  EXPECT_EQ(rayOrderKey(rayAt({0, int64_t(1) << kDrop, 0}, plus)), 2u);
-  EXPECT_EQ(rayOrderKey(rayAt({0, 0, int64_t(1) << kDrop}, plus)), 1u);
-  EXPECT_EQ(rayOrderKey(rayAt({int64_t(2) << kDrop, 0, 0}, plus)), 32u);
+  // x is the most significant of each triple of Morton bits, z the least; the
+  // octant's three bits below them.
+  EXPECT_EQ(rayOrderKey(rayAt({int64_t(1) << kDrop, 0, 0}, plus)), 4u << 3);
+  EXPECT_EQ(rayOrderKey(rayAt({0, int64_t(1) << kDrop, 0}, plus)), 2u << 3);
+  EXPECT_EQ(rayOrderKey(rayAt({0, 0, int64_t(1) << kDrop}, plus)), 1u << 3);
+  EXPECT_EQ(rayOrderKey(rayAt({int64_t(2) << kDrop, 0, 0}, plus)), 32u << 3);
   // Bits below the key's cells do not count.
   EXPECT_EQ(rayOrderKey(rayAt({(int64_t(1) << kDrop) - 1, 0, 0}, plus)), 0u);
-  // A negative component sets its octant bit, above every Morton bit.
-  EXPECT_EQ(rayOrderKey(rayAt({0, 0, 0}, {-1, 1, 1})), uint64_t(1) << (3 * kSortOriginBits));
-  EXPECT_EQ(rayOrderKey(rayAt({0, 0, 0}, {1, 1, -1})), uint64_t(4) << (3 * kSortOriginBits));
-  // The far corner: every Morton bit set, in kSortKeyBits.
+  // A negative component sets its octant bit.
+  EXPECT_EQ(rayOrderKey(rayAt({0, 0, 0}, {-1, 1, 1})), 1u);
+  EXPECT_EQ(rayOrderKey(rayAt({0, 0, 0}, {1, 1, -1})), 4u);
+  // The origin before the direction: a ray from the next cell sorts after every octant of this one.
+  EXPECT_GT(rayOrderKey(rayAt({0, 0, int64_t(1) << kDrop}, plus)), rayOrderKey(rayAt({0, 0, 0}, {-1, -1, -1})));
+  // The far corner: every bit set, in kSortKeyBits.
   const int64_t top = fx::kPosMax;
   const uint64_t key = rayOrderKey(rayAt({top, top, top}, {-1, -1, -1}));
   EXPECT_EQ(key, (uint64_t(1) << kSortKeyBits) - 1);
