@@ -186,8 +186,8 @@ void ChipArgs::add(CLI::App& app, JobConfig& job) {
   opt("--dram-queue", job.memory.dram.queueDepth, "hierarchy: requests queued per DRAM channel");
   opt("--dispatch-batch", job.dispatchBatch, "Consecutive rays the dispatcher hands a unit at once");
   opt("--schedule", schedule,
-      "The order the dispatcher hands a wave's rays out: fifo (as they come) or sorted (by direction octant and "
-      "origin; docs/scheduling.md)");
+      "The order the dispatcher hands a wave's rays out: fifo (as they come) or sorted (by origin, then direction "
+      "octant; docs/scheduling.md)");
   opt("--host-threads", job.hostThreads, "Host threads clocking the units (0: one per core, at most one per unit; docs/chip.md)");
 }
 
