@@ -48,6 +48,7 @@
 #include "driver/traversal_device.h"
 #include "driver/verilated_port.h"
 #include "driver/wave_file.h"
+#include "golden/record_bits.h"
 #include "golden/stimulus.h"
 
 namespace lancer {
@@ -420,7 +421,7 @@ class UnitRun {
 
   bool takeResult(uint64_t now) {
     readPort(top_.res_data_o, resWire_.data(), kResWords);
-    fx::unpackFields(Desc::kResFields, resWire_, res_);
+    res_ = fx::wire_bits::unpackFixed<Desc::kResFieldList>(resWire_);
     const size_t k = ownRay(uint64_t(res_[0]), "result", true);
     shared_.finished[k] = 1;
     shared_.resultElements[k] = fx::takeTraversalResult(res_, shared_.rays[k].id, shared_.traces[k]);

@@ -3,8 +3,8 @@
 // The bit layout of a record on the wire, once (golden/records.h states the
 // rule): where each flattened field value sits, and the word-by-word moves of
 // a value in and out of a wire image. records.cpp builds the generic and the
-// fixed records' packing on it; a unit's node and configuration records
-// (golden/unit.h) are packed with packFixed too.
+// fixed records' packing on it; a unit's node, configuration and result
+// records (golden/unit.h) are packed with packFixed and unpackFixed too.
 
 #include <algorithm>
 #include <array>
@@ -90,6 +90,19 @@ void packFixed(const std::array<u128, valueCount(Fields)>& values, std::span<uin
   [&]<size_t... I>(std::index_sequence<I...>) {
     (putBits(wire, slots[I].lsb, slots[I].width, values[I]), ...);
   }(std::make_index_sequence<slots.size()>{});
+}
+
+template <const auto& Fields>
+std::array<u128, valueCount(Fields)> unpackFixed(std::span<const uint32_t> wire) {
+  constexpr auto& slots = kSlots<Fields>;
+  if (wire.size() < size_t(wireWords(recordBits(Fields)))) throw std::logic_error("unpack: wire span too short");
+  std::array<u128, valueCount(Fields)> values;
+  [&]<size_t... I>(std::index_sequence<I...>) {
+    ((values[I] = slots[I].isSigned ? signExtend(getBits(wire, slots[I].lsb, slots[I].width), slots[I].width)
+                                    : getBits(wire, slots[I].lsb, slots[I].width)),
+     ...);
+  }(std::make_index_sequence<slots.size()>{});
+  return values;
 }
 
 }  // namespace lancer::fx::wire_bits

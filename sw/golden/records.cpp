@@ -18,19 +18,6 @@ void checkSpans(std::span<const FieldSpec> fields, size_t values, size_t words, 
   if (values != valueCount(fields)) throw std::logic_error(std::string(what) + ": wrong number of values");
 }
 
-template <const auto& Fields>
-std::array<u128, valueCount(Fields)> unpackFixed(std::span<const uint32_t> wire) {
-  constexpr auto& slots = kSlots<Fields>;
-  if (wire.size() < size_t(wireWords(recordBits(Fields)))) throw std::logic_error("unpack: wire span too short");
-  std::array<u128, valueCount(Fields)> values;
-  [&]<size_t... I>(std::index_sequence<I...>) {
-    ((values[I] = slots[I].isSigned ? signExtend(getBits(wire, slots[I].lsb, slots[I].width), slots[I].width)
-                                    : getBits(wire, slots[I].lsb, slots[I].width)),
-     ...);
-  }(std::make_index_sequence<slots.size()>{});
-  return values;
-}
-
 template <size_t N, size_t M>
 std::array<int64_t, N> takeSigned(const std::array<u128, M>& values, size_t& at) {
   std::array<int64_t, N> out{};

@@ -71,6 +71,12 @@ struct UnitBase {
   static constexpr std::span<const FieldSpec> kNodeFields = NodeFields;
   static constexpr std::span<const FieldSpec> kVisitFields = Records[std::size(Records) - 2].fields;
   static constexpr std::span<const FieldSpec> kResFields = Records[std::size(Records) - 1].fields;
+  // The result record's fields as an array, for the compile-time packing (packResult, unpackResult).
+  static constexpr auto kResFieldList = [] {
+    std::array<FieldSpec, Records[std::size(Records) - 1].fields.size()> fields{};
+    std::copy(kResFields.begin(), kResFields.end(), fields.begin());
+    return fields;
+  }();
   static constexpr std::span<const FieldSpec> kCfgFields = CfgFields;
   static constexpr std::span<const RecordSpec> kRecords = Records;
   static constexpr auto kPkgParamList = [] {

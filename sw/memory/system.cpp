@@ -171,8 +171,10 @@ class HierarchyMemory final : public MemorySystem {
         continue;
       }
       ++e.waiting;
-      auto [mshr, fresh] = c.mshrs.try_emplace(line);
-      mshr->second.push_back(seq);
+      std::vector<uint64_t>* waiters = c.mshrs.find(line);
+      const bool fresh = waiters == nullptr;
+      if (fresh) waiters = &c.mshrs.add(line);
+      waiters->push_back(seq);
       if (fresh) {
         ++c.stats.misses;
         c.outbound.push_back(line);
@@ -254,13 +256,50 @@ class HierarchyMemory final : public MemorySystem {
   };
   static constexpr size_t kQueueEntries = 32;  // requests in flight per L1 (the response queue)
 
+  // An L1's MSHRs: its few lines in flight, each with the queue entries that
+  // await it, searched in place. Entries keep their waiter lists' storage when
+  // freed, so the L1's path allocates nothing once warm.
+  class MshrFile {
+   public:
+    std::vector<uint64_t>* find(uint64_t line) {
+      for (size_t i = 0; i < used_; ++i) {
+        if (slots_[i].line == line) return &slots_[i].waiters;
+      }
+      return nullptr;
+    }
+    std::vector<uint64_t>& add(uint64_t line) {
+      if (used_ == slots_.size()) slots_.emplace_back();
+      Slot& s = slots_[used_++];
+      s.line = line;
+      s.waiters.clear();
+      return s.waiters;
+    }
+    void erase(uint64_t line) {
+      for (size_t i = 0; i < used_; ++i) {
+        if (slots_[i].line == line) {
+          std::swap(slots_[i], slots_[--used_]);
+          return;
+        }
+      }
+    }
+    size_t size() const { return used_; }
+
+   private:
+    struct Slot {
+      uint64_t line = 0;
+      std::vector<uint64_t> waiters;
+    };
+    std::vector<Slot> slots_;
+    size_t used_ = 0;
+  };
+
   struct L1 {
     explicit L1(const L1Config& c) : tags(uint64_t(c.kib) * 1024, c.ways, c.lineBytes), mshrCap(size_t(c.mshrs)) {}
     CacheTags tags;
     size_t mshrCap;
     std::deque<Entry> queue;
     uint64_t headSeq = 0;  // the sequence number of queue.front()
-    std::unordered_map<uint64_t, std::vector<uint64_t>> mshrs;  // line -> the queue entries (seq) awaiting it
+    MshrFile mshrs;  // line -> the queue entries (seq) awaiting it
     std::vector<uint64_t> outbound;                              // this cycle's misses, to the L2 at tick()
     std::deque<std::pair<uint64_t, uint64_t>> fills;             // (cycle, line) from the L2, in time order
     bool ready = true;
@@ -365,13 +404,12 @@ class HierarchyMemory final : public MemorySystem {
     const uint64_t line = c.fills.front().second;
     c.fills.pop_front();
     c.tags.insert(line);
-    const auto m = c.mshrs.find(line);
-    for (uint64_t seq : m->second) {
+    for (uint64_t seq : *c.mshrs.find(line)) {
       Entry& e = c.queue[size_t(seq - c.headSeq)];
       --e.waiting;
       e.readyAt = std::max(e.readyAt, now_ + 1);
     }
-    c.mshrs.erase(m);
+    c.mshrs.erase(line);
   }
 
   void updateReady() {

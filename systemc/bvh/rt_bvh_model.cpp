@@ -96,7 +96,7 @@ rt_bvh_model::BoxAnswer rt_bvh_model::testNode() {
   if (rsp.slot >= N || slots_[size_t(rsp.slot)].state != State::WaitNode) {
     fail(fmt::format("node response for slot {}, which does not wait for one", rsp.slot));
   }
-  std::array<uint32_t, kNodeWords> wire{};
+  std::array<uint32_t, kNodeWords> wire;  // fromValue writes every word
   fromValue<rt_bvh_unit::NODE_DATA_W>(*rsp.data, wire);
   const fx::BvhNode node = unpackNode(wire.data());
   BoxAnswer a;

@@ -59,6 +59,7 @@
 #include "common/rt_trav_ports.h"
 #include "common/rt_trav_unit.h"
 #include "golden/isect.h"
+#include "golden/record_bits.h"
 #include "isect/rt_isect_ports.h"
 #include "isect/rt_isect_rtl.h"
 #include "isect/rt_isect_types.h"
@@ -515,8 +516,8 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
   // The done grant: the ray's result record; the slot is free again.
   void finishRay(int k) {
     const auto values = hit_[size_t(k)].resultValues(rayId_[size_t(k)], visits_[size_t(k)], tests_[size_t(k)]);
-    std::array<uint32_t, size_t(fx::wireWords(Unit::RESULT_W))> wire{};
-    fx::packFields(Unit::kResFields, values, wire);
+    std::array<uint32_t, size_t(fx::wireWords(Unit::RESULT_W))> wire;
+    fx::wire_bits::packFixed<Unit::descriptor::kResFieldList>(values, wire);
     push(resQ_, resHead_, toValue<Unit::RESULT_W>(wire));
     free_.set(k);
   }
