@@ -42,10 +42,13 @@ struct Rates {
       : seconds(double(cycles) / clockHz),
         raysPerSecond(ratio(double(rays), seconds)),
         dramBytesPerRay(ratio(double(f.stats.dramBytes), double(rays))),
-        dramGbps(ratio(double(f.stats.dramBytes), seconds) / 1e9) {
+        dramGbps(ratio(double(f.stats.dramBytes), seconds) / 1e9),
+        footprintBytesPerRay(ratio(double(f.stats.footprintBytes), double(rays))),
+        raysPerSecondWithSort(ratio(double(rays), double(cycles + f.sort.chipCycles) / clockHz)) {
     for (uint64_t b : f.unitBusyCycles) busy.push_back(ratio(double(b), double(cycles)));
   }
-  double seconds, raysPerSecond, dramBytesPerRay, dramGbps;
+  double seconds, raysPerSecond, dramBytesPerRay, dramGbps, footprintBytesPerRay;
+  double raysPerSecondWithSort;  // with a chip's estimated sort added to the cycles (schedule sorted)
   std::vector<double> busy;  // per unit, the share of the cycles it had a ray in flight
 };
 
@@ -59,7 +62,7 @@ nlohmann::json ChipFigures::toJson(uint64_t cycles, uint64_t rays, double clockH
                       {"rays_per_second", r.raysPerSecond},
                       {"dram_bytes", stats.dramBytes},
                       {"dram_bytes_per_ray", r.dramBytesPerRay},
-                      {"footprint_bytes_per_ray", ratio(double(stats.footprintBytes), double(rays))},
+                      {"footprint_bytes_per_ray", r.footprintBytesPerRay},
                       {"dram_gbps_used", r.dramGbps},
                       {"memory", memory},
                       {"memory_stats", stats},
@@ -74,7 +77,7 @@ nlohmann::json ChipFigures::toJson(uint64_t cycles, uint64_t rays, double clockH
   if (schedule == Schedule::Sorted) {
     // The rate with the chip's estimated sort added to the cycles, beside the rate without it.
     j["sort"] = sort;
-    j["rays_per_second_with_sort"] = ratio(double(rays), double(cycles + sort.chipCycles) / clockHz);
+    j["rays_per_second_with_sort"] = r.raysPerSecondWithSort;
     j["dram_bytes_per_ray_with_sort"] = ratio(double(stats.dramBytes + sort.dramBytes), double(rays));
   }
   if (memory.kind == mem::MemoryKind::Hierarchy) {
@@ -99,7 +102,7 @@ std::string ChipFigures::summary(uint64_t cycles, uint64_t rays, double clockHz)
     out += fmt::format("  schedule            sorted: {} rays in {} sorts; host sort {:.3f} s; a chip's sort "
                        "~{} cycles, {:.1f} MB of DRAM (estimate; {:.1f} M rays/s with it)\n",
                        sort.rays, sort.sorts, sort.hostSeconds, sort.chipCycles, double(sort.dramBytes) / 1e6,
-                       ratio(double(rays), double(cycles + sort.chipCycles) / clockHz) / 1e6);
+                       r.raysPerSecondWithSort / 1e6);
   } else {
     out += "  schedule            fifo: rays in the order they come\n";
   }
@@ -114,7 +117,7 @@ std::string ChipFigures::summary(uint64_t cycles, uint64_t rays, double clockHz)
   out += fmt::format("  DRAM                {:.1f} MB, {:.0f} bytes/ray, {:.2f} GB/s used ({:.0f}% of the bandwidth); "
                      "footprint {:.0f} bytes/ray\n",
                      double(stats.dramBytes) / 1e6, r.dramBytesPerRay, r.dramGbps, 100.0 * r.dramGbps / memory.dram.gbps,
-                     ratio(double(stats.footprintBytes), double(rays)));
+                     r.footprintBytesPerRay);
   out += fmt::format("  stalls (cycles)     L1 full {}, L2 bank {}, L2 MSHRs {}, DRAM queue full {}, DRAM queued {}\n",
                      stats.l1FullCycles, stats.l2BankWaitCycles, stats.l2MshrFullCycles, stats.dramQueueFullCycles,
                      stats.dramQueueWaitCycles);

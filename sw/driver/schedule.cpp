@@ -1,7 +1,6 @@
 #include "driver/schedule.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>

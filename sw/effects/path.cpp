@@ -40,6 +40,9 @@ class PathLoop {
       : scene_(scene), options_(options), out_(out), sampler_(options.seed), emitters_(emittersOf(scene)),
         firstSample_(firstSample) {}
 
+  // Something lights the scene: a light, an emitter, or the background.
+  bool lit() const { return lightCount() != 0 || scene_.background != glm::vec3(0.0f); }
+
   void answer(const WaveRay& r, const std::optional<Hit>& h, uint32_t k, std::vector<WaveRay>& next) {
     if (r.cls == RayClass::Shadow) {
       if (!h) out_.samples[r.sample] += r.weight;  // the light arrives
@@ -63,12 +66,6 @@ class PathLoop {
 
  private:
   size_t lightCount() const { return scene_.lights.size() + emitters_.size(); }
-
- public:
-  // Something lights the scene: a light, an emitter, or the background.
-  bool lit() const { return lightCount() != 0 || scene_.background != glm::vec3(0.0f); }
-
- private:
 
   // The lobes a light sample can meet (diffuse, glossy) at wi, times pi: the
   // response to a light of unit colour from wi, cos excluded.

@@ -71,7 +71,7 @@ struct UnitBase {
   static constexpr std::span<const FieldSpec> kNodeFields = NodeFields;
   static constexpr std::span<const FieldSpec> kVisitFields = Records[std::size(Records) - 2].fields;
   static constexpr std::span<const FieldSpec> kResFields = Records[std::size(Records) - 1].fields;
-  // The result record's fields as an array, for the compile-time packing (packResult, unpackResult).
+  // The result record's fields as an array, for the compile-time packing (wire_bits::packFixed, unpackFixed).
   static constexpr auto kResFieldList = [] {
     std::array<FieldSpec, Records[std::size(Records) - 1].fields.size()> fields{};
     std::copy(kResFields.begin(), kResFields.end(), fields.begin());

@@ -32,8 +32,9 @@ class rt_walk_model : public rt_trav_shell_model<Unit, RegRsp> {
 
   // The end of every cycle, after the walk's own steps: the done grant (the
   // result record; the slot free), the slot leaving SETUP, the allocation,
-  // then the shell's end of the cycle (`stepReady`: a slot wants to enter an
-  // element, from the registers at the end of the cycle).
+  // then the shell's end of the cycle (a step is ready if a slot is in
+  // `entering`, the walk's set of slots that want to enter an element, as
+  // the registers stand at the end of the cycle).
   void endWalkCycle(const rt_trav_grants& g, const typename rt_trav_shell_model<Unit, RegRsp>::slot_mask& entering) {
     if (g.done >= 0) {
       this->finishRay(g.done);
