@@ -79,38 +79,30 @@
 // allocation, one init, one visit, one node grant, one node response, one box
 // answer, one index grant, one result, one end of FETCH, one pop, one exit
 // test, one result record.
+`include "rt_walk_core.svh"
 module rt_bvh #(
-  parameter int unsigned RaysInFlight = 32,  // ray slots, 1..256
-  parameter int unsigned IdxBufDepth  = 64,  // index responses buffered (credits)
-  parameter int unsigned NodeRspW = rt_pkg::BVH_NODE_W,  // derived: a node response's bits
-  parameter int unsigned SlotW = (RaysInFlight > 1) ? $clog2(RaysInFlight) : 1,  // derived
-  parameter int unsigned CfgSlotsW = $clog2(RaysInFlight + 1)                     // derived
+  `RT_WALK_UNIT_PARAMS,
+  parameter int unsigned NodeRspW = rt_pkg::BVH_NODE_W  // derived: a node response's bits
 ) (
-  input  logic                                   clk_i,
-  input  logic                                   rst_ni,
+`include "rt_trav_ports.svh"
 
   // Configuration, static while rays are in flight.
-  input  logic [CfgSlotsW-1:0]                   cfg_slots_i,  // slots to use, 1..RaysInFlight
   input  rt_pkg::bvh_ref_t                       cfg_root_i,   // the root's reference
-
-`include "rt_trav_ports.svh"
 
   // One result per ray, one record per node entered.
   output rt_pkg::bvh_res_t                         res_data_o,
   output rt_pkg::bvh_visit_t                       visit_data_o
 );
 
-  // The figures of the shell's ports toward the walk (rt_walk_ports.svh).
-  localparam int unsigned N         = RaysInFlight;
+  // The figures of the walk's ports toward its shell, and the shell, with
+  // the slot core's events and checks (rt_walk_core.svh).
   localparam int unsigned VisitIdW  = 32;
   localparam int unsigned ExitW     = rt_pkg::BVH_ENTRY_W;
   localparam int unsigned DenW      = rt_pkg::BVH_COMMON_W;
   localparam int unsigned RunPorts  = 1;
-`include "rt_walk_ports.svh"
-
-  // The shell (streams, memory ports, rt_isect, closest hits, exit tests, the
-  // counts) and the BVH walk, joined by name.
-  rt_trav_shell #(`RT_WALK_PARAMS, .IdxBufDepth(IdxBufDepth), .RegRsp(1'b0)) u_shell (.*);
+  localparam bit          RegRsp    = 1'b0;  // node responses straight to the walk
+`define RT_WALK_CORE_BODY
+`include "rt_walk_core.svh"
 
   // ---- The walk ----------------------------------------------------------------------
   localparam int P       = rt_pkg::POS_W;
@@ -139,10 +131,6 @@ module rt_bvh #(
     stack_addr = STK_AW'(s) * STK_AW'(STACK) + STK_AW'(k);
   endfunction
 
-  function automatic logic [N-1:0] onehot(input logic valid, input logic [SlotW-1:0] s);
-    onehot = valid ? (N'(1) << s) : '0;
-  endfunction
-
   // ---- State vectors (bit s = slot s) -------------------------------------------
   logic [N-1:0] enter_q, node_req_q, wait_node_q, box_q, fetch_q, pop_q, check_q, done_q;
   logic [N-1:0] any_hit_q;   // the ray is an any-hit ray
@@ -161,14 +149,9 @@ module rt_bvh #(
   logic [CAND_W-1:0]      stack_q  [N * STACK];
 
   // ---- Events ----------------------------------------------------------------------------
-  logic [N-1:0] init_oh, visit_oh, node_oh, rsp_oh, box_oh, check_oh, done_oh, fin_oh, pop_oh;
-  assign init_oh  = onehot(init, init_slot);
-  assign visit_oh = onehot(visit_go, visit_slot);
-  assign node_oh  = onehot(node_go, node_slot);
-  assign rsp_oh   = onehot(node_valid, node_tag);
+  // The walk's own (the shell's are the slot core's: rt_walk_core.svh).
+  logic [N-1:0] box_oh, fin_oh, pop_oh;
   assign box_oh   = onehot(box_valid, box_slot);
-  assign check_oh = onehot(check_go, check_slot);
-  assign done_oh  = onehot(done_go, done_slot);
   assign fin_oh   = onehot(fin_q, fin_slot_q);
 
   // ---- The ray's setup: rt_mirror_pairs ---------------------------------------------------
@@ -180,15 +163,7 @@ module rt_bvh #(
   logic [3*PAIR_W-1:0]  unused_s2_pair;
 
   rt_mirror_pairs #(.SlotW(SlotW), .Latency(rt_pkg::BVH_SETUP_LATENCY), .ComW(DenW)) u_setup (
-    .clk_i,
-    .rst_ni,
-    .valid_i     (alloc),
-    .slot_i      (alloc_slot),
-    .ray_i       (ray_data_i),
-    .valid_o     (init),
-    .slot_o      (init_slot),
-    .ray_o       (init_ray),
-    .dom_o       (init_dom),
+    `RT_WALK_SETUP_PORTS,
     .s1_valid_o  (unused_s1_valid),
     .s2_valid_o  (unused_s2_valid),
     .active_o    (init_active),
@@ -409,13 +384,9 @@ module rt_bvh #(
 `ifdef RT_ASSERT_ON
 `include "rt_assert.svh"
   // Events meet slots in the states that expect them.
-  `RT_CHECK_IF(a_visit_enter, visit_go, enter_q[visit_slot])
-  `RT_CHECK_IF(a_node_req, node_go, node_req_q[node_slot])
   `RT_CHECK_IF(a_node_rsp_slot, node_valid, wait_node_q[node_tag])
   `RT_CHECK_IF(a_box_slot, box_valid, box_q[box_slot])
-  `RT_CHECK_IF(a_res_fetch, isect_valid, fetch_q[isect_slot])
   `RT_CHECK_IF(a_pop_slot, pop_go_q, pop_q[pop_slot_q])
-  `RT_CHECK_IF(a_check_wants, check_go, check_q[check_slot] && bound[check_slot])
   // A candidate tested is bound (it asked in CHECK; bounds never go away).
   `RT_CHECK(a_check_bound, (check_q & ~bound) == '0)
   // The stack never overflows: a push happens below the levels limit

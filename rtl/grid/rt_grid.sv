@@ -83,40 +83,32 @@
 // Latency: every transition takes one clock edge. Throughput: per cycle one
 // allocation, one init, one cell grant (one DDA step), one cell response, one
 // visit, one index grant, one isect result, one check grant, one result.
+`include "rt_walk_core.svh"
 module rt_grid #(
-  parameter int unsigned RaysInFlight = 32,  // ray slots, 1..256
-  parameter int unsigned IdxBufDepth  = 64,  // index responses buffered (credits)
+  `RT_WALK_UNIT_PARAMS,
   parameter int unsigned CellQueue    = 2,   // cells per slot read and not finished (power of 2, >= 2)
-  parameter int unsigned NodeRspW = rt_pkg::GRID_CELL_W,  // derived: a node response's bits
-  parameter int unsigned SlotW = (RaysInFlight > 1) ? $clog2(RaysInFlight) : 1,  // derived
-  parameter int unsigned CfgSlotsW = $clog2(RaysInFlight + 1)                     // derived
+  parameter int unsigned NodeRspW = rt_pkg::GRID_CELL_W  // derived: a node response's bits
 ) (
-  input  logic                                   clk_i,
-  input  logic                                   rst_ni,
+`include "rt_trav_ports.svh"
 
   // Configuration, static while rays are in flight.
   input  logic [3*rt_pkg::GRID_RESOLUTION_W-1:0] cfg_res_i,    // {Rz, Ry, Rx}, each 1..256
-  input  logic [CfgSlotsW-1:0]                   cfg_slots_i,  // slots to use, 1..RaysInFlight
-
-`include "rt_trav_ports.svh"
 
   // One result per ray, one record per cell entered.
   output rt_pkg::grid_res_t                        res_data_o,
   output rt_pkg::grid_visit_t                      visit_data_o
 );
 
-  // The figures of the shell's ports toward the walk (rt_walk_ports.svh).
-  localparam int unsigned N         = RaysInFlight;
+  // The figures of the walk's ports toward its shell, and the shell, with
+  // the slot core's events and checks (rt_walk_core.svh).
   localparam int unsigned VisitIdW  = 3 * rt_pkg::CELL_INDEX_W;
   localparam int unsigned ExitW     = rt_pkg::GRID_ACC_W;
   localparam int unsigned DenW      = rt_pkg::GRID_TRIPLE_W;
   localparam int unsigned RunPorts  = 2;
   localparam int unsigned QW        = (CellQueue > 1) ? $clog2(CellQueue) : 1;
-`include "rt_walk_ports.svh"
-
-  // The shell (streams, memory ports, rt_isect, closest hits, exit tests, the
-  // counts) and the DDA walk, joined by name.
-  rt_trav_shell #(`RT_WALK_PARAMS, .IdxBufDepth(IdxBufDepth), .RegRsp(1'b1)) u_shell (.*);
+  localparam bit          RegRsp    = 1'b1;  // the shell registers node responses
+`define RT_WALK_CORE_BODY
+`include "rt_walk_core.svh"
 
   // ---- The walk ----------------------------------------------------------------------
   localparam int RES_W    = rt_pkg::GRID_RESOLUTION_W;
@@ -159,23 +151,15 @@ module rt_grid #(
   logic [3*PAIR_W-1:0] init_pair;
 
   rt_grid_setup #(.SlotW(SlotW)) u_setup (
-    .clk_i,
-    .rst_ni,
+    `RT_WALK_SETUP_PORTS,
     .cfg_res_i,
-    .valid_i   (alloc),
-    .slot_i    (alloc_slot),
-    .ray_i     (ray_data_i),
-    .valid_o   (init),
-    .slot_o    (init_slot),
-    .ray_o     (init_ray),
     .cell_o    (init_cell),
     .cell_id_o (init_cell_id),
     .active_o  (init_active),
     .neg_o     (init_neg),
     .acc_o     (init_acc),
     .pair_o    (init_pair),
-    .triple_o  (init_den),
-    .dom_o     (init_dom)
+    .triple_o  (init_den)
   );
 
   // The cell read (the shell's node port).
@@ -203,10 +187,6 @@ module rt_grid #(
 
   function automatic logic [QW-1:0] head(input logic [QW*N-1:0] h, input logic [SlotW-1:0] s);
     for (int b = 0; b < QW; b++) head[b] = h[b*N + 32'(s)];
-  endfunction
-
-  function automatic logic [N-1:0] onehot(input logic valid, input logic [SlotW-1:0] s);
-    onehot = valid ? (N'(1) << s) : '0;
   endfunction
 
   // ---- The frontier's next DDA step, prepared ahead (fx::GridDda::nextAxis/advance) ----
@@ -382,22 +362,17 @@ module rt_grid #(
   end
 
   // ---- State vectors ----------------------------------------------------------------
-  logic [N-1:0] init_oh, cgo_oh, rsp_oh, vgo_oh, res_oh, chk_oh, done_oh;
-  assign init_oh  = onehot(init, init_slot);
-  assign cgo_oh   = onehot(node_go, node_slot);
-  assign rsp_oh   = onehot(node_valid, node_tag);
-  assign vgo_oh   = onehot(visit_go, visit_slot);
+  // The walk's own (the shell's are the slot core's: rt_walk_core.svh).
+  logic [N-1:0] res_oh;
   assign res_oh   = onehot(cr, r_slot);
-  assign chk_oh   = onehot(check_go, check_slot);
-  assign done_oh  = onehot(done_go, done_slot);
 
   // Thermometer counts: +1 where only inc, -1 where only dec.
   logic [N-1:0] q_inc, q_dec, o_inc, o_dec;
   logic [D*N-1:0] qc_d, oc_d;
-  assign q_inc = cgo_oh & ~pop_set;
-  assign q_dec = pop_set & ~cgo_oh;
-  assign o_inc = cgo_oh & ~rsp_oh;
-  assign o_dec = rsp_oh & ~cgo_oh;
+  assign q_inc = node_oh & ~pop_set;
+  assign q_dec = pop_set & ~node_oh;
+  assign o_inc = node_oh & ~rsp_oh;
+  assign o_dec = rsp_oh & ~node_oh;
   for (genvar j = 0; j < D; j++) begin : g_therm
     logic [N-1:0] q_below, q_above, o_below, o_above;
     assign q_below = (j == 0) ? '1 : qc_q[(j > 0 ? j - 1 : 0)*N +: N];
@@ -436,10 +411,10 @@ module rt_grid #(
     end else begin
       stepping_q <= node_go;
       prep_q     <= stepping_q;
-      visit_q <= (visit_q & ~vgo_oh) | init_oh | pop_set;
-      wait_q  <= (wait_q & ~onehot(stw, node_tag)) | (vgo_oh & ~onehot(stv, visit_slot));
+      visit_q <= (visit_q & ~visit_oh) | init_oh | pop_set;
+      wait_q  <= (wait_q & ~onehot(stw, node_tag)) | (visit_oh & ~onehot(stv, visit_slot));
       fetch_q <= (fetch_q & ~res_oh) | fetch_set;
-      check_q <= (check_q & ~chk_oh) | check_set;
+      check_q <= (check_q & ~check_oh) | check_set;
       done_q  <= (done_q & ~done_oh) | done_set;
       front_q <= (front_q & ~onehot(stepping_q && st_leaves, step_slot_q)) | init_oh;
       qc_q    <= qc_d;
@@ -495,10 +470,6 @@ module rt_grid #(
 `ifdef RT_ASSERT_ON
 `include "rt_assert.svh"
   // Events name slots in the right state.
-  `RT_CHECK_IF(a_cell_go, node_go, want_node[node_slot])
-  `RT_CHECK_IF(a_visit_go, visit_go, want_visit[visit_slot])
-  `RT_CHECK_IF(a_check_go, check_go, check_q[check_slot])
-  `RT_CHECK_IF(a_done_go, done_go, want_done[done_slot])
   // Responses: a cell response answers an outstanding read of its slot (the
   // head's, for a slot waiting in WAIT_CELL); results arrive for a slot in
   // FETCH (the shell's u_idx_count checks that it expects them, and the
@@ -510,7 +481,6 @@ module rt_grid #(
   // so nothing reads its exit or last flag before the step writes them.
   `RT_CHECK_IF(a_step_before_rsp, stepping_q && node_valid && node_tag == step_slot_q,
                t_fill != step_push_q)
-  `RT_CHECK_IF(a_res_fetch, isect_valid, fetch_q[r_slot])
   // No slot is in two of the walk's states (parity catches any slot in two;
   // the shell keeps FREE and SETUP).
   `RT_CHECK(a_states, (visit_q | wait_q | fetch_q | check_q | done_q) ==

@@ -1,7 +1,11 @@
-// The ports every traversal unit shares with its rt_trav_shell, included in
-// the port lists of rt_trav_shell, rt_grid, rt_octree and rt_bvh (which add
-// their result and visit records and their configuration). Needs the module's
-// SlotW and NodeRspW; every line ends with a comma.
+// The ports every traversal unit shares with its rt_trav_shell, first in the
+// port lists of rt_trav_shell and of each unit (which add their result and
+// visit records and their configuration). Needs the module's SlotW,
+// CfgSlotsW and NodeRspW; every line ends with a comma.
+
+  input  logic                          clk_i,
+  input  logic                          rst_ni,
+  input  logic [CfgSlotsW-1:0]          cfg_slots_i,  // slots to use, 1..N; static while rays are in flight
 
   // Rays in.
   input  logic                          ray_valid_i,

@@ -65,16 +65,12 @@ module rt_trav_shell #(
   parameter int unsigned CfgSlotsW = $clog2(N + 1),            // derived
   parameter int unsigned ResW      = rt_pkg::ISECT_RES_W + 64  // derived: {ray id, count, tests, hit, hit record}
 ) (
-  input  logic                          clk_i,
-  input  logic                          rst_ni,
-  input  logic [CfgSlotsW-1:0]          cfg_slots_i,  // slots to use, 1..N
+  // ---- The unit's ports ----
+`include "rt_trav_ports.svh"
 
   // ---- The walk's side ----
 `define RT_WALK_PORTS_OF_SHELL
 `include "rt_walk_ports.svh"
-
-  // ---- The unit's ports ----
-`include "rt_trav_ports.svh"
 
   output logic [ResW-1:0]               res_data_o,
   output logic [32+VisitIdW-1:0]        visit_data_o

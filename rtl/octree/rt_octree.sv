@@ -102,39 +102,31 @@
 // allocation, one init, one visit, one node grant, one node response, one
 // DESCEND, one index grant, one result, one end of FETCH, one exit test, one
 // result record, AdvLanes + 1 advance steps.
+`include "rt_walk_core.svh"
 module rt_octree #(
-  parameter int unsigned RaysInFlight = 32,  // ray slots, 1..256
-  parameter int unsigned IdxBufDepth  = 64,  // index responses buffered (credits)
+  `RT_WALK_UNIT_PARAMS,
   parameter int unsigned AdvLanes     = 2,   // advance lanes besides the exit test's
-  parameter int unsigned NodeRspW = rt_pkg::OCTREE_CHILDREN * rt_pkg::OCTREE_NODE_W,  // derived: a node response's bits
-  parameter int unsigned SlotW = (RaysInFlight > 1) ? $clog2(RaysInFlight) : 1,  // derived
-  parameter int unsigned CfgSlotsW = $clog2(RaysInFlight + 1)                     // derived
+  parameter int unsigned NodeRspW = rt_pkg::OCTREE_CHILDREN * rt_pkg::OCTREE_NODE_W  // derived: a node response's bits
 ) (
-  input  logic                                   clk_i,
-  input  logic                                   rst_ni,
+`include "rt_trav_ports.svh"
 
   // Configuration, static while rays are in flight.
-  input  logic [CfgSlotsW-1:0]                   cfg_slots_i,  // slots to use, 1..RaysInFlight
   input  rt_pkg::octree_node_t                   cfg_root_i,   // node 0 (the root's record)
-
-`include "rt_trav_ports.svh"
 
   // One result per ray, one record per node entered.
   output rt_pkg::octree_res_t                      res_data_o,
   output rt_pkg::octree_visit_t                    visit_data_o
 );
 
-  // The figures of the shell's ports toward the walk (rt_walk_ports.svh).
-  localparam int unsigned N         = RaysInFlight;
+  // The figures of the walk's ports toward its shell, and the shell, with
+  // the slot core's events and checks (rt_walk_core.svh).
   localparam int unsigned VisitIdW  = 32;
   localparam int unsigned ExitW     = rt_pkg::OCTREE_T_W;
   localparam int unsigned DenW      = rt_pkg::OCTREE_COMMON_W;
   localparam int unsigned RunPorts  = 1;
-`include "rt_walk_ports.svh"
-
-  // The shell (streams, memory ports, rt_isect, closest hits, exit tests, the
-  // counts) and the octree walk, joined by name.
-  rt_trav_shell   #(`RT_WALK_PARAMS, .IdxBufDepth(IdxBufDepth), .RegRsp(1'b0)) u_shell (.*);
+  localparam bit          RegRsp    = 1'b0;  // node responses straight to the walk
+`define RT_WALK_CORE_BODY
+`include "rt_walk_core.svh"
 
   // ---- The walk ----------------------------------------------------------------------
   localparam int P       = rt_pkg::POS_W;
@@ -187,10 +179,6 @@ module rt_octree #(
     stack_addr = STK_AW'(s) * STK_AW'(STACK) + STK_AW'(d);
   endfunction
 
-  function automatic logic [N-1:0] onehot(input logic valid, input logic [SlotW-1:0] s);
-    onehot = valid ? (N'(1) << s) : '0;
-  endfunction
-
   // ---- State vectors (bit s = slot s) -------------------------------------------
   logic [N-1:0] enter_q, group_req_q, wait_group_q, fetch_q, check_q;
   logic [N-1:0] next_q, refill_req_q, wait_refill_q, done_q;
@@ -225,13 +213,8 @@ module rt_octree #(
   logic [2:0]             child_q    [N];   // the current node's child index (mirrored space)
 
   // ---- Events ----------------------------------------------------------------------------
-  logic [N-1:0] init_oh, visit_oh, node_oh, rsp_oh, check_oh, done_oh, desc_oh, fin_oh;
-  assign init_oh  = onehot(init, init_slot);
-  assign visit_oh = onehot(visit_go, visit_slot);
-  assign node_oh  = onehot(node_go, node_slot);
-  assign rsp_oh   = onehot(node_valid, node_tag);
-  assign check_oh = onehot(check_go, check_slot);
-  assign done_oh  = onehot(done_go, done_slot);
+  // The walk's own (the shell's are the slot core's: rt_walk_core.svh).
+  logic [N-1:0] desc_oh, fin_oh;
   assign desc_oh  = onehot(desc_q, desc_slot_q);
   assign fin_oh   = onehot(fin_q, fin_slot_q);
 
@@ -242,21 +225,13 @@ module rt_octree #(
   logic [3*T_W-1:0]     init_t0, init_t1;
 
   rt_octree_setup #(.SlotW(SlotW)) u_setup (
-    .clk_i,
-    .rst_ni,
-    .valid_i  (alloc),
-    .slot_i   (alloc_slot),
-    .ray_i    (ray_data_i),
-    .valid_o  (init),
-    .slot_o   (init_slot),
-    .ray_o    (init_ray),
+    `RT_WALK_SETUP_PORTS,
     .mirror_o (init_mirror),
     .active_o (init_active),
     .origin_o (init_origin),
     .t0_o     (init_t0),
     .t1_o     (init_t1),
     .common_o (init_den),
-    .dom_o    (init_dom),
     .enter_o  (init_enter)
   );
 
@@ -711,10 +686,7 @@ module rt_octree #(
 `ifdef RT_ASSERT_ON
 `include "rt_assert.svh"
   // Events meet slots in the states that expect them.
-  `RT_CHECK_IF(a_visit_enter, visit_go, enter_q[visit_slot])
   `RT_CHECK_IF(a_node_rsp_slot, node_valid, wait_group_q[node_tag] || wait_refill_q[node_tag])
-  `RT_CHECK_IF(a_res_fetch, isect_valid, fetch_q[isect_slot])
-  `RT_CHECK_IF(a_check_wants, check_go, check_q[check_slot] && bound[check_slot])
   // A lane's slot has its advance prepared (p_prep).
   for (genvar l = 0; l < LANES; l++) begin : g_prepared
     `RT_CHECK_IF(a_prepared, lane_go[l], !fresh_q[lane_slot[l]])

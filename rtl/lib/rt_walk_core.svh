@@ -1,0 +1,62 @@
+// The slot core every traversal unit's walk shares, in two parts.
+//
+// Before the module: RT_WALK_UNIT_PARAMS, the parameters every unit has (the
+// slots and the index buffer, and the widths they imply), first in its
+// parameter list. In the port list, rt_trav_ports.svh gives the clock, the
+// reset, the slot count and the streams.
+//
+// In the body (define RT_WALK_CORE_BODY before the include), once the unit
+// has set the figures of its ports toward the shell (VisitIdW, ExitW, DenW,
+// RunPorts) and whether the shell registers node responses (RegRsp): the
+// walk's nets toward the shell (rt_walk_ports.svh), the shell itself, the
+// shell's events as one-hot slot vectors, which each walk's state vectors
+// lose and gain, and the checks that every grant of the shell names a slot
+// that asked for it. RT_WALK_SETUP_PORTS joins the unit's per-ray setup (the
+// ports of rt_setup_ports.svh) to the shell's allocation and init.
+`ifndef RT_WALK_CORE_BODY
+
+`ifndef RT_WALK_CORE_SVH
+`define RT_WALK_CORE_SVH
+`define RT_WALK_UNIT_PARAMS \
+  parameter int unsigned RaysInFlight = 32,  /* ray slots, 1..256 */ \
+  parameter int unsigned IdxBufDepth  = 64,  /* index responses buffered (credits) */ \
+  parameter int unsigned SlotW = (RaysInFlight > 1) ? $clog2(RaysInFlight) : 1,  /* derived */ \
+  parameter int unsigned CfgSlotsW = $clog2(RaysInFlight + 1)                     /* derived */
+`define RT_WALK_SETUP_PORTS .clk_i, .rst_ni, .valid_i(alloc), .slot_i(alloc_slot), .ray_i(ray_data_i), \
+                            .valid_o(init), .slot_o(init_slot), .ray_o(init_ray), .dom_o(init_dom)
+`endif
+
+`else
+`undef RT_WALK_CORE_BODY
+
+  localparam int unsigned N = RaysInFlight;
+`include "rt_walk_ports.svh"
+
+  // The shell (streams, memory ports, rt_isect, closest hits, exit tests, the
+  // counts) and the walk, joined by name.
+  rt_trav_shell #(`RT_WALK_PARAMS, .IdxBufDepth(IdxBufDepth), .RegRsp(RegRsp)) u_shell (.*);
+
+  function automatic logic [N-1:0] onehot(input logic valid, input logic [SlotW-1:0] s);
+    onehot = valid ? (N'(1) << s) : '0;
+  endfunction
+
+  // This cycle's events of the shell, bit s for slot s.
+  logic [N-1:0] init_oh, visit_oh, node_oh, rsp_oh, check_oh, done_oh;
+  assign init_oh  = onehot(init, init_slot);            // the slot's setup is done
+  assign visit_oh = onehot(visit_go, visit_slot);       // it enters a region
+  assign node_oh  = onehot(node_go, node_slot);         // its node read leaves
+  assign rsp_oh   = onehot(node_valid, node_tag);       // a node response comes in
+  assign check_oh = onehot(check_go, check_slot);       // its exit test answers
+  assign done_oh  = onehot(done_go, done_slot);         // its result leaves: FREE
+
+`ifdef RT_ASSERT_ON
+`include "rt_assert.svh"
+  // Every grant names a slot that asked for it, and results come for slots
+  // that expect them.
+  `RT_CHECK_IF(a_visit_go, visit_go, want_visit[visit_slot])
+  `RT_CHECK_IF(a_node_go, node_go, want_node[node_slot])
+  `RT_CHECK_IF(a_check_go, check_go, want_check[check_slot])
+  `RT_CHECK_IF(a_done_go, done_go, want_done[done_slot])
+  `RT_CHECK_IF(a_res_fetch, isect_valid, fetching[isect_slot])
+`endif
+`endif
