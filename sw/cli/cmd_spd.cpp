@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "cli/options.h"
 #include "scene/spd.h"
@@ -15,9 +16,13 @@ void addSpdCommand(CLI::App& app) {
     int sizeFactor = 0;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("spd", "Write an SPD scene (tetra, gears) as NFF on stdout; also builtin:spd-NAME[@SIZE]");
-  cmd->add_option("name", args->name, "Scene: tetra or gears")->required();
-  cmd->add_option("--size-factor", args->sizeFactor, "The SPD's size factor (default: the SPD's, tetra 6, gears 4; tetra 1..10, gears 1..16)");
+  const std::string names = fmt::format("{}", fmt::join(spdSceneNames(), ", "));
+  CLI::App* cmd = app.add_subcommand(
+      "spd", fmt::format("Write an SPD scene ({}) as NFF on stdout; also builtin:spd-NAME[@SIZE]", names));
+  cmd->add_option("name", args->name, "Scene: " + names)->required();
+  cmd->add_option("--size-factor", args->sizeFactor,
+                  "The SPD's size factor (default: the SPD's; ranges: tetra 1..10, gears 1..16, balls 1..5, "
+                  "mount 1..7, rings 1..20, tree 1..16)");
   cmd->callback([args] { std::fputs(generateSpdNff(args->name, args->sizeFactor).c_str(), stdout); });
 }
 

@@ -354,8 +354,10 @@ Scene readNff(std::istream& in, const std::string& name, const NffOptions& optio
       const auto n = numbersOf(lines, *tokens, 1, {4}, "'s'");
       build.sphere(vec(n, 0), n[3], options.sphereDivisions);
     } else if (key == "c") {
-      if (tokens->size() != 1) lines.fail("'c' stands alone on its line");
-      const auto n = numbersAfter(lines, 8, "cone", start);
+      // NFF.TXT puts the numbers on the two lines after 'c'; the SPD's own
+      // generators (rings, tree) write all eight on the line of the 'c'.
+      const auto n = tokens->size() == 1 ? numbersAfter(lines, 8, "cone", start)
+                                         : numbersOf(lines, *tokens, 1, {8}, "'c'");
       build.cone(vec(n, 0), n[3], vec(n, 4), n[7], options.coneSlices);
     } else {
       lines.fail(fmt::format("unknown NFF entity '{}' (v, b, l, f, p, pp, s, c)", key));

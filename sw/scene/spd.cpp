@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -74,45 +75,138 @@ std::string tetraNff(int sizeFactor) {
   return out;
 }
 
-// The SPD's Phong exponent for a highlight that falls to half at `degrees` off the mirror direction.
+// The SPD's Phong exponent for a highlight that falls to half at `degrees`
+// off the mirror direction (lib_output_color: cos^n(angle) = 1/2).
 double phongPower(double degrees) {
-  const double a = degrees * std::numbers::pi / 180.0;
-  if (a <= 0.0) return 100000.0;
-  if (a >= std::numbers::pi / 4.0) return 0.000001;
-  return -(std::log(2.0) / std::log(std::cos(2.0 * a)));
+  const double a = std::numbers::pi * degrees / 180.0;
+  if (a <= 0.0) return 100000.0;  // a mirror's highlight: none to speak of
+  if (a >= std::numbers::pi / 2.0) return 1.0;
+  return std::log(0.5) / std::log(std::cos(a));
 }
+
+// ---- gears, balls, mount, rings, tree --------------------------------------------------
+// Written as the SPD's own generators write NFF: every number as %g (6
+// significant digits), spheres as `s`, cones as `c` with their eight numbers on
+// one line, the background first, index of refraction 0 where opaque. The
+// geometry is computed in double with the SPD library's operations in its
+// order (row vectors times 4x4 matrices), so the files equal the SPD's line
+// for line (docs/effects.md, "SPD scenes").
+
+using Mat4 = std::array<std::array<double, 4>, 4>;
+
+Mat4 identity() {
+  Mat4 m{};
+  for (int i = 0; i < 4; ++i) m[i][i] = 1.0;
+  return m;
+}
+
+// A rotation by `angle` about a coordinate axis (0 x, 1 y, 2 z), as lib_create_rotate_matrix.
+Mat4 rotation(int axis, double angle) {
+  Mat4 m{};
+  const double c = std::cos(angle), s = std::sin(angle);
+  const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+  m[axis][axis] = 1.0;
+  m[a][a] = c;
+  m[b][b] = c;
+  m[a][b] = s;
+  m[b][a] = -s;
+  m[3][3] = 1.0;
+  return m;
+}
+
+// A rotation by `angle` about the unit vector `u` (lib_create_axis_rotate_matrix).
+Mat4 rotation(const glm::dvec3& u, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle), t = 1.0 - c;
+  Mat4 m{};
+  m[0] = {u.x * u.x + (1.0 - u.x * u.x) * c, u.x * u.y * t + u.z * s, u.x * u.z * t - u.y * s, 0.0};
+  m[1] = {u.x * u.y * t - u.z * s, u.y * u.y + (1.0 - u.y * u.y) * c, u.y * u.z * t + u.x * s, 0.0};
+  m[2] = {u.x * u.z * t + u.y * s, u.y * u.z * t - u.x * s, u.z * u.z + (1.0 - u.z * u.z) * c, 0.0};
+  m[3] = {0.0, 0.0, 0.0, 1.0};
+  return m;
+}
+
+Mat4 operator*(const Mat4& a, const Mat4& b) {
+  Mat4 r{};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) r[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j] + a[i][3] * b[3][j];
+  return r;
+}
+
+// v (w = 1) times m, translation included (lib_transform_point).
+glm::dvec3 transformPoint(const glm::dvec3& v, const Mat4& m) {
+  glm::dvec3 r;
+  for (int j = 0; j < 3; ++j) r[j] = v.x * m[0][j] + v.y * m[1][j] + v.z * m[2][j] + m[3][j];
+  return r;
+}
+
+// v (w = 0) times m: a direction (lib_transform_vector).
+glm::dvec3 transformVector(const glm::dvec3& v, const Mat4& m) {
+  glm::dvec3 r;
+  for (int j = 0; j < 3; ++j) r[j] = v.x * m[0][j] + v.y * m[1][j] + v.z * m[2][j];
+  return r;
+}
+
+// a x b in the SPD's operation order (its zeros keep their signs, and so do the files' numbers).
+glm::dvec3 cross(const glm::dvec3& a, const glm::dvec3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+glm::dvec3 normalized(glm::dvec3 v) {
+  const double length = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+  return length > 0.0 ? glm::dvec3(v.x / length, v.y / length, v.z / length) : v;
+}
+
+// NFF text as the SPD's library writes it.
+class NffText {
+ public:
+  explicit NffText(std::string comment) : out_("# " + std::move(comment) + "\n") {
+    out_ += "b 0.078 0.361 0.753\n";  // the SPD's UNC sky blue
+  }
+  void view(const glm::dvec3& from, const glm::dvec3& at, double hither) {
+    out_ += fmt::format("v\nfrom {}\nat {}\nup 0 0 1\nangle 45\nhither {:g}\nresolution 512 512\n", xyz(from), xyz(at),
+                        hither);
+  }
+  void light(const glm::dvec3& p) { out_ += fmt::format("l {}\n", xyz(p)); }
+  // lib_output_color: the NFF line keeps kd, ks, the Phong exponent of the
+  // highlight's half angle, kt and the index of refraction (0 where opaque).
+  void material(const glm::dvec3& color, double kd, double ks, double halfAngleDegrees, double kt, double ior) {
+    out_ += fmt::format("f {} {:g} {:g} {:g} {:g} {:g}\n", xyz(color), kd, ks, phongPower(halfAngleDegrees), kt, ior);
+  }
+  void polygon(std::span<const glm::dvec3> points) {
+    out_ += fmt::format("p {}\n", points.size());
+    for (const glm::dvec3& p : points) out_ += xyz(p) + "\n";
+  }
+  void polygon(std::initializer_list<glm::dvec3> points) { polygon(std::span(points.begin(), points.size())); }
+  void sphere(const glm::dvec3& center, double radius) { out_ += fmt::format("s {} {:g}\n", xyz(center), radius); }
+  void cone(const glm::dvec3& base, double baseRadius, const glm::dvec3& apex, double apexRadius) {
+    out_ += fmt::format("c {} {:g} {} {:g}\n", xyz(base), baseRadius, xyz(apex), apexRadius);
+  }
+  std::string take() { return std::move(out_); }
+
+ private:
+  static std::string xyz(const glm::dvec3& v) { return fmt::format("{:g} {:g} {:g}", v.x, v.y, v.z); }
+  std::string out_;
+};
 
 // The gears database: sizeFactor^3 gears of 36 teeth in a staircase of layers
 // over a reflective square. A gear is a 144-vertex concave face on top (each
 // tooth: two points on the outer radius at +-0.19 of the tooth angle, two on the
 // inner radius at +0.3 and +0.7), the same outline below wound the other way,
 // and one rectangle per outline edge between them. Every fifth gear (by
-// (4 ix + 2 iy + iz) mod 5 == 0) is a transmitter. Numbers are written as %g
-// does (6 significant digits), as the SPD's own NFF files are.
+// (4 ix + 2 iy + iz) mod 5 == 0) is a transmitter.
 std::string gearsNff(int sizeFactor) {
   constexpr int kTeeth = 36;
   constexpr double kOuterEdge = 0.995, kInnerEdge = 0.9, kEdgeDiff = 1.0 - kInnerEdge, kDepth = 0.1;
   const double pi = std::numbers::pi;
-  std::string out = fmt::format("# SPD gears, size factor {}: {} gears (generated by Lancer, docs/effects.md)\n",
-                                sizeFactor, sizeFactor * sizeFactor * sizeFactor);
-  out +=
-      "v\n"
-      "from -1.1 -2.1 2.6\n"
-      "at 0 0 0\n"
-      "up 0 0 1\n"
-      "angle 45\n"
-      "hither 1\n"
-      "resolution 512 512\n"
-      "b 0.078 0.361 0.753\n"
-      "l 2 4 4\n"
-      "l -2 4 3\n"
-      "l 2 -2.5 2.5\n"
-      "l -1 -4 2\n"
-      "l -1.111 -2.121 2.626\n";  // just behind the eye
-  const auto point = [](const glm::dvec3& p) { return fmt::format("{:g} {:g} {:g}\n", p.x, p.y, p.z); };
-  // The ground: off-white, Ks 0.6, a highlight falling to half at 37 degrees.
-  out += fmt::format("f 1 0.85 0.7 0.3 0.6 {:g} 0 1\n", phongPower(37.0));
-  out += "p 4\n" + point({2, 2, 0}) + point({-2, 2, 0}) + point({-2, -2, 0}) + point({2, -2, 0});
+  NffText out(fmt::format("SPD gears, size factor {}: {} gears (generated by Lancer, docs/effects.md)", sizeFactor,
+                          sizeFactor * sizeFactor * sizeFactor));
+  out.view({-1.1, -2.1, 2.6}, {0.0, 0.0, 0.0}, 1.0);
+  for (const glm::dvec3 l : {glm::dvec3(2, 4, 4), glm::dvec3(-2, 4, 3), glm::dvec3(2, -2.5, 2.5),
+                             glm::dvec3(-1, -4, 2), glm::dvec3(-1.111, -2.121, 2.626)}) {  // the last just behind the eye
+    out.light(l);
+  }
+  out.material({1.0, 0.85, 0.7}, 0.3, 0.6, 37.0, 0.0, 0.0);  // the off-white ground
+  out.polygon({{2, 2, 0}, {-2, 2, 0}, {-2, -2, 0}, {2, -2, 0}});
 
   const double sf = sizeFactor;
   const double radius = 1.0 / (sf - (sf - 1.0) * kEdgeDiff / 2.0);
@@ -145,30 +239,294 @@ std::string gearsNff(int sizeFactor) {
                          0.01 + fraction((iz * 3 + ix * 2 + iy + 1) * 2.0 / 7.0));
         color /= std::max({color.r, color.g, color.b});
         if ((ix * 4 + iy * 2 + iz) % 5 == 0) {
-          out += fmt::format("f {:g} {:g} {:g} 0.2 0 {:g} 0.8 1.1\n", color.r, color.g, color.b, phongPower(0.0));
+          out.material(color, 0.2, 0.0, 0.0, 0.8, 1.1);
         } else {
-          out += fmt::format("f {:g} {:g} {:g} 1 0 {:g} 0 1\n", color.r, color.g, color.b, phongPower(0.0));
+          out.material(color, 1.0, 0.0, 0.0, 0.0, 0.0);
         }
         const double offset = pi * double((ix + iy + iz) % 2) / kTeeth;
         const std::vector<glm::dvec3> top = outline(c, offset, 0.0, 1.0);
-        out += fmt::format("p {}\n", top.size());
-        for (const glm::dvec3& p : top) out += point(p);
+        out.polygon(top);
         for (size_t i = 0; i < top.size(); ++i) {
           const glm::dvec3 a = top[i], b = top[(i + 1) % top.size()], down(0.0, 0.0, thickness);
-          out += "p 4\n" + point(a) + point(a - down) + point(b - down) + point(b);
+          out.polygon({a, a - down, b - down, b});
         }
-        const std::vector<glm::dvec3> bottom = outline(c, offset, -thickness, -1.0);
-        out += fmt::format("p {}\n", bottom.size());
-        for (const glm::dvec3& p : bottom) out += point(p);
+        out.polygon(outline(c, offset, -thickness, -1.0));
       }
     }
   }
-  return out;
+  return out.take();
+}
+
+// balls, the sphereflake: a sphere of radius 1/2 at the origin blooms nine
+// spheres of a third of its radius, touching it, and each of those nine more,
+// sizeFactor levels deep (sum of 9^k spheres, k = 0..sizeFactor), over a
+// square floor; three lights.
+class Sphereflake {
+ public:
+  explicit Sphereflake(NffText& out) : out_(out) {
+    // Three directions 45 degrees apart in the upper half, tilted, then the
+    // trio turned by 0, 120 and 240 degrees about z.
+    const double d = 1.0 / std::sqrt(2.0);
+    std::array<glm::dvec3, 3> trio = {glm::dvec3(d, d, 0.0), glm::dvec3(d, 0.0, -d), glm::dvec3(0.0, d, -d)};
+    const Mat4 tilt = rotation(normalized({1.0, -1.0, 0.0}), std::asin(2.0 / std::sqrt(6.0)));
+    for (glm::dvec3& t : trio) t = transformPoint(t, tilt);
+    for (int set = 0; set < 3; ++set) {
+      const Mat4 turn = rotation(2, set * 2.0 * std::numbers::pi / 3.0);
+      for (int v = 0; v < 3; ++v) children_[size_t(set * 3 + v)] = transformPoint(trio[size_t(v)], turn);
+    }
+  }
+
+  // A sphere and its children, which bloom along `direction` (a unit vector;
+  // `ratio` is the children's radius over their parent's).
+  void sphere(int depth, const glm::dvec3& center, double radius, const glm::dvec3& direction, double ratio) {
+    out_.sphere(center, radius);
+    if (depth == 0) return;
+    Mat4 toDirection = identity();  // from +z to `direction`
+    if (direction.z <= -0.9999) {
+      toDirection = rotation(1, std::numbers::pi);
+    } else if (direction.z < 0.9999) {
+      const glm::dvec3 axis = normalized(cross({0.0, 0.0, 1.0}, direction));
+      toDirection = rotation(axis, std::acos(direction.z));
+    }
+    const double scale = radius * (1.0 + ratio);
+    for (const glm::dvec3& child : children_) {
+      const glm::dvec3 at = transformPoint(child, toDirection) * scale + center;
+      sphere(depth - 1, at, radius * ratio, (at - center) / scale, ratio);
+    }
+  }
+
+ private:
+  NffText& out_;
+  std::array<glm::dvec3, 9> children_;
+};
+
+std::string ballsNff(int sizeFactor) {
+  size_t spheres = 0;
+  for (int k = 0, n = 1; k <= sizeFactor; ++k, n *= 9) spheres += size_t(n);
+  NffText out(fmt::format("SPD balls, size factor {}: {} spheres (generated by Lancer, docs/effects.md)", sizeFactor,
+                          spheres));
+  out.view({2.1, 1.3, 1.7}, {0.0, 0.0, 0.0}, 0.01);
+  for (const glm::dvec3 l : {glm::dvec3(4, 3, 2), glm::dvec3(1, -4, 4), glm::dvec3(-3, 1, 5)}) out.light(l);
+  out.material({1.0, 0.75, 0.33}, 0.8, 0.0, 0.0, 0.0, 1.0);  // a beige floor
+  out.polygon({{12, 12, -0.5}, {-12, 12, -0.5}, {-12, -12, -0.5}, {12, -12, -0.5}});
+  out.material({1.0, 0.9, 0.7}, 0.5, 0.5, 37.0, 0.0, 1.0);  // mirrored spheres
+  Sphereflake(out).sphere(sizeFactor, glm::dvec3(0.0), 0.5, {0.0, 0.0, 1.0}, 1.0 / 3.0);
+  return out.take();
+}
+
+// mount: Carpenter's fractal mountain over [-1, 1]^2, 2 * 4^sizeFactor
+// triangles, midpoints displaced by Gaussian deviates whose seeds come from
+// the SPD's original (repeating) hash of the grid position, and a pyramid of
+// four glass spheres in front; one light.
+class Mountain {
+ public:
+  Mountain(NffText& out, int sizeFactor)
+      : out_(out), sizeFactor_(sizeFactor), points_(double(1 << sizeFactor)) {
+    const double ratio = 2.0 / std::exp(std::log(2.0) / (kFractalDimension - 1.0));
+    roughness_ = std::sqrt(ratio * ratio - 1.0);
+  }
+
+  void grow() { quad(1 << sizeFactor_, 0, 0, 0.0, 0.0, 0.0, 0.0); }
+
+ private:
+  static constexpr double kFractalDimension = 2.2;
+  static constexpr long kMountainNo = 21;
+
+  // lib_gauss_rand: a Gaussian deviate by the polar method from a small LCG.
+  static double gaussian(long seed) {
+    constexpr long kM = 134456, kA = 8121, kC = 28411;
+    long a = 0, b = seed;
+    double v1 = 0.0, v2 = 0.0, r = 0.0;
+    do {
+      a = (kC + b * kA) % kM;
+      b = (kC + a * kA) % kM;
+      v1 = a * 2.0 / double(kM) - 1.0;
+      v2 = b * 2.0 / double(kM) - 1.0;
+      r = v1 * v1 + v2 * v2;
+    } while (r >= 1.0);
+    return v1 * std::sqrt(-2.0 * std::log(r) / r);
+  }
+
+  // The displacement of the grid point (x, y): the 1987 hash, kept for the
+  // SPD's image (its repetitions included).
+  double deviate(int x, int y) const {
+    const uint64_t a = uint64_t(x), b = uint64_t(y);
+    const uint64_t hash = ((a << (23 - sizeFactor_)) + (b << (15 - sizeFactor_)) + (a << (7 - sizeFactor_))) & 0xffff;
+    return gaussian(kMountainNo + long(hash));
+  }
+
+  double coordinate(int i) const { return -1.0 + double(i) * 2.0 / points_; }
+
+  // The square of `width` grid steps at (x, y) with its corners' heights
+  // (lower left, lower right, upper right, upper left).
+  void quad(int width, int x, int y, double ll, double lr, double ur, double ul) {
+    if (width == 1) {
+      const double lx = coordinate(x), rx = coordinate(x + 1), ly = coordinate(y), uy = coordinate(y + 1);
+      out_.polygon({{lx, ly, ll}, {rx, ly, lr}, {rx, uy, ur}});
+      out_.polygon({{rx, uy, ur}, {lx, uy, ul}, {lx, ly, ll}});
+      return;
+    }
+    const int half = width >> 1;
+    const double rise = double(half) * 2.0 / points_ * roughness_;
+    const double lower = (ll + lr) / 2.0 + rise * deviate(x + half, y);
+    const double right = (lr + ur) / 2.0 + rise * deviate(x + width, y + half);
+    const double upper = (ur + ul) / 2.0 + rise * deviate(x + half, y + width);
+    const double left = (ul + ll) / 2.0 + rise * deviate(x, y + half);
+    const double middle = (ll + lr + ur + ul) / 4.0 + 1.4142136 * rise * deviate(x + half, y + half);
+    quad(half, x, y, ll, lower, middle, left);
+    quad(half, x + half, y, lower, lr, right, middle);
+    quad(half, x + half, y + half, middle, right, ur, upper);
+    quad(half, x, y + half, left, middle, upper, ul);
+  }
+
+  NffText& out_;
+  int sizeFactor_;
+  double points_;  // grid steps on a side
+  double roughness_ = 0.0;
+};
+
+std::string mountNff(int sizeFactor) {
+  NffText out(fmt::format("SPD mount, size factor {}: {} triangles, 4 spheres (generated by Lancer, docs/effects.md)",
+                          sizeFactor, 2ull << (2 * sizeFactor)));
+  out.view({-1.6, 1.6, 1.7}, {0.0, 0.0, 0.0}, 0.01);
+  out.light({-100.0, -100.0, 100.0});
+  out.material({1.0, 1.0, 1.0}, 0.1, 0.1, 6.7, 0.9, 1.5);  // clear glass
+  // A tetrahedral pile of four spheres of radius r: one on top, three around
+  // its foot, each turned acos(-1/3) from the top about (1, 1, 0) and then
+  // 0, 120 and 240 degrees about z.
+  const glm::dvec3 center(-0.8, 0.8, 1.0);
+  const double r = 0.17;
+  const glm::dvec3 top(0.0, 0.0, r * std::sqrt(3.0 / 2.0));
+  out.sphere(center + top, r);
+  const glm::dvec3 foot = transformVector(top, rotation(normalized({1.0, 1.0, 0.0}), std::acos(-1.0 / 3.0)));
+  for (int i = 0; i < 3; ++i) {
+    out.sphere(transformVector(foot, rotation(2, double(i) * 2.0 * std::numbers::pi / 3.0)) + center, r);
+  }
+  out.material({0.5, 0.45, 0.35}, 1.0, 0.0, 0.0, 0.0, 0.0);  // grey rock
+  Mountain(out, sizeFactor).grow();
+  return out.take();
+}
+
+// rings: pyramids of dodecahedral ring sets. The 30 edges of six pentagons
+// (the faces around one half of a dodecahedron, each a ring of five
+// cylinders with a sphere at each joint) repeat at (d + 1)^2 places on layer
+// d of sizeFactor layers, in front of a white wall; three lights.
+std::array<glm::dvec3, 30> ringJoints(double tubeRadius) {
+  std::array<glm::dvec3, 30> v{};
+  const double scale = 1.0 / (1.0 + tubeRadius);  // the set fits a sphere of radius 1
+  for (int i = 0; i < 5; ++i) {
+    v[size_t(i)] = {scale * std::cos(i * 2.0 * std::numbers::pi / 5.0),
+                    scale * std::sin(i * 2.0 * std::numbers::pi / 5.0), 0.0};
+  }
+  // The dihedral angle of the dodecahedron tips the first pentagon onto the
+  // next five faces, turned 1/10 + k/5 of the way about z.
+  const double pi = std::numbers::pi;
+  const Mat4 tip = rotation(0, 2.0 * std::acos(std::cos(pi / 3.0) / std::sin(pi / 5.0)));
+  for (int face = 1; face < 6; ++face) {
+    const Mat4 turn = rotation(2, pi * (2.0 * double(face - 1) + 1.0) / 5.0);
+    for (int i = 0; i < 5; ++i) v[size_t(5 * face + i)] = transformPoint(transformPoint(v[size_t(i)], tip), turn);
+  }
+  return v;
+}
+
+std::string ringsNff(int sizeFactor) {
+  int sets = 0;
+  for (int d = 1; d <= sizeFactor; ++d) sets += d * d;
+  NffText out(fmt::format("SPD rings, size factor {}: {} spheres and {} cylinders (generated by Lancer, docs/effects.md)",
+                          sizeFactor, 30 * sets, 30 * sets));
+  const double pi = std::numbers::pi, radius = 0.07412;  // the tubes' and joints' radius
+  const double spread = 1.0 / std::sin(pi / 8.0);       // layer spacing in y (xz spacing 1)
+  const glm::dvec3 from(-1.0, -spread, 0.5);
+  out.view(from, {from.x, from.y + 1.0, from.z}, 1.0);
+  for (const glm::dvec3 l : {glm::dvec3(3, -spread, 3), glm::dvec3(-4, -spread, 1), glm::dvec3(2, -spread, -4)}) {
+    out.light(l);
+  }
+  out.material({1.0, 1.0, 1.0}, 1.0, 0.0, 0.0, 0.0, 0.0);
+  // The wall spans the 45-degree view plus 1%.
+  const double wy = spread * double(sizeFactor + 1), wxz = 1.01 * (wy - from.y) * std::tan(pi / 8.0);
+  out.polygon({{wxz + from.x, wy, wxz + from.z},
+               {-wxz + from.x, wy, wxz + from.z},
+               {-wxz + from.x, wy, -wxz + from.z},
+               {wxz + from.x, wy, -wxz + from.z}});
+  static const std::array<glm::dvec3, 6> kColors = {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1),
+                                                    glm::dvec3(0, 1, 1), glm::dvec3(1, 0, 1), glm::dvec3(1, 1, 0)};
+  const std::array<glm::dvec3, 30> joints = ringJoints(radius);
+  for (int layer = 0; layer < sizeFactor; ++layer) {
+    glm::dvec3 offset(0.0, spread * double(layer + 1), 0.0);
+    for (int iz = 0; iz <= layer; ++iz) {
+      offset.z = double(2 * iz - layer);
+      for (int ix = 0; ix <= layer; ++ix) {
+        offset.x = double(2 * ix - layer);
+        for (int j = 0; j < 30; ++j) {
+          // Each ring closes on itself: joint j's tube runs back to the previous joint of its ring.
+          if (j % 5 == 0) out.material(kColors[size_t(j / 5)], 0.5, 0.2, 37.0, 0.0, 0.0);
+          const int previous = j % 5 == 0 ? j + 4 : j - 1;
+          const glm::dvec3 base = joints[size_t(j)] + offset;
+          out.cone(base, radius, joints[size_t(previous)] + offset, radius);
+          out.sphere(base, radius);
+        }
+      }
+    }
+  }
+  return out.take();
+}
+
+// tree: Aono and Kunii's botanical tree, a trunk that splits into two
+// branches sizeFactor levels deep (2^(sizeFactor+1) - 1 cones, each capped by
+// a sphere), on a square field; seven lights.
+class Tree {
+ public:
+  explicit Tree(NffText& out) : out_(out) {
+    // Each branch: turned about x by its branching angle and about z by its
+    // divergence, shrunk by its contraction, and moved to its parent's top.
+    constexpr std::array<double, 2> kBranchAngle = {40.0, 25.0}, kDivergence = {90.0, 140.0 + 90.0},
+                                    kContraction = {0.65, 0.70};
+    const double pi = std::numbers::pi;
+    for (size_t i = 0; i < 2; ++i) {
+      Mat4 scale = identity();
+      scale[0][0] = scale[1][1] = scale[2][2] = kContraction[i];
+      scale[3][2] = 1.0;
+      branch_[i] = rotation(0, kBranchAngle[i] * pi / 180.0) * rotation(2, kDivergence[i] * pi / 180.0) * scale;
+    }
+  }
+
+  // The branch that `toWorld` places (the unit segment along +z), of base
+  // radius scale * 0.15, and its two branches.
+  void grow(const Mat4& toWorld, double scale, int depth) {
+    constexpr double kWidthToHeight = 0.15, kTaper = 0.67;
+    const double baseRadius = scale * kWidthToHeight, apexRadius = baseRadius * kTaper;
+    const glm::dvec3 apex = transformPoint({0.0, 0.0, 1.0}, toWorld);
+    out_.cone(transformPoint({0.0, 0.0, 0.0}, toWorld), baseRadius, apex, apexRadius);
+    out_.sphere(apex, apexRadius);
+    if (depth == 0) return;
+    for (const Mat4& b : branch_) grow(b * toWorld, scale * kTaper, depth - 1);
+  }
+
+ private:
+  NffText& out_;
+  std::array<Mat4, 2> branch_;
+};
+
+std::string treeNff(int sizeFactor) {
+  const int branches = (2 << sizeFactor) - 1;
+  NffText out(fmt::format("SPD tree, size factor {}: {} cones and {} spheres (generated by Lancer, docs/effects.md)",
+                          sizeFactor, branches, branches));
+  out.view({4.5, 0.4, 2.0}, {0.0, 0.0, 1.5}, 1.0);
+  for (const glm::dvec3 l : {glm::dvec3(-5, 5, 50), glm::dvec3(30, -30, 30), glm::dvec3(-40, -30, 20),
+                             glm::dvec3(10, 30, 40), glm::dvec3(-30, 40, 10), glm::dvec3(50, 25, 20),
+                             glm::dvec3(-10, -60, 30)}) {
+    out.light(l);
+  }
+  out.material({0.2, 0.7, 0.2}, 1.0, 0.0, 0.0, 0.0, 0.0);  // a green field
+  out.polygon({{50, 50, 0}, {-50, 50, 0}, {-50, -50, 0}, {50, -50, 0}});
+  out.material({0.55, 0.4, 0.2}, 1.0, 0.0, 0.0, 0.0, 0.0);  // brown bark
+  Tree(out).grow(identity(), 1.0, sizeFactor);
+  return out.take();
 }
 
 }  // namespace
 
-std::vector<std::string> spdSceneNames() { return {"tetra", "gears"}; }
+std::vector<std::string> spdSceneNames() { return {"tetra", "gears", "balls", "mount", "rings", "tree"}; }
 
 std::string generateSpdNff(std::string_view name, int sizeFactor) {
   // The largest size factors keep the text near 100 MB (spd.h).
@@ -181,6 +539,10 @@ std::string generateSpdNff(std::string_view name, int sizeFactor) {
   };
   if (name == "tetra") return tetraNff(checked(6, 10));
   if (name == "gears") return gearsNff(checked(4, 16));
+  if (name == "balls") return ballsNff(checked(4, 5));
+  if (name == "mount") return mountNff(checked(6, 7));
+  if (name == "rings") return ringsNff(checked(7, 20));
+  if (name == "tree") return treeNff(checked(11, 16));
   throw InputError(fmt::format("unknown SPD scene '{}' (available: {})", name, fmt::join(spdSceneNames(), ", ")));
 }
 

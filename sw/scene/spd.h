@@ -21,16 +21,29 @@ namespace lancer {
 //          64 gears, 9345 polygons; 1..16), every fifth one a transmitter,
 //          over a reflective square; five lights.
 //
-// The largest size factors keep the NFF text (which the built-in scene is read
-// from) near 100 MB: tetra 10 is 1 M triangles, gears 16 is 2.3 M.
+//   balls  the sphereflake: a sphere blooming nine spheres of a third of its
+//          radius, size factor levels deep (default 4: 7381 spheres; 1..5),
+//          over a floor; three lights.
+//   mount  a fractal mountain of 2 * 4^sizeFactor triangles (default 6: 8192;
+//          1..7) and four glass spheres; one light.
+//   rings  pyramids of dodecahedral rings of cylinders and spheres (default 7:
+//          4200 of each; 1..20) before a wall; three lights.
+//   tree   a branching tree of 2^(sizeFactor+1) - 1 cones and spheres (default
+//          11: 4095 of each; 1..16) on a field; seven lights.
 //
-// The SPD writes index of refraction 0 for opaque materials; Lancer's NFF
-// reader asks for > 0, so these files say 1 (meaningless where T = 0).
+// The largest size factors keep the NFF text (which the built-in scene is read
+// from) near 100 MB: tetra 10 is 1 M triangles, gears 16 is 2.3 M. Spheres and
+// cones are tessellated by the NFF reader (a sphereflake of size factor 5 is
+// some 50 M triangles).
+//
+// gears, balls, mount, rings and tree are the SPD programs' own files, byte for
+// byte after a comment line. tetra writes the same triangles in another order
+// and index of refraction 1 where the SPD's says 0 (meaningless where T = 0).
 
 // The names generateSpdNff() accepts.
 std::vector<std::string> spdSceneNames();
-// Throws InputError for an unknown name or a size factor out of range (tetra
-// 1..10, gears 1..16; 0 picks the SPD default: tetra 6, gears 4).
+// Throws InputError for an unknown name or a size factor out of range (above;
+// 0 picks the SPD's default).
 std::string generateSpdNff(std::string_view name, int sizeFactor = 0);
 // The generated scene read back, named "builtin:spd-<name>", or
 // "builtin:spd-<name>@<sizeFactor>" for a size factor other than 0.

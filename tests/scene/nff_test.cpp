@@ -193,6 +193,22 @@ TEST(Nff, ConesAndCylindersAreOpenTubesFacingOut) {
   EXPECT_EQ(parse("c\n0 0 0 1\n0 0 3 0\n", options).triangles.size(), 12u);
 }
 
+TEST(Nff, ConeNumbersOnTheLineOfTheCAsTheSpdWritesThem) {
+  NffOptions options;
+  options.coneSlices = 12;
+  const Scene twoLines = parse("c\n0 0 0 1\n0 0 3 0.5\n", options);
+  const Scene oneLine = parse("c 0 0 0 1 0 0 3 0.5\n", options);
+  ASSERT_EQ(oneLine.triangles.size(), twoLines.triangles.size());
+  for (size_t i = 0; i < oneLine.triangles.size(); ++i) {
+    EXPECT_EQ(oneLine.triangles[i].v0, twoLines.triangles[i].v0);
+    EXPECT_EQ(oneLine.triangles[i].v1, twoLines.triangles[i].v1);
+    EXPECT_EQ(oneLine.triangles[i].v2, twoLines.triangles[i].v2);
+  }
+  EXPECT_NE(errorOf("c 0 0 0 1 0 0 3\n").find("test.nff:1: 'c' takes 8 numbers, this line has 7"), std::string::npos);
+  EXPECT_NE(errorOf("c 0 0 0 1\n0 0 3 0.5\n").find("test.nff:1: 'c' takes 8 numbers, this line has 4"),
+            std::string::npos);
+}
+
 TEST(Nff, ErrorsNameTheFileAndLine) {
   EXPECT_NE(errorOf("b 0 0 0\nq 1 2 3\n").find("test.nff:2: unknown NFF entity 'q'"), std::string::npos);
   EXPECT_NE(errorOf("f 1 1 1 1 0 0 0\n").find("test.nff:1: 'f' takes 8 numbers, this line has 7"), std::string::npos);

@@ -620,7 +620,79 @@ TEST(Scene, BuiltinSpdScenesTakeASizeFactor) {
     EXPECT_EQ(loadError("builtin:spd-tetra@" + factor),
               fmt::format("builtin:spd-tetra@{0}: the size factor '{0}' after '@' is not a whole number >= 1", factor));
   }
-  EXPECT_EQ(loadError("builtin:spd-balls@2"), "builtin:spd-balls@2: unknown SPD scene 'balls' (available: tetra, gears)");
+  EXPECT_EQ(loadError("builtin:spd-teapot@2"),
+            "builtin:spd-teapot@2: unknown SPD scene 'teapot' (available: tetra, gears, balls, mount, rings, tree)");
+  EXPECT_EQ(loadError("builtin:spd-balls@6"), "builtin:spd-balls@6: SPD balls: size factor 6 out of range (1..5)");
+  EXPECT_EQ(loadError("builtin:spd-mount@8"), "builtin:spd-mount@8: SPD mount: size factor 8 out of range (1..7)");
+}
+
+// FNV-1a, 64 bits: a fingerprint of a whole generated file.
+uint64_t fingerprint(std::string_view text) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (const char c : text) h = (h ^ uint8_t(c)) * 0x100000001b3ull;
+  return h;
+}
+
+// At their default sizes, gears, balls, mount, rings and tree are the files
+// the SPD's own programs write (`balls -r 1 > balls.nff`, ...), byte for byte
+// after Lancer's comment line: the sizes and FNV-1a fingerprints below are
+// those of the SPD programs' output (erich666/StandardProceduralDatabases,
+// built and run as docs/effects.md says), and the counts those of the SPD's
+// own headers.
+TEST(Scene, SpdScenesAreTheSpdProgramsFiles) {
+  struct Expected {
+    const char* name;
+    size_t bytes;
+    uint64_t fingerprint;
+    size_t spheres, cones, polygons;
+  };
+  for (const Expected& e : {Expected{"gears", 1335003, 0x7d0444781e9080a6ull, 0, 0, 9345},
+                            Expected{"balls", 305317, 0x863d74a4c777c8cdull, 7381, 0, 1},
+                            Expected{"mount", 632253, 0x5064e6fdcf1c1819ull, 4, 0, 8192},
+                            Expected{"rings", 421988, 0x0702914ba86ab5efull, 4200, 4200, 1},
+                            Expected{"tree", 475128, 0xa579f6e6fb2d5c8full, 4095, 4095, 1}}) {
+    SCOPED_TRACE(e.name);
+    const std::string text = generateSpdNff(e.name);
+    ASSERT_TRUE(text.starts_with("# SPD "));
+    const std::string_view spd = std::string_view(text).substr(text.find('\n') + 1);
+    size_t spheres = 0, cones = 0, polygons = 0;
+    for (size_t at = 0; at < spd.size(); at = spd.find('\n', at) + 1) {
+      spheres += spd.substr(at, 2) == "s ";
+      cones += spd.substr(at, 2) == "c ";
+      polygons += spd.substr(at, 2) == "p ";
+    }
+    EXPECT_EQ(spheres, e.spheres);
+    EXPECT_EQ(cones, e.cones);
+    EXPECT_EQ(polygons, e.polygons);
+    EXPECT_EQ(spd.size(), e.bytes);
+    EXPECT_EQ(fingerprint(spd), e.fingerprint);
+  }
+  // The first objects, as the SPD's files have them: balls' root sphere and its
+  // first child, tree's trunk, a ring's first tube.
+  EXPECT_TRUE(contains(generateSpdNff("balls"), "\ns 0 0 0 0.5\ns 0.272166 0.272166 0.544331 0.166667\n"));
+  EXPECT_TRUE(contains(generateSpdNff("tree"), "\nc 0 0 0 0.15 0 0 1 0.1005\ns 0 0 1 0.1005\n"));
+  EXPECT_TRUE(contains(generateSpdNff("rings"), "\nc 0.930995 2.61313 0 0.07412 0.287693 1.7277 0 0.07412\n"));
+}
+
+// The curved scenes load through the NFF reader (spheres and cones
+// tessellated until they are traced natively), their counts growing with the
+// size factor as the SPD's headers give them.
+TEST(Scene, CurvedSpdScenesLoadAtEverySize) {
+  const auto countOf = [](const std::string& text, std::string_view key) {
+    size_t n = 0;
+    for (size_t at = 0; at < text.size(); at = text.find('\n', at) + 1) n += std::string_view(text).substr(at, 2) == key;
+    return n;
+  };
+  EXPECT_EQ(countOf(generateSpdNff("balls", 2), "s "), 91u);           // 1 + 9 + 81
+  EXPECT_EQ(countOf(generateSpdNff("mount", 3), "p "), 128u);          // 2 * 4^3
+  EXPECT_EQ(countOf(generateSpdNff("rings", 2), "c "), 30u * (1 + 4));  // 30 per ring set, (d + 1)^2 sets on layer d
+  EXPECT_EQ(countOf(generateSpdNff("tree", 3), "s "), 15u);            // 2^(3 + 1) - 1
+  for (const char* name : {"balls@1", "mount@2", "rings@1", "tree@2"}) {
+    SCOPED_TRACE(name);
+    const Scene scene = loadScene(std::string("builtin:spd-") + name);
+    EXPECT_GT(scene.size(), 0u);
+    EXPECT_FALSE(scene.lights.empty());
+  }
 }
 
 // Lancer reads the formats whose numbers it reads correctly rounded
