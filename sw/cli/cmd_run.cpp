@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <algorithm>
-#include <limits>
 #include <memory>
 #include <numeric>
 #include <optional>
@@ -718,8 +717,7 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--dir-bits", args->dirBits, "Expected direction width (must match the build)");
   fx::forEachTraversalUnit([&](auto unit) {
     for (const fx::BuildOption& o : decltype(unit)::buildOptions()) {
-      CLI::Option* option = cmd->add_option(o.flag, args->job.accel.*o.field, o.help);
-      option->check(o.positive ? CLI::Range(1, std::numeric_limits<int>::max()) : CLI::Range(0, std::numeric_limits<int>::max()));
+      addBuildOption(*cmd, o, o.help, o.max, args->job.accel);
     }
   });
   cmd->add_option("--mem-latency", args->job.memLatency, "Memory latency of the traversal units, in cycles")

@@ -2,11 +2,13 @@
 
 #include <chrono>
 #include <fstream>
+#include <limits>
 
 #include <fmt/format.h>
 
 #include "common/error.h"
 #include "common/progress.h"
+#include "golden/units.h"
 #include "oracle/make_accel.h"
 #include "ref/trace.h"
 
@@ -72,12 +74,29 @@ void AccelArgs::add(CLI::App& app, const std::vector<std::string>& allowed) {
   app.add_option("--accel", accel, "Acceleration structure")
       ->check(CLI::IsMember(allowed))
       ->capture_default_str();
-  app.add_option("--grid-res", options.gridResolution,
-                 "Grid voxels along the longest axis (default: from the triangle count)");
-  app.add_option("--octree-depth", options.octreeMaxDepth, "Octree maximum depth (default: heuristic)");
-  app.add_option("--octree-leaf", options.octreeLeafSize, "Octree leaf size in triangles (default: heuristic)");
-  app.add_option("--bvh-leaf", options.bvhLeafSize, "BVH: the largest leaf the SAH builder may make")
-      ->capture_default_str();
+  fx::forEachTraversalUnit([&](auto unit) {
+    for (const fx::BuildOption& o : decltype(unit)::buildOptions()) {
+      if (!o.shapesReference) continue;
+      const ReferenceBuildOption* reference = findReferenceBuildOption(o.field);
+      addBuildOption(app, o, reference ? reference->help : o.help, reference ? reference->max : o.max, options);
+    }
+  });
+}
+
+void addBuildOption(CLI::App& app, const fx::BuildOption& option, const std::string& help, int max,
+                    AccelOptions& into) {
+  const int least = option.positive ? 1 : 0;
+  app.add_option_function<int>(
+      option.flag,
+      [flag = option.flag, field = option.field, least, max, &into](int value) {
+        if (value < least || value > max) {
+          throw InputError(max == std::numeric_limits<int>::max()
+                               ? fmt::format("{} {}: must be {} or more", flag, value, least)
+                               : fmt::format("{} {}: must lie in {}..{}", flag, value, least, max));
+        }
+        into.*field = value;
+      },
+      help);
 }
 
 void EffectsArgs::add(CLI::App& app, CLI::Option* needs) {

@@ -13,6 +13,7 @@
 
 #include "driver/job.h"
 #include "effects/plan.h"
+#include "golden/unit.h"
 #include "ref/accel.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
@@ -36,6 +37,15 @@ struct CameraArgs {
   CameraOptions resolve() const;
 };
 
+// A unit's build option (golden/unit.h) on a command, setting `into`: its flag
+// and rule from the descriptor, the help and largest value of the structure
+// the command builds. A value below the rule or above `max` is an InputError
+// naming the flag (exit status 1) before anything runs.
+void addBuildOption(CLI::App& app, const fx::BuildOption& option, const std::string& help, int max,
+                    AccelOptions& into);
+
+// --accel and every traversal unit's build option that shapes the float
+// structure (BuildOption::shapesReference), as the float structure takes it.
 struct AccelArgs {
   std::string accel = "bvh";
   AccelOptions options;

@@ -29,8 +29,9 @@ struct GridUnit : UnitBase<UnitKind::Grid, GridImage, GridCell, kGridCellFields,
 
   // --grid-res R gives R cells on every axis; 0 chooses by the triangle count.
   static std::vector<BuildOption> buildOptions() {
-    return {{"--grid-res", &AccelOptions::gridResolution, "Grid cells per axis (default: from the triangle count)",
-             false, {"grid_resolution_x", "grid_resolution_y", "grid_resolution_z"}}};
+    return {{"--grid-res", &AccelOptions::gridResolution,
+             fmt::format("Grid cells per axis, 1..{} (default: from the triangle count)", kGridResMax), false,
+             {"grid_resolution_x", "grid_resolution_y", "grid_resolution_z"}, true, kGridResMax}};
   }
   static Image build(std::vector<QTriangle> triangles, const AccelOptions& options) {
     const int r = options.gridResolution;

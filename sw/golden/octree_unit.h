@@ -29,7 +29,7 @@ struct OctreeUnit : UnitBase<UnitKind::Octree, OctreeImage, OctreeNode, kOctreeN
   static std::vector<BuildOption> buildOptions() {
     return {{"--octree-depth", &AccelOptions::octreeMaxDepth,
              fmt::format("Octree maximum depth, 1..{} (default: from the triangle count)", kOctreeMaxDepth), true,
-             {"octree_max_depth"}},
+             {"octree_max_depth"}, true, kOctreeMaxDepth},
             {"--octree-leaf", &AccelOptions::octreeLeafSize,
              fmt::format("Octree leaf size: split nodes holding more triangles (default {})", kDefaultOctreeLeafSize),
              true, {"octree_leaf_size"}}};

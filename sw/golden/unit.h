@@ -32,6 +32,7 @@
 #include <array>
 #include <cstdint>
 #include <iterator>
+#include <limits>
 #include <span>
 #include <string>
 #include <string_view>
@@ -152,7 +153,9 @@ constexpr UnitNames unitNames(const UnitWords& words) {
 // from AccelOptions' default; the sweep's reference trace passes the reported
 // value to `lancer trace` (the float structure takes the same flag) when the
 // counters agree, for the options that shape the tree (not the ones that only
-// lay it out in memory).
+// lay it out in memory). The CLI refuses a value outside the rule (positive)
+// and `max` before anything runs; tests/cli/build_options_test.cpp tries both
+// bounds of every option.
 struct BuildOption {
   const char* flag;
   int AccelOptions::*field;
@@ -160,6 +163,7 @@ struct BuildOption {
   bool positive;                        // refused unless > 0 (else unless >= 0)
   std::vector<const char*> reportKeys;  // "bvh_leaf_size"; the grid's three axes
   bool shapesReference = true;          // the float structure takes it too (`lancer trace`); not a layout's
+  int max = std::numeric_limits<int>::max();  // the largest value the unit takes (this default: no limit)
 };
 
 // A figure of a unit's memory image (the grid's resolution, the octree's depth).

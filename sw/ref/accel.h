@@ -43,4 +43,17 @@ std::string_view toString(AccelKind kind);
 // Throws InputError for an unknown name.
 AccelKind parseAccelKind(std::string_view name);
 
+// How the float structures take an AccelOptions field that a unit's build
+// option also sets (golden/unit.h, BuildOption::shapesReference): what `lancer
+// render` and `lancer trace` say of its flag, and the largest value they take
+// (the float grid's --grid-res counts voxels along the longest axis, up to
+// 1024; the unit's, cells on every axis).
+struct ReferenceBuildOption {
+  int AccelOptions::*field;
+  std::string help;
+  int max;  // INT_MAX: no limit
+};
+// The entry of `field`; nullptr if no float structure reads it.
+const ReferenceBuildOption* findReferenceBuildOption(int AccelOptions::*field);
+
 }  // namespace lancer

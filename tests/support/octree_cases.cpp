@@ -43,6 +43,20 @@ OctreeCase makeCase(std::string name, OctreeImage image, std::vector<QRay> rays)
   return makeTraversalCase("octree", std::move(name), std::move(image), std::move(rays));
 }
 
+// `count` random rays from a generator seeded with `seed`, ray i moved by
+// place(i, ray, generator) onto a node's plane, face or edge, then normalized.
+template <class Place>
+std::vector<QRay> placedRays(uint64_t seed, int count, Place place) {
+  std::mt19937_64 rng(seed);
+  std::vector<QRay> rays;
+  for (int i = 0; i < count; ++i) {
+    QRay r{0, randomLatticePoint(rng), randomDir(rng)};
+    place(i, r, rng);
+    rays.push_back(normalizedDirection(r));
+  }
+  return rays;
+}
+
 // ---- The cases ------------------------------------------------------------------
 
 OctreeCase axisParallel() {
@@ -70,12 +84,9 @@ OctreeCase axisParallel() {
 }
 
 OctreeCase midPlanes() {
-  std::mt19937_64 rng(102);
   std::uniform_int_distribution<int> level(1, std::min(8, kPosBits)), odd(0, 127);
-  std::vector<QRay> rays;
-  for (int i = 0; i < 240; ++i) {
+  std::vector<QRay> rays = placedRays(102, 240, [&](int i, QRay& r, std::mt19937_64& rng) {
     const int axis = i % 3;
-    QRay r{0, randomLatticePoint(rng), randomDir(rng)};
     // The mid-plane of a node at depth k - 1: an odd multiple of 2^(P-k).
     const int k = (i % 4 == 0) ? 1 : level(rng);
     const int64_t step = kSide >> k;
@@ -83,8 +94,7 @@ OctreeCase midPlanes() {
     r.dir[axis] = 0;
     if (i % 5 == 0) r.dir[(axis + 1) % 3] = 0;  // along a line in the plane
     if (r.dir == Vec{0, 0, 0}) r.dir[(axis + 2) % 3] = kDirMax;
-    rays.push_back(normalizedDirection(r));
-  }
+  });
   return makeCase("mid_planes", fx::buildOctreeImage(quantizeScene(subdivide(makeCornellBox(), 1)), depthAtMost(7), 2),
                   std::move(rays));
 }
@@ -132,11 +142,8 @@ OctreeCase octants() {
 }
 
 OctreeCase nodeFaces() {
-  std::mt19937_64 rng(105);
   std::uniform_int_distribution<int> level(1, std::min(9, kPosBits)), cell(0, 511);
-  std::vector<QRay> rays;
-  for (int i = 0; i < 300; ++i) {
-    QRay r{0, randomLatticePoint(rng), randomDir(rng)};
+  std::vector<QRay> rays = placedRays(105, 300, [&](int i, QRay& r, std::mt19937_64& rng) {
     const int64_t step = kSide >> level(rng);
     const int axis = i % 3;
     r.org[axis] = clampPos(int64_t(cell(rng)) % (kSide / step + 1) * step);  // on a face of a node
@@ -144,8 +151,7 @@ OctreeCase nodeFaces() {
     if (i % 6 == 2) r.dir[axis] = 0;  // lying in the face
     if (i % 6 == 3) r.dir[axis] = (r.dir[axis] < 0 ? -1 : 1) * kDirMax;  // leaving along its normal
     if (r.dir == Vec{0, 0, 0}) r.dir[0] = kDirMax;
-    rays.push_back(normalizedDirection(r));
-  }
+  });
   return makeCase("node_faces", fx::buildOctreeImage(quantizeScene(subdivide(makeCornellBox(), 2)), depthAtMost(8), 2),
                   std::move(rays));
 }
