@@ -66,17 +66,6 @@ struct Converter {
   }
 };
 
-// max / min over the active axes' parameters.
-struct Interval {
-  i128 lo = 0, hi = 0;
-  bool any = false;
-  void meet(i128 t0, i128 t1) {
-    lo = any ? std::max(lo, t0) : t0;
-    hi = any ? std::min(hi, t1) : t1;
-    any = true;
-  }
-};
-
 struct Walker {
   const BvhImage& image;
   const QRay& ray;
@@ -150,13 +139,13 @@ struct Walker {
 
 std::array<int64_t, 3> BvhNode::childLo(int c) const {
   std::array<int64_t, 3> p{};
-  for (int a = 0; a < 3; ++a) p[a] = base[a] + (int64_t(lo[c][a]) << shift[a]);
+  for (int a = 0; a < 3; ++a) p[a] = bvhPlane(base[a], lo[c][a], shift[a]);
   return p;
 }
 
 std::array<int64_t, 3> BvhNode::childHi(int c) const {
   std::array<int64_t, 3> p{};
-  for (int a = 0; a < 3; ++a) p[a] = base[a] + (int64_t(hi[c][a]) << shift[a]);
+  for (int a = 0; a < 3; ++a) p[a] = bvhPlane(base[a], hi[c][a], shift[a]);
   return p;
 }
 
@@ -284,23 +273,6 @@ void checkBvhImageFits(const BvhImage& image, int addrBits) {
   checkRegionFits("bvh", "node table", image.nodes.size(), "use a smaller scene", addrBits);
   checkRegionFits("bvh", "index list", image.indices.size(), "use a smaller scene", addrBits);
   checkRegionFits("bvh", "triangle table", image.triangles.size(), "use a smaller scene", addrBits);
-}
-
-BoxHit boxTest(const BvhRaySetup& ray, const std::array<int64_t, 3>& lo, const std::array<int64_t, 3>& hi) {
-  Interval t;
-  for (int a = 0; a < 3; ++a) {
-    // Mirrored: the box [lo, hi] becomes [2^P - hi, 2^P - lo].
-    const int64_t l = ray.mirrored(a) ? kLatticeSide - hi[a] : lo[a];
-    const int64_t h = ray.mirrored(a) ? kLatticeSide - lo[a] : hi[a];
-    if (!ray.active[a]) {
-      // The ray stays in the plane x_a = o_a: inside the slab for all t, or never.
-      if (ray.origin[a] < l || ray.origin[a] > h) return {};
-      continue;
-    }
-    t.meet(i128(l - ray.origin[a]) * ray.pair[a], i128(h - ray.origin[a]) * ray.pair[a]);
-  }
-  if (!(t.lo <= t.hi && t.hi > 0)) return {};
-  return BoxHit{true, u128(std::max<i128>(t.lo, 0))};
 }
 
 bool culledBy(const IsectResult& bound, u128 entry, const BvhRaySetup& ray) {

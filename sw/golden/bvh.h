@@ -5,11 +5,13 @@
 // builder) and the walk that defines which nodes each ray enters and which hit
 // it returns. docs/bvh-unit.md has the derivation.
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "golden/bvh_formats.h"
@@ -28,6 +30,10 @@ struct BvhRef {
   // The visit record's id of this node.
   uint32_t visitId() const { return leaf ? (kBvhLeafVisit | first) : first; }
 };
+
+// A child's plane in its parent's frame: base + (step << shift), on the
+// lattice (an upper plane may exceed kPosMax by less than 2^shift).
+inline int64_t bvhPlane(int64_t base, uint32_t step, int shift) { return base + (int64_t(step) << shift); }
 
 // An interior node (bvh_node_t): its children's boxes in its own frame.
 struct BvhNode {
@@ -114,7 +120,31 @@ struct BoxHit {
   u128 entry = 0;
   bool operator==(const BoxHit&) const = default;
 };
-BoxHit boxTest(const BvhRaySetup& ray, const std::array<int64_t, 3>& lo, const std::array<int64_t, 3>& hi);
+// A plane parameter T (kBvhTBits signed bits), in a machine word where the
+// formats allow: the box test runs on every node a walk enters.
+using BvhParam = std::conditional_t<(kBvhTBits <= 64), int64_t, i128>;
+inline BoxHit boxTest(const BvhRaySetup& ray, const std::array<int64_t, 3>& lo, const std::array<int64_t, 3>& hi) {
+  static_assert(2 * (kDirBits - 1) < 63, "a pair product (two |d|) fits a word");
+  BvhParam tMin = 0, tMax = 0;  // max(T0), min(T1) over the active axes
+  bool any = false;
+  for (int a = 0; a < 3; ++a) {
+    // Mirrored: the box [lo, hi] becomes [2^P - hi, 2^P - lo].
+    const int64_t l = ray.mirrored(a) ? kLatticeSide - hi[a] : lo[a];
+    const int64_t h = ray.mirrored(a) ? kLatticeSide - lo[a] : hi[a];
+    if (!ray.active[a]) {
+      // The ray stays in the plane x_a = o_a: inside the slab for all t, or never.
+      if (ray.origin[a] < l || ray.origin[a] > h) return {};
+      continue;
+    }
+    const BvhParam pair = BvhParam(int64_t(ray.pair[a]));
+    const BvhParam t0 = BvhParam(l - ray.origin[a]) * pair, t1 = BvhParam(h - ray.origin[a]) * pair;
+    tMin = any ? std::max(tMin, t0) : t0;
+    tMax = any ? std::min(tMax, t1) : t1;
+    any = true;
+  }
+  if (!(tMin <= tMax && tMax > 0)) return {};
+  return BoxHit{true, u128(std::max<BvhParam>(tMin, 0))};
+}
 
 // The cull rule of a node about to be entered: the closest hit so far (or the
 // segment end) lies before it, t_bound <= (entry - 1) / common. Entry 0 is

@@ -10,28 +10,35 @@ namespace lancer::sc {
 
 namespace {
 
-constexpr size_t kNodeWords = size_t(fx::wireWords(rt_bvh_unit::NODE_W));
 static_assert(fx::valueCount(fx::kBvhNodeFields) == 24, "bvh_node_t layout changed");
 static_assert(fx::valueCount(fx::kBvhRefFields) == 3, "bvh_ref_t layout changed");
+static_assert(fx::kBvhWidth == 2, "u_box tests two children");
 
-// bvh_node_t from its wire image: values in kBvhNodeFields order, arrays element 0 first.
-fx::BvhNode unpackNode(const uint32_t* wire) {
-  fx::BvhNode n;
-  const auto f = [&]<size_t I>() { return getField<fx::kBvhNodeFields, I>(wire); };
+// Value I of a node response (bvh_node_t: values in kBvhNodeFields order, arrays element 0 first).
+template <size_t I>
+int64_t nodeField(const uint32_t* wire) {
+  return getField<fx::kBvhNodeFields, I>(wire);
+}
+
+// u_box on child C of a node response: its box's planes as BvhNode::childLo
+// and childHi give them, read straight from the wire image (the node is not
+// unpacked: this runs on every node response).
+template <size_t C>
+fx::BoxHit testChild(const fx::BvhRaySetup& ray, const uint32_t* wire) {
+  std::array<int64_t, 3> lo, hi;
   [&]<size_t... A>(std::index_sequence<A...>) {
-    ((n.base[A] = f.template operator()<A>()), ...);
-    ((n.shift[A] = int(f.template operator()<3 + A>())), ...);
-    ((n.lo[0][A] = uint32_t(f.template operator()<6 + A>())), ...);
-    ((n.lo[1][A] = uint32_t(f.template operator()<9 + A>())), ...);
-    ((n.hi[0][A] = uint32_t(f.template operator()<12 + A>())), ...);
-    ((n.hi[1][A] = uint32_t(f.template operator()<15 + A>())), ...);
-  }(std::make_index_sequence<3>{});
-  [&]<size_t... C>(std::index_sequence<C...>) {
-    ((n.child[C] = fx::BvhRef{f.template operator()<18 + C>() != 0, uint32_t(f.template operator()<20 + C>()),
-                              uint32_t(f.template operator()<22 + C>())}),
+    ((lo[A] = fx::bvhPlane(nodeField<A>(wire), uint32_t(nodeField<6 + 3 * C + A>(wire)), int(nodeField<3 + A>(wire)))),
      ...);
-  }(std::make_index_sequence<2>{});
-  return n;
+    ((hi[A] = fx::bvhPlane(nodeField<A>(wire), uint32_t(nodeField<12 + 3 * C + A>(wire)), int(nodeField<3 + A>(wire)))),
+     ...);
+  }(std::make_index_sequence<3>{});
+  return fx::boxTest(ray, lo, hi);
+}
+
+// Child C's reference in a node response.
+template <size_t C>
+fx::BvhRef childRef(const uint32_t* wire) {
+  return fx::BvhRef{nodeField<18 + C>(wire) != 0, uint32_t(nodeField<20 + C>(wire)), uint32_t(nodeField<22 + C>(wire))};
 }
 
 fx::BvhRef unpackRef(const uint32_t* wire) {  // {leaf, count, first}
@@ -96,17 +103,13 @@ rt_bvh_model::BoxAnswer rt_bvh_model::testNode() {
   if (rsp.slot >= N || slots_[size_t(rsp.slot)].state != State::WaitNode) {
     fail(fmt::format("node response for slot {}, which does not wait for one", rsp.slot));
   }
-  std::array<uint32_t, kNodeWords> wire;  // fromValue writes every word
-  fromValue<rt_bvh_unit::NODE_DATA_W>(*rsp.data, wire);
-  const fx::BvhNode node = unpackNode(wire.data());
+  const uint32_t* wire = wireOf<rt_bvh_unit::NODE_DATA_W>(*rsp.data).data();
+  const fx::BvhRaySetup& ray = slots_[size_t(rsp.slot)].setup;
   BoxAnswer a;
   a.valid = true;
   a.slot = rsp.slot;
-  const fx::BvhRaySetup& ray = slots_[size_t(rsp.slot)].setup;
-  for (int c = 0; c < fx::kBvhWidth; ++c) {
-    a.hit[size_t(c)] = fx::boxTest(ray, node.childLo(c), node.childHi(c));
-    a.child[size_t(c)] = node.child[size_t(c)];
-  }
+  a.hit = {testChild<0>(ray, wire), testChild<1>(ray, wire)};
+  a.child = {childRef<0>(wire), childRef<1>(wire)};
   setState(rsp.slot, State::Box);
   return a;
 }

@@ -25,7 +25,8 @@ namespace lancer::sc {
 //           the registers at the start of the cycle and the inputs.
 //
 // No arithmetic is duplicated: the per-ray setup is fx::BvhRaySetup, the box
-// test fx::boxTest, the cull rule fx::culledBy, the closest-hit order
+// test fx::boxTest (on the planes fx::bvhPlane makes of the node response's
+// fields, read in place), the cull rule fx::culledBy, the closest-hit order
 // fx::closerResult, the test fx::intersect — the golden model's code,
 // scheduled as the RTL schedules it.
 class rt_bvh_model : public rt_walk_model<rt_bvh_model, rt_bvh_unit, /*RegRsp=*/false> {

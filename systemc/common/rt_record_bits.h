@@ -48,9 +48,16 @@ inline constexpr auto kFieldSlots = fieldSlots<fx::valueCount(Fields)>(Fields);
 // Bits lsb .. lsb+width-1 of a wire image, width 1..64 (zero-extended).
 inline uint64_t getBits64(const uint32_t* wire, int lsb, int width) {
   const int first = lsb >> 5, shift = lsb & 31;
-  fx::u128 acc = 0;
-  for (int k = 0; k * 32 < width + shift; ++k) acc |= fx::u128(wire[first + k]) << (32 * k);
-  const uint64_t v = uint64_t(acc >> shift);
+  uint64_t v = 0;
+  if (width + shift <= 64) {  // within two words (most fields): no 128-bit shifts
+    v = wire[first];
+    if (width + shift > 32) v |= uint64_t(wire[first + 1]) << 32;
+    v >>= shift;
+  } else {
+    fx::u128 acc = 0;
+    for (int k = 0; k * 32 < width + shift; ++k) acc |= fx::u128(wire[first + k]) << (32 * k);
+    v = uint64_t(acc >> shift);
+  }
   return width >= 64 ? v : v & ((uint64_t(1) << width) - 1);
 }
 
