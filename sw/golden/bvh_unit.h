@@ -42,7 +42,7 @@ struct BvhUnit : UnitBase<UnitKind::Bvh, BvhImage, BvhNode, kBvhNodeFields, kBvh
     return {{"--bvh-leaf", &AccelOptions::bvhLeafSize,
              fmt::format("BVH unit's largest leaf, 1..{} triangles (default {})", kBvhMaxLeafSize,
                          kDefaultBvhLeafSize),
-             true, {"bvh_leaf_size"}},
+             true, {"bvh_leaf_size"}, true, kBvhMaxLeafSize},
             {"--bvh-treelet-bytes", &AccelOptions::bvhTreeletBytes,
              fmt::format("BVH unit's treelet layout: node bytes of a treelet block, at least one node ({} bytes); "
                          "0: depth-first (docs/scheduling.md)", kNodeBytes),
