@@ -1,5 +1,7 @@
 #include "golden/quadric.h"
 
+#include <stdexcept>
+
 #include "golden/isect.h"
 
 namespace lancer::fx {
@@ -21,10 +23,72 @@ u128 isqrt(u128 v) {
   return root;
 }
 
-IsectResult intersectSphere(const QRay& ray, const QSphere& sphere) {
+namespace {
+
+// A root of a quadric along the ray: lambda = num / den (den > 0; den = 0: no
+// such root), and whether the ray leaves the quadric's inside there.
+struct Root {
+  i128 num = 0;
+  u128 den = 0;
+  bool leaving = false;
+  bool ahead() const { return den > 0 && num > 0; }
+};
+
+// No hit of the ray on the primitive.
+IsectResult missOf(const QRay& ray, uint32_t primId) {
   IsectResult res;
   res.rayId = ray.id;
-  res.primId = sphere.id;
+  res.primId = primId;
+  return res;
+}
+
+// What every quadric test ends with: the nearer root if it is ahead of the
+// origin and `onSurface` keeps its point, else the farther one if so; the hit
+// on the triangles' scale (t_num = num |d_dom|, det = den: a displacement along
+// the dominant axis) and within the segment (t_num 2^F <= t_max det).
+template <class OnSurface>
+IsectResult quadricHit(const QRay& ray, uint32_t primId, const Root& nearer, const Root& farther, OnSurface onSurface) {
+  IsectResult res = missOf(ray, primId);
+  const Root* chosen = nullptr;
+  for (const Root* root : {&nearer, &farther}) {
+    if (root->ahead() && onSurface(*root)) {
+      chosen = root;
+      break;
+    }
+  }
+  if (chosen == nullptr) return res;
+  const int64_t dz = ray.dir[size_t(dominantAxis(ray.dir))];
+  const u128 tNum = u128(chosen->num) * u128(dz < 0 ? -dz : dz);
+  if (mul256(u128(ray.tMax), chosen->den) < mul256(tNum, u128(1) << kSegFracBits)) return res;
+  res.hit = true;
+  res.tNum = tNum;
+  res.det = chosen->den;
+  res.uNum = chosen->leaving ? 1 : 0;
+  res.vNum = 0;
+  return res;
+}
+
+// num / den with den made positive.
+Root rootOf(i128 num, i128 den, bool leaving) {
+  return den < 0 ? Root{-num, u128(-den), leaving} : Root{num, u128(den), leaving};
+}
+
+int bitLength(u128 v) {
+  int n = 0;
+  for (; v != 0; v >>= 1) ++n;
+  return n;
+}
+
+// v / 2^e rounded to nearest, ties away from zero.
+i128 roundShift(i128 v, int e) {
+  if (e == 0) return v;
+  const u128 mag = (u128(v < 0 ? -v : v) + (u128(1) << (e - 1))) >> e;
+  return v < 0 ? -i128(mag) : i128(mag);
+}
+
+}  // namespace
+
+IsectResult intersectSphere(const QRay& ray, const QSphere& sphere) {
   i128 a = 0, b = 0, c = 0;
   for (int k = 0; k < 3; ++k) {
     const i128 m = i128(ray.org[size_t(k)] - sphere.center[size_t(k)]);
@@ -35,21 +99,91 @@ IsectResult intersectSphere(const QRay& ray, const QSphere& sphere) {
   }
   c -= i128(sphere.radius) * sphere.radius;
   const i128 disc = b * b - a * c;
-  if (disc < 0 || a == 0) return res;
+  if (disc < 0 || a == 0) return missOf(ray, sphere.id);
   const i128 s = i128(isqrt(u128(disc)));
-  const i128 entering = -b - s, leaving = -b + s;
-  const i128 n = entering > 0 ? entering : leaving;
-  if (n <= 0) return res;
-  const int64_t dz = ray.dir[size_t(dominantAxis(ray.dir))];
-  const u128 tNum = u128(n) * u128(dz < 0 ? -dz : dz);
-  const u128 det = u128(a);
-  if (mul256(u128(ray.tMax), det) < mul256(tNum, u128(1) << kSegFracBits)) return res;
-  res.hit = true;
-  res.tNum = tNum;
-  res.det = det;
-  res.uNum = entering > 0 ? 0 : 1;
-  res.vNum = 0;
-  return res;
+  // A > 0: the entering root -B - s is the nearer.
+  return quadricHit(ray, sphere.id, Root{-b - s, u128(a), false}, Root{-b + s, u128(a), true},
+                    [](const Root&) { return true; });
+}
+
+QCone coneRecord(uint32_t id, const LatticeCone& cone) {
+  for (size_t k = 0; k < 3; ++k) {
+    if (cone.base[k] < 0 || cone.base[k] > kPosMax || cone.apex[k] < 0 || cone.apex[k] > kPosMax)
+      throw std::invalid_argument("cone: base or apex off the lattice");
+  }
+  if (cone.baseRadius < 0 || cone.baseRadius > kPosMax || cone.apexRadius < 0 || cone.apexRadius > kPosMax)
+    throw std::invalid_argument("cone: a radius off the lattice (0 .. 2^P - 1 units)");
+  if (cone.baseRadius == 0 && cone.apexRadius == 0) throw std::invalid_argument("cone: both radii are 0");
+  if (cone.base == cone.apex) throw std::invalid_argument("cone: zero length (base = apex)");
+
+  QCone rec;
+  rec.id = id;
+  std::array<i128, 3> w{};
+  for (size_t k = 0; k < 3; ++k) {
+    rec.axisSum[k] = cone.apex[k] + cone.base[k];
+    rec.axis[k] = cone.apex[k] - cone.base[k];
+    w[k] = rec.axis[k];
+    rec.axisLen2 += rec.axis[k] * rec.axis[k];
+  }
+  const i128 len2 = rec.axisLen2, slope = cone.apexRadius - cone.baseRadius, radii = cone.baseRadius + cone.apexRadius;
+  // The exact quadric F(q) = W^2 |q|^2 - W (q.w)^2 - ((r0 + r1) W + (r1 - r0) q.w)^2.
+  std::array<i128, 6> quad{};
+  const int pairs[6][2] = {{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
+  u128 largest = 0;
+  for (size_t p = 0; p < 6; ++p) {
+    const size_t i = size_t(pairs[p][0]), j = size_t(pairs[p][1]);
+    quad[p] = (i == j ? len2 * len2 : 0) - (len2 + slope * slope) * w[i] * w[j];
+    largest = std::max(largest, u128(quad[p] < 0 ? -quad[p] : quad[p]));
+  }
+  // The common scale: the largest entry below 2^K (small cones stay exact).
+  rec.scaleExp = std::max(0, bitLength(largest) - kConeQuadBits);
+  for (size_t p = 0; p < 6; ++p) rec.quad[p] = int64_t(roundShift(quad[p], rec.scaleExp));
+  for (size_t k = 0; k < 3; ++k) rec.lin[k] = int64_t(roundShift(-radii * len2 * slope * w[k], rec.scaleExp));
+  rec.constant = int64_t(roundShift(-radii * radii * len2 * len2, rec.scaleExp));
+  return rec;
+}
+
+IsectResult intersectCone(const QRay& ray, const QCone& cone) {
+  // The origin in the cone's frame, and the ray's and the origin's heights
+  // along the axis (times |w|, doubled for the origin).
+  std::array<i128, 3> q{}, d{};
+  i128 originHeight = 0, dirHeight = 0;
+  for (size_t k = 0; k < 3; ++k) {
+    q[k] = 2 * i128(ray.org[k]) - cone.axisSum[k];
+    d[k] = ray.dir[k];
+    originHeight += q[k] * cone.axis[k];
+    dirHeight += d[k] * cone.axis[k];
+  }
+  // F(q + 2 lambda d) = 4A lambda^2 + 4B lambda + C.
+  i128 a = 0, b = 0, c = 0;
+  for (int i = 0; i < 3; ++i) {
+    i128 qRow = 0, dRow = 0;  // (Qq)_i, (Qd)_i
+    for (int j = 0; j < 3; ++j) {
+      qRow += cone.quadAt(i, j) * q[size_t(j)];
+      dRow += cone.quadAt(i, j) * d[size_t(j)];
+    }
+    a += dRow * d[size_t(i)];
+    b += (qRow + cone.lin[size_t(i)]) * d[size_t(i)];
+    c += (qRow + 2 * cone.lin[size_t(i)]) * q[size_t(i)];
+  }
+  c += cone.constant;
+  const i128 disc = b * b - a * c;
+  if (disc < 0) return missOf(ray, cone.id);
+  const i128 s = i128(isqrt(u128(disc)));
+  // The root where 2A lambda + B = -sgn(B) sqrt(disc) and its conjugate, each
+  // without cancellation. F falls through 0 (the ray enters) where 2A lambda +
+  // B < 0; a tangent (disc = 0) counts as entering.
+  const i128 big = b < 0 ? -b + s : -b - s;
+  Root first = rootOf(big, 2 * a, b < 0 && disc > 0);
+  Root second = rootOf(c, 2 * big, b >= 0 && disc > 0);
+  if (first.ahead() && second.ahead() && mul256(u128(second.num), first.den) < mul256(u128(first.num), second.den))
+    std::swap(first, second);
+  const auto betweenPlanes = [&](const Root& r) {
+    // |q.w + 2 lambda d.w| <= W at lambda = num / den, cross-multiplied.
+    const i128 height = originHeight * i128(r.den) + 2 * r.num * dirHeight;
+    return (height < 0 ? -height : height) <= cone.axisLen2 * i128(r.den);
+  };
+  return quadricHit(ray, cone.id, first, second, betweenPlanes);
 }
 
 }  // namespace lancer::fx
