@@ -506,7 +506,7 @@ TEST(EffectsSpd, TetraIsTheRecursivePyramid) {
   EXPECT_EQ(makeSpdScene("tetra", 3).size(), 64u);
   EXPECT_NE(errorOf([] { generateSpdNff("tetra", 11); }).find("size factor 11 out of range"), std::string::npos);
   EXPECT_NE(errorOf([] { generateSpdNff("teapot"); }).find("unknown SPD scene 'teapot'"), std::string::npos);
-  EXPECT_NE(errorOf([] { loadScene("builtin:spd-balls"); }).find("unknown SPD scene 'balls'"), std::string::npos);
+  EXPECT_NE(errorOf([] { loadScene("builtin:spd-teapot"); }).find("unknown SPD scene 'teapot'"), std::string::npos);
 }
 
 // The SPD's table (Readme.txt): tetra at 513 x 513 corner rays has 49788 eye
