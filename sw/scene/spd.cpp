@@ -90,7 +90,7 @@ double phongPower(double degrees) {
 // one line, the background first, index of refraction 0 where opaque. The
 // geometry is computed in double with the SPD library's operations in its
 // order (row vectors times 4x4 matrices), so the files equal the SPD's line
-// for line (docs/effects.md, "SPD scenes").
+// for line (docs/effects.md, "SPD scenes written by us").
 
 using Mat4 = std::array<std::array<double, 4>, 4>;
 
@@ -151,6 +151,8 @@ glm::dvec3 cross(const glm::dvec3& a, const glm::dvec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 
+// v / |v| as lib_normalize_vector divides (glm::normalize multiplies by the
+// inverse length, which can round the last digit of a file's number otherwise).
 glm::dvec3 normalized(glm::dvec3 v) {
   const double length = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
   return length > 0.0 ? glm::dvec3(v.x / length, v.y / length, v.z / length) : v;

@@ -633,6 +633,18 @@ uint64_t fingerprint(std::string_view text) {
   return h;
 }
 
+// The lines of NFF text that start with `key` ("s ", "c ", "p "): its entities of one kind.
+size_t linesStartingWith(std::string_view text, std::string_view key) {
+  size_t n = 0;
+  for (size_t at = 0; at < text.size();) {
+    n += text.substr(at, key.size()) == key;
+    const size_t end = text.find('\n', at);
+    if (end == std::string_view::npos) break;
+    at = end + 1;
+  }
+  return n;
+}
+
 // At their default sizes, gears, balls, mount, rings and tree are the files
 // the SPD's own programs write (`balls -r 1 > balls.nff`, ...), byte for byte
 // after Lancer's comment line: the sizes and FNV-1a fingerprints below are
@@ -655,15 +667,9 @@ TEST(Scene, SpdScenesAreTheSpdProgramsFiles) {
     const std::string text = generateSpdNff(e.name);
     ASSERT_TRUE(text.starts_with("# SPD "));
     const std::string_view spd = std::string_view(text).substr(text.find('\n') + 1);
-    size_t spheres = 0, cones = 0, polygons = 0;
-    for (size_t at = 0; at < spd.size(); at = spd.find('\n', at) + 1) {
-      spheres += spd.substr(at, 2) == "s ";
-      cones += spd.substr(at, 2) == "c ";
-      polygons += spd.substr(at, 2) == "p ";
-    }
-    EXPECT_EQ(spheres, e.spheres);
-    EXPECT_EQ(cones, e.cones);
-    EXPECT_EQ(polygons, e.polygons);
+    EXPECT_EQ(linesStartingWith(spd, "s "), e.spheres);
+    EXPECT_EQ(linesStartingWith(spd, "c "), e.cones);
+    EXPECT_EQ(linesStartingWith(spd, "p "), e.polygons);
     EXPECT_EQ(spd.size(), e.bytes);
     EXPECT_EQ(fingerprint(spd), e.fingerprint);
   }
@@ -678,15 +684,10 @@ TEST(Scene, SpdScenesAreTheSpdProgramsFiles) {
 // tessellated until they are traced natively), their counts growing with the
 // size factor as the SPD's headers give them.
 TEST(Scene, CurvedSpdScenesLoadAtEverySize) {
-  const auto countOf = [](const std::string& text, std::string_view key) {
-    size_t n = 0;
-    for (size_t at = 0; at < text.size(); at = text.find('\n', at) + 1) n += std::string_view(text).substr(at, 2) == key;
-    return n;
-  };
-  EXPECT_EQ(countOf(generateSpdNff("balls", 2), "s "), 91u);           // 1 + 9 + 81
-  EXPECT_EQ(countOf(generateSpdNff("mount", 3), "p "), 128u);          // 2 * 4^3
-  EXPECT_EQ(countOf(generateSpdNff("rings", 2), "c "), 30u * (1 + 4));  // 30 per ring set, (d + 1)^2 sets on layer d
-  EXPECT_EQ(countOf(generateSpdNff("tree", 3), "s "), 15u);            // 2^(3 + 1) - 1
+  EXPECT_EQ(linesStartingWith(generateSpdNff("balls", 2), "s "), 91u);  // 1 + 9 + 81
+  EXPECT_EQ(linesStartingWith(generateSpdNff("mount", 3), "p "), 128u);  // 2 * 4^3
+  EXPECT_EQ(linesStartingWith(generateSpdNff("rings", 2), "c "), 30u * (1 + 4));  // 30 per ring set, (d + 1)^2 sets on layer d
+  EXPECT_EQ(linesStartingWith(generateSpdNff("tree", 3), "s "), 15u);  // 2^(3 + 1) - 1
   for (const char* name : {"balls@1", "mount@2", "rings@1", "tree@2"}) {
     SCOPED_TRACE(name);
     const Scene scene = loadScene(std::string("builtin:spd-") + name);
