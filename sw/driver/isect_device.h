@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "golden/quadric.h"
 #include "golden/records.h"
 
 namespace lancer {
@@ -15,6 +16,12 @@ namespace lancer {
 struct IsectRequest {
   fx::QRay ray;
   fx::QTriangle tri;
+};
+
+// One ray-quadric pair as it enters the quadric pipeline (rt_quadric).
+struct QuadricRequest {
+  fx::QRay ray;
+  fx::QQuadric quadric;
 };
 
 // How a run is driven; every device honours what applies to it.

@@ -16,6 +16,7 @@
 // cycle-accurate model sees the same stimulus for the same options.
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <random>
 #include <span>
@@ -29,6 +30,7 @@
 #include "driver/isect_device.h"
 #include "driver/verilated_port.h"
 #include "driver/wave_file.h"
+#include "golden/quadric.h"
 #include "golden/records.h"
 #include "golden/stimulus.h"
 #include "isect/rt_isect_cycle.h"
@@ -42,6 +44,32 @@ template <class Top>
 void idleInputs(Top& top) {
   top.req_valid_i = 0;
   top.res_ready_i = 0;
+}
+
+// The primitive of a request, and the port it enters by: rt_isect's triangle
+// (req_tri_i), rt_quadric's record (req_quadric_i).
+inline const fx::QTriangle& primitiveOf(const IsectRequest& req) { return req.tri; }
+inline const fx::QQuadric& primitiveOf(const QuadricRequest& req) { return req.quadric; }
+
+template <class Top>
+void writePrimitive(Top& top, const fx::QTriangle& tri) {
+  using Port = std::remove_reference_t<decltype(top.req_tri_i)>;
+  static_assert(portWords<Port>() >= fx::kIsectTriWords && portWords<Port>() < fx::kIsectTriWords + 2,
+                "req_tri_i does not match fx::kIsectTriBits: rebuild rt_pkg");
+  fx::TriWire wire;
+  fx::packWire(tri, wire);
+  writePort(top.req_tri_i, wire.data(), wire.size());
+}
+
+template <class Top>
+void writePrimitive(Top& top, const fx::QQuadric& quadric) {
+  constexpr size_t kWords = size_t(fx::wireWords(fx::kIsectQuadricBits));
+  using Port = std::remove_reference_t<decltype(top.req_quadric_i)>;
+  static_assert(portWords<Port>() >= kWords && portWords<Port>() < kWords + 2,
+                "req_quadric_i does not match fx::kIsectQuadricBits: rebuild rt_pkg");
+  std::array<uint32_t, kWords> wire;
+  fx::packWire(quadric, wire);
+  writePort(top.req_quadric_i, wire.data(), kWords);
 }
 
 }  // namespace isect_detail
@@ -58,21 +86,18 @@ inline constexpr uint64_t kIsectWatchdogCycles = 1000000;
 // the run are appended to it (cycle 0: the run's first), as rt_isect_tb
 // samples them. Throws std::runtime_error naming Clocked::kModel when the
 // stream stops (watchdog) or a result comes without a request.
-template <class Clocked>
-StreamStats runIsectStream(Clocked& unit, std::span<const IsectRequest> requests,
+template <class Clocked, class Request>
+StreamStats runIsectStream(Clocked& unit, std::span<const Request> requests,
                            std::vector<fx::IsectResult>& results, const StreamOptions& options,
                            std::vector<sc::IsectCycle>* trace = nullptr) {
   using Top = typename Clocked::top_type;
   constexpr size_t kRayWords = fx::kIsectRayWords;
-  constexpr size_t kTriWords = fx::kIsectTriWords;
   constexpr size_t kResWords = fx::kIsectResWords;
   using RayPort = std::remove_reference_t<decltype(std::declval<Top&>().req_ray_i)>;
-  using TriPort = std::remove_reference_t<decltype(std::declval<Top&>().req_tri_i)>;
   using ResPort = std::remove_reference_t<decltype(std::declval<Top&>().res_data_o)>;
+  using Primitive = std::remove_cvref_t<decltype(isect_detail::primitiveOf(std::declval<const Request&>()))>;
   static_assert(portWords<RayPort>() >= kRayWords && portWords<RayPort>() < kRayWords + 2,
                 "req_ray_i does not match fx::kIsectRayBits: rebuild rt_pkg");
-  static_assert(portWords<TriPort>() >= kTriWords && portWords<TriPort>() < kTriWords + 2,
-                "req_tri_i does not match fx::kIsectTriBits: rebuild rt_pkg");
   static_assert(portWords<ResPort>() >= kResWords && portWords<ResPort>() < kResWords + 2,
                 "res_data_o does not match fx::kIsectResBits: rebuild rt_pkg");
 
@@ -82,16 +107,15 @@ StreamStats runIsectStream(Clocked& unit, std::span<const IsectRequest> requests
 
   // Records are packed when offered and unpacked when taken, straight from and
   // into the ports: no image of the whole stream is kept. A port keeps its
-  // value, so a ray (or triangle) equal to the previous request's is not
+  // value, so a ray (or primitive) equal to the previous request's is not
   // packed again: streams of one ray against its candidate triangles pay once.
   if (results.capacity() < results.size() + n) {
     results.reserve(std::max(results.size() + n, 2 * results.capacity()));
   }
   fx::RayWire rayWire;  // fixed-size images: packing allocates nothing
-  fx::TriWire triWire;
   fx::ResWire resWire;
   const fx::QRay* portRay = nullptr;
-  const fx::QTriangle* portTri = nullptr;
+  const Primitive* portPrimitive = nullptr;
 
   Top& top = unit.top();
   unit.select();  // a run does not reset the model: select its context here
@@ -112,16 +136,16 @@ StreamStats runIsectStream(Clocked& unit, std::span<const IsectRequest> requests
     while (taken < n) {
       // Producer: offers the next request, unless idling; keeps an offer until taken.
       if (!offering && offered < n && !idle()) {
-        const IsectRequest& req = requests[offered];
+        const Request& req = requests[offered];
         if (!portRay || !(req.ray == *portRay)) {
           fx::packWire(req.ray, rayWire);
           writePort(top.req_ray_i, rayWire.data(), kRayWords);
           portRay = &req.ray;
         }
-        if (!portTri || !(req.tri == *portTri)) {
-          fx::packWire(req.tri, triWire);
-          writePort(top.req_tri_i, triWire.data(), kTriWords);
-          portTri = &req.tri;
+        const Primitive& primitive = isect_detail::primitiveOf(req);
+        if (!portPrimitive || !(primitive == *portPrimitive)) {
+          isect_detail::writePrimitive(top, primitive);
+          portPrimitive = &primitive;
         }
         offering = true;
         if (!started) {

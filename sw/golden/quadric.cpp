@@ -88,25 +88,20 @@ i128 roundShift(i128 v, int e) {
 
 }  // namespace
 
-IsectResult intersectSphere(const QRay& ray, const QSphere& sphere) {
-  i128 a = 0, b = 0, c = 0;
-  for (int k = 0; k < 3; ++k) {
-    const i128 m = i128(ray.org[size_t(k)] - sphere.center[size_t(k)]);
-    const i128 d = i128(ray.dir[size_t(k)]);
-    a += d * d;
-    b += m * d;
-    c += m * m;
+QQuadric sphereRecord(const QSphere& sphere) {
+  for (size_t k = 0; k < 3; ++k) {
+    if (sphere.center[k] < 0 || sphere.center[k] > kPosMax) throw std::invalid_argument("sphere: center off the lattice");
   }
-  c -= i128(sphere.radius) * sphere.radius;
-  const i128 disc = b * b - a * c;
-  if (disc < 0 || a == 0) return missOf(ray, sphere.id);
-  const i128 s = i128(isqrt(u128(disc)));
-  // A > 0: the entering root -B - s is the nearer.
-  return quadricHit(ray, sphere.id, Root{-b - s, u128(a), false}, Root{-b + s, u128(a), true},
-                    [](const Root&) { return true; });
+  if (sphere.radius < 1 || sphere.radius > kPosMax) throw std::invalid_argument("sphere: radius outside 1 .. 2^P - 1 units");
+  QQuadric rec;
+  rec.id = sphere.id;
+  for (size_t k = 0; k < 3; ++k) rec.axisSum[k] = 2 * sphere.center[k];
+  rec.quad = {1, 1, 1, 0, 0, 0};
+  rec.constant = -4 * sphere.radius * sphere.radius;
+  return rec;
 }
 
-QCone coneRecord(uint32_t id, const LatticeCone& cone) {
+QQuadric coneRecord(uint32_t id, const LatticeCone& cone) {
   for (size_t k = 0; k < 3; ++k) {
     if (cone.base[k] < 0 || cone.base[k] > kPosMax || cone.apex[k] < 0 || cone.apex[k] > kPosMax)
       throw std::invalid_argument("cone: base or apex off the lattice");
@@ -116,7 +111,7 @@ QCone coneRecord(uint32_t id, const LatticeCone& cone) {
   if (cone.baseRadius == 0 && cone.apexRadius == 0) throw std::invalid_argument("cone: both radii are 0");
   if (cone.base == cone.apex) throw std::invalid_argument("cone: zero length (base = apex)");
 
-  QCone rec;
+  QQuadric rec;
   rec.id = id;
   std::array<i128, 3> w{};
   for (size_t k = 0; k < 3; ++k) {
@@ -136,16 +131,16 @@ QCone coneRecord(uint32_t id, const LatticeCone& cone) {
     largest = std::max(largest, u128(quad[p] < 0 ? -quad[p] : quad[p]));
   }
   // The common scale: the largest entry below 2^K (small cones stay exact).
-  rec.scaleExp = std::max(0, bitLength(largest) - kConeQuadBits);
+  rec.scaleExp = std::max(0, bitLength(largest) - kQuadricK);
   for (size_t p = 0; p < 6; ++p) rec.quad[p] = int64_t(roundShift(quad[p], rec.scaleExp));
   for (size_t k = 0; k < 3; ++k) rec.lin[k] = int64_t(roundShift(-radii * len2 * slope * w[k], rec.scaleExp));
   rec.constant = int64_t(roundShift(-radii * radii * len2 * len2, rec.scaleExp));
   return rec;
 }
 
-IsectResult intersectCone(const QRay& ray, const QCone& cone) {
-  // The origin in the cone's frame, and the ray's and the origin's heights
-  // along the axis (times |w|, doubled for the origin).
+IsectResult intersectQuadric(const QRay& ray, const QQuadric& cone) {
+  // The origin in the record's frame, and the ray's and the origin's heights
+  // along the axis (times |w|, doubled for the origin; 0 for a sphere).
   std::array<i128, 3> q{}, d{};
   i128 originHeight = 0, dirHeight = 0;
   for (size_t k = 0; k < 3; ++k) {
@@ -176,14 +171,52 @@ IsectResult intersectCone(const QRay& ray, const QCone& cone) {
   const i128 big = b < 0 ? -b + s : -b - s;
   Root first = rootOf(big, 2 * a, b < 0 && disc > 0);
   Root second = rootOf(c, 2 * big, b >= 0 && disc > 0);
-  if (first.ahead() && second.ahead() && mul256(u128(second.num), first.den) < mul256(u128(first.num), second.den))
-    std::swap(first, second);
+  // Which is nearer, without dividing: first - second = (big^2 - AC) / 2A big
+  // and big^2 - AC = disc + 2|B|s + s^2, > 0 when disc > 0; so the second is
+  // the nearer exactly when disc > 0 and A and big have one sign (equal roots
+  // at disc = 0 keep their order).
+  if (first.ahead() && second.ahead() && disc > 0 && (a < 0) == (big < 0)) std::swap(first, second);
   const auto betweenPlanes = [&](const Root& r) {
     // |q.w + 2 lambda d.w| <= W at lambda = num / den, cross-multiplied.
     const i128 height = originHeight * i128(r.den) + 2 * r.num * dirHeight;
     return (height < 0 ? -height : height) <= cone.axisLen2 * i128(r.den);
   };
   return quadricHit(ray, cone.id, first, second, betweenPlanes);
+}
+
+std::array<u128, kIsectQuadricValues> fieldArray(const QQuadric& q) {
+  std::array<u128, kIsectQuadricValues> v{};
+  size_t n = 0;
+  const auto put = [&](int64_t x) { v[n++] = u128(i128(x)); };
+  put(q.id);
+  for (int64_t x : q.axisSum) put(x);
+  for (int64_t x : q.axis) put(x);
+  put(q.axisLen2);
+  for (int64_t x : q.quad) put(x);
+  for (int64_t x : q.lin) put(x);
+  put(q.constant);
+  return v;
+}
+
+void packWire(const QQuadric& quadric, std::span<uint32_t> wire) {
+  const auto values = fieldArray(quadric);
+  packFields(kIsectQuadricFields, values, wire);
+}
+
+QQuadric unpackQuadric(std::span<const uint32_t> wire) {
+  std::array<u128, kIsectQuadricValues> v{};
+  unpackFields(kIsectQuadricFields, wire, v);
+  QQuadric q;
+  size_t n = 0;
+  const auto get = [&] { return int64_t(v[n++]); };  // signed fields come sign-extended
+  q.id = uint32_t(get());
+  for (int64_t& x : q.axisSum) x = get();
+  for (int64_t& x : q.axis) x = get();
+  q.axisLen2 = get();
+  for (int64_t& x : q.quad) x = get();
+  for (int64_t& x : q.lin) x = get();
+  q.constant = get();
+  return q;
 }
 
 }  // namespace lancer::fx

@@ -8,6 +8,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "golden/quadric.h"
 #include "golden/unit_list.h"
 
 namespace lancer::fx {
@@ -21,10 +22,11 @@ constexpr void forEachTraversalUnit(Fn&& fn) {
 }
 
 // Every record that crosses the hardware boundary: the intersection
-// pipeline's, then each unit's (rt_pkg's typedefs, in this order).
+// pipeline's, the quadric pipeline's, then each unit's (rt_pkg's typedefs, in this order).
 inline const std::vector<RecordSpec>& allRecords() {
   static const std::vector<RecordSpec> all = [] {
     std::vector<RecordSpec> records(std::begin(kIsectRecords), std::end(kIsectRecords));
+    records.push_back(kIsectQuadric);
     forEachTraversalUnit([&](auto unit) {
       records.insert(records.end(), decltype(unit)::kRecords.begin(), decltype(unit)::kRecords.end());
     });

@@ -2,6 +2,7 @@
 
 #include <array>
 
+#include "base/rt_stall_pipe.h"
 #include "base/rt_value.h"
 #include "golden/records.h"
 #include "isect/rt_isect_ports.h"
@@ -16,11 +17,10 @@ namespace lancer::sc {
 //             accepted at an edge shows on res_valid_o ISECT_LATENCY - 1 edges
 //             later, i.e. it is taken at the earliest ISECT_LATENCY cycles after
 //             the cycle it was accepted in.
-// Throughput: one request per cycle. Backpressure exactly as the RTL: stage s
-//             loads when it is empty or stage s+1 loads (the last stage: when
-//             res_ready_i), so bubbles are squeezed out during output stalls;
-//             req_ready_o = stage_ready[0] depends combinationally on res_ready_i;
-//             res_valid_o / res_data_o come from the last stage register.
+// Throughput: one request per cycle. Backpressure exactly as the RTL
+//             (base/rt_stall_pipe.h): req_ready_o depends combinationally on
+//             res_ready_i; res_valid_o / res_data_o come from the last stage
+//             register.
 // Reset:      clears the valid bits; the data registers are not reset and load
 //             only with a valid item (as the RTL's).
 //
@@ -45,14 +45,11 @@ struct rt_isect_model : rt_isect_ports<rt_value, rt_value, value_t> {
  private:
   using res_t = value_t<ISECT_RES_W>;
 
-  // stage_ready[s] of the RTL, from the current registers and res_ready_i.
-  std::array<bool, NUM_STAGES> stageReady() const;
   // The entry stage: the golden result of the request on the ports, into `out`.
   void compute(res_t& out);
   void writeOutputs();
 
-  std::array<bool, NUM_STAGES> valid_q_{};
-  std::array<res_t, NUM_STAGES> data_q_{};
+  rt_stall_pipe<NUM_STAGES, res_t> pipe_;
   // The last request's ray, unpacked: a ray meets its candidate triangles in a
   // row, and unpacking it each time cost a tenth of the fast path's time.
   value_t<ISECT_RAY_W> rayPort_{};

@@ -97,4 +97,28 @@ vl_port_t<W> pinOf(const value_t<W>& v) {
   }
 }
 
+// A value port's wire image: in place for the wide records, else through
+// `scratch` (at least fx::wireWords(W) words).
+template <int W>
+std::span<const uint32_t> wireIn(const value_t<W>& v, std::span<uint32_t> scratch) {
+  if constexpr (W > 64) {
+    return wireOf<W>(v);
+  } else {
+    fromValue<W>(v, scratch);
+    return scratch;
+  }
+}
+
+// A result into a value port: in place for the wide records.
+template <int W>
+void packInto(const fx::IsectResult& result, value_t<W>& out) {
+  if constexpr (W > 64) {
+    fx::packWire(result, out);  // packing clears the bits above the record
+  } else {
+    fx::ResWire wire{};
+    fx::packWire(result, wire);
+    out = toValue<W>(wire);
+  }
+}
+
 }  // namespace lancer::sc

@@ -45,166 +45,7 @@ QRay rayFrom(std::array<int64_t, 3> org, std::array<int64_t, 3> dir) {
   return r;
 }
 
-// The exact quantities of the line against the sphere.
-struct Exact {
-  i128 a = 0, b = 0, c = 0, disc = 0;
-  explicit Exact(const QRay& ray, const QSphere& s) {
-    for (size_t k = 0; k < 3; ++k) {
-      const i128 m = ray.org[k] - s.center[k], d = ray.dir[k];
-      a += d * d;
-      b += m * d;
-      c += m * m;
-    }
-    c -= i128(s.radius) * s.radius;
-    disc = b * b - a * c;
-  }
-  // -B - sqrt(disc) > 0, decided by squared forms (no square root).
-  bool entersAhead() const { return b < 0 && b * b > disc; }
-};
-
-TEST(GoldenSphere, EveryAnswerAgreesWithExactArithmetic) {
-  std::mt19937_64 rng(41);
-  std::uniform_int_distribution<int64_t> pos(0, kPosMax), dir(-kDirMax, kDirMax);
-  int hits = 0, inside = 0, bounded = 0;
-  for (uint32_t i = 0; i < 40000; ++i) {
-    QSphere s{i, {pos(rng), pos(rng), pos(rng)}, 1 + int64_t(rng() % uint64_t(kPosMax / (1 + rng() % 64)))};
-    std::array<int64_t, 3> d{dir(rng), dir(rng), dir(rng)};
-    d[size_t(rng() % 3)] = rng() % 2 ? kDirMax : -kDirMax;  // a dominant component, as quantized rays have
-    // Aim near the sphere half the time.
-    QRay ray = rayFrom({pos(rng), pos(rng), pos(rng)}, d);
-    if (i % 2) {
-      for (size_t k = 0; k < 3; ++k) ray.org[k] = std::clamp<int64_t>(s.center[k] - d[k] / 4 + int64_t(rng() % 64) - 32, 0, kPosMax);
-    }
-    if (i % 5 == 0) {
-      ray.tMax = rng() % (kSegEndNone / 2);
-      ++bounded;
-    }
-    const IsectResult got = intersectSphere(ray, s);
-    const Exact e(ray, s);
-    if (e.disc < 0) {
-      ASSERT_FALSE(got.hit) << i;
-      continue;
-    }
-    // The roots as the pipeline rounds them: s = floor(sqrt(disc)), exactly.
-    const i128 s0 = i128(isqrt(u128(e.disc)));
-    ASSERT_TRUE(s0 * s0 <= e.disc && (s0 + 1) * (s0 + 1) > e.disc) << i;
-    const i128 entering = -e.b - s0, leaving = -e.b + s0;
-    if (!got.hit) {
-      // A line that meets the sphere is missed only behind the ray or beyond the segment.
-      const i128 n = entering > 0 ? entering : leaving;
-      if (n > 0) {
-        const int64_t dz = ray.dir[size_t(dominantAxis(ray.dir))];
-        ASSERT_TRUE(mul256(u128(ray.tMax), u128(e.a)) < mul256(u128(n) * u128(dz < 0 ? -dz : dz), u128(1) << kSegFracBits))
-            << i;
-      }
-      continue;
-    }
-    ++hits;
-    ASSERT_EQ(got.det, u128(e.a));
-    // The entering root when it is ahead, else the leaving one; each within
-    // 1 / A of the exact root (n - n* = sqrt(disc) - s in [0, 1)).
-    const i128 n = got.uNum == 0 ? entering : leaving;
-    ASSERT_EQ(got.uNum == 0, entering > 0) << i;
-    if (got.uNum == 1) ++inside;
-    ASSERT_GT(n, 0) << i;
-    const int64_t dz = ray.dir[size_t(dominantAxis(ray.dir))];
-    ASSERT_EQ(got.tNum, u128(n) * u128(dz < 0 ? -dz : dz)) << i;
-    // The exact arbiter's question without a square root: is the exact
-    // entering root ahead? -B - sqrt(disc) > 0 iff B < 0 and B^2 > disc.
-    if (got.uNum == 0 && !e.entersAhead()) {
-      ASSERT_LT(-e.b - s0 - 1, 0) << "only a root within 1 / A of the origin is taken ahead of it";
-    }
-    // Within the segment.
-    ASSERT_FALSE(mul256(u128(ray.tMax), got.det) < mul256(got.tNum, u128(1) << kSegFracBits)) << i;
-  }
-  EXPECT_GT(hits, 5000);
-  EXPECT_GT(inside, 100);
-  EXPECT_GT(bounded, 1000);
-}
-
-TEST(GoldenSphere, TangentRaysTouchAtOnePoint) {
-  const int64_t mid = kPosMax / 2;
-  for (const int64_t r : {int64_t(1), int64_t(7), kPosMax / 4}) {
-    const QSphere s{3, {mid, mid, mid}, r};
-    // Along x at distance exactly r from the center: disc = 0, one root.
-    const QRay ray = rayFrom({mid - r - 100, mid + r, mid}, {kDirMax, 0, 0});
-    const IsectResult got = intersectSphere(ray, s);
-    ASSERT_TRUE(got.hit) << r;
-    EXPECT_EQ(got.uNum, 0u);
-    // Displacement along x: exactly r + 100 (t_num / det).
-    EXPECT_EQ(got.tNum, u128(r + 100) * u128(kDirMax) * u128(kDirMax));
-    EXPECT_EQ(got.det, u128(kDirMax) * u128(kDirMax));
-    // One unit further out: a miss.
-    EXPECT_FALSE(intersectSphere(rayFrom({mid - r - 100, mid + r + 1, mid}, {kDirMax, 0, 0}), s).hit);
-  }
-}
-
-TEST(GoldenSphere, FromInsideBehindAndAlongTheSegment) {
-  const int64_t mid = kPosMax / 2, r = 1000;
-  const QSphere s{1, {mid, mid, mid}, r};
-  // From the center: the leaving root, r ahead.
-  IsectResult got = intersectSphere(rayFrom({mid, mid, mid}, {0, -kDirMax, 0}), s);
-  ASSERT_TRUE(got.hit);
-  EXPECT_EQ(got.uNum, 1u);
-  EXPECT_EQ(got.tNum, u128(r) * u128(kDirMax) * u128(kDirMax));
-  // The sphere behind the ray: a miss.
-  EXPECT_FALSE(intersectSphere(rayFrom({mid + 2 * r, mid, mid}, {kDirMax, 0, 0}), s).hit);
-  // A segment that ends before the sphere: a miss; one that reaches it: the hit.
-  QRay seg = rayFrom({mid - 2 * r, mid, mid}, {kDirMax, 0, 0});
-  seg.tMax = uint64_t(r - 1) << kSegFracBits;
-  EXPECT_FALSE(intersectSphere(seg, s).hit);
-  seg.tMax = uint64_t(r) << kSegFracBits;
-  got = intersectSphere(seg, s);
-  ASSERT_TRUE(got.hit);
-  EXPECT_EQ(got.uNum, 0u);
-  EXPECT_EQ(got.tNum, u128(r) * u128(kDirMax) * u128(kDirMax));
-}
-
-// Secondary rays leave a sphere from one lattice unit off its surface: outwards
-// they meet nothing of it; inwards they meet its far side, not the near one.
-TEST(GoldenSphere, SecondaryRaysLeavingTheSurfaceDoNotHitItAgain) {
-  const int64_t mid = kPosMax / 2;
-  for (const int64_t r : {int64_t(2), int64_t(50), kPosMax / 3}) {
-    const QSphere s{2, {mid, mid, mid}, r};
-    EXPECT_FALSE(intersectSphere(rayFrom({mid + r + 1, mid, mid}, {kDirMax, kDirMax / 3, 0}), s).hit) << r;
-    EXPECT_FALSE(intersectSphere(rayFrom({mid, mid - r - 1, mid}, {kDirMax / 5, -kDirMax, kDirMax / 7}), s).hit) << r;
-    const IsectResult in = intersectSphere(rayFrom({mid + r - 1, mid, mid}, {-kDirMax, 0, 0}), s);
-    ASSERT_TRUE(in.hit) << r;
-    EXPECT_EQ(in.uNum, 1u) << "the far side";
-    EXPECT_EQ(in.tNum, u128(2 * r - 1) * u128(kDirMax) * u128(kDirMax)) << r;
-  }
-}
-
-TEST(GoldenSphere, TinyAndHugeRadiiAndTheSceneBox) {
-  // Radius 1 at a lattice corner, and a sphere filling the lattice cube.
-  const QSphere tiny{5, {0, 0, 0}, 1};
-  const IsectResult t = intersectSphere(rayFrom({0, 0, 40}, {0, 0, -kDirMax}), tiny);
-  ASSERT_TRUE(t.hit);
-  EXPECT_EQ(t.tNum, u128(39) * u128(kDirMax) * u128(kDirMax));
-  const int64_t half = kPosMax / 2;
-  const QSphere huge{6, {half, half, half}, half};
-  const IsectResult h = intersectSphere(rayFrom({0, half, half}, {kDirMax, 0, 0}), huge);
-  ASSERT_TRUE(h.hit) << "touching the scene box: the ray starts on the sphere and leaves through it";
-  const IsectResult corner = intersectSphere(rayFrom({0, 0, 0}, {kDirMax, kDirMax, kDirMax}), huge);
-  ASSERT_TRUE(corner.hit);
-  EXPECT_EQ(corner.uNum, 0u);
-}
-
-// A sphere and a triangle on the same ray order by closerResult.
-TEST(GoldenSphere, OrdersWithTrianglesByTheSameScale) {
-  const int64_t mid = kPosMax / 2;
-  const QRay ray = rayFrom({100, mid, mid}, {kDirMax, 0, 0});
-  const QSphere s{9, {1100, mid, mid}, 500};  // entered at x = 600: displacement 500
-  QTriangle tri;
-  tri.id = 10;
-  tri.v = {{{700, mid - 50, mid - 50}, {700, mid + 50, mid - 50}, {700, mid, mid + 80}}};  // x = 700: displacement 600
-  const IsectResult a = intersectSphere(ray, s), b = intersect(ray, tri);
-  ASSERT_TRUE(a.hit && b.hit);
-  EXPECT_TRUE(closerResult(a, b));
-  EXPECT_FALSE(closerResult(b, a));
-}
-
-// ---- The cone ------------------------------------------------------------------
+// ---- Exact arithmetic ----------------------------------------------------------
 
 using Z = mpz_class;
 using Rational = mpq_class;
@@ -238,12 +79,12 @@ Rational valueOf(const RootForm& r) {
 
 // The record's quadric along the ray, in exact integers (the pipeline's
 // formulas, without its widths), and the exact root choice.
-struct ConeExact {
+struct QuadricExact {
   const QRay& ray;
-  const QCone& rec;
+  const QQuadric& rec;
   Z a, b, c, disc, originHeight, dirHeight, dz;
   std::array<Z, 3> q, d;
-  ConeExact(const QRay& r, const QCone& cone) : ray(r), rec(cone) {
+  QuadricExact(const QRay& r, const QQuadric& cone) : ray(r), rec(cone) {
     for (size_t k = 0; k < 3; ++k) {
       q[k] = 2 * Z(long(ray.org[k])) - Z(long(rec.axisSum[k]));
       d[k] = Z(long(ray.dir[k]));
@@ -329,7 +170,7 @@ Rational sceneQuadric(const LatticeCone& cone, const std::array<Rational, 3>& x)
   return len2 * len2 * q2 - len2 * height * height - radius * radius;
 }
 
-Rational recordQuadric(const QCone& rec, const std::array<Rational, 3>& x) {
+Rational recordQuadric(const QQuadric& rec, const std::array<Rational, 3>& x) {
   std::array<Rational, 3> q;
   for (size_t k = 0; k < 3; ++k) q[k] = 2 * x[k] - Rational(long(rec.axisSum[k]));
   Rational f = Rational(long(rec.constant));
@@ -353,6 +194,176 @@ std::array<int64_t, 3> directionTo(const std::array<int64_t, 3>& from, const std
   return d;
 }
 
+// t_num / det == units exactly.
+bool atDisplacement(const IsectResult& r, int64_t units) { return r.tNum == u128(units) * r.det; }
+
+struct ExactCounts {
+  int hits = 0, inside = 0, boundary = 0, linear = 0;
+};
+
+// The pipeline's answer for one ray and record against exact arithmetic: bit
+// for bit the rounded choice of QuadricExact; the exact choice unless a root's
+// verdict changes between the square root's floor and the next integer; the
+// root bracketed within 1 / |big|. `value`: the hit's lambda, as the pipeline
+// rounds it.
+void checkAgainstExact(const QRay& ray, const QQuadric& rec, const IsectResult& got, ExactCounts& counts,
+                       Rational& value) {
+  const QuadricExact e(ray, rec);
+  if (e.disc < 0) {
+    ASSERT_FALSE(got.hit);
+    return;
+  }
+  if (e.a == 0) ++counts.linear;
+  const Z s = sqrt(e.disc), s1 = s + 1;
+  const auto first = e.roundedFirst(s), second = e.roundedSecond(s);
+  const int pick = e.choice(first, second, false);
+  ASSERT_EQ(got.hit, pick != 0);
+  if (pick != 0) {
+    RootForm r = pick == 1 ? *first : *second;
+    if (r.gamma < 0) r = {-r.alpha, 0, -r.gamma};
+    ASSERT_EQ(toZ(got.tNum), r.alpha * e.dz);
+    ASSERT_EQ(toZ(got.det), r.gamma);
+    ASSERT_EQ(got.uNum, (pick == 1 ? e.b < 0 : e.b >= 0) && e.disc > 0 ? 1u : 0u);
+  }
+  const int exactPick = e.choice(e.exactFirst(), e.exactSecond(), true);
+  if (exactPick != pick) {
+    const bool straddles = e.choice(e.roundedFirst(s1), e.roundedSecond(s1), false) != pick || s <= 1;
+    ASSERT_TRUE(straddles) << "the exact and the rounded choices differ away from a boundary";
+    ++counts.boundary;
+  }
+  if (pick == 0) return;
+  ++counts.hits;
+  if (got.uNum == 1) ++counts.inside;
+  // The exact root lies between the roots at s and s + 1, which differ by
+  // less than 1 / |big| of the root.
+  const RootForm lo = pick == 1 ? *first : *second;
+  const auto hiRoot = pick == 1 ? e.roundedFirst(s1) : e.roundedSecond(s1);
+  const auto exact = pick == 1 ? e.exactFirst() : e.exactSecond();
+  ASSERT_TRUE(hiRoot && exact);
+  value = valueOf(lo);
+  const Rational vHi = valueOf(*hiRoot);
+  ASSERT_LE(e.signAt(-lo.alpha, lo.gamma, *exact) * e.signAt(-hiRoot->alpha, hiRoot->gamma, *exact), 0);
+  ASSERT_LE(abs(vHi - value) * abs(e.big(s)), abs(value));
+}
+
+TEST(GoldenSphere, EveryAnswerAgreesWithExactArithmetic) {
+  std::mt19937_64 rng(41);
+  std::uniform_int_distribution<int64_t> pos(0, kPosMax), dir(-kDirMax, kDirMax);
+  ExactCounts counts;
+  int bounded = 0;
+  for (uint32_t i = 0; i < 40000; ++i) {
+    const QSphere s{i, {pos(rng), pos(rng), pos(rng)}, 1 + int64_t(rng() % uint64_t(kPosMax / (1 + rng() % 64)))};
+    std::array<int64_t, 3> d{dir(rng), dir(rng), dir(rng)};
+    d[size_t(rng() % 3)] = rng() % 2 ? kDirMax : -kDirMax;  // a dominant component, as quantized rays have
+    // Aim near the sphere half the time.
+    QRay ray = rayFrom({pos(rng), pos(rng), pos(rng)}, d);
+    if (i % 2) {
+      for (size_t k = 0; k < 3; ++k) ray.org[k] = std::clamp<int64_t>(s.center[k] - d[k] / 4 + int64_t(rng() % 64) - 32, 0, kPosMax);
+    }
+    if (i % 5 == 0) {
+      ray.tMax = rng() % (kSegEndNone / 2);
+      ++bounded;
+    }
+    const QQuadric rec = sphereRecord(s);
+    const IsectResult got = intersectQuadric(ray, rec);
+    Rational value;
+    checkAgainstExact(ray, rec, got, counts, value);
+    ASSERT_FALSE(HasFatalFailure()) << "sphere " << i;
+    if (!got.hit) continue;
+    // The record is the sphere exactly (C = 4(|o - c|^2 - r^2)): the ray
+    // leaves it exactly when it starts inside.
+    const Z c = QuadricExact(ray, rec).c;
+    if (c != 0) {
+      ASSERT_EQ(got.uNum == 1, c < 0) << i;
+    }
+  }
+  EXPECT_GT(counts.hits, 5000);
+  EXPECT_GT(counts.inside, 100);
+  EXPECT_GT(bounded, 1000);
+  EXPECT_LT(counts.boundary, 30);
+}
+
+TEST(GoldenSphere, TangentRaysTouchAtOnePoint) {
+  const int64_t mid = kPosMax / 2;
+  for (const int64_t r : {int64_t(1), int64_t(7), kPosMax / 4}) {
+    const QSphere s{3, {mid, mid, mid}, r};
+    // Along x at distance exactly r from the center: disc = 0, one root.
+    const QRay ray = rayFrom({mid - r - 100, mid + r, mid}, {kDirMax, 0, 0});
+    const IsectResult got = intersectQuadric(ray, sphereRecord(s));
+    ASSERT_TRUE(got.hit) << r;
+    EXPECT_EQ(got.uNum, 0u);
+    // Displacement along x: exactly r + 100 (t_num / det).
+    EXPECT_TRUE(atDisplacement(got, r + 100));
+    // One unit further out: a miss.
+    EXPECT_FALSE(intersectQuadric(rayFrom({mid - r - 100, mid + r + 1, mid}, {kDirMax, 0, 0}), sphereRecord(s)).hit);
+  }
+}
+
+TEST(GoldenSphere, FromInsideBehindAndAlongTheSegment) {
+  const int64_t mid = kPosMax / 2, r = 1000;
+  const QSphere s{1, {mid, mid, mid}, r};
+  // From the center: the leaving root, r ahead.
+  IsectResult got = intersectQuadric(rayFrom({mid, mid, mid}, {0, -kDirMax, 0}), sphereRecord(s));
+  ASSERT_TRUE(got.hit);
+  EXPECT_EQ(got.uNum, 1u);
+  EXPECT_TRUE(atDisplacement(got, r));
+  // The sphere behind the ray: a miss.
+  EXPECT_FALSE(intersectQuadric(rayFrom({mid + 2 * r, mid, mid}, {kDirMax, 0, 0}), sphereRecord(s)).hit);
+  // A segment that ends before the sphere: a miss; one that reaches it: the hit.
+  QRay seg = rayFrom({mid - 2 * r, mid, mid}, {kDirMax, 0, 0});
+  seg.tMax = uint64_t(r - 1) << kSegFracBits;
+  EXPECT_FALSE(intersectQuadric(seg, sphereRecord(s)).hit);
+  seg.tMax = uint64_t(r) << kSegFracBits;
+  got = intersectQuadric(seg, sphereRecord(s));
+  ASSERT_TRUE(got.hit);
+  EXPECT_EQ(got.uNum, 0u);
+  EXPECT_TRUE(atDisplacement(got, r));
+}
+
+// Secondary rays leave a sphere from one lattice unit off its surface: outwards
+// they meet nothing of it; inwards they meet its far side, not the near one.
+TEST(GoldenSphere, SecondaryRaysLeavingTheSurfaceDoNotHitItAgain) {
+  const int64_t mid = kPosMax / 2;
+  for (const int64_t r : {int64_t(2), int64_t(50), kPosMax / 3}) {
+    const QSphere s{2, {mid, mid, mid}, r};
+    EXPECT_FALSE(intersectQuadric(rayFrom({mid + r + 1, mid, mid}, {kDirMax, kDirMax / 3, 0}), sphereRecord(s)).hit) << r;
+    EXPECT_FALSE(intersectQuadric(rayFrom({mid, mid - r - 1, mid}, {kDirMax / 5, -kDirMax, kDirMax / 7}), sphereRecord(s)).hit) << r;
+    const IsectResult in = intersectQuadric(rayFrom({mid + r - 1, mid, mid}, {-kDirMax, 0, 0}), sphereRecord(s));
+    ASSERT_TRUE(in.hit) << r;
+    EXPECT_EQ(in.uNum, 1u) << "the far side";
+    EXPECT_TRUE(atDisplacement(in, 2 * r - 1)) << r;
+  }
+}
+
+TEST(GoldenSphere, TinyAndHugeRadiiAndTheSceneBox) {
+  // Radius 1 at a lattice corner, and a sphere filling the lattice cube.
+  const QSphere tiny{5, {0, 0, 0}, 1};
+  const IsectResult t = intersectQuadric(rayFrom({0, 0, 40}, {0, 0, -kDirMax}), sphereRecord(tiny));
+  ASSERT_TRUE(t.hit);
+  EXPECT_TRUE(atDisplacement(t, 39));
+  const int64_t half = kPosMax / 2;
+  const QSphere huge{6, {half, half, half}, half};
+  const IsectResult h = intersectQuadric(rayFrom({0, half, half}, {kDirMax, 0, 0}), sphereRecord(huge));
+  ASSERT_TRUE(h.hit) << "touching the scene box: the ray starts on the sphere and leaves through it";
+  const IsectResult corner = intersectQuadric(rayFrom({0, 0, 0}, {kDirMax, kDirMax, kDirMax}), sphereRecord(huge));
+  ASSERT_TRUE(corner.hit);
+  EXPECT_EQ(corner.uNum, 0u);
+}
+
+// A sphere and a triangle on the same ray order by closerResult.
+TEST(GoldenSphere, OrdersWithTrianglesByTheSameScale) {
+  const int64_t mid = kPosMax / 2;
+  const QRay ray = rayFrom({100, mid, mid}, {kDirMax, 0, 0});
+  const QSphere s{9, {1100, mid, mid}, 500};  // entered at x = 600: displacement 500
+  QTriangle tri;
+  tri.id = 10;
+  tri.v = {{{700, mid - 50, mid - 50}, {700, mid + 50, mid - 50}, {700, mid, mid + 80}}};  // x = 700: displacement 600
+  const IsectResult a = intersectQuadric(ray, sphereRecord(s)), b = intersect(ray, tri);
+  ASSERT_TRUE(a.hit && b.hit);
+  EXPECT_TRUE(closerResult(a, b));
+  EXPECT_FALSE(closerResult(b, a));
+}
+
 TEST(GoldenCone, RefusesWhatIsNoCone) {
   EXPECT_THROW(coneRecord(1, {{10, 10, 10}, {10, 10, 90}, 0, 0}), std::invalid_argument);
   EXPECT_THROW(coneRecord(1, {{10, 10, 10}, {10, 10, 10}, 5, 3}), std::invalid_argument);
@@ -361,7 +372,7 @@ TEST(GoldenCone, RefusesWhatIsNoCone) {
   EXPECT_NO_THROW(coneRecord(1, {{10, 10, 10}, {10, 10, 90}, 5, 0}));  // pointed
   EXPECT_NO_THROW(coneRecord(1, {{10, 10, 10}, {10, 10, 90}, 0, 5}));
   // A small cone's quadric is the scene's exactly (no scale, no rounding).
-  const QCone small = coneRecord(1, {{10, 10, 10}, {11, 10, 12}, 2, 1});
+  const QQuadric small = coneRecord(1, {{10, 10, 10}, {11, 10, 12}, 2, 1});
   EXPECT_EQ(small.scaleExp, 0);
   EXPECT_EQ(small.quadAt(0, 0), 25 - 6);  // W^2 - (W + dr^2) w_x^2, W = 5
 }
@@ -375,7 +386,8 @@ TEST(GoldenCone, RefusesWhatIsNoCone) {
 TEST(GoldenCone, EveryAnswerAgreesWithExactArithmetic) {
   std::mt19937_64 rng(40);
   std::uniform_int_distribution<int64_t> pos(0, kPosMax), dir(-kDirMax, kDirMax);
-  int hits = 0, inside = 0, boundary = 0, rounded = 0, linear = 0;
+  ExactCounts counts;
+  int rounded = 0;
   Rational worstRadius2 = 0;
   for (uint32_t i = 0; i < 30000; ++i) {
     LatticeCone cone;
@@ -386,7 +398,7 @@ TEST(GoldenCone, EveryAnswerAgreesWithExactArithmetic) {
     cone.baseRadius = int64_t(rng() % uint64_t(1 + (kPosMax >> (2 + rng() % 12))));
     cone.apexRadius = i % 4 == 0 ? cone.baseRadius : i % 4 == 1 ? 0 : int64_t(rng() % uint64_t(1 + (kPosMax >> (2 + rng() % 12))));
     if (cone.baseRadius == 0 && cone.apexRadius == 0) cone.baseRadius = 1;
-    const QCone rec = coneRecord(i, cone);
+    const QQuadric rec = coneRecord(i, cone);
     if (rec.scaleExp > 0) ++rounded;
 
     QRay ray = rayFrom({pos(rng), pos(rng), pos(rng)}, {dir(rng), dir(rng), dir(rng)});
@@ -402,45 +414,11 @@ TEST(GoldenCone, EveryAnswerAgreesWithExactArithmetic) {
     if (i % 5 == 0) ray.tMax = rng() % (kSegEndNone / 2);
     ray.id = i;
 
-    const IsectResult got = intersectCone(ray, rec);
-    const ConeExact e(ray, rec);
-    if (e.disc < 0) {
-      ASSERT_FALSE(got.hit) << i;
-      continue;
-    }
-    if (e.a == 0) ++linear;
-    const Z s = sqrt(e.disc), s1 = s + 1;
-    const auto first = e.roundedFirst(s), second = e.roundedSecond(s);
-    // The pipeline is the rounded choice, bit for bit.
-    const int pick = e.choice(first, second, false);
-    ASSERT_EQ(got.hit, pick != 0) << i;
-    if (pick != 0) {
-      RootForm r = pick == 1 ? *first : *second;
-      if (r.gamma < 0) r = {-r.alpha, 0, -r.gamma};
-      ASSERT_EQ(toZ(got.tNum), r.alpha * e.dz) << i;
-      ASSERT_EQ(toZ(got.det), r.gamma) << i;
-      ASSERT_EQ(got.uNum, (pick == 1 ? e.b < 0 : e.b >= 0) && e.disc > 0 ? 1u : 0u) << i;
-    }
-    // Against the exact choice: equal, unless a root's verdict changes between
-    // the square root's floor and the next integer (the exact root lies between).
-    const int exactPick = e.choice(e.exactFirst(), e.exactSecond(), true);
-    if (exactPick != pick) {
-      const bool straddles = e.choice(e.roundedFirst(s1), e.roundedSecond(s1), false) != pick || s <= 1;
-      ASSERT_TRUE(straddles) << i << ": the exact and the rounded choices differ away from a boundary";
-      ++boundary;
-    }
-    if (pick == 0) continue;
-    ++hits;
-    if (got.uNum == 1) ++inside;
-    // The exact root lies between the roots at s and s + 1, which differ by
-    // less than 1 / |big| of the root.
-    const RootForm lo = pick == 1 ? *first : *second;
-    const auto hiRoot = pick == 1 ? e.roundedFirst(s1) : e.roundedSecond(s1);
-    const auto exact = pick == 1 ? e.exactFirst() : e.exactSecond();
-    ASSERT_TRUE(hiRoot && exact) << i;
-    const Rational v = valueOf(lo), vHi = valueOf(*hiRoot);
-    ASSERT_LE(e.signAt(-lo.alpha, lo.gamma, *exact) * e.signAt(-hiRoot->alpha, hiRoot->gamma, *exact), 0) << i;
-    ASSERT_LE(abs(vHi - v) * abs(e.big(s)), abs(v)) << i;
+    const IsectResult got = intersectQuadric(ray, rec);
+    Rational v;
+    checkAgainstExact(ray, rec, got, counts, v);
+    ASSERT_FALSE(HasFatalFailure()) << "cone " << i;
+    if (!got.hit) continue;
     // The hit on the scene's cone: |F_scene - 2^e F_record| <= 2^e (sum |q_i| + 1)^2 / 2.
     std::array<Rational, 3> x;
     Rational qSum = 0;
@@ -454,18 +432,18 @@ TEST(GoldenCone, EveryAnswerAgreesWithExactArithmetic) {
     // The closed form of docs/quadrics.md: 2^e <= 2 W max(W, dr^2) / 2^K.
     const Z len2(long(rec.axisLen2)), slope2(long((cone.apexRadius - cone.baseRadius) * (cone.apexRadius - cone.baseRadius)));
     if (rec.scaleExp > 0) {
-      ASSERT_LE(Z(Z(1) << (rec.scaleExp + kConeQuadBits)), 2 * len2 * (len2 > slope2 ? len2 : slope2)) << i;
+      ASSERT_LE(Z(Z(1) << (rec.scaleExp + kQuadricK)), 2 * len2 * (len2 > slope2 ? len2 : slope2)) << i;
     }
     // radial^2 - radius^2 at the hit, lattice units^2, on cones no flatter than 45 degrees.
     if (slope2 <= len2) worstRadius2 = std::max(worstRadius2, Rational(abs(scene) / (4 * len2 * len2)));
   }
-  EXPECT_GT(hits, 5000);
-  EXPECT_GT(inside, 500);
+  EXPECT_GT(counts.hits, 5000);
+  EXPECT_GT(counts.inside, 500);
   EXPECT_GT(rounded, 10000);
-  EXPECT_LT(boundary, 30);
+  EXPECT_LT(counts.boundary, 30);
   RecordProperty("worst_radius2_error", worstRadius2.get_d());
   std::printf("cone: %d hits, %d leaving, %d with A = 0, %d boundary cases, %d rounded records, worst |radial^2 - radius^2| %.3g (|r1 - r0| <= length)\n",
-              hits, inside, linear, boundary, rounded, worstRadius2.get_d());
+              counts.hits, counts.inside, counts.linear, counts.boundary, rounded, worstRadius2.get_d());
 }
 
 // Sizes that fit every lattice: N = 2^P.
@@ -474,59 +452,56 @@ constexpr int64_t kN = kPosMax + 1, kMid = kN / 2;
 constexpr int64_t kLen = kN / 8, kX0 = kN / 4, kX1 = kX0 + kLen, kR = kN / 32;
 const LatticeCone kCylinderX{{kX0, kMid, kMid}, {kX1, kMid, kMid}, kR, kR};
 
-// t_num / det == units exactly.
-bool atDisplacement(const IsectResult& r, int64_t units) { return r.tNum == u128(units) * r.det; }
-
 TEST(GoldenCone, RaysAlongACylindersAxisNeverCrossIt) {
-  const QCone cyl = coneRecord(1, kCylinderX);
+  const QQuadric cyl = coneRecord(1, kCylinderX);
   ASSERT_GT(cyl.scaleExp, 0);
   EXPECT_EQ(cyl.quadAt(0, 0), 0) << "exact: no curvature along the axis";
   for (const int64_t dx : {kDirMax, -kDirMax}) {
     for (const int64_t x : {kX0 - 10, kX0 + kLen / 2, kX1 + 10}) {
-      EXPECT_FALSE(intersectCone(rayFrom({x, kMid, kMid}, {dx, 0, 0}), cyl).hit) << "on the axis";
-      EXPECT_FALSE(intersectCone(rayFrom({x, kMid + kR / 2, kMid}, {dx, 0, 0}), cyl).hit) << "inside";
-      EXPECT_FALSE(intersectCone(rayFrom({x, kMid + kR, kMid}, {dx, 0, 0}), cyl).hit) << "in the surface";
-      EXPECT_FALSE(intersectCone(rayFrom({x, kMid + 2 * kR, kMid}, {dx, 0, 0}), cyl).hit) << "outside";
+      EXPECT_FALSE(intersectQuadric(rayFrom({x, kMid, kMid}, {dx, 0, 0}), cyl).hit) << "on the axis";
+      EXPECT_FALSE(intersectQuadric(rayFrom({x, kMid + kR / 2, kMid}, {dx, 0, 0}), cyl).hit) << "inside";
+      EXPECT_FALSE(intersectQuadric(rayFrom({x, kMid + kR, kMid}, {dx, 0, 0}), cyl).hit) << "in the surface";
+      EXPECT_FALSE(intersectQuadric(rayFrom({x, kMid + 2 * kR, kMid}, {dx, 0, 0}), cyl).hit) << "outside";
     }
   }
 }
 
 TEST(GoldenCone, TangentRaysAndRims) {
-  const QCone cyl = coneRecord(2, kCylinderX);
+  const QQuadric cyl = coneRecord(2, kCylinderX);
   // Tangent: along z at distance exactly r from the axis, one root.
-  const IsectResult t = intersectCone(rayFrom({kX0 + kLen / 2, kMid + kR, kMid - 3 * kR}, {0, 0, kDirMax}), cyl);
+  const IsectResult t = intersectQuadric(rayFrom({kX0 + kLen / 2, kMid + kR, kMid - 3 * kR}, {0, 0, kDirMax}), cyl);
   ASSERT_TRUE(t.hit);
   EXPECT_EQ(t.uNum, 0u);
   EXPECT_TRUE(atDisplacement(t, 3 * kR));
-  EXPECT_FALSE(intersectCone(rayFrom({kX0 + kLen / 2, kMid + kR + 1, kMid - 3 * kR}, {0, 0, kDirMax}), cyl).hit);
+  EXPECT_FALSE(intersectQuadric(rayFrom({kX0 + kLen / 2, kMid + kR + 1, kMid - 3 * kR}, {0, 0, kDirMax}), cyl).hit);
   // Grazing the rims: in the end planes the circle counts, one unit beyond it does not.
   for (const int64_t x : {kX0, kX1}) {
-    const IsectResult rim = intersectCone(rayFrom({x, kMid - 3 * kR, kMid}, {0, kDirMax, 0}), cyl);
+    const IsectResult rim = intersectQuadric(rayFrom({x, kMid - 3 * kR, kMid}, {0, kDirMax, 0}), cyl);
     ASSERT_TRUE(rim.hit) << x;
     EXPECT_EQ(rim.uNum, 0u);
     EXPECT_TRUE(atDisplacement(rim, 2 * kR));
     // Tangent to the rim circle itself.
-    EXPECT_TRUE(intersectCone(rayFrom({x, kMid + kR, kMid - 3 * kR}, {0, 0, kDirMax}), cyl).hit) << x;
+    EXPECT_TRUE(intersectQuadric(rayFrom({x, kMid + kR, kMid - 3 * kR}, {0, 0, kDirMax}), cyl).hit) << x;
   }
-  EXPECT_FALSE(intersectCone(rayFrom({kX0 - 1, kMid - 3 * kR, kMid}, {0, kDirMax, 0}), cyl).hit);
-  EXPECT_FALSE(intersectCone(rayFrom({kX1 + 1, kMid - 3 * kR, kMid}, {0, kDirMax, 0}), cyl).hit);
+  EXPECT_FALSE(intersectQuadric(rayFrom({kX0 - 1, kMid - 3 * kR, kMid}, {0, kDirMax, 0}), cyl).hit);
+  EXPECT_FALSE(intersectQuadric(rayFrom({kX1 + 1, kMid - 3 * kR, kMid}, {0, kDirMax, 0}), cyl).hit);
 }
 
 TEST(GoldenCone, ThroughTheOpenEndTheInsideIsHit) {
-  const QCone cyl = coneRecord(3, kCylinderX);
+  const QQuadric cyl = coneRecord(3, kCylinderX);
   // From before the base, into the open end: the entering root lies before
   // the base plane (cut away); the leaving root, on the inside wall, is taken.
   const int64_t dy = kDirMax / 4;
-  const IsectResult in = intersectCone(rayFrom({kX0 - kR, kMid, kMid}, {kDirMax, dy, 0}), cyl);
+  const IsectResult in = intersectQuadric(rayFrom({kX0 - kR, kMid, kMid}, {kDirMax, dy, 0}), cyl);
   ASSERT_TRUE(in.hit);
   EXPECT_EQ(in.uNum, 1u);
   EXPECT_EQ(in.tNum * u128(dy), u128(kR) * u128(kDirMax) * in.det) << "displacement r kDirMax / dy";
   // The same ray segment ending before the wall: a miss.
   QRay seg = rayFrom({kX0 - kR, kMid, kMid}, {kDirMax, dy, 0});
   seg.tMax = uint64_t(2 * kR) << kSegFracBits;
-  EXPECT_FALSE(intersectCone(seg, cyl).hit);
+  EXPECT_FALSE(intersectQuadric(seg, cyl).hit);
   // Out through the other open end without touching the wall: a miss.
-  EXPECT_FALSE(intersectCone(rayFrom({kX0 - 1, kMid, kMid}, {kDirMax, kDirMax / 64, 0}), cyl).hit);
+  EXPECT_FALSE(intersectQuadric(rayFrom({kX0 - 1, kMid, kMid}, {kDirMax, kDirMax / 64, 0}), cyl).hit);
 }
 
 // A cone along y, radii 3r/2 and r/2 (radius r at mid-height): exact record.
@@ -534,15 +509,15 @@ const LatticeCone kConeY{{kMid, kMid - kLen / 2, kMid}, {kMid, kMid + kLen / 2, 
 
 TEST(GoldenCone, SecondaryRaysLeavingTheSurfaceDoNotHitItAgain) {
   for (const LatticeCone& shape : {kCylinderX, kConeY}) {
-    const QCone rec = coneRecord(4, shape);
+    const QQuadric rec = coneRecord(4, shape);
     const bool alongX = shape.apex[0] != shape.base[0];
     const std::array<int64_t, 3> middle{alongX ? kX0 + kLen / 2 : kMid, kMid, kMid};
     // Across the axis, one unit off the surface at radius r.
     const auto at = [&](int64_t offset) { return std::array<int64_t, 3>{middle[0], middle[1], middle[2] + offset}; };
-    EXPECT_FALSE(intersectCone(rayFrom(at(kR + 1), {0, kDirMax / 3, kDirMax}), rec).hit) << "outwards";
-    EXPECT_FALSE(intersectCone(rayFrom(at(kR + 1), {kDirMax / 5, -kDirMax / 7, kDirMax}), rec).hit) << "outwards";
-    EXPECT_FALSE(intersectCone(rayFrom(at(-kR - 1), {0, 0, -kDirMax}), rec).hit) << "outwards";
-    const IsectResult in = intersectCone(rayFrom(at(kR - 1), {0, 0, -kDirMax}), rec);
+    EXPECT_FALSE(intersectQuadric(rayFrom(at(kR + 1), {0, kDirMax / 3, kDirMax}), rec).hit) << "outwards";
+    EXPECT_FALSE(intersectQuadric(rayFrom(at(kR + 1), {kDirMax / 5, -kDirMax / 7, kDirMax}), rec).hit) << "outwards";
+    EXPECT_FALSE(intersectQuadric(rayFrom(at(-kR - 1), {0, 0, -kDirMax}), rec).hit) << "outwards";
+    const IsectResult in = intersectQuadric(rayFrom(at(kR - 1), {0, 0, -kDirMax}), rec);
     ASSERT_TRUE(in.hit);
     EXPECT_EQ(in.uNum, 1u) << "the far side";
     EXPECT_TRUE(atDisplacement(in, 2 * kR - 1));
@@ -552,28 +527,28 @@ TEST(GoldenCone, SecondaryRaysLeavingTheSurfaceDoNotHitItAgain) {
 TEST(GoldenCone, PointedTinyHugeAndTheSceneBox) {
   // A pointed cone along y: radius r at the base, 0 at the apex.
   const LatticeCone pointed{{kMid, kMid - kLen / 2, kMid}, {kMid, kMid + kLen / 2, kMid}, kR, 0};
-  const QCone p = coneRecord(5, pointed);
-  const IsectResult half = intersectCone(rayFrom({kMid - 2 * kR, kMid, kMid}, {kDirMax, 0, 0}), p);
+  const QQuadric p = coneRecord(5, pointed);
+  const IsectResult half = intersectQuadric(rayFrom({kMid - 2 * kR, kMid, kMid}, {kDirMax, 0, 0}), p);
   ASSERT_TRUE(half.hit);
   EXPECT_EQ(half.uNum, 0u);
   EXPECT_TRUE(atDisplacement(half, 2 * kR - kR / 2)) << "radius r/2 at mid-height";
-  EXPECT_FALSE(intersectCone(rayFrom({kMid - 2 * kR, kMid + kLen / 2 + 1, kMid}, {kDirMax, 0, 0}), p).hit) << "above the apex";
+  EXPECT_FALSE(intersectQuadric(rayFrom({kMid - 2 * kR, kMid + kLen / 2 + 1, kMid}, {kDirMax, 0, 0}), p).hit) << "above the apex";
   // A thin cylinder of radius 1 at the lattice's corner.
-  const QCone tiny = coneRecord(6, {{1, 1, 0}, {1, 1, kLen}, 1, 1});
-  const IsectResult t = intersectCone(rayFrom({10, 1, kLen / 2}, {-kDirMax, 0, 0}), tiny);
+  const QQuadric tiny = coneRecord(6, {{1, 1, 0}, {1, 1, kLen}, 1, 1});
+  const IsectResult t = intersectQuadric(rayFrom({10, 1, kLen / 2}, {-kDirMax, 0, 0}), tiny);
   ASSERT_TRUE(t.hit);
   EXPECT_TRUE(atDisplacement(t, 8));
-  EXPECT_FALSE(intersectCone(rayFrom({10, 3, kLen / 2}, {-kDirMax, 0, 0}), tiny).hit);
+  EXPECT_FALSE(intersectQuadric(rayFrom({10, 3, kLen / 2}, {-kDirMax, 0, 0}), tiny).hit);
   // A cylinder and a cone as wide as the lattice, touching the scene box.
   const int64_t half2 = kPosMax / 2;
-  const QCone huge = coneRecord(7, {{0, half2, half2}, {kPosMax, half2, half2}, half2, half2});
-  const IsectResult h = intersectCone(rayFrom({kPosMax / 3, 0, half2}, {0, kDirMax, 0}), huge);
+  const QQuadric huge = coneRecord(7, {{0, half2, half2}, {kPosMax, half2, half2}, half2, half2});
+  const IsectResult h = intersectQuadric(rayFrom({kPosMax / 3, 0, half2}, {0, kDirMax, 0}), huge);
   ASSERT_TRUE(h.hit) << "from the box's face, on the surface: it meets the far side";
-  const IsectResult corner = intersectCone(rayFrom({0, 0, 0}, {kDirMax, kDirMax, kDirMax}), huge);
+  const IsectResult corner = intersectQuadric(rayFrom({0, 0, 0}, {kDirMax, kDirMax, kDirMax}), huge);
   ASSERT_TRUE(corner.hit);
   EXPECT_EQ(corner.uNum, 0u);
-  const QCone wide = coneRecord(8, {{0, half2, half2}, {kPosMax, half2, half2}, half2, 0});
-  const IsectResult w = intersectCone(rayFrom({1, half2, half2}, {0, kDirMax, 0}), wide);
+  const QQuadric wide = coneRecord(8, {{0, half2, half2}, {kPosMax, half2, half2}, half2, 0});
+  const IsectResult w = intersectQuadric(rayFrom({1, half2, half2}, {0, kDirMax, 0}), wide);
   ASSERT_TRUE(w.hit);
   EXPECT_EQ(w.uNum, 1u) << "from the axis, the inside";
 }
@@ -582,12 +557,12 @@ TEST(GoldenCone, PointedTinyHugeAndTheSceneBox) {
 TEST(GoldenCone, OrdersWithSpheresAndTrianglesByTheSameScale) {
   const int64_t mid = kPosMax / 2;
   const QRay ray = rayFrom({100, mid, mid}, {kDirMax, 0, 0});
-  const QCone cone = coneRecord(11, {{300, mid, mid - 100}, {300, mid, mid + 100}, 50, 50});  // entered at x = 250: 150
+  const QQuadric cone = coneRecord(11, {{300, mid, mid - 100}, {300, mid, mid + 100}, 50, 50});  // entered at x = 250: 150
   const QSphere s{9, {700, mid, mid}, 200};                                                     // entered at x = 500: 400
   QTriangle tri;
   tri.id = 10;
   tri.v = {{{800, mid - 50, mid - 50}, {800, mid + 50, mid - 50}, {800, mid, mid + 80}}};  // x = 800: 700
-  const IsectResult c = intersectCone(ray, cone), a = intersectSphere(ray, s), b = intersect(ray, tri);
+  const IsectResult c = intersectQuadric(ray, cone), a = intersectQuadric(ray, sphereRecord(s)), b = intersect(ray, tri);
   ASSERT_TRUE(c.hit && a.hit && b.hit);
   // Exact at 16/16; at narrower widths the record is rounded (K bits), the hit within a unit.
   EXPECT_NEAR(double(c.tNum) / double(c.det), 150.0, 1.0);

@@ -1,0 +1,3 @@
+# Sources of rt_quadric for scripts/synth, relative to rtl/, in compile order
+# (the generated package is read first by the script).
+isect/rt_quadric.sv
