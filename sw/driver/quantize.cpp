@@ -53,6 +53,7 @@ fx::QTriangle Quantizer::quantize(const Triangle& tri, uint32_t id) const {
 }
 
 std::vector<fx::QTriangle> Quantizer::quantize(const Scene& scene) const {
+  scene.requireTrianglesOnly("the lattice quantizer");
   std::vector<fx::QTriangle> triangles(scene.size());
   for (uint32_t i = 0; i < scene.size(); ++i) triangles[i] = quantize(scene.triangles[i], i);
   return triangles;

@@ -7,6 +7,7 @@
 namespace lancer {
 
 RefWaveTracer::RefWaveTracer(const Scene& scene, const Accel& accel) : scene_(scene), accel_(accel) {
+  scene.requireTrianglesOnly("effects");
   const glm::vec3 lo = glm::abs(scene.bounds.lo), hi = glm::abs(scene.bounds.hi);
   const float largest = std::max({lo.x, lo.y, lo.z, hi.x, hi.y, hi.z});
   offset_ = std::max(1e-5f * glm::length(scene.bounds.diagonal()), 4e-6f * largest);

@@ -9,20 +9,86 @@
 
 #include "common/error.h"
 #include "common/aabb.h"
+#include "ref/quadric.h"
 
 namespace lancer {
 
+// ---- Signs of a + b sqrt(r) + c sqrt(s), without a square root ---------------------
+
+namespace {
+
+int signOf(const mpz_class& z) { return sgn(z) > 0 ? 1 : (sgn(z) < 0 ? -1 : 0); }
+
+// sign(a + b sqrt(r)), r >= 0: the sign of a term that is alone or agrees with
+// the other; else the sign of the larger, |a| against |b| sqrt(r) by their
+// squares a^2 against b^2 r.
+int signOfSum(const mpz_class& a, const mpz_class& b, const mpz_class& r) {
+  const int sa = signOf(a), sb = sgn(r) == 0 ? 0 : signOf(b);
+  if (sb == 0) return sa;
+  if (sa == 0 || sa == sb) return sb;
+  const int c = cmp(a * a, b * b * r);
+  return c == 0 ? 0 : (c > 0 ? sa : sb);
+}
+
+// sign(a + b sqrt(r) + c sqrt(s)), r, s >= 0: with X = a + b sqrt(r) (its sign
+// from above) and Y = c sqrt(s), as above, |X| against |Y| by the sign of
+// X^2 - Y^2 = (a^2 + b^2 r - c^2 s) + 2ab sqrt(r), again of the first form.
+int signOfSum(const mpz_class& a, const mpz_class& b, const mpz_class& r, const mpz_class& c, const mpz_class& s) {
+  if (r == s) return signOfSum(a, b + c, r);
+  const int sx = signOfSum(a, b, r), sy = sgn(s) == 0 ? 0 : signOf(c);
+  if (sy == 0) return sx;
+  if (sx == 0 || sx == sy) return sy;
+  const mpz_class twoAb = 2 * a * b;
+  const int larger = signOfSum(a * a + b * b * r - c * c * s, twoAb, r);
+  return larger == 0 ? 0 : (larger > 0 ? sx : sy);
+}
+
+mpz_class shifted(const mpz_class& z, long bits) {
+  mpz_class out;
+  mpz_mul_2exp(out.get_mpz_t(), z.get_mpz_t(), static_cast<mp_bitcnt_t>(bits));
+  return out;
+}
+
+}  // namespace
+
 // ---- Exact t -------------------------------------------------------------------
 
-ExactT::ExactT(mpz_class num, mpz_class den, long shift) : num_(std::move(num)), den_(std::move(den)), shift_(shift) {
+ExactT::ExactT(mpz_class num, mpz_class den, long shift)
+    : ExactT(std::move(num), mpz_class(0), mpz_class(0), std::move(den), shift) {}
+
+ExactT::ExactT(mpz_class num, mpz_class coef, mpz_class radicand, mpz_class den, long shift)
+    : num_(std::move(num)), coef_(std::move(coef)), radicand_(std::move(radicand)), den_(std::move(den)),
+      shift_(shift) {
+  if (sgn(radicand_) == 0) coef_ = 0;
+  if (sgn(coef_) == 0) radicand_ = 0;
   if (sgn(den_) < 0) {
     num_ = -num_;
+    coef_ = -coef_;
     den_ = -den_;
   }
 }
 
+int ExactT::sign() const { return signOfSum(num_, coef_, radicand_); }
+
 double ExactT::toDouble() const {
-  mpq_class q(num_, den_);
+  mpq_class q;
+  if (sgn(coef_) == 0) {
+    q = mpq_class(num_, den_);
+  } else {
+    // sqrt(radicand) * 2^k to >= 140 bits, floored: relative error < 2^-139.
+    const long k = std::max(0L, 140 - static_cast<long>(mpz_sizeinbase(radicand_.get_mpz_t(), 2)) / 2);
+    mpz_class root;
+    const mpz_class scaledRadicand = shifted(radicand_, 2 * k);
+    mpz_sqrt(root.get_mpz_t(), scaledRadicand.get_mpz_t());
+    if (signOf(num_) * signOf(coef_) >= 0) {
+      // num and coef sqrt(r) of one sign: their sum loses nothing.
+      q = mpq_class(shifted(num_, k) + coef_ * root, shifted(den_, k));
+    } else {
+      // A difference: rationalize, (n + c sqrt r) = (n^2 - c^2 r) / (n - c sqrt r),
+      // whose denominator is again a sum of one sign.
+      q = mpq_class(shifted(num_ * num_ - coef_ * coef_ * radicand_, k), den_ * (shifted(num_, k) - coef_ * root));
+    }
+  }
   q.canonicalize();
   return std::ldexp(q.get_d(), static_cast<int>(shift_));
 }
@@ -34,8 +100,14 @@ int compare(const ExactT& a, const ExactT& b) {
   mpz_class rhs = b.num_ * a.den_;
   mpz_mul_2exp(lhs.get_mpz_t(), lhs.get_mpz_t(), static_cast<mp_bitcnt_t>(a.shift_ - base));
   mpz_mul_2exp(rhs.get_mpz_t(), rhs.get_mpz_t(), static_cast<mp_bitcnt_t>(b.shift_ - base));
-  const int c = cmp(lhs, rhs);
-  return (c > 0) - (c < 0);
+  if (sgn(a.coef_) == 0 && sgn(b.coef_) == 0) {
+    const int c = cmp(lhs, rhs);
+    return (c > 0) - (c < 0);
+  }
+  // (a.num + a.coef sqrt(a.r)) b.den 2^.. - (b.num + b.coef sqrt(b.r)) a.den 2^..
+  const mpz_class ca = shifted(a.coef_ * b.den_, a.shift_ - base);
+  const mpz_class cb = shifted(b.coef_ * a.den_, b.shift_ - base);
+  return signOfSum(lhs - rhs, ca, a.radicand_, -cb, b.radicand_);
 }
 
 namespace {
@@ -236,6 +308,165 @@ ExactRelation exactRelation(const Ray& ray, const Triangle& tri, bool measure) {
   return rel;
 }
 
+// ---- Quadrics, exactly ----------------------------------------------------------------
+//
+// The origin, the quadric's points and radii share one scale 2^positionBase, the
+// direction has its own: x = 2^positionBase (O + mu D) with integer O, D, and
+// t = mu 2^(positionBase - directionBase). Along the line, in integers,
+//   sphere (center P, radius R): M = O - P,
+//     G(mu) = |M + mu D|^2 - R^2;
+//   cone (base P0, apex P1, radii R0, R1; w = P1 - P0, W = w.w, dR = R1 - R0):
+//     M = O - P0, with h W = (M + mu D).w the height times |w|^2 / |w|,
+//     G(mu) = W^2 |M + mu D|^2 - W ((M + mu D).w)^2 - (R0 W + dR (M + mu D).w)^2
+//           = W^2 (rho^2 - R(h)^2),
+// both G = A mu^2 + 2 B mu + C, G < 0 inside the solid; a cone's point lies
+// between its end planes iff 0 <= (M + mu D).w <= W.
+
+struct QuadricLine {
+  mpz_class a, b, c, disc;
+  long shift = 0;
+  bool cone = false;
+  mpz_class mw, dw, ww;  // cone: M.w, D.w, W
+};
+
+mpz_class dot(const Zvec& a, const Zvec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+QuadricLine quadricLine(const Ray& ray, const Quadric& q) {
+  const glm::vec3 o = ray.origin, d = ray.dir, p0 = q.base, p1 = q.apex;
+  const bool cone = q.kind == Quadric::Kind::Cone;
+  const float r0 = std::fabs(q.baseRadius), r1 = cone ? std::fabs(q.apexRadius) : 0.0f;
+  const int positionBase = cone ? minExponent({o.x, o.y, o.z, p0.x, p0.y, p0.z, p1.x, p1.y, p1.z, r0, r1})
+                                : minExponent({o.x, o.y, o.z, p0.x, p0.y, p0.z, r0});
+  const int directionBase = minExponent({d.x, d.y, d.z});
+  const auto scaledVec = [](const glm::vec3& v, int base) {
+    return Zvec{scaled(v.x, base), scaled(v.y, base), scaled(v.z, base)};
+  };
+  const Zvec zo = scaledVec(o, positionBase), zd = scaledVec(d, directionBase), z0 = scaledVec(p0, positionBase);
+  const Zvec m = {zo[0] - z0[0], zo[1] - z0[1], zo[2] - z0[2]};
+  const mpz_class rb = scaled(r0, positionBase);
+  QuadricLine line;
+  line.shift = static_cast<long>(positionBase) - directionBase;
+  line.cone = cone;
+  if (!cone) {
+    line.a = dot(zd, zd);
+    line.b = dot(m, zd);
+    line.c = dot(m, m) - rb * rb;
+  } else {
+    const Zvec z1 = scaledVec(p1, positionBase);
+    const Zvec w = {z1[0] - z0[0], z1[1] - z0[1], z1[2] - z0[2]};
+    const mpz_class dr = scaled(r1, positionBase) - rb;
+    line.ww = dot(w, w);
+    line.mw = dot(m, w);
+    line.dw = dot(zd, w);
+    const mpz_class w2 = line.ww * line.ww;
+    const mpz_class s = rb * line.ww + dr * line.mw;  // R(h at M) W
+    line.a = w2 * dot(zd, zd) - line.ww * line.dw * line.dw - dr * dr * line.dw * line.dw;
+    line.b = w2 * dot(m, zd) - line.ww * line.mw * line.dw - s * dr * line.dw;
+    line.c = w2 * dot(m, m) - line.ww * line.mw * line.mw - s * s;
+  }
+  line.disc = line.b * line.b - line.a * line.c;
+  return line;
+}
+
+// One root mu = (p + q sqrt(disc)) / e, e > 0, and where its point lies.
+struct ExactRoot {
+  mpz_class p, q, e;
+  bool entering = false;
+  bool tangent = false;  // disc = 0: a double root
+  bool between = true;   // between a cone's end planes, rims included
+  bool onRim = false;    // exactly in an end plane
+};
+
+// The roots in ascending order. With A != 0, mu = (-B + s sqrt(disc)) / A and
+// A mu + B = s sqrt(disc): the root with s = -1 is entering (G falls through 0),
+// the smaller one when A > 0, the larger when A < 0. A = 0: one root -C / 2B,
+// entering when B < 0; A = B = 0: none (a line along a cylinder's axis, or in
+// its wall).
+std::vector<ExactRoot> rootsOf(const QuadricLine& line) {
+  std::vector<ExactRoot> roots;
+  if (sgn(line.disc) < 0) return roots;
+  if (sgn(line.a) == 0) {
+    if (sgn(line.b) == 0) return roots;
+    roots.push_back({-line.c, 0, 2 * line.b, sgn(line.b) < 0, false});
+  } else if (sgn(line.disc) == 0) {
+    roots.push_back({-line.b, 0, line.a, true, true});
+  } else {
+    const ExactRoot entering{-line.b, -1, line.a, true, false}, leaving{-line.b, 1, line.a, false, false};
+    if (sgn(line.a) > 0) {
+      roots = {entering, leaving};
+    } else {
+      roots = {leaving, entering};
+    }
+  }
+  for (ExactRoot& r : roots) {
+    if (sgn(r.e) < 0) {
+      r.p = -r.p;
+      r.q = -r.q;
+      r.e = -r.e;
+    }
+    if (!line.cone) continue;
+    // (M + mu D).w e = mw e + dw p + dw q sqrt(disc), against 0 and W e.
+    const mpz_class low = line.mw * r.e + line.dw * r.p, slope = line.dw * r.q;
+    const int aboveBase = signOfSum(low, slope, line.disc);
+    const int belowApex = -signOfSum(low - line.ww * r.e, slope, line.disc);
+    r.between = aboveBase >= 0 && belowApex >= 0;
+    r.onRim = aboveBase == 0 || belowApex == 0;
+  }
+  return roots;
+}
+
+ExactT exactTOf(const ExactRoot& root, const QuadricLine& line) {
+  return ExactT(root.p, root.q, line.disc, root.e, line.shift);
+}
+
+// t <= tMax exactly: tMax as a one-element ExactT.
+bool withinTMax(const ExactT& t, float tMax) {
+  if (!std::isfinite(tMax)) return true;
+  const Binary m = decompose(tMax);
+  return compare(t, ExactT(mpz_class(m.mantissa), mpz_class(1), m.exponent)) <= 0;
+}
+
+// |cos| of the angle between the ray and a unit normal.
+double cosineWith(const Ray& ray, const glm::dvec3& normal) {
+  const glm::dvec3 d(ray.dir);
+  return std::fabs(glm::dot(d, normal)) / glm::length(d);
+}
+
+ExactRelation quadricRelation(const Ray& ray, const Quadric& quadric, bool measure) {
+  const QuadricLine line = quadricLine(ray, quadric);
+  const std::vector<ExactRoot> roots = rootsOf(line);
+  ExactRelation rel;
+  rel.quadric = true;
+  rel.minBarycentric = rel.boundaryDistance = std::numeric_limits<double>::quiet_NaN();
+  if (roots.empty()) {
+    rel.parallel = true;
+    return rel;
+  }
+  // The closest-hit rule: the first root ahead of the origin between the planes.
+  for (const ExactRoot& root : roots) {
+    if (!root.between || signOfSum(root.p, root.q, line.disc) <= 0) continue;
+    rel.t = exactTOf(root, line);
+    rel.entering = root.entering;
+    rel.hit = withinTMax(*rel.t, ray.tMax);
+    rel.onBoundary = rel.hit && (root.tangent || root.onRim);
+    break;
+  }
+  if (!rel.t) {
+    // No root ahead: the one between the planes nearest the origin.
+    for (const ExactRoot& root : roots) {
+      if (root.between) {
+        rel.t = exactTOf(root, line);
+        rel.entering = root.entering;
+      }
+    }
+  }
+  if (measure && rel.t) {
+    const glm::dvec3 point = glm::dvec3(ray.origin) + rel.t->toDouble() * glm::dvec3(ray.dir);
+    rel.cosine = cosineWith(ray, quadricNormal(QuadricShape::of(quadric), point));
+  }
+  return rel;
+}
+
 void checkRay(const Ray& ray) {
   if (!allFinite(ray.origin) || !allFinite(ray.dir) || std::isnan(ray.tMax)) {
     throw InputError(fmt::format("exact oracle: ray ({}, {}, {}) + t ({}, {}, {}) has a NaN or infinite component",
@@ -250,29 +481,44 @@ struct Candidate {
   double t = 0.0, tLow = 0.0, tHigh = 0.0;
   bool onBoundary = false;
   std::optional<ExactT> exact;
+  bool entering = false;
 };
+
+// A quadric's hit as a candidate: its exact t, and an interval of an ulp either side.
+Candidate quadricCandidate(uint32_t prim, ExactRelation&& rel) {
+  const double t = rel.t->toDouble();
+  return {prim, t, std::nextafter(t, -std::numeric_limits<double>::infinity()),
+          std::nextafter(t, std::numeric_limits<double>::infinity()), rel.onBoundary, std::move(rel.t), rel.entering};
+}
 
 }  // namespace
 
 template <class Visit>
 void ExactOracle::forEachCandidate(const Ray& ray, Visit&& visit) const {
+  const auto triangles = static_cast<uint32_t>(scene_.triangles.size());
+  const auto total = static_cast<uint32_t>(scene_.primitiveCount());
   if (!candidates_) {
-    for (uint32_t prim = 0; prim < scene_.triangles.size(); ++prim) visit(prim);
+    for (uint32_t prim = 0; prim < total; ++prim) visit(prim);
     return;
   }
-  // Id order: the closest-hit search keeps the lower id on an exact tie.
+  // Id order: the closest-hit search keeps the lower id on an exact tie. The
+  // candidates are triangles; every quadric follows them.
   std::vector<uint32_t> prims;
   candidates_(ray, prims);
   std::sort(prims.begin(), prims.end());
-  for (uint32_t prim : prims) visit(prim);
+  for (uint32_t prim : prims) {
+    if (prim < triangles) visit(prim);
+  }
+  for (uint32_t prim = triangles; prim < total; ++prim) visit(prim);
 }
 
 ExactRelation ExactOracle::relation(const Ray& ray, uint32_t prim) const {
   checkRay(ray);
-  if (prim >= scene_.triangles.size()) {
-    throw InputError(fmt::format("exact oracle: triangle {} does not exist (the scene has {})", prim,
-                                 scene_.triangles.size()));
+  if (prim >= scene_.primitiveCount()) {
+    throw InputError(fmt::format("exact oracle: primitive {} does not exist (the scene has {} triangles and {} quadrics)",
+                                 prim, scene_.triangles.size(), scene_.quadrics.size()));
   }
+  if (scene_.isQuadric(prim)) return quadricRelation(ray, scene_.quadricOf(prim), /*measure=*/true);
   return exactRelation(ray, scene_.triangles[prim], /*measure=*/true);
 }
 
@@ -287,14 +533,23 @@ std::optional<ExactHit> ExactOracle::intersect(const Ray& ray, ExactStats* stats
   };
   forEachCandidate(ray, [&](uint32_t prim) {
     ++local.pairs;
-    const Triangle& tri = scene_.triangles[prim];
-    const FilterOutcome f = filterPair(o, d, ad, ray.tMax, tri);
-    if (f.kind == FilterOutcome::Miss) return;
-    Candidate c{prim, f.t, f.tLow, f.tHigh, false, std::nullopt};
-    if (f.kind == FilterOutcome::Unsure) {
+    Candidate c;
+    if (scene_.isQuadric(prim)) {
+      ++local.exactPairs;
+      ExactRelation rel = quadricRelation(ray, scene_.quadricOf(prim), /*measure=*/false);
+      if (!rel.hit) return;
+      c = quadricCandidate(prim, std::move(rel));
+    } else if (const FilterOutcome f = filterPair(o, d, ad, ray.tMax, scene_.triangles[prim]);
+               f.kind == FilterOutcome::Miss) {
+      return;
+    } else if (f.kind == FilterOutcome::Hit) {
+      c = Candidate{prim, f.t, f.tLow, f.tHigh, false, std::nullopt};
+    } else {
+      const Triangle& tri = scene_.triangles[prim];
       ++local.exactPairs;
       ExactRelation rel = exactRelation(ray, tri, /*measure=*/false);
       if (!rel.hit) return;
+      c.prim = prim;
       c.t = c.tLow = c.tHigh = rel.t->toDouble();
       c.onBoundary = rel.onBoundary;
       c.exact = std::move(rel.t);
@@ -315,7 +570,7 @@ std::optional<ExactHit> ExactOracle::intersect(const Ray& ray, ExactStats* stats
     stats->exactCompares += local.exactCompares;
   }
   if (!best) return std::nullopt;
-  return ExactHit{best->prim, exactOf(*best).toDouble(), best->onBoundary};
+  return ExactHit{best->prim, exactOf(*best).toDouble(), best->onBoundary, best->entering};
 }
 
 std::vector<ExactHit> ExactOracle::hitsOnSegment(const Ray& ray) const {
@@ -323,6 +578,11 @@ std::vector<ExactHit> ExactOracle::hitsOnSegment(const Ray& ray) const {
   const Vec3d o = toVec(ray.origin), d = toVec(ray.dir), ad = absVec(d);
   std::vector<ExactHit> hits;
   forEachCandidate(ray, [&](uint32_t prim) {
+    if (scene_.isQuadric(prim)) {
+      const ExactRelation rel = quadricRelation(ray, scene_.quadricOf(prim), /*measure=*/false);
+      if (rel.hit) hits.push_back({prim, rel.t->toDouble(), rel.onBoundary, rel.entering});
+      return;
+    }
     const Triangle& tri = scene_.triangles[prim];
     const FilterOutcome f = filterPair(o, d, ad, ray.tMax, tri);
     if (f.kind == FilterOutcome::Miss) return;
@@ -411,87 +671,225 @@ bool nearEnd(const Ray& ray, double t, const Tolerance& tolerance, double cosine
 
 }  // namespace
 
-Tolerance floatRounding(const Ray& ray, const Triangle& tri) {
+namespace {
+
+// kFloatRoundingBound times the largest coordinate magnitude of `points`.
+Tolerance floatRoundingOver(const Ray& ray, std::initializer_list<glm::vec3> points) {
   double m = 0.0;
-  for (const glm::vec3& p : {tri.v0, tri.v1, tri.v2, ray.origin}) {
+  for (const glm::vec3& p : points) {
     m = std::max({m, double(std::fabs(p.x)), double(std::fabs(p.y)), double(std::fabs(p.z))});
   }
   const double edge = kFloatRoundingBound * m;
   return {edge, edge / glm::length(glm::dvec3(ray.dir)), kFloatRoundingBound};
 }
 
+}  // namespace
+
+Tolerance floatRounding(const Ray& ray, const Triangle& tri) {
+  return floatRoundingOver(ray, {tri.v0, tri.v1, tri.v2, ray.origin});
+}
+
+Tolerance floatRounding(const Ray& ray, const Quadric& quadric) {
+  const Aabb box = quadric.bounds();
+  return floatRoundingOver(ray, {box.lo, box.hi, ray.origin});
+}
+
+namespace {
+
+// The quadric's surface moved by `e` along its normal (out for e > 0, in for
+// e < 0) and a cone's end planes by `ends` along its axis (out for ends > 0):
+// a sphere's radius by e; a cone's radii by e sqrt(1 + k^2) (k its slope: the
+// radial step of a normal step e), the radius continued along the slope past
+// moved ends, radii clamped at 0. Nothing is left when the move swallows it.
+std::optional<QuadricShape> movedShape(const QuadricShape& s, double e, double ends) {
+  QuadricShape out = s;
+  if (s.kind == Quadric::Kind::Sphere) {
+    out.baseRadius = s.baseRadius + e;
+    if (!(out.baseRadius > 0.0)) return std::nullopt;
+    return out;
+  }
+  const glm::dvec3 w = s.apex - s.base;
+  const double length = glm::length(w);
+  if (!(length + 2.0 * ends > 0.0)) return std::nullopt;
+  const glm::dvec3 axis = w / length;
+  const double k = (s.apexRadius - s.baseRadius) / length, grow = e * std::sqrt(1.0 + k * k);
+  out.base = s.base - ends * axis;
+  out.apex = s.apex + ends * axis;
+  out.baseRadius = std::max(0.0, s.baseRadius - k * ends + grow);
+  out.apexRadius = std::max(0.0, s.apexRadius + k * ends + grow);
+  if (out.baseRadius == 0.0 && out.apexRadius == 0.0) return std::nullopt;
+  return out;
+}
+
+// What judging asks of one primitive on the ray: the exact relation, the
+// tracer's tolerance for it, whether a move within that tolerance can change
+// whether the ray hits it, and (a quadric) the hits a move gives.
+struct PrimView {
+  ExactRelation rel;
+  Tolerance tolerance;
+  bool quadric = false;
+  bool marginal = false;
+  struct Moved {
+    double t, cosine;
+  };
+  std::vector<Moved> moved;  // quadric: the hits of its surface moved out and in by tolerance.edge
+
+  // t within the tolerance of a hit a move gives (another root, or the same root moved).
+  bool nearMoved(double t) const {
+    return std::any_of(moved.begin(), moved.end(),
+                       [&](const Moved& m) { return nearT(t, m.t, tolerance, m.cosine); });
+  }
+  // The exact t, else the moved hit nearest `t`, else `t`; with its cosine.
+  std::pair<double, double> tNear(double t) const {
+    if (rel.hit || (!quadric && rel.t)) return {rel.t->toDouble(), rel.cosine};
+    std::pair<double, double> best{t, rel.cosine};
+    double distance = std::numeric_limits<double>::infinity();
+    for (const Moved& m : moved) {
+      if (std::fabs(m.t - t) < distance) {
+        distance = std::fabs(m.t - t);
+        best = {m.t, m.cosine};
+      }
+    }
+    return best;
+  }
+};
+
+class Judging {
+ public:
+  Judging(const ExactOracle& oracle, const Ray& ray, const ToleranceOf& tolerance, const QuadricToleranceOf& quadric)
+      : oracle_(oracle), ray_(ray), tolerance_(tolerance), quadricTolerance_(quadric) {}
+
+  PrimView view(uint32_t prim) const {
+    const Scene& scene = oracle_.scene();
+    PrimView v;
+    v.rel = oracle_.relation(ray_, prim);
+    if (!scene.isQuadric(prim)) {
+      const Triangle& tri = scene.triangles[prim];
+      v.tolerance = tolerance_ ? tolerance_(tri) : floatRounding(ray_, tri);
+      v.marginal = marginal(v.rel, v.tolerance, ray_, tri);
+      return v;
+    }
+    const Quadric& q = scene.quadricOf(prim);
+    v.quadric = true;
+    v.tolerance = quadricTolerance_ ? quadricTolerance_(q) : floatRounding(ray_, q);
+    // The float reference in double on the surface moved out and in, a cone's
+    // ends out and in too (four moves: a rim's crossing goes either way when
+    // the wall and the end plane move apart); its rounding (~1e-16 relative)
+    // is far below any tolerance it is asked about.
+    const QuadricShape shape = QuadricShape::of(q);
+    const double e = v.tolerance.edge;
+    const int moves = q.kind == Quadric::Kind::Sphere ? 2 : 4;
+    bool anyHit = v.rel.hit, anyMiss = !v.rel.hit;
+    for (int i = 0; i < moves; ++i) {
+      const std::optional<QuadricShape> moved = movedShape(shape, i & 1 ? -e : e, i & 2 ? -e : e);
+      const std::optional<QuadricHit> hit = moved ? intersectQuadric(ray_, *moved, prim) : std::nullopt;
+      if (!hit) {
+        anyMiss = true;
+        continue;
+      }
+      anyHit = true;
+      v.moved.push_back({hit->t, cosineWith(ray_, hit->normal)});
+    }
+    v.marginal = anyHit && anyMiss;
+    return v;
+  }
+
+ private:
+  const ExactOracle& oracle_;
+  const Ray& ray_;
+  const ToleranceOf& tolerance_;
+  const QuadricToleranceOf& quadricTolerance_;
+};
+
+// The phrase for "an edge" of the primitive.
+std::string_view boundaryWord(const PrimView& v, std::string_view triangle, std::string_view quadric) {
+  return v.quadric ? quadric : triangle;
+}
+
+}  // namespace
+
 Judgement judge(const ExactOracle& oracle, const Ray& ray, const std::optional<Hit>& answer,
-                const std::optional<ExactHit>& truth, const ToleranceOf& tolerance) {
-  const auto& tris = oracle.scene().triangles;
-  const ToleranceOf& tol = tolerance ? tolerance : ToleranceOf([&](const Triangle& t) { return floatRounding(ray, t); });
+                const std::optional<ExactHit>& truth, const ToleranceOf& tolerance,
+                const QuadricToleranceOf& quadricTolerance) {
+  const Judging judging(oracle, ray, tolerance, quadricTolerance);
   if (!answer && !truth) return {Verdict::Correct, "both miss"};
-  std::optional<ExactRelation> truthRel;
-  if (truth) truthRel = oracle.relation(ray, truth->prim);
+  std::optional<PrimView> truthView;
+  if (truth) truthView = judging.view(truth->prim);
   if (answer && truth && answer->prim == truth->prim) {
-    // The right triangle; its t must be right within the tolerance too.
-    if (nearT(answer->t, truth->t, tol(tris[truth->prim]), truthRel->cosine)) return {Verdict::Correct, "same triangle"};
+    // The right primitive; its t must be right within the tolerance too.
+    if (nearT(answer->t, truth->t, truthView->tolerance, truthView->rel.cosine)) return {Verdict::Correct, "same triangle"};
+    // A quadric's other root, or its root moved, where a move within the
+    // tolerance gives it (a rim, an origin on the surface, a tangent).
+    if (truthView->nearMoved(answer->t)) return {Verdict::Rounding, "the right quadric at a root a move within the tolerance gives"};
     return {Verdict::Wrong, "the right triangle at a t beyond the tolerance"};
   }
   // The true hit within the tolerance of the ray's origin (a ray leaving a
   // surface): a tracer whose rounded origin lies on the far side of the plane
   // rightly goes on to whatever lies beyond.
-  const bool truthAtOrigin = truth && nearT(truth->t, 0.0, tol(tris[truth->prim]), truthRel->cosine);
+  const bool truthAtOrigin = truth && nearT(truth->t, 0.0, truthView->tolerance, truthView->rel.cosine);
   if (!answer) {
-    if (marginal(*truthRel, tol(tris[truth->prim]), ray, tris[truth->prim])) return {Verdict::Rounding, "missed a hit within the tolerance of an edge"};
+    if (truthView->marginal) {
+      return {Verdict::Rounding, boundaryWord(*truthView, "missed a hit within the tolerance of an edge",
+                                              "missed a hit within the tolerance of a silhouette or rim")};
+    }
     if (truthAtOrigin) return {Verdict::Rounding, "missed a hit within the tolerance of the ray's origin"};
     return {Verdict::Wrong, "missed a hit away from any edge"};
   }
-  const ExactRelation given = oracle.relation(ray, answer->prim);
-  const Tolerance givenTol = tol(tris[answer->prim]);
-  // An origin on (or within the tolerance of) the answered triangle: a
-  // tracer's t of about 0 is rounding, the exact t = 0 is no hit.
-  if (!given.hit && given.t && nearT(given.t->toDouble(), 0.0, givenTol, given.cosine) &&
-      given.boundaryDistance * given.cosine >= -givenTol.edge) {
+  const PrimView given = judging.view(answer->prim);
+  // An origin on (or within the tolerance of) the answered primitive: a
+  // tracer's t of about 0 is rounding, the exact t = 0 is no hit. (A quadric's
+  // relation keeps t only for a root between its end planes.)
+  if (!given.rel.hit && given.rel.t && nearT(given.rel.t->toDouble(), 0.0, given.tolerance, given.rel.cosine) &&
+      (given.quadric || given.rel.boundaryDistance * given.rel.cosine >= -given.tolerance.edge)) {
     return {Verdict::Rounding, "a hit within the tolerance of the ray's origin"};
   }
-  const bool givenPlausible = given.hit || marginal(given, givenTol, ray, tris[answer->prim]);
+  const bool givenPlausible = given.rel.hit || given.marginal;
   if (!truth) {
     if (givenPlausible) return {Verdict::Rounding, "hit a triangle the ray passes within the tolerance of"};
     return {Verdict::Wrong, "hit where the ray misses everything"};
   }
-  // Another triangle than the truth's.
-  if (given.hit && *given.t == *truthRel->t) return {Verdict::Tie, "another triangle at the same t"};
+  // Another primitive than the truth's.
+  if (given.rel.hit && *given.rel.t == *truthView->rel.t) return {Verdict::Tie, "another triangle at the same t"};
   if (truthAtOrigin) return {Verdict::Rounding, "passed a hit within the tolerance of the ray's origin"};
   if (givenPlausible) {
     // A triangle degenerate in the scene's floats has no plane and no exact t;
-    // the tracer's own t stands in (it could only hit it as rounded).
-    const double givenT = given.t ? given.t->toDouble() : double(answer->t);
-    // Either crossing may move: the answered one with its triangle's slack,
-    // the true one with its own (large where the ray grazes its plane).
-    const double slack = tSlack(givenTol, given.cosine, givenT) +
-                         tSlack(tol(tris[truth->prim]), truthRel->cosine, truth->t);
+    // the tracer's own t stands in (it could only hit it as rounded). A
+    // quadric the ray misses exactly: the hit of its moved surface nearest
+    // the tracer's t.
+    const auto [givenT, givenCosine] = given.tNear(answer->t);
+    // Either crossing may move: the answered one with its primitive's slack,
+    // the true one with its own (large where the ray grazes its surface).
+    const double slack = tSlack(given.tolerance, givenCosine, givenT) +
+                         tSlack(truthView->tolerance, truthView->rel.cosine, truth->t);
     if (std::fabs(givenT - truth->t) <= slack) {
       return {Verdict::Rounding, "another triangle within the tolerance of the same t"};
     }
-    // A triangle the ray passes within the tolerance of, nearer than the
+    // A primitive the ray passes within the tolerance of, nearer than the
     // truth: a tracer that rounds it to a hit rightly reports it.
     if (givenT < truth->t) return {Verdict::Rounding, "a nearer triangle the ray passes within the tolerance of"};
-    if (marginal(*truthRel, tol(tris[truth->prim]), ray, tris[truth->prim])) {
-      return {Verdict::Rounding, "missed a nearer hit within the tolerance of an edge"};
+    if (truthView->marginal) {
+      return {Verdict::Rounding, boundaryWord(*truthView, "missed a nearer hit within the tolerance of an edge",
+                                              "missed a nearer hit within the tolerance of a silhouette or rim")};
     }
   }
-  return {Verdict::Wrong, given.hit ? "a farther triangle than the closest" : "a triangle the ray misses"};
+  return {Verdict::Wrong, given.rel.hit ? "a farther triangle than the closest" : "a triangle the ray misses"};
 }
 
 Judgement judgeAnyHit(const ExactOracle& oracle, const Ray& ray, const std::optional<Hit>& answer,
-                      const ToleranceOf& tolerance) {
-  const auto& tris = oracle.scene().triangles;
-  const ToleranceOf& tol = tolerance ? tolerance : ToleranceOf([&](const Triangle& t) { return floatRounding(ray, t); });
+                      const ToleranceOf& tolerance, const QuadricToleranceOf& quadricTolerance) {
+  const Judging judging(oracle, ray, tolerance, quadricTolerance);
   const std::vector<ExactHit> blockers = oracle.hitsOnSegment(ray);
   if (answer.has_value() == !blockers.empty()) return {Verdict::Correct, answer ? "both blocked" : "both clear"};
-  // Whether a crossing of triangle `prim` could go either way under the tolerance.
+  // Whether a crossing of primitive `prim` could go either way under the tolerance.
   const auto excusable = [&](uint32_t prim) {
-    const ExactRelation rel = oracle.relation(ray, prim);
-    const Tolerance t = tol(tris[prim]);
-    if (marginal(rel, t, ray, tris[prim])) return true;
-    if (!rel.t) return false;
-    const double crossing = rel.t->toDouble();
-    return nearT(crossing, 0.0, t, rel.cosine) || nearEnd(ray, crossing, t, rel.cosine);
+    const PrimView v = judging.view(prim);
+    if (v.marginal) return true;
+    std::vector<std::pair<double, double>> crossings;  // (t, cosine)
+    if (v.rel.t) crossings.emplace_back(v.rel.t->toDouble(), v.rel.cosine);
+    for (const PrimView::Moved& m : v.moved) crossings.emplace_back(m.t, m.cosine);
+    return std::any_of(crossings.begin(), crossings.end(), [&](const std::pair<double, double>& c) {
+      return nearT(c.first, 0.0, v.tolerance, c.second) || nearEnd(ray, c.first, v.tolerance, c.second);
+    });
   };
   if (answer) {
     if (excusable(answer->prim)) return {Verdict::Rounding, "blocked by a triangle within the tolerance"};

@@ -10,7 +10,7 @@ namespace lancer {
 // checked against in the tests.
 class BruteForce final : public Accel {
  public:
-  explicit BruteForce(const Scene& scene) : scene_(scene) {}
+  explicit BruteForce(const Scene& scene) : scene_(scene) { scene.requireTrianglesOnly("brute force"); }
   explicit BruteForce(Scene&&) = delete;  // keeps a reference: a temporary would dangle
   std::string_view name() const override { return "brute-force"; }
   std::optional<Hit> intersect(const Ray& ray, TraversalStats* stats = nullptr) const override;

@@ -106,6 +106,7 @@ float nextDown(float x) { return -nextUp(-x); }
 }  // namespace
 
 Bvh::Bvh(const Scene& scene, const AccelOptions& options) : leafSize_(options.bvhLeafSize) {
+  scene.requireTrianglesOnly("bvh");
   if (leafSize_ < 1 || leafSize_ > kMaxLeafSize) {
     throw InputError(fmt::format("BVH leaf size {} must lie in 1..{}", leafSize_, kMaxLeafSize));
   }

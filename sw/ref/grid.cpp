@@ -29,6 +29,7 @@ float binningEpsilon(const Aabb& b) {
 }
 
 BinningBox binningBox(const Scene& scene, std::string_view structure) {
+  scene.requireTrianglesOnly(structure);
   if (scene.triangles.size() > std::numeric_limits<uint32_t>::max()) {
     throw InputError(fmt::format("{}: more than 2^32 - 1 triangles", structure));
   }

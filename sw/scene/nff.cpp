@@ -130,20 +130,52 @@ class Builder {
     current_ = uint32_t(scene_.materials.size() - 1);
   }
 
-  void triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const ShadingNormals& n) {
+  // The material of the next primitive: the last "f", or a default one.
+  uint32_t material() {
     if (!current_) {
       Material fallback;
       fallback.name = "default";
       setMaterial(fallback);
     }
+    return *current_;
+  }
+
+  void triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const ShadingNormals& n) {
+    const uint32_t m = material();
     // A sphere or cone near the edge of float range can put its tessellated
     // vertices beyond it (found by tests/fuzz/fuzz_nff).
     if (!allFinite(a) || !allFinite(b) || !allFinite(c)) {
       lines_.fail("the primitive reaches beyond float range (a tessellated vertex is infinite)");
     }
     scene_.triangles.push_back({a, b, c});
-    scene_.materialOf.push_back(*current_);
+    scene_.materialOf.push_back(m);
     scene_.normals.push_back(n);
+  }
+
+  // A native sphere or cone (checked by checkSphere / checkCone first); its
+  // material joins materialOf after the triangles' (finish()).
+  void quadric(const Quadric& q) {
+    const uint32_t m = material();
+    if (!allFinite(q.bounds().lo) || !allFinite(q.bounds().hi)) {
+      lines_.fail("the primitive reaches beyond float range (its bounding box is infinite)");
+    }
+    scene_.quadrics.push_back(q);
+    quadricMaterials_.push_back(m);
+  }
+  // Ends the scene's id space: the quadrics' materials after the triangles'.
+  void finish() {
+    scene_.materialOf.insert(scene_.materialOf.end(), quadricMaterials_.begin(), quadricMaterials_.end());
+  }
+
+  void checkSphere(float radius) const {
+    if (radius == 0.0f) lines_.fail("sphere of radius 0");
+  }
+  void checkCone(const glm::vec3& base, float baseRadius, const glm::vec3& apex, float apexRadius) const {
+    if (base == apex) lines_.fail("cone whose base and apex coincide");
+    if ((baseRadius < 0) != (apexRadius < 0) && baseRadius != 0 && apexRadius != 0) {
+      lines_.fail("cone radii of opposite signs (both negative means inside visible)");
+    }
+    if (baseRadius == 0 && apexRadius == 0) lines_.fail("cone of radius 0");
   }
 
   // `start`: the line the polygon's entity began on, for its messages.
@@ -155,6 +187,7 @@ class Builder {
   Scene& scene_;
   const Lines& lines_;
   std::optional<uint32_t> current_;
+  std::vector<uint32_t> quadricMaterials_;
 };
 
 // Ear clipping in the polygon's plane (scene/polygon.h); triangles keep the
@@ -174,7 +207,7 @@ void Builder::polygon(const std::vector<glm::vec3>& points, const std::vector<gl
 // face, so a point on an edge shared by two faces is computed from the same
 // doubles by both and rounds to the same floats: the mesh is watertight.
 void Builder::sphere(const glm::vec3& center, float radius, int divisions) {
-  if (radius == 0.0f) lines_.fail("sphere of radius 0");
+  checkSphere(radius);
   const bool inside = radius < 0.0f;  // only the inside visible: wind inwards
   const double r = std::fabs(double(radius));
   const int n = divisions;
@@ -216,11 +249,7 @@ void Builder::sphere(const glm::vec3& center, float radius, int divisions) {
 // An open cone (or cylinder) of `slices` quads; the last seam reuses the
 // first ring's vertices. Outward winding: (base_k, base_k+1, apex_k+1).
 void Builder::cone(const glm::vec3& base, float baseRadius, const glm::vec3& apex, float apexRadius, int slices) {
-  if (base == apex) lines_.fail("cone whose base and apex coincide");
-  if ((baseRadius < 0) != (apexRadius < 0) && baseRadius != 0 && apexRadius != 0) {
-    lines_.fail("cone radii of opposite signs (both negative means inside visible)");
-  }
-  if (baseRadius == 0 && apexRadius == 0) lines_.fail("cone of radius 0");
+  checkCone(base, baseRadius, apex, apexRadius);
   const bool inside = baseRadius < 0 || apexRadius < 0;
   const double rb = std::fabs(double(baseRadius)), ra = std::fabs(double(apexRadius));
   const glm::dvec3 b(base), a(apex);
@@ -352,18 +381,32 @@ Scene readNff(std::istream& in, const std::string& name, const NffOptions& optio
       build.polygon(points, stride == 6 ? &normals : nullptr, start);
     } else if (key == "s") {
       const auto n = numbersOf(lines, *tokens, 1, {4}, "'s'");
-      build.sphere(vec(n, 0), n[3], options.sphereDivisions);
+      if (options.quadrics == NffQuadrics::Native) {
+        build.checkSphere(n[3]);
+        build.quadric(Quadric::sphere(vec(n, 0), n[3]));
+      } else {
+        build.sphere(vec(n, 0), n[3], options.sphereDivisions);
+      }
     } else if (key == "c") {
       // NFF.TXT puts the numbers on the two lines after 'c'; the SPD's own
       // generators (rings, tree) write all eight on the line of the 'c'.
       const auto n = tokens->size() == 1 ? numbersAfter(lines, 8, "cone", start)
                                          : numbersOf(lines, *tokens, 1, {8}, "'c'");
-      build.cone(vec(n, 0), n[3], vec(n, 4), n[7], options.coneSlices);
+      if (options.quadrics == NffQuadrics::Native) {
+        build.checkCone(vec(n, 0), n[3], vec(n, 4), n[7]);
+        build.quadric(Quadric::cone(vec(n, 0), n[3], vec(n, 4), n[7]));
+      } else {
+        build.cone(vec(n, 0), n[3], vec(n, 4), n[7], options.coneSlices);
+      }
     } else {
       lines.fail(fmt::format("unknown NFF entity '{}' (v, b, l, f, p, pp, s, c)", key));
     }
   }
-  if (scene.triangles.empty()) throw InputError(fmt::format("{}: the scene has no triangles", name));
+  build.finish();
+  if (scene.primitiveCount() == 0) {
+    throw InputError(fmt::format("{}: the scene has no triangles{}", name,
+                                 options.quadrics == NffQuadrics::Native ? ", spheres or cones" : ""));
+  }
   scene.computeBounds();
   return scene;
 }

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -24,6 +25,58 @@ namespace lancer {
 void Scene::computeBounds() {
   bounds = Aabb{};
   for (const Triangle& t : triangles) bounds.extend(t.bounds());
+  for (const Quadric& q : quadrics) bounds.extend(q.bounds());
+}
+
+void Scene::requireTrianglesOnly(std::string_view who) const {
+  if (quadrics.empty()) return;
+  throw InputError(fmt::format("{}: {} has {} quadrics (native spheres and cones): quadrics not supported yet here "
+                               "(issue #40; read the scene with its spheres and cones tessellated)",
+                               who, name, quadrics.size()));
+}
+
+namespace {
+
+// A double rounded to the float at or below (lo) or at or above (hi) it.
+float floatDown(double x) {
+  const float f = static_cast<float>(x);
+  return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+float floatUp(double x) {
+  const float f = static_cast<float>(x);
+  return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+}  // namespace
+
+Aabb Quadric::bounds() const {
+  // In double (every float and its products exact enough), each extent grown
+  // by a relative 2^-40 for the square root's and the sums' rounding, then
+  // rounded outwards to floats.
+  glm::dvec3 lo, hi;
+  if (kind == Kind::Sphere) {
+    const double r = std::fabs(double(baseRadius));
+    lo = glm::dvec3(base) - r;
+    hi = glm::dvec3(base) + r;
+  } else {
+    const glm::dvec3 b(base), a(apex), w = a - b;
+    const double ww = glm::dot(w, w);
+    lo = glm::min(b, a);
+    hi = glm::max(b, a);
+    for (int axis = 0; axis < 3; ++axis) {
+      const double spread = ww > 0.0 ? std::sqrt(std::max(0.0, 1.0 - w[axis] * w[axis] / ww)) * (1.0 + 0x1p-40) : 1.0;
+      const double rb = std::fabs(double(baseRadius)) * spread, ra = std::fabs(double(apexRadius)) * spread;
+      lo[axis] = std::min(b[axis] - rb, a[axis] - ra);
+      hi[axis] = std::max(b[axis] + rb, a[axis] + ra);
+    }
+  }
+  Aabb box;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double slack = 0x1p-40 * std::max(std::fabs(lo[axis]), std::fabs(hi[axis]));
+    box.lo[axis] = floatDown(lo[axis] - slack);
+    box.hi[axis] = floatUp(hi[axis] + slack);
+  }
+  return box;
 }
 
 const char* toString(SceneNumbers numbers) {

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -25,6 +26,35 @@ struct Triangle {
     b.extend(v2);
     return b;
   }
+};
+
+// A native quadric (issue #40, docs/quadrics.md): an NFF sphere ("s") or cone
+// ("c": a truncated cone open at both ends, a cylinder when the radii are
+// equal). The numbers are kept as read: a negative radius is NFF's "only the
+// inside visible" (a sphere's; a cone's when a radius is negative), and the
+// geometry is that of |radius|. Storage only: the tests are in
+// sw/ref/quadric.h (float reference) and sw/oracle/exact.h (exact).
+struct Quadric {
+  enum class Kind : uint8_t { Sphere, Cone };
+  Kind kind = Kind::Sphere;
+  glm::vec3 base{0.0f};     // the sphere's center; the cone's base center
+  float baseRadius = 1.0f;  // the sphere's radius; the cone's at its base
+  glm::vec3 apex{0.0f};     // cone only: the apex center
+  float apexRadius = 0.0f;  // cone only: the radius at the apex
+
+  static Quadric sphere(const glm::vec3& center, float radius) { return {Kind::Sphere, center, radius, {}, 0.0f}; }
+  static Quadric cone(const glm::vec3& base, float baseRadius, const glm::vec3& apex, float apexRadius) {
+    return {Kind::Cone, base, baseRadius, apex, apexRadius};
+  }
+  const glm::vec3& center() const { return base; }  // sphere
+  float radius() const { return baseRadius; }        // sphere
+  // NFF's negative radius: the inside is the visible side.
+  bool insideVisible() const { return baseRadius < 0.0f || (kind == Kind::Cone && apexRadius < 0.0f); }
+  // A box holding the surface, rounded outwards to floats: a sphere's is
+  // center +- |r|; a cone's holds its two end disks (radius r around the
+  // axis point spans r sqrt(1 - w_i^2 / |w|^2) on axis i). Infinite where the
+  // surface reaches beyond float range.
+  Aabb bounds() const;
 };
 
 // A suggested viewpoint stored with a scene (the Cornell box has its classic one).
@@ -81,14 +111,21 @@ enum class SceneNumbers : uint8_t {
 // "exact", "correctly_rounded", "assimp_text".
 const char* toString(SceneNumbers numbers);
 
-// A triangle scene. Triangle ids ("prim") are indices into `triangles`; their
+// A scene of triangles and (issue #40) native quadrics, in one id space:
+// primitive ids ("prim") 0 .. T-1 are the triangles, in the order of
+// `triangles`, and T + i is quadrics[i] (T = triangles.size()). The triangles'
 // order is stable and documented in docs/scenes.md: faces in file order (OBJ,
 // PLY, STL, NFF), a polygon's triangles in its ear-clipping order; glTF's
-// meshes in the order of their nodes.
+// meshes in the order of their nodes. Quadrics come only from the NFF reader
+// with NffQuadrics::Native, in file order; the acceleration structures, the
+// quantizer and the writers do not take them yet and refuse such a scene
+// (requireTrianglesOnly); the float reference's quadric test, the exact
+// arbiter and Embree do.
 struct Scene {
   std::string name;  // file path, or "builtin:<name>"
   std::vector<Triangle> triangles;
-  std::vector<uint32_t> materialOf;  // one per triangle, index into materials
+  std::vector<Quadric> quadrics;     // ids triangles.size() + i
+  std::vector<uint32_t> materialOf;  // one per primitive (triangles, then quadrics), index into materials
   std::vector<Material> materials;
   Aabb bounds;
   std::optional<View> view;  // used by the camera's auto-framing when present
@@ -104,7 +141,17 @@ struct Scene {
   // rounded by the compiler.
   SceneNumbers numbers = SceneNumbers::CorrectlyRounded;
 
-  size_t size() const { return triangles.size(); }
+  size_t size() const { return triangles.size(); }  // the triangles (the ids below the quadrics')
+  size_t primitiveCount() const { return triangles.size() + quadrics.size(); }
+  bool isQuadric(uint32_t prim) const { return prim >= triangles.size(); }
+  // The quadric of id `prim` (isQuadric(prim), prim < primitiveCount()).
+  const Quadric& quadricOf(uint32_t prim) const { return quadrics[prim - triangles.size()]; }
+  // Throws InputError ("<who>: <scene> has N quadrics: quadrics not supported
+  // yet ...") when the scene has quadrics: the entry points that would
+  // otherwise drop them (the reference structures, the quantizer, the writers,
+  // the effects' tracer) call it.
+  void requireTrianglesOnly(std::string_view who) const;
+  // The box of every triangle and quadric.
   void computeBounds();
   // The area lights: ids of the triangles whose material's emission has a
   // positive component, in id order (the Cornell box's lamp, glTF/MTL emissive

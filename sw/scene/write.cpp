@@ -284,6 +284,7 @@ void writeGlb(const Scene& scene, const std::filesystem::path& path) {
 }  // namespace
 
 void writeScene(const Scene& scene, const std::filesystem::path& path) {
+  scene.requireTrianglesOnly(fmt::format("writing {}", path.string()));
   const std::string extension = lowercase(path.extension().string());
   if (extension == ".obj") return writeObj(scene, path);
   if (extension == ".ply") return writePly(scene, path);

@@ -24,9 +24,9 @@ Scene parse(const std::string& text, const NffOptions& options = {}) {
   return readNff(in, "test.nff", options);
 }
 
-std::string errorOf(const std::string& text) {
+std::string errorOf(const std::string& text, const NffOptions& options = {}) {
   try {
-    parse(text);
+    parse(text, options);
   } catch (const InputError& e) {
     return e.what();
   }
@@ -227,6 +227,70 @@ TEST(Nff, ErrorsNameTheFileAndLine) {
   EXPECT_NE(errorOf("c\n0 0 0 1\n0 0 0 1\n").find("base and apex coincide"), std::string::npos);
   EXPECT_NE(errorOf("l 1 2 3\n").find("the scene has no triangles"), std::string::npos);
   EXPECT_NE(errorOf("v\nfrom 0 0 0\nat 0 0 0\n").find("'from' and 'at' coincide"), std::string::npos);
+}
+
+// NffQuadrics::Native (issue #40): spheres and cones as read, after the
+// triangles in the id space, each with the material of its "f".
+TEST(Nff, NativeQuadricsKeepTheirNumbersAndMaterials) {
+  NffOptions native;
+  native.quadrics = NffQuadrics::Native;
+  const std::string text =
+      "f 1 0 0 1 0 0 0 1\n"
+      "s 0 0 5 -2\n"
+      "p 3\n0 0 0\n1 0 0\n0 1 0\n"
+      "f 0 1 0 1 0 0 0 1\n"
+      "c\n0 0 0 1.5\n0 0 4 0\n"
+      "c 1 1 1 -1 2 2 2 -0.5\n";
+  const Scene scene = parse(text, native);
+  ASSERT_EQ(scene.triangles.size(), 1u);
+  ASSERT_EQ(scene.quadrics.size(), 3u);
+  EXPECT_TRUE(scene.normals.size() == 1u);
+  EXPECT_EQ(scene.primitiveCount(), 4u);
+  const Quadric& sphere = scene.quadricOf(1);
+  EXPECT_EQ(sphere.kind, Quadric::Kind::Sphere);
+  EXPECT_EQ(sphere.center(), glm::vec3(0, 0, 5));
+  EXPECT_EQ(sphere.radius(), -2.0f);  // kept as read: only the inside visible
+  EXPECT_TRUE(sphere.insideVisible());
+  const Quadric& cone = scene.quadricOf(2);
+  EXPECT_EQ(cone.kind, Quadric::Kind::Cone);
+  EXPECT_EQ(cone.base, glm::vec3(0, 0, 0));
+  EXPECT_EQ(cone.baseRadius, 1.5f);
+  EXPECT_EQ(cone.apex, glm::vec3(0, 0, 4));
+  EXPECT_EQ(cone.apexRadius, 0.0f);
+  EXPECT_FALSE(cone.insideVisible());
+  EXPECT_TRUE(scene.quadricOf(3).insideVisible());
+  // One material entry per primitive: the triangle's, then the quadrics' in file order.
+  ASSERT_EQ(scene.materialOf.size(), 4u);
+  EXPECT_EQ(scene.materials[scene.materialOf[0]].diffuse, glm::vec3(1, 0, 0));
+  EXPECT_EQ(scene.materials[scene.materialOf[1]].diffuse, glm::vec3(1, 0, 0));
+  EXPECT_EQ(scene.materials[scene.materialOf[2]].diffuse, glm::vec3(0, 1, 0));
+  EXPECT_EQ(scene.materials[scene.materialOf[3]].diffuse, glm::vec3(0, 1, 0));
+  // The bounds hold the sphere (z up to 7) and the cone (x down to -1.5).
+  EXPECT_GE(scene.bounds.hi.z, 7.0f);
+  EXPECT_LE(scene.bounds.lo.x, -1.5f);
+  EXPECT_LE(scene.bounds.lo.z, 0.0f);
+  // The default still tessellates: no quadrics, the same triangles as before.
+  const Scene tessellated = parse(text);
+  EXPECT_TRUE(tessellated.quadrics.empty());
+  EXPECT_EQ(tessellated.materialOf.size(), tessellated.triangles.size());
+  EXPECT_GT(tessellated.triangles.size(), 700u);
+  // A file of quadrics only is a scene.
+  EXPECT_EQ(parse("s 0 0 0 1\n", native).quadrics.size(), 1u);
+}
+
+TEST(Nff, NativeQuadricsAreRefusedAsTessellatedOnesAre) {
+  NffOptions native;
+  native.quadrics = NffQuadrics::Native;
+  const auto nativeError = [&](const std::string& text) { return errorOf(text, native); };
+  EXPECT_NE(nativeError("s 0 0 0 0\n").find("test.nff:1: sphere of radius 0"), std::string::npos);
+  EXPECT_NE(nativeError("s 0 0 0 -0\n").find("sphere of radius 0"), std::string::npos);
+  EXPECT_NE(nativeError("c\n0 0 0 1\n0 0 0 1\n").find("base and apex coincide"), std::string::npos);
+  EXPECT_NE(nativeError("c\n0 0 0 0\n0 0 1 0\n").find("cone of radius 0"), std::string::npos);
+  EXPECT_NE(nativeError("c\n0 0 0 1\n0 0 1 -1\n").find("radii of opposite signs"), std::string::npos);
+  EXPECT_NE(nativeError("s 0 nan 0 1\n").find("expected a finite number, got 'nan'"), std::string::npos);
+  EXPECT_NE(nativeError("c 0 0 0 1 0 0 inf 1\n").find("expected a finite number"), std::string::npos);
+  EXPECT_NE(nativeError("s 3e38 0 0 3e38\n").find("the primitive reaches beyond float range"), std::string::npos);
+  EXPECT_NE(nativeError("l 1 2 3\n").find("the scene has no triangles, spheres or cones"), std::string::npos);
 }
 
 // Found by tests/fuzz/fuzz_nff: a sphere or cone near the edge of float range
