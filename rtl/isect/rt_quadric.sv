@@ -11,7 +11,7 @@
 //
 //   stage 1      q = 2o - S; Q d (9 mul); d.w (3 mul); |d_dom|
 //   stage 2      Q q (9 mul); q.w (3 mul); rows of Q d
-//   stage 3      rows of Q q; A's terms (3 mul); q.w, d.w summed
+//   stage 3      rows of Q q plus g and 2g; A's terms (3 mul); q.w, d.w summed
 //   stage 4      B's and C's terms (6 mul); A
 //   stage 5      B, C
 //   stage 6      B^2 and AC as products of halves (7 mul)
@@ -78,6 +78,9 @@ module rt_quadric (
   // Rows of Q d and Q q: |sum_j Q_ij d_j| < 2^(K+D+1), |sum_j Q_ij q_j| < 2^(P+K+3).
   localparam int DROW_W = rt_pkg::QUADRIC_K + DIR_W + 2;
   localparam int QROW_W = POS_W + rt_pkg::QUADRIC_K + 4;
+  // B's and C's row factors (Q q)_i + g_i and (Q q)_i + 2 g_i: |g_i| <= 2^(P+K+1),
+  // so both stay below 2^(P+K+4).
+  localparam int ROW_W = POS_W + rt_pkg::QUADRIC_K + 5;
   // The remainder of the square root: at most 2 s + 1 before a step's
   // subtraction, times 4 plus 3 within one.
   localparam int REM_W = ROOT_W + 3;
@@ -126,6 +129,12 @@ module rt_quadric (
     int idx;
     idx = (i == j) ? i : 6 - i - j;
     coef = quad[idx*COEF_W +: COEF_W];
+  endfunction
+
+  // (Q q)_i: the sum of a row's three products, sign-extended to ROW_W.
+  function automatic logic [ROW_W-1:0] row_sum(logic [3*QROW_W-1:0] products);
+    row_sum = ROW_W'($signed(products[0 +: QROW_W])) + ROW_W'($signed(products[QROW_W +: QROW_W])) +
+              ROW_W'($signed(products[2*QROW_W +: QROW_W]));
   endfunction
 
   // |d| of a D-bit code: -2^(D-1) gives 2^(D-1), D unsigned bits.
@@ -227,15 +236,17 @@ module rt_quadric (
   end
 
   // ---------------------------------------------------------------------------
-  // Stage 3: the rows of Q q; A's terms (Q d)_i d_i; the heights q.w and d.w.
+  // Stage 3: the rows of Q q with g added, B's factors (Q q)_i + g_i and C's
+  // (Q q)_i + 2 g_i (so that stage 4 only multiplies); A's terms (Q d)_i d_i;
+  // the heights q.w and d.w.
   // ---------------------------------------------------------------------------
   logic [3*Q_W-1:0]       q3_q;
   logic [3*DIR_W-1:0]     d3_q;
-  logic [3*QROW_W-1:0]    qrow3_q;     // (Q q)_i
+  logic [3*ROW_W-1:0]     brow3_q;     // (Q q)_i + g_i
+  logic [3*ROW_W-1:0]     crow3_q;     // (Q q)_i + 2 g_i
   logic [3*A_W-1:0]       aterm3_q;
   logic [OH_W-1:0]        oh3_q;
   logic [DH_W-1:0]        dh3_q;
-  logic [3*LIN_W-1:0]     lin3_q;
   logic [CONST_W-1:0]     konst3_q;
   logic [LEN2_W-1:0]      len2_3_q;
   logic [DIR_W-1:0]       ddom3_q;
@@ -246,15 +257,15 @@ module rt_quadric (
   always_ff @(posedge clk_i) begin
     if (stage_load[2]) begin
       for (int k = 0; k < 3; k++) begin
-        qrow3_q[k*QROW_W +: QROW_W] <= qq2_q[(3*k)*QROW_W +: QROW_W] + qq2_q[(3*k+1)*QROW_W +: QROW_W] +
-                                       qq2_q[(3*k+2)*QROW_W +: QROW_W];
+        brow3_q[k*ROW_W +: ROW_W] <= row_sum(qq2_q[k*3*QROW_W +: 3*QROW_W]) + ROW_W'($signed(lin2_q[k*LIN_W +: LIN_W]));
+        crow3_q[k*ROW_W +: ROW_W] <= row_sum(qq2_q[k*3*QROW_W +: 3*QROW_W]) +
+                                     (ROW_W'($signed(lin2_q[k*LIN_W +: LIN_W])) << 1);
         aterm3_q[k*A_W +: A_W] <= A_W'($signed(drow2_q[k*DROW_W +: DROW_W])) * A_W'($signed(d2_q[k*DIR_W +: DIR_W]));
       end
       oh3_q      <= qw2_q[0 +: OH_W] + qw2_q[OH_W +: OH_W] + qw2_q[2*OH_W +: OH_W];
       dh3_q      <= dw2_q[0 +: DH_W] + dw2_q[DH_W +: DH_W] + dw2_q[2*DH_W +: DH_W];
       q3_q       <= q2_q;
       d3_q       <= d2_q;
-      lin3_q     <= lin2_q;
       konst3_q   <= konst2_q;
       len2_3_q   <= len2_2_q;
       ddom3_q    <= ddom2_q;
@@ -280,14 +291,10 @@ module rt_quadric (
   logic [PRIM_ID_W-1:0]   prim_id4_q;
 
   always_ff @(posedge clk_i) begin
-    if (stage_load[3]) begin : s4_load
-      logic [B_W-1:0] brow;
-      logic [C_W-1:0] crow;
+    if (stage_load[3]) begin
       for (int k = 0; k < 3; k++) begin
-        brow = B_W'($signed(qrow3_q[k*QROW_W +: QROW_W])) + B_W'($signed(lin3_q[k*LIN_W +: LIN_W]));
-        crow = C_W'($signed(qrow3_q[k*QROW_W +: QROW_W])) + (C_W'($signed(lin3_q[k*LIN_W +: LIN_W])) << 1);
-        bterm4_q[k*B_W +: B_W] <= brow * B_W'($signed(d3_q[k*DIR_W +: DIR_W]));
-        cterm4_q[k*C_W +: C_W] <= crow * C_W'($signed(q3_q[k*Q_W +: Q_W]));
+        bterm4_q[k*B_W +: B_W] <= B_W'($signed(brow3_q[k*ROW_W +: ROW_W])) * B_W'($signed(d3_q[k*DIR_W +: DIR_W]));
+        cterm4_q[k*C_W +: C_W] <= C_W'($signed(crow3_q[k*ROW_W +: ROW_W])) * C_W'($signed(q3_q[k*Q_W +: Q_W]));
       end
       a4_q       <= aterm3_q[0 +: A_W] + aterm3_q[A_W +: A_W] + aterm3_q[2*A_W +: A_W];
       konst4_q   <= konst3_q;
