@@ -62,6 +62,7 @@ IntegratorResult traceAo(const Scene& scene, const AoOptions& options, std::span
       ao.parent = k;
       ao.originPrim = h->prim;
       ao.side = s.sideOf(dir);
+      ao.intoSolid = s.intoSolid(dir);
       next.push_back(ao);
     }
   };

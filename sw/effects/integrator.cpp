@@ -49,7 +49,7 @@ void traceWaves(std::vector<WaveRay> wave, WaveTracer& tracer, IntegratorResult&
       ++counts.rays;
       if (h) {
         ++counts.hits;
-        if (!fromCamera(r.cls) && h->prim == r.originPrim) ++out.selfHits;
+        if (!fromCamera(r.cls) && h->prim == r.originPrim && !(r.intoSolid && h->u == 1.0f)) ++out.selfHits;
       }
       answer(r, h, k, next);
     }

@@ -28,7 +28,7 @@ struct IntegratorResult {
   std::map<ClassKey, ClassCounts> classes;
   std::vector<uint64_t> waveRays;
   std::vector<glm::vec3> samples;
-  uint64_t selfHits = 0;  // rays whose hit is the triangle they leave (must be 0)
+  uint64_t selfHits = 0;  // rays whose hit is the primitive they leave, but a quadric's far side (must be 0)
 
   nlohmann::json toJson() const;
 };

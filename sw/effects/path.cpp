@@ -93,6 +93,7 @@ class PathLoop {
     c.parent = k;
     c.originPrim = h.prim;
     c.side = s.sideOf(ray.dir);
+    c.intoSolid = s.intoSolid(ray.dir);
     return c;
   }
 

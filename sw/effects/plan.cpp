@@ -118,18 +118,23 @@ EffectsPlan planEffects(const Scene& scene, const EffectsOptions& options) {
 
   for (size_t i = 0; i < scene.lights.size(); ++i) shadow.reasons.push_back(lightReason(scene.lights[i], i));
 
-  // Only materials some triangle uses call for anything.
-  std::vector<size_t> used(scene.materials.size(), 0);
+  // Only materials some primitive uses call for anything; only triangles are
+  // area lights (an emissive quadric glows where seen, but no shadow ray samples it).
+  std::vector<size_t> used(scene.materials.size(), 0), usedByTriangles(scene.materials.size(), 0);
   MaterialReasons reflecting, refracting;
-  for (const uint32_t m : scene.materialOf) ++used[m];
+  for (size_t p = 0; p < scene.materialOf.size(); ++p) {
+    ++used[scene.materialOf[p]];
+    if (p < scene.size()) ++usedByTriangles[scene.materialOf[p]];
+  }
   for (size_t m = 0; m < scene.materials.size(); ++m) {
     if (!used[m]) continue;
     const Material& mat = scene.materials[m];
     const std::string name = materialName(mat, m);
-    if (mat.emission != glm::vec3(0.0f)) {
-      plan.emissiveTriangles += used[m];
+    if (mat.emission != glm::vec3(0.0f) && usedByTriangles[m]) {
+      const size_t n = usedByTriangles[m];
+      plan.emissiveTriangles += n;
       shadow.reasons.push_back(fmt::format("material {}: {} emissive triangle{} (area light, {} sample{} each)", name,
-                                           used[m], used[m] == 1 ? "" : "s", options.lightSamples,
+                                           n, n == 1 ? "" : "s", options.lightSamples,
                                            options.lightSamples == 1 ? "" : "s"));
     }
     if (mat.ks > 0.0f) reflecting.add(fmt::format("Ks {:g}", mat.ks), name);

@@ -4,10 +4,11 @@
 #include <chrono>
 #include <cmath>
 
+#include "effects/surface.h"
+
 namespace lancer {
 
 RefWaveTracer::RefWaveTracer(const Scene& scene, const Accel& accel) : scene_(scene), accel_(accel) {
-  scene.requireTrianglesOnly("effects");
   const glm::vec3 lo = glm::abs(scene.bounds.lo), hi = glm::abs(scene.bounds.hi);
   const float largest = std::max({lo.x, lo.y, lo.z, hi.x, hi.y, hi.z});
   offset_ = std::max(1e-5f * glm::length(scene.bounds.diagonal()), 4e-6f * largest);
@@ -23,18 +24,22 @@ RefWaveTracer::RefWaveTracer(const Scene& scene, const Accel& accel) : scene_(sc
 std::optional<Hit> RefWaveTracer::traceOne(const WaveRay& wr) {
   TraversalStats& stats = stats_[size_t(wr.cls)];
   Ray ray = wr.ray;
-  if (wr.originPrim >= scene_.size()) return accel_.intersect(ray, &stats);
+  if (wr.originPrim >= scene_.primitiveCount()) return accel_.intersect(ray, &stats);
   const glm::vec3 dir = glm::normalize(ray.dir);
-  const glm::vec3 shift = float(wr.side) * offset_ * normals_[wr.originPrim];
+  // A quadric's normal at the origin, the point the ray leaves (its surface to rounding).
+  const glm::vec3 normal = scene_.isQuadric(wr.originPrim) ? effectsGeometricNormal(scene_, wr.originPrim, ray.origin)
+                                                           : normals_[wr.originPrim];
+  const glm::vec3 shift = float(wr.side) * offset_ * normal;
   ray.origin += shift;
   // tMax is in units of |dir|; the start moved dot(shift, dir) along the ray.
   if (std::isfinite(ray.tMax)) ray.tMax -= glm::dot(shift, dir) / glm::length(ray.dir);
   if (!(ray.tMax > 0.0f)) return std::nullopt;
   if (wr.anyHit && !accel_.intersectP(ray)) return std::nullopt;
-  // A closest hit on the triangle the ray leaves is excluded by starting again past it.
+  // A closest hit on the primitive the ray leaves is excluded by starting again
+  // past it; but a ray into a quadric's solid has its far side (a leaving hit) ahead.
   for (int attempt = 0; attempt < 8; ++attempt) {
     std::optional<Hit> hit = accel_.intersect(ray, &stats);
-    if (!hit || hit->prim != wr.originPrim) return hit;
+    if (!hit || hit->prim != wr.originPrim || (wr.intoSolid && hit->u == 1.0f)) return hit;
     ++excluded_;
     const float skip = hit->t + offset_ / glm::length(ray.dir);
     ray.origin += skip * ray.dir;

@@ -15,11 +15,14 @@ namespace lancer {
 // Secondary origins (docs/effects.md): a ray leaving triangle `originPrim`
 // starts `offset()` along that triangle's unit geometric normal, on the side it
 // leaves on (WaveRay::side), and a shadow ray's tMax shrinks by the distance
-// the start moved along the ray. The offset is relative to the scene:
-// 1e-5 of its bounding diagonal, and never below 4e-6 of its largest
+// the start moved along the ray; a ray leaving a quadric, along its normal at
+// the origin (effectsGeometricNormal), the same way. The offset is relative to
+// the scene: 1e-5 of its bounding diagonal, and never below 4e-6 of its largest
 // coordinate (about 32 float ulps there). Behind the offset, a hit on
 // originPrim is excluded: the ray is traced again from just beyond that hit
-// (counted in excludedOriginHits()). So the reference never reports a self-hit.
+// (counted in excludedOriginHits()); but a ray into a quadric's solid
+// (WaveRay::intoSolid) keeps a leaving hit on it, the quadric's far side. So
+// the reference never reports a self-hit.
 class RefWaveTracer final : public WaveTracer {
  public:
   // `scene` and `accel` must outlive the tracer.

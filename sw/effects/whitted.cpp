@@ -114,6 +114,7 @@ WaveRay Loop::child(const Surface& s, RayClass cls, const Ray& ray, const glm::v
   c.parent = s.index;
   c.originPrim = s.hit.prim;
   c.side = s.sideOf(ray.dir);
+  c.intoSolid = s.intoSolid(ray.dir);
   return c;
 }
 
@@ -227,8 +228,9 @@ WhittedResult traceWhitted(const Scene& scene, const EffectsPlan& plan, std::spa
       out.samples[r.sample] += r.cls == RayClass::Shadow ? r.weight : r.weight * scene.background;  // a light seen
       return;
     }
-    if (h->prim >= scene.size()) {
-      throw std::logic_error(fmt::format("wave tracer: ray {} hit triangle {} of {}", k, h->prim, scene.size()));
+    if (h->prim >= scene.primitiveCount()) {
+      throw std::logic_error(
+          fmt::format("wave tracer: ray {} hit primitive {} of {}", k, h->prim, scene.primitiveCount()));
     }
     if (r.cls == RayClass::Shadow) {
       ++out.shadowRaysBlocked;

@@ -28,10 +28,14 @@ struct WaveRay {
   uint32_t sample = 0;             // the camera sample (pixel or pixel corner) it contributes to
   glm::vec3 weight{1.0f};          // colour weight of its contribution
   // All but primary rays: the index of the ray in the previous wave whose hit spawned it, the
-  // triangle it leaves, and the side of that triangle's geometric normal it leaves on (+1 front, -1 back).
+  // primitive it leaves, and the side of that primitive's geometric normal it leaves on (+1 front,
+  // -1 back; a quadric's is effectsGeometricNormal(), effects/surface.h).
   uint32_t parent = UINT32_MAX;
   uint32_t originPrim = UINT32_MAX;
   int8_t side = 0;
+  // The ray leaves a quadric into its solid (a refraction into a glass sphere, a reflection inside
+  // it): the quadric's far side, a leaving hit (u = 1) on originPrim, is an answer, not a self-hit.
+  bool intoSolid = false;
   // Shadow rays to an area light: the emitting triangle the segment ends on (else UINT32_MAX).
   uint32_t targetPrim = UINT32_MAX;
   // The path integrator: the ray's pass (--spp) of its camera sample, and
@@ -72,7 +76,8 @@ struct WhittedResult {
   uint64_t totalInternalReflections = 0;
   uint64_t shadowRays = 0;
   uint64_t shadowRaysBlocked = 0;
-  uint64_t selfHits = 0;            // secondary or shadow hits on their own originPrim (must be 0)
+  uint64_t selfHits = 0;            // secondary or shadow hits on their own originPrim but a quadric's
+                                    // far side (must be 0)
   uint64_t opaqueBackHits = 0;      // hits on the back of an opaque triangle (shaded two-sided)
   std::vector<uint64_t> waveRays;   // rays of each generation
   std::vector<glm::vec3> samples;   // the colour of every camera sample, by sample id

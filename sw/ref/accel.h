@@ -16,16 +16,20 @@ namespace lancer {
 struct TraversalStats {
   uint64_t nodesVisited = 0;   // BVH/octree nodes or grid voxels entered
   uint64_t triangleTests = 0;  // ray-triangle tests performed
+  uint64_t quadricTests = 0;   // ray-quadric tests performed (native spheres and cones)
 
   TraversalStats& operator+=(const TraversalStats& o) {
     nodesVisited += o.nodesVisited;
     triangleTests += o.triangleTests;
+    quadricTests += o.quadricTests;
     return *this;
   }
 };
 
 // The query interface every acceleration structure implements: the reference
-// grid, octree and BVH, and the Embree oracle. Implementations are immutable
+// grid, octree and BVH, and the Embree oracle. Each is built over every
+// primitive of its scene, triangles and native quadrics, and reports hits in
+// the scene's one id space (scene.h). Implementations are immutable
 // after construction, so queries may run concurrently.
 class Accel {
  public:

@@ -10,7 +10,7 @@
 
 #include "common/error.h"
 #include "common/sah.h"
-#include "ref/triangle.h"
+#include "ref/primitive.h"
 
 namespace lancer {
 
@@ -105,16 +105,18 @@ float nextDown(float x) { return -nextUp(-x); }
 
 }  // namespace
 
-Bvh::Bvh(const Scene& scene, const AccelOptions& options) : leafSize_(options.bvhLeafSize) {
-  scene.requireTrianglesOnly("bvh");
+Bvh::Bvh(const Scene& scene, const AccelOptions& options)
+    : leafSize_(options.bvhLeafSize), triangleCount_(uint32_t(scene.triangles.size())) {
   if (leafSize_ < 1 || leafSize_ > kMaxLeafSize) {
     throw InputError(fmt::format("BVH leaf size {} must lie in 1..{}", leafSize_, kMaxLeafSize));
   }
-  const size_t n = scene.triangles.size();
+  const size_t n = scene.primitiveCount();
   if (n == 0) return;  // no nodes: every query misses
+  if (n > std::numeric_limits<uint32_t>::max()) throw InputError("bvh: more than 2^32 - 1 primitives");
+  // Every primitive by its box: a triangle's vertices', a quadric's Quadric::bounds().
   std::vector<Aabb> boxes(n);
   for (size_t i = 0; i < n; ++i) {
-    boxes[i] = scene.triangles[i].bounds();
+    boxes[i] = primitiveBounds(scene, uint32_t(i));
     bounds_.extend(boxes[i]);
   }
   // A step is an out-of-line call returning std::optional, comparatively cheap
@@ -137,11 +139,15 @@ Bvh::Bvh(const Scene& scene, const AccelOptions& options) : leafSize_(options.bv
       node.axis = from.axis;
     }
   }
+  // A quadric's slot in the leaf-ordered triangles is a placeholder: the
+  // traversal tests it by its id, against quadrics_.
   triangles_.reserve(n);
-  for (uint32_t id : primIds_) triangles_.push_back(scene.triangles[id]);
+  for (uint32_t id : primIds_) triangles_.push_back(id < triangleCount_ ? scene.triangles[id] : Triangle{});
+  quadrics_.reserve(scene.quadrics.size());
+  for (const Quadric& q : scene.quadrics) quadrics_.push_back(QuadricShape::of(q));
 }
 
-template <bool kAnyHit, bool kCount, typename Slab>
+template <bool kAnyHit, bool kCount, bool kQuadrics, typename Slab>
 std::optional<Hit> Bvh::traverse(const Ray& ray, const Slab& slab, TraversalStats* stats) const {
   const WatertightRay wray(ray);
   // Descend into the child on the near side of the split plane first, so the
@@ -151,7 +157,20 @@ std::optional<Hit> Bvh::traverse(const Ray& ray, const Slab& slab, TraversalStat
   const Triangle* triangles = triangles_.data();
   std::optional<Hit> best;
   float tLimit = ray.tMax;
-  uint64_t visited = 0, tests = 0;
+  uint64_t visited = 0, tests = 0, quadricTests = 0;
+  // The primitive at leaf slot i: a triangle (the only kind without kQuadrics)
+  // or a quadric, by its id.
+  const auto testSlot = [&](uint32_t i) -> std::optional<Hit> {
+    if constexpr (kQuadrics) {
+      const uint32_t id = primIds_[i];
+      if (id >= triangleCount_) {
+        if constexpr (kCount) ++quadricTests;
+        return intersectQuadricHit(ray, quadrics_[id - triangleCount_], id);
+      }
+      if constexpr (kCount) ++tests;
+    }
+    return intersectTriangle(wray, triangles[i], primIds_[i]);
+  };
 
   std::array<uint32_t, kMaxDepth> stack;  // depth-first: at most one entry per level
   int top = 0;
@@ -170,9 +189,9 @@ std::optional<Hit> Bvh::traverse(const Ray& ray, const Slab& slab, TraversalStat
         }
         continue;
       }
-      if constexpr (kCount) tests += node.count;
+      if constexpr (kCount && !kQuadrics) tests += node.count;
       for (uint32_t i = node.index, e = node.index + node.count; i < e; ++i) {
-        if (auto hit = intersectTriangle(wray, triangles[i], primIds_[i])) {
+        if (auto hit = testSlot(i)) {
           if constexpr (kAnyHit) return hit;
           keepCloser(best, *hit);
           tLimit = best->t;
@@ -185,11 +204,12 @@ std::optional<Hit> Bvh::traverse(const Ray& ray, const Slab& slab, TraversalStat
   if constexpr (kCount) {
     stats->nodesVisited += visited;
     stats->triangleTests += tests;
+    stats->quadricTests += quadricTests;
   }
   return best;
 }
 
-template <bool kAnyHit>
+template <bool kAnyHit, bool kQuadrics>
 std::optional<Hit> Bvh::dispatch(const Ray& ray, TraversalStats* stats) const {
   // Rays the watertight test has no answer for (NaN or infinite components, a
   // zero direction) hit nothing; callers should reject them as bad input.
@@ -218,7 +238,8 @@ std::optional<Hit> Bvh::dispatch(const Ray& ray, TraversalStats* stats) const {
       slab.oMinus[a] = nextDown(ray.origin[a] - delta);
       slab.inv[a] = 1.0f / ray.dir[a];
     }
-    return stats ? traverse<kAnyHit, true>(ray, slab, stats) : traverse<kAnyHit, false>(ray, slab, stats);
+    return stats ? traverse<kAnyHit, true, kQuadrics>(ray, slab, stats)
+                 : traverse<kAnyHit, false, kQuadrics>(ray, slab, stats);
   }
   ExactSlab slab;
   slab.delta = 2.0 * double(delta);  // outward margin for the double roundings too
@@ -227,13 +248,17 @@ std::optional<Hit> Bvh::dispatch(const Ray& ray, TraversalStats* stats) const {
     slab.zero[a] = ray.dir[a] == 0.0f;  // true for -0.0 as well
     slab.inv[a] = slab.zero[a] ? 0.0 : 1.0 / double(ray.dir[a]);
   }
-  return stats ? traverse<kAnyHit, true>(ray, slab, stats) : traverse<kAnyHit, false>(ray, slab, stats);
+  return stats ? traverse<kAnyHit, true, kQuadrics>(ray, slab, stats)
+               : traverse<kAnyHit, false, kQuadrics>(ray, slab, stats);
 }
 
+// A scene without quadrics runs the triangle-only loop.
 std::optional<Hit> Bvh::intersect(const Ray& ray, TraversalStats* stats) const {
-  return dispatch<false>(ray, stats);
+  return quadrics_.empty() ? dispatch<false, false>(ray, stats) : dispatch<false, true>(ray, stats);
 }
 
-bool Bvh::intersectP(const Ray& ray) const { return dispatch<true>(ray, nullptr).has_value(); }
+bool Bvh::intersectP(const Ray& ray) const {
+  return (quadrics_.empty() ? dispatch<true, false>(ray, nullptr) : dispatch<true, true>(ray, nullptr)).has_value();
+}
 
 }  // namespace lancer

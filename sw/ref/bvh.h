@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ref/accel.h"
+#include "ref/quadric.h"
 
 namespace lancer {
 
@@ -13,13 +14,15 @@ namespace lancer {
 //
 // Layout is depth-first: an interior node's first child is the next node in the
 // array and `index` names the second, so the near child of a descent is usually
-// already in cache. A leaf's triangles are contiguous in the BVH's reordered copy.
+// already in cache. A leaf's primitives are contiguous in the BVH's reordered
+// order (primIds()).
 //
-//   bytes  0..11  lo     float x3, exact min over the vertices below (no rounding)
-//   bytes 12..23  hi     float x3, exact max over the vertices below
-//   bytes 24..27  index  leaf: first triangle in the reordered array;
+//   bytes  0..11  lo     float x3, exact min over the primitives' boxes below (a
+//                        triangle's vertices, a quadric's Quadric::bounds())
+//   bytes 12..23  hi     float x3, exact max over the same boxes
+//   bytes 24..27  index  leaf: first primitive in the reordered array;
 //                        interior: array index of the second child
-//   bytes 28..29  count  leaf: triangle count, 1..Bvh::kMaxLeafSize; 0 = interior
+//   bytes 28..29  count  leaf: primitive count, 1..Bvh::kMaxLeafSize; 0 = interior
 //   byte  30      axis   interior: split axis (0..2), orders the children front to back
 //   byte  31      pad    zero
 struct alignas(32) BvhNode {
@@ -41,6 +44,9 @@ static_assert(sizeof(BvhNode) == 32, "BvhNode must stay 32 bytes (two per cache 
 // culled that could hold a triangle the watertight test would accept at a t no
 // larger than the current closest hit. docs/bvh.md gives the argument and its
 // one known limit (ties involving hits at grazing angles under ~2 degrees).
+// Native quadrics are built over by their Quadric::bounds() and tested in the
+// leaves by the float reference's quadric test (ref/quadric.h); a scene
+// without them runs the triangle-only loop.
 class Bvh final : public Accel {
  public:
   static constexpr int kMaxLeafSize = 64;
@@ -48,7 +54,7 @@ class Bvh final : public Accel {
   static constexpr int kMaxDepth = 64;
 
   // Throws InputError unless 1 <= options.bvhLeafSize <= kMaxLeafSize. Copies
-  // the triangles, so `scene` need not outlive the BVH.
+  // the triangles and quadrics, so `scene` need not outlive the BVH.
   Bvh(const Scene& scene, const AccelOptions& options);
 
   std::string_view name() const override { return "bvh"; }
@@ -61,22 +67,25 @@ class Bvh final : public Accel {
   int depth() const { return depth_; }
   int leafSize() const { return leafSize_; }
   const std::vector<BvhNode>& nodes() const { return nodes_; }
-  // Original triangle id of each reordered triangle, in leaf order.
+  // The scene's primitive id (triangle, or T + quadric index) of each
+  // reordered primitive, in leaf order.
   const std::vector<uint32_t>& primIds() const { return primIds_; }
 
  private:
-  template <bool kAnyHit, bool kCount, typename Slab>
+  template <bool kAnyHit, bool kCount, bool kQuadrics, typename Slab>
   std::optional<Hit> traverse(const Ray& ray, const Slab& slab, TraversalStats* stats) const;
-  template <bool kAnyHit>
+  template <bool kAnyHit, bool kQuadrics>  // kQuadrics: the scene has quadrics
   std::optional<Hit> dispatch(const Ray& ray, TraversalStats* stats) const;
 
   int leafSize_;
   int depth_ = 0;
   size_t leafCount_ = 0;
   std::vector<BvhNode> nodes_;
-  std::vector<Triangle> triangles_;  // leaf-contiguous copy of the scene's triangles
-  std::vector<uint32_t> primIds_;    // scene index of triangles_[i], reported in the hit
-  Aabb bounds_;                      // of all triangles, for the per-ray slack
+  std::vector<Triangle> triangles_;  // leaf-contiguous copy of the scene's triangles (a quadric's slot unused)
+  std::vector<uint32_t> primIds_;    // scene id of the primitive at each leaf slot, reported in the hit
+  Aabb bounds_;                      // of all primitives, for the per-ray slack
+  uint32_t triangleCount_ = 0;       // ids from here on are quadrics
+  std::vector<QuadricShape> quadrics_;  // the scene's quadrics, by id - triangleCount_
 };
 
 }  // namespace lancer

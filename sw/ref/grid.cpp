@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
-#include "ref/triangle.h"
+#include "ref/primitive.h"
 
 namespace lancer {
 
@@ -29,12 +29,12 @@ float binningEpsilon(const Aabb& b) {
 }
 
 BinningBox binningBox(const Scene& scene, std::string_view structure) {
-  scene.requireTrianglesOnly(structure);
-  if (scene.triangles.size() > std::numeric_limits<uint32_t>::max()) {
-    throw InputError(fmt::format("{}: more than 2^32 - 1 triangles", structure));
+  if (scene.primitiveCount() > std::numeric_limits<uint32_t>::max()) {
+    throw InputError(fmt::format("{}: more than 2^32 - 1 primitives", structure));
   }
   Aabb sceneBounds;
   for (const Triangle& t : scene.triangles) sceneBounds.extend(t.bounds());
+  for (const Quadric& q : scene.quadrics) sceneBounds.extend(q.bounds());
   const float eps = binningEpsilon(sceneBounds);
   return BinningBox{Aabb{sceneBounds.lo - eps, sceneBounds.hi + eps}, eps};
 }
@@ -85,7 +85,8 @@ UniformGrid::UniformGrid(const Scene& scene, const AccelOptions& options) : scen
         "or 0 for the heuristic)",
         options.gridResolution, kMaxResolution));
   }
-  if (scene.triangles.empty()) {
+  const size_t primitives = scene.primitiveCount();
+  if (primitives == 0) {
     res_ = glm::ivec3(1);
     return;  // no voxels are stored; every ray misses
   }
@@ -95,16 +96,17 @@ UniformGrid::UniformGrid(const Scene& scene, const AccelOptions& options) : scen
   bounds_ = box;
   const glm::vec3 extent = bounds_.diagonal();
   res_ = options.gridResolution > 0 ? explicitResolution(extent, options.gridResolution)
-                                    : heuristicResolution(extent, scene.triangles.size());
+                                    : heuristicResolution(extent, primitives);
   cellSize_ = extent / glm::vec3(res_);
   invCellSize_ = glm::vec3(res_) / extent;
 
-  // Step 2: the voxel range of each triangle's grown bounding box. Binning by the
-  // box rather than by an exact triangle-voxel overlap lists some triangles in
-  // voxels they miss; that costs tests, never correctness.
-  std::vector<std::array<glm::ivec3, 2>> ranges(scene.triangles.size());
-  for (size_t i = 0; i < scene.triangles.size(); ++i) {
-    const Aabb tb = scene.triangles[i].bounds();
+  // Step 2: the voxel range of each primitive's grown bounding box. Binning by
+  // the box rather than by an exact primitive-voxel overlap lists some
+  // triangles in voxels they miss, and a quadric in every voxel its box
+  // overlaps (conservative); that costs tests, never correctness.
+  std::vector<std::array<glm::ivec3, 2>> ranges(primitives);
+  for (size_t i = 0; i < primitives; ++i) {
+    const Aabb tb = primitiveBounds(scene, uint32_t(i));
     for (int a = 0; a < 3; ++a) {
       const auto index = [&](float x) {
         const float c = std::floor((x - bounds_.lo[a]) * invCellSize_[a]);
@@ -127,7 +129,7 @@ UniformGrid::UniformGrid(const Scene& scene, const AccelOptions& options) : scen
   // Step 3: mark non-empty voxels and rank them.
   const uint64_t cells = uint64_t(res_.x) * res_.y * res_.z;
   occupied_.assign((cells + 63) / 64, 0);
-  for (size_t i = 0; i < scene.triangles.size(); ++i) {
+  for (size_t i = 0; i < primitives; ++i) {
     forEachCell(i, [&](uint64_t c) { occupied_[c >> 6] |= uint64_t(1) << (c & 63); });
   }
   wordRank_.resize(occupied_.size());
@@ -138,9 +140,9 @@ UniformGrid::UniformGrid(const Scene& scene, const AccelOptions& options) : scen
   }
 
   // Step 4: count references per voxel, prefix-sum them into run starts, then fill
-  // the runs in triangle order (so each run is ascending).
+  // the runs in primitive order (so each run is ascending).
   cellStart_.assign(nonEmpty + 1, 0);
-  for (size_t i = 0; i < scene.triangles.size(); ++i) {
+  for (size_t i = 0; i < primitives; ++i) {
     forEachCell(i, [&](uint64_t c) { ++cellStart_[cellSlot(c) + 1]; });
   }
   uint64_t total = 0;
@@ -156,7 +158,7 @@ UniformGrid::UniformGrid(const Scene& scene, const AccelOptions& options) : scen
   }
   triIndices_.resize(total);
   std::vector<uint32_t> cursor(cellStart_.begin(), cellStart_.end() - 1);
-  for (size_t i = 0; i < scene.triangles.size(); ++i) {
+  for (size_t i = 0; i < primitives; ++i) {
     forEachCell(i,
                 [&](uint64_t c) { triIndices_[cursor[cellSlot(c)]++] = static_cast<uint32_t>(i); });
   }
@@ -175,7 +177,7 @@ int64_t UniformGrid::cellSlot(uint64_t c) const {
 // chain from the clipped ray's start to its end. Where rounding puts a boundary
 // crossing slightly off, the ray is within ulps of both voxels, and binning by
 // boxes grown by binningEpsilon() lists every triangle near the boundary in both.
-template <bool kAnyHit>
+template <bool kAnyHit, bool kQuadrics>
 std::optional<Hit> UniformGrid::traverse(const Ray& ray, TraversalStats* stats) const {
   if (triIndices_.empty()) return std::nullopt;
   const glm::vec3& o = ray.origin;
@@ -241,9 +243,8 @@ std::optional<Hit> UniformGrid::traverse(const Ray& ray, TraversalStats* stats) 
     if (const int64_t slot = cellSlot(c); slot >= 0) {
       for (uint32_t k = cellStart_[slot]; k < cellStart_[slot + 1]; ++k) {
         const uint32_t prim = triIndices_[k];
-        if (mailbox.testedBefore(prim)) continue;  // same ray, same triangle: same answer
-        if (stats) ++stats->triangleTests;
-        if (auto hit = intersectTriangle(wray, scene_.triangles[prim], prim)) {
+        if (mailbox.testedBefore(prim)) continue;  // same ray, same primitive: same answer
+        if (auto hit = intersectCounted<kQuadrics>(scene_, wray, ray, prim, stats)) {
           if constexpr (kAnyHit) return hit;
           keepCloser(best, *hit);
         }
@@ -268,11 +269,12 @@ std::optional<Hit> UniformGrid::traverse(const Ray& ray, TraversalStats* stats) 
 }
 
 std::optional<Hit> UniformGrid::intersect(const Ray& ray, TraversalStats* stats) const {
-  return traverse<false>(ray, stats);
+  return scene_.quadrics.empty() ? traverse<false, false>(ray, stats) : traverse<false, true>(ray, stats);
 }
 
 bool UniformGrid::intersectP(const Ray& ray) const {
-  return traverse<true>(ray, nullptr).has_value();
+  return (scene_.quadrics.empty() ? traverse<true, false>(ray, nullptr) : traverse<true, true>(ray, nullptr))
+      .has_value();
 }
 
 }  // namespace lancer

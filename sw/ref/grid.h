@@ -13,7 +13,7 @@
 
 namespace lancer {
 
-// How far every triangle's bounding box is grown before it is binned into grid
+// How far every primitive's bounding box is grown before it is binned into grid
 // voxels or octree nodes, and how far the structure's box is grown around the
 // scene. Traversal computes cell boundaries in float; growing the boxes by more
 // than that rounding error means a triangle whose hit lies within rounding of a
@@ -22,10 +22,11 @@ namespace lancer {
 float binningEpsilon(const Aabb& sceneBounds);
 
 // The box a structure (grid, octree) is built over: the bounds of the scene's
-// triangles, recomputed rather than read from scene.bounds (which a hand-made
-// Scene may have left stale), grown by `eps` = binningEpsilon() of them, so that
-// no triangle touches its faces. Throws InputError ("<structure>: more than
-// 2^32 - 1 triangles") when the triangles outnumber the uint32_t ids.
+// primitives (triangles and quadrics' Quadric::bounds()), recomputed rather
+// than read from scene.bounds (which a hand-made Scene may have left stale),
+// grown by `eps` = binningEpsilon() of them, so that no primitive touches its
+// faces. Throws InputError ("<structure>: more than 2^32 - 1 primitives") when
+// the primitives outnumber the uint32_t ids.
 struct BinningBox {
   Aabb bounds;
   float eps;
@@ -51,7 +52,9 @@ class TriangleMailbox {
 };
 
 // A uniform grid over the scene bounds, traversed by the 3D-DDA of Amanatides
-// and Woo (1987). Returns bit-identical hits to BruteForce.
+// and Woo (1987). Returns bit-identical hits to BruteForce. A native quadric is
+// listed in every voxel its grown Quadric::bounds() overlaps (a triangle's
+// box likewise); a scene without quadrics runs a triangle-only traversal.
 //
 // Storage: one bit per voxel says "non-empty"; a rank per 64-voxel word turns a
 // non-empty voxel into an index into cellStart_, which delimits its run in one
@@ -75,7 +78,7 @@ class UniformGrid final : public Accel {
   glm::ivec3 resolution() const { return res_; }
   // The gridded box: the scene bounds grown by binningEpsilon().
   const Aabb& bounds() const { return bounds_; }
-  // Triangle references over all voxels (a triangle is listed once per voxel).
+  // Primitive references over all voxels (a primitive is listed once per voxel).
   size_t referenceCount() const { return triIndices_.size(); }
 
   static constexpr int kMaxResolution = 1024;       // for AccelOptions::gridResolution
@@ -83,8 +86,9 @@ class UniformGrid final : public Accel {
   static constexpr float kCellsPerTriangle = 4.0f;  // lambda of the heuristic
 
  private:
-  // Closest-hit (kAnyHit false) or any-hit (kAnyHit true) traversal.
-  template <bool kAnyHit>
+  // Closest-hit (kAnyHit false) or any-hit (kAnyHit true) traversal; kQuadrics:
+  // the scene has quadrics (each listed primitive is tested by its kind).
+  template <bool kAnyHit, bool kQuadrics>
   std::optional<Hit> traverse(const Ray& ray, TraversalStats* stats) const;
   // Index into cellStart_ of a voxel's run, or -1 for an empty voxel.
   int64_t cellSlot(uint64_t cell) const;
@@ -97,7 +101,7 @@ class UniformGrid final : public Accel {
   std::vector<uint64_t> occupied_;    // bit c of word c/64: voxel c is non-empty
   std::vector<uint32_t> wordRank_;    // non-empty voxels before word w
   std::vector<uint32_t> cellStart_;   // per non-empty voxel, plus one end marker
-  std::vector<uint32_t> triIndices_;  // triangle ids, ascending within a voxel
+  std::vector<uint32_t> triIndices_;  // primitive ids, ascending within a voxel
 };
 
 }  // namespace lancer

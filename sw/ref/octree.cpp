@@ -9,7 +9,7 @@
 
 #include "common/error.h"
 #include "ref/grid.h"  // binningEpsilon, TriangleMailbox
-#include "ref/triangle.h"
+#include "ref/primitive.h"
 
 namespace lancer {
 
@@ -83,17 +83,18 @@ Octree::Octree(const Scene& scene, const AccelOptions& options) : scene_(scene) 
   }
   if (options.octreeMaxDepth > 0) maxDepth_ = options.octreeMaxDepth;
   if (options.octreeLeafSize > 0) leafSize_ = options.octreeLeafSize;
-  if (scene.triangles.empty()) return;  // no nodes; every ray misses
+  const size_t primitives = scene.primitiveCount();
+  if (primitives == 0) return;  // no nodes; every ray misses
 
-  // The root box and every triangle's box are grown by the same epsilon as the
-  // grid's, for the same reason: a triangle within rounding of a split plane is
-  // listed on both sides of it.
+  // The root box and every primitive's box (a quadric's Quadric::bounds()) are
+  // grown by the same epsilon as the grid's, for the same reason: a primitive
+  // within rounding of a split plane is listed on both sides of it.
   const auto [box, eps] = binningBox(scene, "octree");
   bounds_ = box;
-  std::vector<Aabb> grown(scene.triangles.size());
-  std::vector<uint32_t> all(scene.triangles.size());
-  for (size_t i = 0; i < scene.triangles.size(); ++i) {
-    const Aabb b = scene.triangles[i].bounds();
+  std::vector<Aabb> grown(primitives);
+  std::vector<uint32_t> all(primitives);
+  for (size_t i = 0; i < primitives; ++i) {
+    const Aabb b = primitiveBounds(scene, uint32_t(i));
     grown[i] = Aabb{b.lo - eps, b.hi + eps};
     all[i] = static_cast<uint32_t>(i);
   }
@@ -177,7 +178,7 @@ void Octree::build(uint32_t node, const Aabb& box, std::vector<uint32_t> tris, i
 // the exact mid-plane crossing differs from 0.5 * (t0 + t1) by rounding, the ray
 // is within ulps of both children and the grown boxes list nearby triangles in
 // both.
-template <bool kAnyHit>
+template <bool kAnyHit, bool kQuadrics>
 std::optional<Hit> Octree::traverse(const Ray& ray, TraversalStats* stats) const {
   if (nodes_.empty()) return std::nullopt;
   const glm::vec3& dir = ray.dir;
@@ -249,9 +250,8 @@ std::optional<Hit> Octree::traverse(const Ray& ray, TraversalStats* stats) const
     if (n.count != kInternal) {
       for (uint32_t k = n.first; k < n.first + n.count; ++k) {
         const uint32_t prim = triIndices_[k];
-        if (mailbox.testedBefore(prim)) continue;  // same ray, same triangle: same answer
-        if (stats) ++stats->triangleTests;
-        if (auto hit = intersectTriangle(wray, scene_.triangles[prim], prim)) {
+        if (mailbox.testedBefore(prim)) continue;  // same ray, same primitive: same answer
+        if (auto hit = intersectCounted<kQuadrics>(scene_, wray, ray, prim, stats)) {
           if constexpr (kAnyHit) {
             best = hit;
             done = true;
@@ -319,9 +319,12 @@ std::optional<Hit> Octree::traverse(const Ray& ray, TraversalStats* stats) const
 }
 
 std::optional<Hit> Octree::intersect(const Ray& ray, TraversalStats* stats) const {
-  return traverse<false>(ray, stats);
+  return scene_.quadrics.empty() ? traverse<false, false>(ray, stats) : traverse<false, true>(ray, stats);
 }
 
-bool Octree::intersectP(const Ray& ray) const { return traverse<true>(ray, nullptr).has_value(); }
+bool Octree::intersectP(const Ray& ray) const {
+  return (scene_.quadrics.empty() ? traverse<true, false>(ray, nullptr) : traverse<true, true>(ray, nullptr))
+      .has_value();
+}
 
 }  // namespace lancer

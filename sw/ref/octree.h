@@ -14,7 +14,9 @@ inline constexpr int kMaxOctreeDepth = 16;
 
 // An octree over the scene's bounding box (a box, not necessarily a cube), split
 // at the mid-planes, traversed by the parametric algorithm of Revelles, Ureña and
-// Lastra (2000). Returns bit-identical hits to BruteForce.
+// Lastra (2000). Returns bit-identical hits to BruteForce. A native quadric
+// goes into every node its grown Quadric::bounds() overlaps, as a triangle's
+// box does; a scene without quadrics runs a triangle-only traversal.
 //
 // Child numbering follows the paper: bit 4 is the upper x half, bit 2 upper y,
 // bit 1 upper z. Nodes live in one flat vector; an internal node stores the index
@@ -38,7 +40,7 @@ class Octree final : public Accel {
   bool intersectP(const Ray& ray) const override;
 
   int maxDepth() const { return maxDepth_; }  // the depth limit in force
-  int leafSize() const { return leafSize_; }  // nodes with more triangles are split
+  int leafSize() const { return leafSize_; }  // nodes with more primitives are split
   size_t nodeCount() const { return nodes_.size(); }
   int depth() const { return depth_; }  // the deepest leaf actually built
   size_t referenceCount() const { return triIndices_.size(); }
@@ -49,12 +51,12 @@ class Octree final : public Accel {
   static constexpr uint32_t kInternal = ~uint32_t(0);
   struct Node {
     uint32_t first = 0;  // internal: index of child 0; leaf: offset into triIndices_
-    uint32_t count = 0;  // kInternal, or the leaf's number of triangles
+    uint32_t count = 0;  // kInternal, or the leaf's number of primitives
   };
 
   void build(uint32_t node, const Aabb& box, std::vector<uint32_t> tris, int depth,
              const std::vector<Aabb>& grown);
-  template <bool kAnyHit>
+  template <bool kAnyHit, bool kQuadrics>  // kQuadrics: the scene has quadrics
   std::optional<Hit> traverse(const Ray& ray, TraversalStats* stats) const;
 
   const Scene& scene_;
@@ -63,7 +65,7 @@ class Octree final : public Accel {
   int depth_ = 0;
   Aabb bounds_;
   std::vector<Node> nodes_;           // nodes_[0] is the root
-  std::vector<uint32_t> triIndices_;  // leaf runs, ascending triangle ids
+  std::vector<uint32_t> triIndices_;  // leaf runs, ascending primitive ids
 };
 
 }  // namespace lancer

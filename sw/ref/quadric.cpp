@@ -46,6 +46,24 @@ glm::dvec3 quadricNormal(const QuadricShape& s, const glm::dvec3& p) {
   return l > 0.0 ? n / l : (f.slope <= 0.0 ? f.axis : -f.axis);
 }
 
+glm::dvec3 projectOntoQuadric(const QuadricShape& s, const glm::dvec3& p) {
+  if (s.kind == Quadric::Kind::Sphere) {
+    const glm::dvec3 x = p - s.base;
+    const double l = glm::length(x);
+    return l > 0.0 ? s.base + (s.baseRadius / l) * x : p;
+  }
+  // With u the unit radial direction and d = (rho - R(h)) / (1 + k^2), the
+  // point p - d u + d k axis has rho' = rho - d and R(h') = R(h) + k^2 d: on the cone.
+  const ConeFrame f = frameOf(s);
+  const glm::dvec3 x = p - s.base;
+  const double h = glm::dot(x, f.axis);
+  const glm::dvec3 radial = x - h * f.axis;
+  const double rho = glm::length(radial);
+  if (!(rho > 0.0)) return p;
+  const double d = (rho - (s.baseRadius + f.slope * h)) / (1.0 + f.slope * f.slope);
+  return p - (d / rho) * radial + (d * f.slope) * f.axis;
+}
+
 std::optional<QuadricHit> intersectQuadric(const Ray& ray, const QuadricShape& s, uint32_t prim) {
   const glm::dvec3 o(ray.origin), d(ray.dir);
   const double dd = glm::dot(d, d);

@@ -58,4 +58,13 @@ std::optional<QuadricHit> intersectQuadric(const Ray& ray, const Quadric& quadri
 // rho^2 - R(h)^2. At a pointed apex, the axis.
 glm::dvec3 quadricNormal(const QuadricShape& shape, const glm::dvec3& point);
 
+// `point` moved along the surface's normal onto it: a sphere's nearest point
+// (center + r (p - c) / |p - c|), a cone's by the one step that is exact for
+// its linear radius (rho - R(h) removed along the normal of the point's
+// meridian; the end planes do not bound it). For a point near the surface, a
+// hit whose ray started a little off the line it is named by (an offset
+// secondary origin). A point on a sphere's center or a cone's axis is
+// returned as it is.
+glm::dvec3 projectOntoQuadric(const QuadricShape& shape, const glm::dvec3& point);
+
 }  // namespace lancer

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "ref/primitive.h"
+
 namespace lancer {
 
 Image shadeHits(const Scene& scene, std::span<const Ray> rays, std::span<const std::optional<Hit>> hits,
@@ -19,14 +21,20 @@ Image shadeHits(const Scene& scene, std::span<const Ray> rays, std::span<const s
     ++emitters;
   }
   for (size_t i = 0; i < hits.size() && i < size_t(width) * size_t(height); ++i) {
-    if (!hits[i] || hits[i]->prim >= scene.size()) {
+    if (!hits[i] || hits[i]->prim >= scene.primitiveCount()) {
       image.set(i, background.r, background.g, background.b);
       continue;
     }
-    const Triangle& tri = scene.triangles[hits[i]->prim];
-    const Material& material = scene.materials[scene.materialOf[hits[i]->prim]];
-    const glm::vec3 normal = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
+    const uint32_t prim = hits[i]->prim;
+    const Material& material = scene.materials[scene.materialOf[prim]];
     const glm::vec3 point = rays[i].origin + hits[i]->t * rays[i].dir;
+    glm::vec3 normal;  // any length: only the cosine counts
+    if (scene.isQuadric(prim)) {
+      normal = geometricNormal(scene, prim, point);
+    } else {
+      const Triangle& tri = scene.triangles[prim];
+      normal = glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
+    }
     const glm::vec3 light = emitters ? emitterSum / float(emitters) : rays[i].origin;
     const glm::vec3 toLight = light - point;
     const float lengths = glm::length(normal) * glm::length(toLight);

@@ -117,10 +117,10 @@ const char* toString(SceneNumbers numbers);
 // order is stable and documented in docs/scenes.md: faces in file order (OBJ,
 // PLY, STL, NFF), a polygon's triangles in its ear-clipping order; glTF's
 // meshes in the order of their nodes. Quadrics come only from the NFF reader
-// with NffQuadrics::Native, in file order; the acceleration structures, the
-// quantizer and the writers do not take them yet and refuse such a scene
-// (requireTrianglesOnly); the float reference's quadric test, the exact
-// arbiter and Embree do.
+// with NffQuadrics::Native, in file order; the quantizer and the writers do
+// not take them yet and refuse such a scene (requireTrianglesOnly); the float
+// reference's quadric test and structures, the effects' float tracer, the
+// exact arbiter and Embree do.
 struct Scene {
   std::string name;  // file path, or "builtin:<name>"
   std::vector<Triangle> triangles;
@@ -148,8 +148,7 @@ struct Scene {
   const Quadric& quadricOf(uint32_t prim) const { return quadrics[prim - triangles.size()]; }
   // Throws InputError ("<who>: <scene> has N quadrics: quadrics not supported
   // yet ...") when the scene has quadrics: the entry points that would
-  // otherwise drop them (the reference structures, the quantizer, the writers,
-  // the effects' tracer) call it.
+  // otherwise drop them (the quantizer, the writers) call it.
   void requireTrianglesOnly(std::string_view who) const;
   // The box of every triangle and quadric.
   void computeBounds();

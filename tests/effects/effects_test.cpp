@@ -5,8 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -14,11 +17,13 @@
 #include "common/error.h"
 #include "effects/plan.h"
 #include "effects/ref_tracer.h"
+#include "effects/surface.h"
 #include "effects/whitted.h"
 #include "ref/bvh.h"
 #include "scene/camera.h"
 #include "scene/nff.h"
 #include "scene/spd.h"
+#include "support/mixed_scenes.h"
 
 namespace lancer {
 namespace {
@@ -159,8 +164,9 @@ TEST(EffectsPlan, BadOptionsNameTheOption) {
 
 // ---- The loop, rule by rule ----------------------------------------------------------------
 
-// Every ray of wave g+1 names its parent in wave g, the triangle that parent hit,
-// and the side of its geometric normal it leaves on; the counts add up.
+// Every ray of wave g+1 names its parent in wave g, the primitive that parent hit,
+// and the side of its geometric normal it leaves on (a quadric's:
+// effectsGeometricNormal, and whether it goes into its solid); the counts add up.
 void expectContract(const Scene& scene, const RecordingTracer& t, const WhittedResult& r, int maxDepth) {
   uint64_t byClass[kWhittedClassCount] = {};
   for (size_t g = 0; g < t.waves.size(); ++g) {
@@ -184,8 +190,16 @@ void expectContract(const Scene& scene, const RecordingTracer& t, const WhittedR
       EXPECT_EQ(w.sample, parent.sample);
       EXPECT_EQ(w.depth, parent.depth + 1);
       EXPECT_EQ(w.anyHit, w.cls == RayClass::Shadow);
-      const Triangle& tri = scene.triangles[w.originPrim];
-      const float s = glm::dot(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0), w.ray.dir);
+      float s = 0.0f;
+      if (scene.isQuadric(w.originPrim)) {
+        s = glm::dot(effectsGeometricNormal(scene, w.originPrim, w.ray.origin), w.ray.dir);
+        const bool inside = scene.quadricOf(w.originPrim).insideVisible();
+        EXPECT_EQ(w.intoSolid, inside ? s > 0.0f : s < 0.0f);
+      } else {
+        const Triangle& tri = scene.triangles[w.originPrim];
+        s = glm::dot(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0), w.ray.dir);
+        EXPECT_FALSE(w.intoSolid);
+      }
       if (s != 0.0f) {
         EXPECT_EQ(w.side, s > 0 ? 1 : -1);
       }
@@ -562,6 +576,216 @@ TEST(EffectsSpd, GearsCountsAgreeWithTheSpdTable) {
   EXPECT_NEAR(double(r.shadowRays), 2246955.0, 0.01 * 2246955.0);
   EXPECT_GT(r.totalInternalReflections, 0u);
   EXPECT_EQ(r.selfHits, 0u);
+}
+
+// ---- Native quadrics (issue #40) ------------------------------------------------------------
+
+Scene loadNative(const std::string& name) {
+  NffOptions options;
+  options.quadrics = NffQuadrics::Native;
+  return loadNff(kData + "/" + name, options);
+}
+
+// A quadric's hit: the point on the ray at t, the outward normal (inward on an
+// inside-visible quadric, as its tessellation is wound), the shading normal
+// the geometric one turned to the ray; front as the tessellation has it.
+TEST(WhittedQuadrics, SurfaceOfASphereFromOutsideAndInside) {
+  const auto sceneOf = [](float radius, NffQuadrics quadrics) {
+    std::istringstream in(fmt::format("f 1 1 1 1 0 0 0 1\ns 0 0 0 {}\n", radius));
+    NffOptions options;
+    options.quadrics = quadrics;
+    return readNff(in, "sphere.nff", options);
+  };
+  const Ray outside{{0, 0, -4}, {0, 0, 2}}, inside{{0.3f, 0, 0}, {0, 0, 1}};
+  for (const float radius : {2.0f, -2.0f}) {
+    const Scene native = sceneOf(radius, NffQuadrics::Native), tessellated = sceneOf(radius, NffQuadrics::Tessellate);
+    const Bvh nativeBvh(native, {}), tessellatedBvh(tessellated, {});
+    for (const bool fromOutside : {true, false}) {
+      const Ray& ray = fromOutside ? outside : inside;
+      const auto hit = nativeBvh.intersect(ray);
+      ASSERT_TRUE(hit);
+      ASSERT_TRUE(native.isQuadric(hit->prim));
+      const SurfacePoint s = surfaceAt(native, ray, *hit);
+      EXPECT_NEAR(glm::length(s.point), 2.0f, 1e-5f);
+      const glm::vec3 outward = glm::normalize(s.point);
+      EXPECT_NEAR(glm::dot(s.outward, outward), 1.0f, 1e-6f);
+      EXPECT_NEAR(glm::dot(s.geometric, radius < 0 ? -outward : outward), 1.0f, 1e-6f);
+      EXPECT_EQ(s.front, fromOutside == (radius > 0)) << radius;
+      EXPECT_LT(glm::dot(s.normal, s.dir), 0.0f);  // turned to the ray
+      EXPECT_NEAR(glm::dot(s.normal, s.front ? s.geometric : -s.geometric), 1.0f, 1e-6f);
+      // The same side as the tessellation's triangle.
+      const auto flat = tessellatedBvh.intersect(ray);
+      ASSERT_TRUE(flat);
+      EXPECT_EQ(surfaceAt(tessellated, ray, *flat).front, s.front) << radius;
+      // Leaving inwards goes into the solid, whichever side is visible.
+      EXPECT_TRUE(s.intoSolid(-outward));
+      EXPECT_FALSE(s.intoSolid(outward));
+    }
+  }
+}
+
+// The ids of a native scene's quadrics by material: the mirror, the glass, the cone.
+struct QuadricIds {
+  uint32_t mirror = UINT32_MAX, glass = UINT32_MAX, cone = UINT32_MAX;
+  explicit QuadricIds(const Scene& scene) {
+    for (uint32_t p = uint32_t(scene.size()); p < scene.primitiveCount(); ++p) {
+      const Material& m = scene.materials[scene.materialOf[p]];
+      (m.transmittance > 0.0f ? glass : m.ks > 0.0f ? mirror : cone) = p;
+    }
+  }
+};
+
+TEST(WhittedQuadrics, MirrorGlassAndConeSpawnEveryClassOffTheRightPrimitives) {
+  const Scene scene = loadNative("quadrics.nff");
+  ASSERT_EQ(scene.quadrics.size(), 3u);
+  const QuadricIds id(scene);
+  ASSERT_NE(id.cone, UINT32_MAX);
+  RecordingTracer tracer(scene);
+  CameraOptions camera;
+  camera.width = camera.height = 64;
+  const WhittedRun run = runWhitted(scene, tracer, {}, frameScene(scene, camera).generateRays(Sampling::Centers));
+  const WhittedResult& r = run.result;
+  expectContract(scene, tracer, r, 5);
+  EXPECT_EQ(tracer.ref().excludedOriginHits(), 0u);  // the offset alone keeps rays off their own surface
+  EXPECT_EQ(r.opaqueBackHits, 0u);
+  // Counts by what each ray left and what it hit.
+  std::map<std::pair<uint32_t, uint32_t>, int> shadowBlockers, reflected, refractedIn, refractedOut;
+  std::set<uint32_t> eyeHit;
+  uint64_t mirrorOrGlassHits = 0, glassHits = 0;  // hits that reflect or refract (below the depth limit)
+  // The floor's two triangles count as one primitive, 0.
+  const auto at = [&](auto& counts, uint32_t from, uint32_t to) -> int& {
+    const auto floor = [&](uint32_t p) { return p < scene.size() ? 0u : p; };
+    return counts[std::make_pair(floor(from), floor(to))];
+  };
+  for (size_t g = 0; g < tracer.waves.size(); ++g) {
+    for (size_t k = 0; k < tracer.waves[g].size(); ++k) {
+      const WaveRay& w = tracer.waves[g][k];
+      const auto& h = tracer.answers[g][k];
+      const uint32_t hit = h ? h->prim : UINT32_MAX;
+      if (w.cls != RayClass::Shadow && w.depth < 5) {
+        mirrorOrGlassHits += hit == id.mirror || hit == id.glass;
+        glassHits += hit == id.glass;
+      }
+      switch (w.cls) {
+        case RayClass::Primary: eyeHit.insert(hit); break;
+        case RayClass::Shadow:
+          if (h) ++at(shadowBlockers, w.originPrim, hit);
+          break;
+        case RayClass::Reflection:
+          ++at(reflected, w.originPrim, hit);
+          // Off the mirror (outside a convex solid) nothing of the mirror is met again.
+          if (w.originPrim == id.mirror) {
+            EXPECT_NE(hit, id.mirror);
+          }
+          break;
+        case RayClass::Refraction:
+          ASSERT_EQ(w.originPrim, id.glass);
+          if (w.intoSolid) {
+            // Into the glass: its far side, leaving, always.
+            ++at(refractedIn, w.originPrim, hit);
+            ASSERT_TRUE(h);
+            EXPECT_EQ(hit, id.glass);
+            EXPECT_EQ(h->u, 1.0f);
+          } else {
+            ++at(refractedOut, w.originPrim, hit);
+            EXPECT_NE(hit, id.glass);
+          }
+          break;
+        default: break;
+      }
+    }
+  }
+  for (const uint32_t q : {id.mirror, id.glass, id.cone}) EXPECT_TRUE(eyeHit.count(q)) << q;
+  EXPECT_TRUE(eyeHit.count(0) || eyeHit.count(1));  // the floor
+  // The floor's shadow rays meet each quadric; a shadow ray from inside the glass meets the glass.
+  for (const uint32_t q : {id.mirror, id.glass, id.cone}) EXPECT_GT(at(shadowBlockers, 0u, q), 0) << q;
+  EXPECT_GT(at(shadowBlockers, id.glass, id.glass), 0);
+  EXPECT_GT(at(reflected, id.mirror, 0u), 0);   // the mirror sees the floor
+  EXPECT_GT(at(reflected, id.mirror, UINT32_MAX), 0);  // and the sky
+  EXPECT_GT(at(reflected, id.glass, id.glass), 0);  // internal reflection inside the glass
+  EXPECT_GT(at(refractedIn, id.glass, id.glass), 0);
+  int out = 0;
+  for (const auto& [key, n] : refractedOut) out += n;
+  EXPECT_GT(out, 0);
+  // Every mirror and glass hit reflects, every glass hit refracts (or reflects
+  // totally): the counts of the plan's classes.
+  EXPECT_EQ(r.reflectRays, mirrorOrGlassHits);
+  EXPECT_EQ(r.refractRays, glassHits);
+  EXPECT_GT(r.refractRays, 500u);
+  // (A ray refracted into a sphere always leaves it: no total internal
+  // reflection but after internal reflections, rare at this size.)
+  EXPECT_EQ(r.refractionsTraced, uint64_t(out) + uint64_t(at(refractedIn, id.glass, id.glass)));
+}
+
+// The counts of a Whitted run of `scene` at `size` x `size` centre samples
+// (a tessellated sphere's smooth normals may send a reflection through its
+// own triangles' backs; a native one's may not).
+WhittedResult whittedCounts(const Scene& scene, int size) {
+  CameraOptions options;
+  options.width = options.height = size;
+  const std::vector<Ray> rays = frameScene(scene, options).generateRays(Sampling::Centers);
+  const Bvh bvh(scene, AccelOptions{});
+  RefWaveTracer tracer(scene, bvh);
+  WhittedResult r = traceWhitted(scene, planEffects(scene, {}), rays, tracer);
+  EXPECT_EQ(r.selfHits, 0u) << scene.name;
+  if (!scene.quadrics.empty()) {
+    EXPECT_EQ(r.opaqueBackHits, 0u) << scene.name;
+    EXPECT_EQ(tracer.excludedOriginHits(), 0u) << scene.name;
+  }
+  return r;
+}
+
+// Native quadrics and their tessellation (768 triangles a sphere, 32 slices a
+// cone) give the same picture to within the tessellation's silhouettes.
+void expectCountsAgree(const WhittedResult& native, const WhittedResult& flat, double within) {
+  const auto near = [&](uint64_t a, uint64_t b, const char* what) {
+    EXPECT_NEAR(double(a), double(b), within * double(std::max<uint64_t>(b, 1)) + 2.0) << what;
+  };
+  near(native.eyeHitRays, flat.eyeHitRays, "eye hit rays");
+  near(native.shadowRays, flat.shadowRays, "shadow rays");
+  // Blockers differ more: a shadow ray grazing a sphere meets its polygon or not.
+  EXPECT_NEAR(double(native.shadowRaysBlocked), double(flat.shadowRaysBlocked),
+              2.0 * within * double(flat.shadowRaysBlocked) + 2.0);
+  near(native.reflectRays, flat.reflectRays, "reflect rays");
+  near(native.refractRays, flat.refractRays, "refract rays");
+}
+
+TEST(WhittedQuadrics, NativeAndTessellatedQuadricsGiveTheSameCounts) {
+  const WhittedResult native = whittedCounts(loadNative("quadrics.nff"), 64);
+  const WhittedResult flat = whittedCounts(load("quadrics.nff"), 64);
+  EXPECT_GT(native.refractRays, 100u);
+  expectCountsAgree(native, flat, 0.03);
+}
+
+// The SPD's sphereflake (balls) and mountain with its four glass spheres
+// (mount) at size factor 1, native and tessellated, on a small image.
+TEST(WhittedQuadrics, SpdBallsAndMountNativeAgreeWithTheirTessellation) {
+  for (const char* name : {"balls", "mount"}) {
+    SCOPED_TRACE(name);
+    const std::string nff = generateSpdNff(name, 1);
+    NffOptions options;
+    options.quadrics = NffQuadrics::Native;
+    std::istringstream nativeText(nff), flatText(nff);
+    const Scene native = readNff(nativeText, name, options), flat = readNff(flatText, name);
+    EXPECT_EQ(native.quadrics.size(), std::string(name) == "balls" ? 10u : 4u);
+    const WhittedResult n = whittedCounts(native, 96), f = whittedCounts(flat, 96);
+    EXPECT_GT(n.reflectRays, 500u);
+    if (std::string(name) == "mount") {
+      EXPECT_GT(n.refractRays, 100u);
+    }
+    expectCountsAgree(n, f, 0.03);
+  }
+}
+
+// An emissive quadric glows where it is seen but is no area light: only
+// triangles are sampled by shadow rays.
+TEST(WhittedQuadrics, AnEmissiveQuadricIsNoAreaLight) {
+  Scene scene = test::mixedScene({{{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}}}, {Quadric::sphere({0, 0, 3}, 1)});
+  scene.materials.push_back(Material{"lamp", glm::vec3(1.0f), glm::vec3(2.0f)});
+  scene.materialOf[1] = 1;
+  const EffectsPlan plan = planEffects(scene, {});
+  EXPECT_EQ(plan.emissiveTriangles, 0u);
+  EXPECT_FALSE(plan.has(RayClass::Shadow));
 }
 
 }  // namespace
