@@ -173,7 +173,10 @@ void printSilicon(const RunClock& clock, const ChipFigures& chip, uint64_t cycle
 }
 
 nlohmann::json reportHeader(const Args& args, const Scene& scene, const RunClock& clock) {
+  const Scene::PrimitiveCounts kinds = scene.primitivesByKind();
   return {{"command", "run"},         {"scene", scene.name},          {"scene_numbers", toString(scene.numbers)}, {"triangles", scene.size()},
+          {"primitives", {{"triangles", kinds.triangles}, {"spheres", kinds.spheres}, {"cones", kinds.cones}}},
+          {"quadrics", toString(args.scene.quadrics)},
           {"accel", toString(args.accel)}, {"model", args.job.model}, {"pos_bits", fx::kPosBits},
           {"dir_bits", fx::kDirBits},  {"clock_mhz", clock.mhz},      {"clock_source", clock.toJson()}};
 }
@@ -211,8 +214,8 @@ struct WaveRunFigures {
 
   // `integratorLines` prints what only the integrator knows, after the classes.
   void print(const std::function<void()>& integratorLines) const {
-    fmt::print("run: {} ({} triangles), {} {} samples {}x{}, model {}, accel {}, formats pos {} / dir {} bits\n",
-               scene.name, scene.size(), eyeRays, toString(sampling), camera.width(), camera.height(),
+    fmt::print("run: {} ({}), {} {} samples {}x{}, model {}, accel {}, formats pos {} / dir {} bits\n",
+               scene.name, scene.primitivesText(), eyeRays, toString(sampling), camera.width(), camera.height(),
                args.job.model, toString(args.accel), fx::kPosBits, fx::kDirBits);
     fmt::print("  clock               {}\n", clock.describe());
     printStructure();
@@ -505,8 +508,8 @@ struct RunFigures {
   size_t hits() const { return size_t(std::count_if(job.hits.begin(), job.hits.end(), [](auto& h) { return h.has_value(); })); }
 
   void print() const {
-    fmt::print("run: {} ({} triangles), {} rays from {}, model {}, accel {}, formats pos {} / dir {} bits\n",
-               scene.name, scene.size(), rays.rays.size(), rays.origin, args.job.model, toString(args.accel),
+    fmt::print("run: {} ({}), {} rays from {}, model {}, accel {}, formats pos {} / dir {} bits\n",
+               scene.name, scene.primitivesText(), rays.rays.size(), rays.origin, args.job.model, toString(args.accel),
                fx::kPosBits, fx::kDirBits);
     fmt::print("  clock               {}\n", clock.describe());
     if (job.cycleAccurate) {
@@ -622,10 +625,11 @@ void reportFirstFailure(const Args& args, const Scene& scene, const Rays& rays, 
 void run(Args args) {
   args.chip.apply(args.job);
   checkRunOptions(args);
-  const RunClock clock = runClock(args.accel, args.clockMhz);
-  args.job.memory.clockMhz = clock.mhz;  // DRAM's nanoseconds in the run's cycles
   const auto hostStart = std::chrono::steady_clock::now();
   const Scene scene = args.scene.load();
+  // The slowest unit of the run: rt_quadric's too when the scene has quadrics.
+  const RunClock clock = runClock(args.accel, args.clockMhz, !scene.quadrics.empty());
+  args.job.memory.clockMhz = clock.mhz;  // DRAM's nanoseconds in the run's cycles
   const Quantizer quantizer(scene.bounds, args.latticeMargin);
   if (!args.shard.empty()) {
     cli::parseShard(args.shard);

@@ -32,10 +32,17 @@ void SceneOptions::add(CLI::App& app) {
   app.add_option("--subdivide", subdivide,
                  "Split every triangle into 4, this many times (large meshes for benchmarks)")
       ->check(CLI::Range(0, 6));
+  app.add_option_function<std::string>(
+         "--quadrics",
+         [this](const std::string& form) { quadrics = form == "native" ? QuadricForm::Native : QuadricForm::Tessellate; },
+         "NFF spheres and cones: tessellate (triangles; every structure) or native (quadrics: the reference "
+         "structures, embree and --accel isect, whose quadric pipeline is rt_quadric)")
+      ->check(CLI::IsMember({"tessellate", "native"}))
+      ->default_str("tessellate");
 }
 
 Scene SceneOptions::load() const {
-  Scene loaded = loadScene(scene);
+  Scene loaded = loadScene(scene, quadrics);
   for (const std::string& warning : loaded.warnings) fmt::print(stderr, "warning: {}\n", warning);
   return subdivide ? lancer::subdivide(loaded, subdivide) : loaded;
 }

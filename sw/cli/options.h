@@ -23,6 +23,7 @@ namespace lancer::cli {
 struct SceneOptions {
   std::string scene = kDefaultSceneName;
   int subdivide = 0;
+  QuadricForm quadrics = QuadricForm::Tessellate;
   void add(CLI::App& app);
   // The scene, subdivided --subdivide times (for large benchmark meshes).
   Scene load() const;

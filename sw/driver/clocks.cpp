@@ -128,8 +128,9 @@ std::span<const UnitClock> unitClocks() {
   return rows;
 }
 
-std::vector<std::string> rtlTops(fx::UnitKind path) {
+std::vector<std::string> rtlTops(fx::UnitKind path, bool quadrics) {
   std::vector<std::string> tops{"rt_isect"};
+  if (quadrics) tops.emplace_back("rt_quadric");
   fx::forEachTraversalUnit([&](auto unit) {
     if (decltype(unit)::kKind == path) tops.emplace_back(decltype(unit)::kNames.module);
   });
@@ -153,8 +154,8 @@ std::optional<UnitClock> slowest(std::span<const UnitClock> table, const std::ve
 }  // namespace
 
 RunClock chooseRunClock(std::span<const UnitClock> table, fx::UnitKind path, int posBits, int dirBits,
-                        std::optional<double> optionMhz) {
-  const std::vector<std::string> tops = rtlTops(path);
+                        std::optional<double> optionMhz, bool quadrics) {
+  const std::vector<std::string> tops = rtlTops(path, quadrics);
   RunClock clock;
   clock.posBits = posBits;
   clock.dirBits = dirBits;
@@ -192,8 +193,8 @@ RunClock chooseRunClock(std::span<const UnitClock> table, fx::UnitKind path, int
   return clock;
 }
 
-RunClock runClock(fx::UnitKind path, std::optional<double> optionMhz) {
-  return chooseRunClock(unitClocks(), path, fx::kPosBits, fx::kDirBits, optionMhz);
+RunClock runClock(fx::UnitKind path, std::optional<double> optionMhz, bool quadrics) {
+  return chooseRunClock(unitClocks(), path, fx::kPosBits, fx::kDirBits, optionMhz, quadrics);
 }
 
 std::string RunClock::model() const { return sta && estimate ? estimate->silicon->clockSource : "gate model"; }

@@ -86,8 +86,9 @@ std::span<const UnitClock> unitClocks();
 // Parses a table's text (the committed file's format); InputError naming `where`.
 std::vector<UnitClock> parseUnitClocks(const std::string& text, const std::string& where);
 
-// The RTL units a hardware path runs: rt_isect, and the traversal unit's top.
-std::vector<std::string> rtlTops(fx::UnitKind path);
+// The RTL units a hardware path runs: rt_isect, the traversal unit's top, and
+// rt_quadric when the run traces quadrics.
+std::vector<std::string> rtlTops(fx::UnitKind path, bool quadrics = false);
 
 struct RunClock {
   enum class Source {
@@ -114,8 +115,8 @@ struct RunClock {
 // The clock of a run of `path` at the given widths from `table`: the option if
 // given, else the estimate. InputError if there is neither.
 RunClock chooseRunClock(std::span<const UnitClock> table, fx::UnitKind path, int posBits, int dirBits,
-                        std::optional<double> optionMhz);
+                        std::optional<double> optionMhz, bool quadrics = false);
 // The same from this build's table and widths.
-RunClock runClock(fx::UnitKind path, std::optional<double> optionMhz);
+RunClock runClock(fx::UnitKind path, std::optional<double> optionMhz, bool quadrics = false);
 
 }  // namespace lancer

@@ -41,9 +41,11 @@ struct StreamStats {
   bool cycleAccurate = true;  // false for the golden model, whose cycles are the ideal count
 };
 
-// The one interface over every model of the intersection pipeline: golden
+// The one interface over every model of the intersection pipelines: golden
 // (bit-accurate, ideal timing), SystemC cycle model, Verilated RTL in C++ and
 // Verilated RTL in SystemC. The driver, the comparison and the CLI use only this.
+// A device holds both pipelines: rt_isect (ray-triangle pairs, run) and
+// rt_quadric beside it (ray-quadric pairs, runQuadrics).
 class IsectDevice {
  public:
   virtual ~IsectDevice() = default;
@@ -53,6 +55,11 @@ class IsectDevice {
   virtual StreamStats run(std::span<const IsectRequest> requests,
                           std::vector<fx::IsectResult>& results,
                           const StreamOptions& options = {}) = 0;
+  // The same through the quadric pipeline (rt_quadric). A model that has no
+  // quadric pipeline throws InputError naming itself.
+  virtual StreamStats runQuadrics(std::span<const QuadricRequest> requests,
+                                  std::vector<fx::IsectResult>& results,
+                                  const StreamOptions& options = {}) = 0;
 };
 
 }  // namespace lancer

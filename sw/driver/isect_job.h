@@ -25,6 +25,7 @@ struct Mismatch {
   std::string what;  // "pair" (a pipeline output differs) or "count"
   fx::QRay ray;
   std::optional<fx::QTriangle> tri;
+  std::optional<fx::QQuadric> quadric;
   std::optional<fx::IsectResult> model, golden;
 };
 
@@ -34,7 +35,11 @@ std::string describeMismatch(const Mismatch& mismatch);
 // Streams every (ray, candidate) pair of the rays that entered the lattice
 // (rays[k], id k; the candidates ignore segment ends) through `model` and through `golden`,
 // compares the two output streams record by record, bit for bit, and reduces
-// the model's results to each ray's closest hit (fx::closerResult).
+// the model's results to each ray's closest hit (fx::closerResult). The
+// candidates are primitive ids: triangles go through the triangle pipeline
+// (IsectDevice::run), quadrics through the quadric pipeline beside it
+// (runQuadrics); the two run side by side, so a batch takes the longer of
+// their cycles.
 JobResult runIsectJob(const Scene& scene, std::span<const std::optional<QuantizedRay>> rays, const Quantizer& quantizer,
                       const CandidateSource& candidates, IsectDevice& model, IsectDevice& golden,
                       const JobConfig& config, const ProgressFn& onProgress = {});

@@ -51,6 +51,10 @@ struct JobResult {
   double modelSeconds = 0;   // host time inside the model
   double goldenSeconds = 0;  // host time inside the golden model
   std::optional<ChipFigures> chip;  // traversal units on a cycle-accurate model
+  // Primitive ids from here on are quadrics (the scene's triangle count), whose
+  // results say the side in u_num (0 entering, 1 leaving) rather than a
+  // barycentric; no quadrics: the largest id.
+  uint32_t firstQuadric = UINT32_MAX;
 
   void addCounter(std::string key, std::string label, double value) {
     counters.push_back({std::move(key), std::move(label), value});

@@ -32,31 +32,77 @@ Quantizer::Quantizer(const Aabb& bounds, int64_t marginUnits) {
   lo_ = 0.5 * (lo + hi) - glm::dvec3(0.5 * double(fx::kPosMax) / scale_);
 }
 
+std::array<int64_t, 3> Quantizer::latticePoint(const glm::vec3& point, const std::string& what) const {
+  std::array<int64_t, 3> q{};
+  for (int axis = 0; axis < 3; ++axis) {
+    const double x = (double(point[axis]) - lo_[axis]) * scale_;
+    if (!(x >= -0.5 && x <= double(fx::kPosMax) + 0.5)) {
+      throw InputError(fmt::format("{}: coordinate {} is outside the {}-bit position format's range "
+                                   "(lattice {:.3f} not in [0, {}])",
+                                   what, point[axis], fx::kPosBits, x, fx::kPosMax));
+    }
+    // Round half to even (the current FP rounding mode), then clamp the half unit of slack.
+    q[size_t(axis)] = std::clamp<int64_t>(std::llrint(x), 0, fx::kPosMax);
+  }
+  return q;
+}
+
 fx::QTriangle Quantizer::quantize(const Triangle& tri, uint32_t id) const {
   fx::QTriangle q;
   q.id = id;
   const glm::vec3* vertices[3] = {&tri.v0, &tri.v1, &tri.v2};
-  for (int k = 0; k < 3; ++k) {
-    for (int axis = 0; axis < 3; ++axis) {
-      const double x = (double((*vertices[k])[axis]) - lo_[axis]) * scale_;
-      if (!(x >= -0.5 && x <= double(fx::kPosMax) + 0.5)) {
-        throw InputError(fmt::format(
-            "triangle {} vertex {}: coordinate {} is outside the {}-bit position format's range "
-            "(lattice {:.3f} not in [0, {}])",
-            id, k, (*vertices[k])[axis], fx::kPosBits, x, fx::kPosMax));
-      }
-      // Round half to even (the current FP rounding mode), then clamp the half unit of slack.
-      q.v[k][axis] = std::clamp<int64_t>(std::llrint(x), 0, fx::kPosMax);
-    }
-  }
+  for (int k = 0; k < 3; ++k) q.v[size_t(k)] = latticePoint(*vertices[k], fmt::format("triangle {} vertex {}", id, k));
   return q;
 }
 
 std::vector<fx::QTriangle> Quantizer::quantize(const Scene& scene) const {
   scene.requireTrianglesOnly("the lattice quantizer");
+  return quantizeTriangles(scene);
+}
+
+std::vector<fx::QTriangle> Quantizer::quantizeTriangles(const Scene& scene) const {
   std::vector<fx::QTriangle> triangles(scene.size());
   for (uint32_t i = 0; i < scene.size(); ++i) triangles[i] = quantize(scene.triangles[i], i);
   return triangles;
+}
+
+fx::QQuadric Quantizer::quantize(const Quadric& quadric, uint32_t id) const {
+  // |r| in lattice units, to the nearest unit (half to even), within the lattice.
+  const auto units = [&](float radius) {
+    return std::clamp<int64_t>(std::llrint(std::abs(double(radius)) * scale_), 0, fx::kPosMax);
+  };
+  if (quadric.kind == Quadric::Kind::Sphere) {
+    fx::QSphere s;
+    s.id = id;
+    s.center = latticePoint(quadric.center(), fmt::format("sphere {} center", id));
+    s.radius = std::max<int64_t>(1, units(quadric.radius()));
+    return fx::sphereRecord(s);
+  }
+  fx::LatticeCone c;
+  c.base = latticePoint(quadric.base, fmt::format("cone {} base", id));
+  c.apex = latticePoint(quadric.apex, fmt::format("cone {} apex", id));
+  c.baseRadius = units(quadric.baseRadius);
+  c.apexRadius = units(quadric.apexRadius);
+  if (c.baseRadius == 0 && c.apexRadius == 0) {
+    (std::abs(quadric.baseRadius) >= std::abs(quadric.apexRadius) ? c.baseRadius : c.apexRadius) = 1;
+  }
+  if (c.base == c.apex) {
+    // Shorter than a unit: one unit along the axis' dominant direction, away
+    // from the lattice's nearer face.
+    const glm::dvec3 w = glm::dvec3(quadric.apex) - glm::dvec3(quadric.base);
+    const int axis = std::abs(w.x) >= std::abs(w.y) && std::abs(w.x) >= std::abs(w.z) ? 0
+                     : std::abs(w.y) >= std::abs(w.z)                                ? 1
+                                                                                      : 2;
+    int64_t& end = c.apex[size_t(axis)];
+    end += (w[axis] >= 0.0 ? end < fx::kPosMax : end == 0) ? 1 : -1;
+  }
+  return fx::coneRecord(id, c);
+}
+
+std::vector<fx::QQuadric> Quantizer::quantizeQuadrics(const Scene& scene) const {
+  std::vector<fx::QQuadric> quadrics(scene.quadrics.size());
+  for (size_t i = 0; i < quadrics.size(); ++i) quadrics[i] = quantize(scene.quadrics[i], uint32_t(scene.size() + i));
+  return quadrics;
 }
 
 std::optional<QuantizedRay> Quantizer::quantize(const Ray& ray, uint32_t id) const {

@@ -1,8 +1,11 @@
 #pragma once
 
+#include <array>
 #include <optional>
+#include <string>
 #include <vector>
 
+#include "golden/quadric.h"
 #include "golden/records.h"
 #include "common/ray.h"
 #include "scene/scene.h"
@@ -41,8 +44,21 @@ class Quantizer {
 
   // Throws InputError if a vertex lies outside the lattice cube by more than half a unit.
   fx::QTriangle quantize(const Triangle& tri, uint32_t id) const;
-  // Every triangle of the scene, id = its index.
+  // Every triangle of the scene, id = its index. Throws InputError for a scene
+  // with quadrics (the structures that call it do not hold them yet).
   std::vector<fx::QTriangle> quantize(const Scene& scene) const;
+  // The triangles only, of a scene that may hold quadrics (quantizeQuadrics).
+  std::vector<fx::QTriangle> quantizeTriangles(const Scene& scene) const;
+  // A native quadric on the lattice (docs/quadrics.md, "On the lattice"): a
+  // sphere's center and a cone's base and apex rounded to the nearest lattice
+  // point as a vertex is, each |radius| to the nearest unit. What the lattice
+  // cannot hold is made the nearest quadric it can: a sphere's radius at least
+  // 1; a cone whose radii both round to 0 keeps 1 at its wider end, and one
+  // whose ends round to one point is one unit long, along its axis' dominant
+  // direction. Throws InputError as for a vertex outside the lattice.
+  fx::QQuadric quantize(const Quadric& quadric, uint32_t id) const;
+  // Every quadric of the scene, its id its primitive id (triangles first).
+  std::vector<fx::QQuadric> quantizeQuadrics(const Scene& scene) const;
   // nullopt if the ray misses the cube (or leaves it before t = 0, or before tMax).
   // The ray must already be validated (finite, non-zero direction). A finite
   // tMax inside the cube becomes the segment end (rounded down to its code:
@@ -66,6 +82,9 @@ class Quantizer {
   // The quantized direction of lattice direction d, tScale, and the segment end
   // of a ray whose origin in the lattice is o, for the lattice origin out.q.org.
   void finish(QuantizedRay& out, const glm::dvec3& o, const glm::dvec3& d, double tMax) const;
+  // A scene point on the lattice (round to nearest, the half unit of slack
+  // clamped); `what` names it in the error for a point outside.
+  std::array<int64_t, 3> latticePoint(const glm::vec3& point, const std::string& what) const;
 
   glm::dvec3 lo_;
   double scale_;  // lattice units per scene unit

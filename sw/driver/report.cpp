@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "golden/isect.h"
+#include "ref/quadric.h"
 #include "ref/triangle.h"
 
 namespace lancer {
@@ -32,15 +33,19 @@ void arbitrate(const ExactOracle& oracle, const Ray& ray, uint32_t index, const 
                const Quantizer& quantizer, bool anyHit, ArbiterCounts& counts) {
   ++counts.judged;
   ToleranceOf lattice;
-  if (quantized) lattice = [&](const Triangle& tri) { return latticeTolerance(*quantized, quantizer, ray, tri); };
+  QuadricToleranceOf quadricLattice;
+  if (quantized) {
+    lattice = [&](const Triangle& tri) { return latticeTolerance(*quantized, quantizer, ray, tri); };
+    quadricLattice = [&](const Quadric& q) { return latticeTolerance(*quantized, quantizer, ray, q); };
+  }
   Verdict ref, hw;
   if (anyHit) {
     ref = judgeAnyHit(oracle, ray, reference).verdict;
-    hw = judgeAnyHit(oracle, ray, hardware, lattice).verdict;
+    hw = judgeAnyHit(oracle, ray, hardware, lattice, quadricLattice).verdict;
   } else {
     const std::optional<ExactHit> truth = oracle.intersect(ray);
     ref = judge(oracle, ray, reference, truth).verdict;
-    hw = judge(oracle, ray, hardware, truth, lattice).verdict;
+    hw = judge(oracle, ray, hardware, truth, lattice, quadricLattice).verdict;
   }
   ++counts.reference[size_t(ref)];
   ++counts.hardware[size_t(hw)];
@@ -58,6 +63,13 @@ std::string hexFields(const fx::QRay& r) {
 std::string hexFields(const fx::QTriangle& t) {
   return fmt::format("prim_id={} v0={} v1={} v2={}", hex(t.id), hexTriple(t.v[0], fx::kPosBits),
                      hexTriple(t.v[1], fx::kPosBits), hexTriple(t.v[2], fx::kPosBits));
+}
+
+std::string hexFields(const fx::QQuadric& q) {
+  return fmt::format("prim_id={} axis_sum={} axis={} axis_len2={} quad=({} {} {} {} {} {}) lin=({} {} {}) konst={}",
+                     hex(q.id), hexTriple(q.axisSum, fx::kQuadricAxisSumBits), hexTriple(q.axis, fx::kQuadricAxisBits),
+                     hex(q.axisLen2), q.quad[0], q.quad[1], q.quad[2], q.quad[3], q.quad[4], q.quad[5], q.lin[0],
+                     q.lin[1], q.lin[2], q.constant);
 }
 
 std::string hexFields(const fx::IsectResult& r) {
@@ -78,27 +90,74 @@ namespace {
 // A hardware hit's t in its scene ray's units, in double.
 double sceneT(const QuantizedRay& q, const fx::IsectResult& r) { return q.tEnter + q.tScale * fx::tOf(r, q.q); }
 
-std::optional<Hit> sceneHit(const std::optional<QuantizedRay>& q, const std::optional<fx::IsectResult>& r) {
+std::optional<Hit> sceneHit(const std::optional<QuantizedRay>& q, const std::optional<fx::IsectResult>& r,
+                            uint32_t firstQuadric) {
   if (!q || !r) return std::nullopt;
+  // A quadric's hit carries its side, as the float reference's does (u = 1: leaving).
+  if (r->primId >= firstQuadric) return Hit{r->primId, float(sceneT(*q, *r)), float(r->uNum), 0.0f};
   return Hit{r->primId, float(sceneT(*q, *r)), float(fx::uOf(*r)), float(fx::vOf(*r))};
 }
 
 }  // namespace
 
-std::optional<Hit> sceneHit(const JobResult& job, size_t ray) { return sceneHit(job.rays[ray], job.hits[ray]); }
+std::optional<Hit> sceneHit(const JobResult& job, size_t ray) {
+  return sceneHit(job.rays[ray], job.hits[ray], job.firstQuadric);
+}
+
+namespace {
+
+// A lattice ray's distance from the scene's at `r` lattice units from its
+// origin: its origin within sqrt(3)/2, its direction within sqrt(2) / (2^D - 2).
+double rayErrorUnits(double r) {
+  return std::sqrt(3.0) / 2.0 + r * std::sqrt(2.0) / double((int64_t(1) << fx::kDirBits) - 2);
+}
+
+// The tolerance of `units` lattice units across the ray; the answer's t comes
+// back as a float: from far away (t large against the lattice) its last bit
+// outweighs the lattice's error.
+Tolerance toleranceOf(double units, const Quantizer& quantizer, const Ray& sceneRay) {
+  const double edge = units * quantizer.unit();
+  return {edge, edge / glm::length(glm::dvec3(sceneRay.dir)), kHitTRounding};
+}
+
+}  // namespace
 
 Tolerance latticeTolerance(const QuantizedRay& ray, const Quantizer& quantizer, const Ray& sceneRay,
                            const Triangle& tri) {
   const glm::dvec3 origin = quantizer.sceneOrigin(ray.q);
   double farthest = 0.0;
   for (const glm::vec3& v : {tri.v0, tri.v1, tri.v2}) farthest = std::max(farthest, glm::length(glm::dvec3(v) - origin));
-  const double r = farthest / quantizer.unit();  // lattice units
-  const double halfDiagonal = std::sqrt(3.0) / 2.0;
-  const double units = 2 * halfDiagonal + r * std::sqrt(2.0) / double((int64_t(1) << fx::kDirBits) - 2);
-  const double edge = units * quantizer.unit();
-  // The answer's t comes back as a float: from far away (t large against the
-  // lattice) its last bit outweighs the lattice's error.
-  return {edge, edge / glm::length(glm::dvec3(sceneRay.dir)), kHitTRounding};
+  // Each vertex within sqrt(3)/2 units.
+  return toleranceOf(std::sqrt(3.0) / 2.0 + rayErrorUnits(farthest / quantizer.unit()), quantizer, sceneRay);
+}
+
+Tolerance latticeTolerance(const QuantizedRay& ray, const Quantizer& quantizer, const Ray& sceneRay,
+                           const Quadric& quadric) {
+  const glm::dvec3 origin = quantizer.sceneOrigin(ray.q);
+  const Aabb box = quadric.bounds();
+  double farthest = 0.0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 p((corner & 1) ? box.hi.x : box.lo.x, (corner & 2) ? box.hi.y : box.lo.y,
+                       (corner & 4) ? box.hi.z : box.lo.z);
+    farthest = std::max(farthest, glm::length(p - origin));
+  }
+  double units = std::sqrt(3.0) / 2.0 + 1.0 + rayErrorUnits(farthest / quantizer.unit());
+  if (quadric.kind == Quadric::Kind::Cone) {
+    // The record's rounding: |rho^2 - R^2| <= 3 max(1, tau^2) |x - c|^2 2^-K
+    // units^2 at a point x (c the axis' midpoint; docs/quadrics.md), so
+    // |rho - R| is at most that over R, and at most its square root; then
+    // across the side, tilted by tau from the radial direction.
+    const double scale = 1.0 / quantizer.unit();
+    const double length = glm::length(glm::dvec3(quadric.apex) - glm::dvec3(quadric.base)) * scale;
+    const double r0 = std::abs(double(quadric.baseRadius)) * scale, r1 = std::abs(double(quadric.apexRadius)) * scale;
+    const double tau = std::abs(r1 - r0) / std::max(length, 1.0);
+    const double reach = 0.5 * length + std::max(r0, r1) + 1.0;
+    const double radial2 = 3.0 * std::max(1.0, tau * tau) * reach * reach * std::ldexp(1.0, -fx::kQuadricK);
+    const double thinnest = std::min(r0, r1);
+    const double radial = thinnest > 0.0 ? std::min(std::sqrt(radial2), radial2 / thinnest) : std::sqrt(radial2);
+    units += radial * std::sqrt(1.0 + tau * tau);
+  }
+  return toleranceOf(units, quantizer, sceneRay);
 }
 
 nlohmann::json toJson(const ReferenceComparison& cmp) {
@@ -135,7 +194,7 @@ ReferenceComparison compareWithReference(const Scene& scene, std::span<const Ray
   ReferenceComparison cmp;
   const ExactOracle oracle(scene, candidates);
   for (size_t i = 0; i < rays.size(); ++i) {
-    const std::optional<Hit> hw = sceneHit(quantized[i], hits[i]);
+    const std::optional<Hit> hw = sceneHit(quantized[i], hits[i], uint32_t(scene.size()));
     const std::optional<Hit>& ref = reference[i];
     const bool primDiffers = !anyHit && hw && ref && hw->prim != ref->prim;
     if (hw.has_value() != ref.has_value() || primDiffers) {
@@ -146,10 +205,15 @@ ReferenceComparison compareWithReference(const Scene& scene, std::span<const Ray
       continue;
     }
     if (!hw || anyHit) continue;
-    // The reference t of the same triangle in long double, and the hardware's t in
-    // double from its exact fraction; the difference as a distance in lattice units.
-    const auto exact = intersectTriangleExtended(rays[i], scene.triangles[ref->prim], ref->prim);
-    const double tRef = exact ? double(exact->t) : double(ref->t);
+    // The reference t of the same triangle in long double (of a quadric in
+    // double), and the hardware's t in double from its exact fraction; the
+    // difference as a distance in lattice units.
+    double tRef = double(ref->t);
+    if (scene.isQuadric(ref->prim)) {
+      if (const auto exact = intersectQuadric(rays[i], scene.quadricOf(ref->prim), ref->prim)) tRef = exact->t;
+    } else if (const auto exact = intersectTriangleExtended(rays[i], scene.triangles[ref->prim], ref->prim)) {
+      tRef = double(exact->t);
+    }
     const double error = std::abs(sceneT(*quantized[i], *hits[i]) - tRef) * double(glm::length(rays[i].dir)) /
                          quantizer.unit();
     cmp.maxTError = std::max(cmp.maxTError, error);

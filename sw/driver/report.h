@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "driver/job.h"
+#include "golden/quadric.h"
 #include "golden/records.h"
 #include "oracle/exact.h"
 
@@ -17,6 +18,7 @@ namespace lancer {
 // A record's fields as hex, in wire order: "ray_id=0x.. org=[0x..,..] ...".
 std::string hexFields(const fx::QRay& ray);
 std::string hexFields(const fx::QTriangle& tri);
+std::string hexFields(const fx::QQuadric& quadric);
 std::string hexFields(const fx::IsectResult& res);
 
 // Bit positions (most significant first) where two wire images of a `bits`-wide record differ.
@@ -60,6 +62,14 @@ struct ReferenceComparison {
 inline constexpr double kHitTRounding = 0x1p-23;
 Tolerance latticeTolerance(const QuantizedRay& ray, const Quantizer& quantizer, const Ray& sceneRay,
                            const Triangle& tri);
+// The same against a native quadric (docs/quadrics.md, "On the lattice"): the
+// ray's part as for a triangle (r the farthest point of the quadric's box),
+// plus the quantized quadric's distance from the scene's: its center or ends
+// within sqrt(3)/2 units, its radii within one unit (rounding, and a radius
+// below half a unit kept at 1), and for a cone the rounding of its record
+// (docs/quadrics.md, "The error against the scene's cone").
+Tolerance latticeTolerance(const QuantizedRay& ray, const Quantizer& quantizer, const Ray& sceneRay,
+                           const Quadric& quadric);
 
 // The comparison's report keys: reference_disagreements,
 // reference_hit_miss_differs, reference_prim_differs, reference_compared (rays both hit on the same

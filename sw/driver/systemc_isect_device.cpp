@@ -10,7 +10,9 @@
 #include "driver/model_unit.h"
 #include "driver/systemc_kernel.h"
 #include "driver/wave_file.h"
+#include "common/error.h"
 #include "isect/rt_isect_model.h"
+#include "isect/rt_quadric_model.h"
 #include "isect/rt_isect_top.h"
 #include "isect/rt_isect_types.h"
 
@@ -34,29 +36,55 @@ std::string_view SystemCIsectDevice::name() const {
 bool SystemCIsectDevice::rtlAvailable() { return sc::rt_isect_top::has_rtl(); }
 bool SystemCIsectDevice::wavesAvailable() { return sc::rt_isect_top::has_waves(); }
 
-StreamStats SystemCIsectDevice::run(std::span<const IsectRequest> requests,
-                                    std::vector<fx::IsectResult>& results,
-                                    const StreamOptions& options) {
+namespace {
+
+void checkProbabilities(std::string_view device, const StreamOptions& options) {
   for (const double p : {options.outputStallProbability, options.inputIdleProbability}) {
     if (!(p >= 0.0 && p < 1.0)) {
       throw std::invalid_argument(fmt::format("{}: stall and idle probabilities must lie in [0, 1), got {}",
-                                              name(), p));
+                                              device, p));
     }
   }
-  if (impl_ != Impl::Model) return runKernel(requests, results, options);
+}
 
-  // A model of its own per run: reset, and free of other devices' runs (no kernel, no lock).
-  ModelUnit<sc::rt_isect_model> unit;
-  unit.reset(isect_detail::idleInputs<sc::rt_isect_model>);
+// A cycle model of its own per run: reset, and free of other devices' runs
+// (no kernel, no lock); on an error the results of the run are taken back.
+template <class Model, class Request>
+StreamStats runCycleModel(std::span<const Request> requests, std::vector<fx::IsectResult>& results,
+                          const StreamOptions& options, std::vector<sc::IsectCycle>* trace) {
+  ModelUnit<Model> unit;
+  unit.reset(isect_detail::idleInputs<Model>);
   StreamOptions noWave = options;  // the model has no RTL signals; no waveform name is taken
   noWave.wavePath.clear();
   const size_t resultsBefore = results.size();
   try {
-    return runIsectStream(unit, requests, results, noWave, trace_);
+    return runIsectStream(unit, requests, results, noWave, trace);
   } catch (...) {
     results.resize(resultsBefore);
     throw;
   }
+}
+
+}  // namespace
+
+StreamStats SystemCIsectDevice::run(std::span<const IsectRequest> requests,
+                                    std::vector<fx::IsectResult>& results,
+                                    const StreamOptions& options) {
+  checkProbabilities(name(), options);
+  if (impl_ != Impl::Model) return runKernel(requests, results, options);
+  return runCycleModel<sc::rt_isect_model>(requests, results, options, trace_);
+}
+
+StreamStats SystemCIsectDevice::runQuadrics(std::span<const QuadricRequest> requests,
+                                            std::vector<fx::IsectResult>& results,
+                                            const StreamOptions& options) {
+  checkProbabilities(name(), options);
+  if (impl_ != Impl::Model) {
+    throw InputError(fmt::format("--model {}: the quadric pipeline has its cycle model (--model systemc) and its "
+                                 "RTL (--model rtl), not yet a {} form: use one of those for a scene with quadrics",
+                                 name(), impl_ == Impl::Pins ? "pin-level" : "SystemC-Verilated"));
+  }
+  return runCycleModel<sc::rt_quadric_model>(requests, results, options, trace_);
 }
 
 StreamStats SystemCIsectDevice::runKernel(std::span<const IsectRequest> requests,

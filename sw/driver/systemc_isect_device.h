@@ -33,6 +33,9 @@ namespace lancer {
 // offered to the cycle the last result is taken, both included. With no
 // backpressure that is requests + fx::kIsectLatency, as the golden device reports.
 //
+// The quadric pipeline (runQuadrics) has its cycle model on value ports only
+// (rt_quadric_model: "systemc"); "systemc-pins" and "rtl-systemc" refuse it.
+//
 // Options: stall/idle probabilities must lie in [0, 1). StreamOptions::wavePath
 // writes an FST of the Verilated RTL for "rtl-systemc" (when built with
 // LANCER_SC_RTL_WAVES) and is ignored by the cycle model (it has no RTL signals).
@@ -45,6 +48,10 @@ class SystemCIsectDevice final : public IsectDevice {
   std::string_view name() const override;
   StreamStats run(std::span<const IsectRequest> requests, std::vector<fx::IsectResult>& results,
                   const StreamOptions& options = {}) override;
+  // rt_quadric_model on value ports ("systemc"); the pin-level and the
+  // SystemC-Verilated forms have no quadric pipeline yet and throw InputError.
+  StreamStats runQuadrics(std::span<const QuadricRequest> requests, std::vector<fx::IsectResult>& results,
+                          const StreamOptions& options = {}) override;
 
   // Records the port activity of every cycle of the following runs into
   // *trace (appended; nullptr turns it off). For cycle-for-cycle comparisons.

@@ -6,14 +6,15 @@
 #include "driver/isect_device.h"
 
 class Vrt_isect;
+class Vrt_quadric;
 
 namespace lancer {
 
 template <class Top>
 class VerilatedUnit;
 
-// The Verilated RTL of rt_isect (rtl/isect/rt_isect.sv) behind the device
-// interface. run() drives the model one clock at a time through its valid/ready
+// The Verilated RTL of rt_isect (rtl/isect/rt_isect.sv) and of rt_quadric
+// (rtl/isect/rt_quadric.sv, runQuadrics) behind the device interface. run() drives the model one clock at a time through its valid/ready
 // ports (isect_run.h, the loop that clocks the SystemC cycle model too):
 // requests are offered in order (the producer idles with
 // StreamOptions::inputIdleProbability when it has nothing on offer, and holds
@@ -38,12 +39,17 @@ class VerilatorIsectDevice final : public IsectDevice {
   std::string_view name() const override { return "rtl"; }
   StreamStats run(std::span<const IsectRequest> requests, std::vector<fx::IsectResult>& results,
                   const StreamOptions& options = {}) override;
+  // rt_quadric, Verilated, in a context of its own, built on the first call;
+  // its waveform (StreamOptions::wavePath x.fst) goes to x.quadric.fst.
+  StreamStats runQuadrics(std::span<const QuadricRequest> requests, std::vector<fx::IsectResult>& results,
+                          const StreamOptions& options = {}) override;
 
   // Clock edges since construction (reset included); the waveform's time base.
   uint64_t totalCycles() const;
 
  private:
   std::unique_ptr<VerilatedUnit<Vrt_isect>> unit_;
+  std::unique_ptr<VerilatedUnit<Vrt_quadric>> quadric_;
 };
 
 }  // namespace lancer

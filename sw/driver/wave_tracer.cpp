@@ -22,13 +22,31 @@ HardwareWaveTracer::HardwareWaveTracer(fx::UnitKind path, const Scene& scene, co
     golden.model = "golden";
     golden_ = makeHardwarePath(path, scene, quantizer, golden);
   }
-  for (const fx::QTriangle& t : quantizer.quantize(scene)) {
+  for (const fx::QTriangle& t : quantizer.quantizeTriangles(scene)) {
     glm::dvec3 v[3];
     for (int k = 0; k < 3; ++k) v[k] = glm::dvec3(double(t.v[k][0]), double(t.v[k][1]), double(t.v[k][2]));
     const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
     const double length = glm::length(n);
     normals_.push_back(length > 0 ? n / length : glm::dvec3(0.0));  // degenerate: never hit
   }
+  quadrics_ = quantizer.quantizeQuadrics(scene);
+}
+
+glm::dvec3 HardwareWaveTracer::latticeNormal(uint32_t prim, const glm::dvec3& point) const {
+  if (prim < normals_.size()) return normals_[prim];
+  // A quadric's: the gradient of its record q'Qq + 2g'q + k at q = 2x - S,
+  // 2(Qq + g), outwards (F < 0 inside); an inside-visible quadric's geometric
+  // normal points in (as its tessellation is wound), and so does this one.
+  const fx::QQuadric& rec = quadrics_[prim - normals_.size()];
+  glm::dvec3 q, n;
+  for (int a = 0; a < 3; ++a) q[a] = 2.0 * point[a] - double(rec.axisSum[size_t(a)]);
+  for (int i = 0; i < 3; ++i) {
+    n[i] = double(rec.lin[size_t(i)]);
+    for (int j = 0; j < 3; ++j) n[i] += double(rec.quadAt(i, j)) * q[j];
+  }
+  const double length = glm::length(n);
+  if (!(length > 0.0)) return glm::dvec3(0.0);  // at a pointed cone's apex: no offset
+  return (scene_.quadricOf(prim).insideVisible() ? -1.0 : 1.0) * n / length;
 }
 
 void ClassHardwareStats::add(const JobResult& job, std::span<const std::optional<QuantizedRay>> batch) {
@@ -36,6 +54,9 @@ void ClassHardwareStats::add(const JobResult& job, std::span<const std::optional
   for (const auto& r : batch) traced += r.has_value();
   for (const auto& h : job.hits) hits += h.has_value();
   intersectionTests += job.intersectionTests;
+  for (const JobCounter& c : job.counters) {
+    if (c.key == "quadric_tests") quadricTests += uint64_t(c.value);
+  }
   steps += job.steps;
   memoryReads += job.memoryReads;
   nodeBytes += job.nodeBytes;
@@ -56,6 +77,8 @@ nlohmann::json ClassHardwareStats::toJson(double clockHz) const {
   nlohmann::json j = {{"rays", rays},
                       {"rays_in_lattice", traced},
                       {"hits", hits},
+                      {"triangle_tests", intersectionTests - quadricTests},
+                      {"quadric_tests", quadricTests},
                       {"intersection_tests", intersectionTests},
                       {"steps", steps},
                       {"memory_reads", memoryReads},
@@ -129,16 +152,20 @@ std::optional<QuantizedRay> HardwareWaveTracer::latticeRay(const WaveRay& ray, u
       }
       shortened.tMax = float(std::max(0.0, double(shortened.tMax) - margin / latticeUnitsPerT));
     }
+    const glm::dvec3 normal = latticeNormal(hit.primId, point);
     const auto offsetTo = [&](double side) {
-      return quantizer_.quantizeFrom(point + side * offset_ * normals_[hit.primId], shortened, index);
+      return quantizer_.quantizeFrom(point + side * offset_ * normal, shortened, index);
     };
     q = offsetTo(double(ray.side));
     // The side the loop chose is that of the float triangle. Where the lattice
     // ray meets its own lattice triangle from there (a ray almost in the plane,
     // or a triangle a few lattice units across whose lattice normal turns far
     // from its float one), the ray in truth leaves the lattice triangle to its
-    // other side: start it there, and it cannot meet the triangle again.
-    if (q && fx::intersect(q->q, quantizer_.quantize(scene_.triangles[hit.primId], hit.primId)).hit) {
+    // other side: start it there, and it cannot meet the triangle again. (A
+    // quadric is left along its own record's normal; a ray into its solid
+    // meets its far side by right.)
+    if (q && hit.primId < normals_.size() &&
+        fx::intersect(q->q, quantizer_.quantize(scene_.triangles[hit.primId], hit.primId)).hit) {
       q = offsetTo(-double(ray.side));
       ++sideFlips_;
     }

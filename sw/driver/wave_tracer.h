@@ -46,6 +46,7 @@ struct ClassHardwareStats {
   uint64_t traced = 0;        // of which entered the lattice and went through the model
   uint64_t hits = 0;
   uint64_t intersectionTests = 0;
+  uint64_t quadricTests = 0;  // of which ray-quadric (the rest ray-triangle)
   uint64_t steps = 0;         // cells or nodes entered
   uint64_t memoryReads = 0;
   uint64_t nodeBytes = 0;     // bytes of the node-port reads
@@ -106,6 +107,8 @@ class HardwareWaveTracer final : public WaveTracer {
 
  private:
   std::optional<QuantizedRay> latticeRay(const WaveRay& ray, uint32_t index);
+  // The unit geometric normal of primitive `prim` at lattice point `point`.
+  glm::dvec3 latticeNormal(uint32_t prim, const glm::dvec3& point) const;
   // Compares one class's job with the reference (members: the class's rays in the wave).
   void compare(int generation, ClassKey cls, std::span<const WaveRay> rays, std::span<const uint32_t> members,
                const QuantizedRays& batch, const JobResult& job);
@@ -121,6 +124,7 @@ class HardwareWaveTracer final : public WaveTracer {
   std::unique_ptr<HardwarePath> golden_;  // closest-hit steps of any-hit rays (traversal units only)
   double offset_;
   std::vector<glm::dvec3> normals_;  // unit geometric normal of every quantized triangle, lattice space
+  std::vector<fx::QQuadric> quadrics_;  // the scene's quadrics on the lattice (their normals vary)
 
   const Scene& scene_;
   const Bvh* reference_;

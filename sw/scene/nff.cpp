@@ -381,7 +381,7 @@ Scene readNff(std::istream& in, const std::string& name, const NffOptions& optio
       build.polygon(points, stride == 6 ? &normals : nullptr, start);
     } else if (key == "s") {
       const auto n = numbersOf(lines, *tokens, 1, {4}, "'s'");
-      if (options.quadrics == NffQuadrics::Native) {
+      if (options.quadrics == QuadricForm::Native) {
         build.checkSphere(n[3]);
         build.quadric(Quadric::sphere(vec(n, 0), n[3]));
       } else {
@@ -392,7 +392,7 @@ Scene readNff(std::istream& in, const std::string& name, const NffOptions& optio
       // generators (rings, tree) write all eight on the line of the 'c'.
       const auto n = tokens->size() == 1 ? numbersAfter(lines, 8, "cone", start)
                                          : numbersOf(lines, *tokens, 1, {8}, "'c'");
-      if (options.quadrics == NffQuadrics::Native) {
+      if (options.quadrics == QuadricForm::Native) {
         build.checkCone(vec(n, 0), n[3], vec(n, 4), n[7]);
         build.quadric(Quadric::cone(vec(n, 0), n[3], vec(n, 4), n[7]));
       } else {
@@ -405,7 +405,7 @@ Scene readNff(std::istream& in, const std::string& name, const NffOptions& optio
   build.finish();
   if (scene.primitiveCount() == 0) {
     throw InputError(fmt::format("{}: the scene has no triangles{}", name,
-                                 options.quadrics == NffQuadrics::Native ? ", spheres or cones" : ""));
+                                 options.quadrics == QuadricForm::Native ? ", spheres or cones" : ""));
   }
   scene.computeBounds();
   return scene;

@@ -18,15 +18,11 @@ namespace lancer {
 // With `quadrics` = Native (issue #40) the spheres and cones are not
 // tessellated: each becomes a Scene::quadrics entry, as read (negative radii
 // kept), with its material, after every triangle in the id space (scene.h);
-// the same refusals apply. Not wired into the CLI yet.
-enum class NffQuadrics : uint8_t {
-  Tessellate,  // triangles (the default: every structure and model takes them)
-  Native,      // Scene::quadrics
-};
+// the same refusals apply (the CLI's --quadrics).
 struct NffOptions {
   int sphereDivisions = 8;  // 6 * 2 * 8^2 = 768 triangles a sphere
   int coneSlices = 32;
-  NffQuadrics quadrics = NffQuadrics::Tessellate;
+  QuadricForm quadrics = QuadricForm::Tessellate;
 };
 
 // Reads Eric Haines' Neutral File Format (the SPD's NFF.TXT): "v" (from, at,

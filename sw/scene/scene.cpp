@@ -96,10 +96,27 @@ std::vector<uint32_t> Scene::emissiveTriangles() const {
   return out;
 }
 
-Scene loadScene(const std::string& nameOrPath) {
+Scene::PrimitiveCounts Scene::primitivesByKind() const {
+  PrimitiveCounts counts;
+  counts.triangles = triangles.size();
+  for (const Quadric& q : quadrics) ++(q.kind == Quadric::Kind::Sphere ? counts.spheres : counts.cones);
+  return counts;
+}
+
+std::string Scene::primitivesText() const {
+  const PrimitiveCounts c = primitivesByKind();
+  std::string text = fmt::format("{} triangles", c.triangles);
+  if (c.spheres) text += fmt::format(", {} sphere{}", c.spheres, c.spheres == 1 ? "" : "s");
+  if (c.cones) text += fmt::format(", {} cone{}", c.cones, c.cones == 1 ? "" : "s");
+  return text;
+}
+
+const char* toString(QuadricForm form) { return form == QuadricForm::Native ? "native" : "tessellate"; }
+
+Scene loadScene(const std::string& nameOrPath, QuadricForm quadrics) {
   if (nameOrPath == kDefaultSceneName || nameOrPath == "cornell") return makeCornellBox();
   if (nameOrPath == "builtin:cube") return makeCube();
-  if (nameOrPath.starts_with("builtin:spd-")) return loadSpdScene(nameOrPath.substr(12));
+  if (nameOrPath.starts_with("builtin:spd-")) return loadSpdScene(nameOrPath.substr(12), quadrics);
   if (nameOrPath.starts_with("builtin:")) {
     throw InputError(fmt::format("unknown built-in scene '{}' (available: {}, builtin:cube, builtin:spd-tetra[@N], builtin:spd-gears[@N])", nameOrPath,
                                  kDefaultSceneName));
@@ -110,7 +127,11 @@ Scene loadScene(const std::string& nameOrPath) {
   if (extension == ".obj") return loadObj(nameOrPath);
   if (extension == ".ply") return loadPly(nameOrPath);
   if (extension == ".stl") return loadStl(nameOrPath);
-  if (extension == ".nff") return loadNff(nameOrPath);
+  if (extension == ".nff") {
+    NffOptions options;
+    options.quadrics = quadrics;
+    return loadNff(nameOrPath, options);
+  }
   if ((extension == ".gltf" || extension == ".glb") && gltfMajorVersion(nameOrPath) == 2) return loadGltf(nameOrPath);
   // Every other format assimp imports (glTF 1.0 among them), through assimp.
   if (const std::optional<SceneNumbers> numbers = assimpSceneNumbers(nameOrPath)) {
@@ -176,6 +197,9 @@ Scene subdivide(const Scene& scene, int times) {
         next.materialOf.push_back(out.materialOf[t]);
       }
     }
+    // Quadrics are kept as they are, after the triangles in the id space.
+    next.quadrics = out.quadrics;
+    for (size_t i = 0; i < out.quadrics.size(); ++i) next.materialOf.push_back(out.materialOf[out.triangles.size() + i]);
     out = std::move(next);
   }
   out.computeBounds();

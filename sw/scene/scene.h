@@ -57,6 +57,15 @@ struct Quadric {
   Aabb bounds() const;
 };
 
+// How a reader gives NFF's spheres and cones (issue #40): as triangles (the
+// default while the hardware's traversal units take triangles only) or as
+// native quadrics (Scene::quadrics).
+enum class QuadricForm : uint8_t {
+  Tessellate,  // triangles: every structure and model takes them
+  Native,      // Scene::quadrics: the float side, the exact arbiter, --accel isect
+};
+const char* toString(QuadricForm form);
+
 // A suggested viewpoint stored with a scene (the Cornell box has its classic one).
 struct View {
   glm::vec3 eye{0.0f};
@@ -117,7 +126,7 @@ const char* toString(SceneNumbers numbers);
 // order is stable and documented in docs/scenes.md: faces in file order (OBJ,
 // PLY, STL, NFF), a polygon's triangles in its ear-clipping order; glTF's
 // meshes in the order of their nodes. Quadrics come only from the NFF reader
-// with NffQuadrics::Native, in file order; the quantizer and the writers do
+// with QuadricForm::Native, in file order; the quantizer and the writers do
 // not take them yet and refuse such a scene (requireTrianglesOnly); the float
 // reference's quadric test and structures, the effects' float tracer, the
 // exact arbiter and Embree do.
@@ -143,6 +152,13 @@ struct Scene {
 
   size_t size() const { return triangles.size(); }  // the triangles (the ids below the quadrics')
   size_t primitiveCount() const { return triangles.size() + quadrics.size(); }
+  // Its primitives by kind, for reports: {triangles, spheres, cones}.
+  struct PrimitiveCounts {
+    size_t triangles = 0, spheres = 0, cones = 0;
+  };
+  PrimitiveCounts primitivesByKind() const;
+  // "N triangles", with ", N spheres, N cones" where there are any.
+  std::string primitivesText() const;
   bool isQuadric(uint32_t prim) const { return prim >= triangles.size(); }
   // The quadric of id `prim` (isQuadric(prim), prim < primitiveCount()).
   const Quadric& quadricOf(uint32_t prim) const { return quadrics[prim - triangles.size()]; }
@@ -173,7 +189,9 @@ inline constexpr const char* kSceneFormats =
 // float off, and a text format adds a warning), or a built-in scene by name.
 // Throws InputError naming the file (and line) on any failure, including an
 // extension nothing reads, assimp's own reason, and a scene with no triangles.
-Scene loadScene(const std::string& nameOrPath);
+// `quadrics`: how NFF's spheres and cones come (the NFF files and the SPD's
+// built-in scenes; no other format has them).
+Scene loadScene(const std::string& nameOrPath, QuadricForm quadrics = QuadricForm::Tessellate);
 
 // The embedded Cornell box: closed walls, a glass block, a mirror block, an area
 // lamp and a point light (docs/scenes.md lists its triangle ids). Needs no file.

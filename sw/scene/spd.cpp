@@ -548,16 +548,19 @@ std::string generateSpdNff(std::string_view name, int sizeFactor) {
   throw InputError(fmt::format("unknown SPD scene '{}' (available: {})", name, fmt::join(spdSceneNames(), ", ")));
 }
 
-Scene makeSpdScene(std::string_view name, int sizeFactor) {
+Scene makeSpdScene(std::string_view name, int sizeFactor, QuadricForm quadrics) {
   // The string moves into the stream: a 1 M-triangle tetra's text is not held twice.
   std::istringstream in(generateSpdNff(name, sizeFactor));
+  NffOptions options;
+  options.quadrics = quadrics;
   return readNff(in, sizeFactor == 0 ? fmt::format("builtin:spd-{}", name)
-                                     : fmt::format("builtin:spd-{}@{}", name, sizeFactor));
+                                     : fmt::format("builtin:spd-{}@{}", name, sizeFactor),
+                 options);
 }
 
-Scene loadSpdScene(std::string_view spec) {
+Scene loadSpdScene(std::string_view spec, QuadricForm quadrics) {
   const size_t at = spec.find('@');
-  if (at == std::string_view::npos) return makeSpdScene(spec);
+  if (at == std::string_view::npos) return makeSpdScene(spec, 0, quadrics);
   const std::string_view name = spec.substr(0, at), factor = spec.substr(at + 1);
   int sizeFactor = 0;
   const auto [end, error] = std::from_chars(factor.data(), factor.data() + factor.size(), sizeFactor);
@@ -566,7 +569,7 @@ Scene loadSpdScene(std::string_view spec) {
                                  factor));
   }
   try {
-    return makeSpdScene(name, sizeFactor);
+    return makeSpdScene(name, sizeFactor, quadrics);
   } catch (const InputError& e) {
     throw InputError(fmt::format("builtin:spd-{}: {}", spec, e.what()));
   }

@@ -47,11 +47,12 @@ std::vector<std::string> spdSceneNames();
 std::string generateSpdNff(std::string_view name, int sizeFactor = 0);
 // The generated scene read back, named "builtin:spd-<name>", or
 // "builtin:spd-<name>@<sizeFactor>" for a size factor other than 0.
-Scene makeSpdScene(std::string_view name, int sizeFactor = 0);
+// `quadrics`: the spheres and cones as triangles or native (scene.h).
+Scene makeSpdScene(std::string_view name, int sizeFactor = 0, QuadricForm quadrics = QuadricForm::Tessellate);
 // The scene of a built-in name's part after "builtin:spd-": "NAME" (the SPD's
 // size factor) or "NAME@N" (size factor N, as `lancer spd NAME --size-factor N`).
 // Throws InputError naming the scene for an unknown name or a size factor that
 // is not a whole number in the scene's range.
-Scene loadSpdScene(std::string_view spec);
+Scene loadSpdScene(std::string_view spec, QuadricForm quadrics = QuadricForm::Tessellate);
 
 }  // namespace lancer

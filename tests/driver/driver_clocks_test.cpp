@@ -45,6 +45,15 @@ TEST(RunClock, TheSlowestUnitOfTheRunAtTheBuildsWidths) {
   std::vector<UnitClock> fastWalk = kTable;
   fastWalk[1].fmaxMhz = 900;
   EXPECT_EQ(chooseRunClock(fastWalk, fx::UnitKind::Grid, 16, 16, std::nullopt).estimate->top, "rt_isect");
+
+  // A run that traces quadrics runs the quadric pipeline too, and waits for the slower.
+  std::vector<UnitClock> withQuadric = kTable;
+  withQuadric.push_back(row("rt_quadric", 16, 16, 60, 700));
+  const RunClock quadrics = chooseRunClock(withQuadric, fx::UnitKind::Isect, 16, 16, std::nullopt, true);
+  EXPECT_EQ(quadrics.estimate->top, "rt_quadric");
+  EXPECT_EQ(quadrics.mhz, 700);
+  EXPECT_EQ(chooseRunClock(withQuadric, fx::UnitKind::Isect, 16, 16, std::nullopt).estimate->top, "rt_isect")
+      << "a scene of triangles only does not wait for rt_quadric";
 }
 
 TEST(RunClock, WithoutARowAtTheWidthsTheSlowestMeasuredIsUsedAndSaidSo) {

@@ -114,6 +114,10 @@ class FaultyDevice final : public IsectDevice {
     }
     return stats;
   }
+  StreamStats runQuadrics(std::span<const QuadricRequest> requests, std::vector<fx::IsectResult>& results,
+                          const StreamOptions& options) override {
+    return golden_.runQuadrics(requests, results, options);
+  }
 
  private:
   GoldenIsectDevice golden_;

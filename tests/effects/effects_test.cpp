@@ -582,7 +582,7 @@ TEST(EffectsSpd, GearsCountsAgreeWithTheSpdTable) {
 
 Scene loadNative(const std::string& name) {
   NffOptions options;
-  options.quadrics = NffQuadrics::Native;
+  options.quadrics = QuadricForm::Native;
   return loadNff(kData + "/" + name, options);
 }
 
@@ -590,7 +590,7 @@ Scene loadNative(const std::string& name) {
 // inside-visible quadric, as its tessellation is wound), the shading normal
 // the geometric one turned to the ray; front as the tessellation has it.
 TEST(WhittedQuadrics, SurfaceOfASphereFromOutsideAndInside) {
-  const auto sceneOf = [](float radius, NffQuadrics quadrics) {
+  const auto sceneOf = [](float radius, QuadricForm quadrics) {
     std::istringstream in(fmt::format("f 1 1 1 1 0 0 0 1\ns 0 0 0 {}\n", radius));
     NffOptions options;
     options.quadrics = quadrics;
@@ -598,7 +598,7 @@ TEST(WhittedQuadrics, SurfaceOfASphereFromOutsideAndInside) {
   };
   const Ray outside{{0, 0, -4}, {0, 0, 2}}, inside{{0.3f, 0, 0}, {0, 0, 1}};
   for (const float radius : {2.0f, -2.0f}) {
-    const Scene native = sceneOf(radius, NffQuadrics::Native), tessellated = sceneOf(radius, NffQuadrics::Tessellate);
+    const Scene native = sceneOf(radius, QuadricForm::Native), tessellated = sceneOf(radius, QuadricForm::Tessellate);
     const Bvh nativeBvh(native, {}), tessellatedBvh(tessellated, {});
     for (const bool fromOutside : {true, false}) {
       const Ray& ray = fromOutside ? outside : inside;
@@ -764,7 +764,7 @@ TEST(WhittedQuadrics, SpdBallsAndMountNativeAgreeWithTheirTessellation) {
     SCOPED_TRACE(name);
     const std::string nff = generateSpdNff(name, 1);
     NffOptions options;
-    options.quadrics = NffQuadrics::Native;
+    options.quadrics = QuadricForm::Native;
     std::istringstream nativeText(nff), flatText(nff);
     const Scene native = readNff(nativeText, name, options), flat = readNff(flatText, name);
     EXPECT_EQ(native.quadrics.size(), std::string(name) == "balls" ? 10u : 4u);

@@ -229,11 +229,11 @@ TEST(Nff, ErrorsNameTheFileAndLine) {
   EXPECT_NE(errorOf("v\nfrom 0 0 0\nat 0 0 0\n").find("'from' and 'at' coincide"), std::string::npos);
 }
 
-// NffQuadrics::Native (issue #40): spheres and cones as read, after the
+// QuadricForm::Native (issue #40): spheres and cones as read, after the
 // triangles in the id space, each with the material of its "f".
 TEST(Nff, NativeQuadricsKeepTheirNumbersAndMaterials) {
   NffOptions native;
-  native.quadrics = NffQuadrics::Native;
+  native.quadrics = QuadricForm::Native;
   const std::string text =
       "f 1 0 0 1 0 0 0 1\n"
       "s 0 0 5 -2\n"
@@ -280,7 +280,7 @@ TEST(Nff, NativeQuadricsKeepTheirNumbersAndMaterials) {
 
 TEST(Nff, NativeQuadricsAreRefusedAsTessellatedOnesAre) {
   NffOptions native;
-  native.quadrics = NffQuadrics::Native;
+  native.quadrics = QuadricForm::Native;
   const auto nativeError = [&](const std::string& text) { return errorOf(text, native); };
   EXPECT_NE(nativeError("s 0 0 0 0\n").find("test.nff:1: sphere of radius 0"), std::string::npos);
   EXPECT_NE(nativeError("s 0 0 0 -0\n").find("sphere of radius 0"), std::string::npos);
