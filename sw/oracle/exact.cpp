@@ -732,18 +732,25 @@ struct PrimView {
   struct Moved {
     double t, cosine;
   };
-  std::vector<Moved> moved;  // quadric: the hits of its surface moved out and in by tolerance.edge
+  std::vector<Moved> moved;  // quadric: the hits of its surface moved out and in by up to tolerance.edge
 
   // t within the tolerance of a hit a move gives (another root, or the same root moved).
   bool nearMoved(double t) const {
     return std::any_of(moved.begin(), moved.end(),
                        [&](const Moved& m) { return nearT(t, m.t, tolerance, m.cosine); });
   }
-  // The exact t, else the moved hit nearest `t`, else `t`; with its cosine.
+  // A triangle's exact t (else `t`); a quadric's exact hit or a moved one,
+  // whichever is nearest `t` (a move can trade one root for the other: at a
+  // rim the near root's point crosses an end plane, and the exact hit is the
+  // inside wall behind it), else `t`; with its cosine.
   std::pair<double, double> tNear(double t) const {
-    if (rel.hit || (!quadric && rel.t)) return {rel.t->toDouble(), rel.cosine};
+    if (!quadric) return rel.t ? std::pair{rel.t->toDouble(), rel.cosine} : std::pair{t, rel.cosine};
     std::pair<double, double> best{t, rel.cosine};
     double distance = std::numeric_limits<double>::infinity();
+    if (rel.hit) {
+      best = {rel.t->toDouble(), rel.cosine};
+      distance = std::fabs(best.first - t);
+    }
     for (const Moved& m : moved) {
       if (std::fabs(m.t - t) < distance) {
         distance = std::fabs(m.t - t);
@@ -776,19 +783,24 @@ class Judging {
     // ends out and in too (four moves: a rim's crossing goes either way when
     // the wall and the end plane move apart); its rounding (~1e-16 relative)
     // is far below any tolerance it is asked about.
+    // Whether the ray hits is not monotonic in the move (a ray almost along a
+    // short cone's axis meets its wall moved out a little and passes through
+    // both open ends moved out a lot), so the moves are sampled at the
+    // tolerance and at its halves down to 1/32 of it.
     const QuadricShape shape = QuadricShape::of(q);
-    const double e = v.tolerance.edge;
     const int moves = q.kind == Quadric::Kind::Sphere ? 2 : 4;
     bool anyHit = v.rel.hit, anyMiss = !v.rel.hit;
-    for (int i = 0; i < moves; ++i) {
-      const std::optional<QuadricShape> moved = movedShape(shape, i & 1 ? -e : e, i & 2 ? -e : e);
-      const std::optional<QuadricHit> hit = moved ? intersectQuadric(ray_, *moved, prim) : std::nullopt;
-      if (!hit) {
-        anyMiss = true;
-        continue;
+    for (double e = v.tolerance.edge; e >= v.tolerance.edge / 32.0; e /= 2.0) {
+      for (int i = 0; i < moves; ++i) {
+        const std::optional<QuadricShape> moved = movedShape(shape, i & 1 ? -e : e, i & 2 ? -e : e);
+        const std::optional<QuadricHit> hit = moved ? intersectQuadric(ray_, *moved, prim) : std::nullopt;
+        if (!hit) {
+          anyMiss = true;
+          continue;
+        }
+        anyHit = true;
+        v.moved.push_back({hit->t, cosineWith(ray_, hit->normal)});
       }
-      anyHit = true;
-      v.moved.push_back({hit->t, cosineWith(ray_, hit->normal)});
     }
     v.marginal = anyHit && anyMiss;
     return v;
