@@ -10,6 +10,8 @@
 #include <array>
 #include <cstddef>
 
+#include "base/rt_value.h"
+
 namespace lancer::sc {
 
 template <int Stages, class Data>
@@ -55,6 +57,43 @@ class rt_stall_pipe {
 
   std::array<bool, Stages> valid_{};
   std::array<Data, Stages> data_{};
+};
+
+// The cycle model of such a pipeline on value ports (`Ports`: its port list
+// over rt_value, e.g. rt_isect_ports<rt_value, rt_value, value_t>), under the
+// RTL's names: the entry stage computes the whole result with
+// Derived::compute(res_t&) (from the golden model), the other stages only carry
+// it. The caller orders evaluation: set the inputs, settle() for req_ready_o,
+// clock() at the rising edge.
+template <class Derived, class Ports, int Stages, int ResW>
+struct rt_pipe_model : Ports {
+  static constexpr int NUM_STAGES = Stages;
+  using res_t = value_t<ResW>;
+
+  // rst_ni low: every stage empty; the outputs settled.
+  void reset() {
+    pipe_.reset();
+    writeOutputs();
+    settle();
+  }
+  // req_ready_o from res_ready_i and the registers.
+  void settle() { this->req_ready_o = pipe_.ready(this->res_ready_i.value); }
+  // The rising edge: the stages load from the inputs and the registers as they
+  // were before it; the registered outputs, then settle().
+  void clock() {
+    pipe_.clock(this->res_ready_i.value, this->req_valid_i.value,
+                [this](res_t& out) { static_cast<Derived*>(this)->compute(out); });
+    writeOutputs();
+    settle();
+  }
+
+ private:
+  void writeOutputs() {
+    this->res_valid_o = pipe_.outValid();
+    this->res_data_o = pipe_.out();
+  }
+
+  rt_stall_pipe<Stages, res_t> pipe_;
 };
 
 }  // namespace lancer::sc

@@ -20,23 +20,4 @@ void rt_isect_model::compute(res_t& out) {
   packInto<ISECT_RES_W>(fx::intersect(ray_, tri), out);
 }
 
-void rt_isect_model::reset() {
-  pipe_.reset();
-  writeOutputs();
-  settle();
-}
-
-void rt_isect_model::settle() { req_ready_o = pipe_.ready(res_ready_i.value); }
-
-void rt_isect_model::clock() {
-  pipe_.clock(res_ready_i.value, req_valid_i.value, [this](res_t& out) { compute(out); });
-  writeOutputs();
-  settle();
-}
-
-void rt_isect_model::writeOutputs() {
-  res_valid_o = pipe_.outValid();
-  res_data_o = pipe_.out();
-}
-
 }  // namespace lancer::sc

@@ -31,25 +31,12 @@ namespace lancer::sc {
 // loop clocks it directly (the fast path, sw/driver/isect_run.h), and
 // rt_isect_pin_model binds it to sc_in/sc_out. The caller orders evaluation:
 // set the inputs, settle() for req_ready_o, clock() at the rising edge.
-struct rt_isect_model : rt_isect_ports<rt_value, rt_value, value_t> {
-  static constexpr int NUM_STAGES = ISECT_LATENCY;
-
-  // rst_ni low: every stage empty; the outputs settled.
-  void reset();
-  // req_ready_o from res_ready_i and the registers.
-  void settle();
-  // The rising edge: the stages load from the inputs and the registers as they
-  // were before it; the registered outputs, then settle().
-  void clock();
-
- private:
-  using res_t = value_t<ISECT_RES_W>;
-
+struct rt_isect_model
+    : rt_pipe_model<rt_isect_model, rt_isect_ports<rt_value, rt_value, value_t>, ISECT_LATENCY, ISECT_RES_W> {
   // The entry stage: the golden result of the request on the ports, into `out`.
   void compute(res_t& out);
-  void writeOutputs();
 
-  rt_stall_pipe<NUM_STAGES, res_t> pipe_;
+ private:
   // The last request's ray, unpacked: a ray meets its candidate triangles in a
   // row, and unpacking it each time cost a tenth of the fast path's time.
   value_t<ISECT_RAY_W> rayPort_{};

@@ -13,23 +13,4 @@ void rt_quadric_model::compute(res_t& out) {
   packInto<ISECT_RES_W>(fx::intersectQuadric(ray, quadric), out);
 }
 
-void rt_quadric_model::reset() {
-  pipe_.reset();
-  writeOutputs();
-  settle();
-}
-
-void rt_quadric_model::settle() { req_ready_o = pipe_.ready(res_ready_i.value); }
-
-void rt_quadric_model::clock() {
-  pipe_.clock(res_ready_i.value, req_valid_i.value, [this](res_t& out) { compute(out); });
-  writeOutputs();
-  settle();
-}
-
-void rt_quadric_model::writeOutputs() {
-  res_valid_o = pipe_.outValid();
-  res_data_o = pipe_.out();
-}
-
 }  // namespace lancer::sc

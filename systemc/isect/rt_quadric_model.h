@@ -33,20 +33,10 @@ struct rt_quadric_ports {
 // and the other stages only carry it. Plain C++ on value ports, stepped by the
 // run loop (sw/driver/isect_run.h): set the inputs, settle() for req_ready_o,
 // clock() at the rising edge.
-struct rt_quadric_model : rt_quadric_ports<rt_value, rt_value, value_t> {
-  static constexpr int NUM_STAGES = QUADRIC_LATENCY;
-
-  void reset();
-  void settle();
-  void clock();
-
- private:
-  using res_t = value_t<ISECT_RES_W>;
-
+struct rt_quadric_model : rt_pipe_model<rt_quadric_model, rt_quadric_ports<rt_value, rt_value, value_t>,
+                                         QUADRIC_LATENCY, ISECT_RES_W> {
+  // The entry stage: the golden result of the request on the ports, into `out`.
   void compute(res_t& out);
-  void writeOutputs();
-
-  rt_stall_pipe<NUM_STAGES, res_t> pipe_;
 };
 
 }  // namespace lancer::sc

@@ -17,6 +17,7 @@
 
 #include "golden/isect.h"
 #include "golden/quadric.h"
+#include "support/lattice_rays.h"
 
 namespace lancer::fx {
 namespace {
@@ -179,19 +180,6 @@ Rational recordQuadric(const QQuadric& rec, const std::array<Rational, 3>& x) {
     for (int j = 0; j < 3; ++j) f += q[size_t(i)] * Rational(long(rec.quadAt(i, j))) * q[size_t(j)];
   }
   return f;
-}
-
-// A direction toward `to`, quantized as the lattice rays are (dominant +-kDirMax).
-std::array<int64_t, 3> directionTo(const std::array<int64_t, 3>& from, const std::array<int64_t, 3>& to) {
-  std::array<int64_t, 3> v{}, d{};
-  int64_t largest = 0;
-  for (size_t k = 0; k < 3; ++k) {
-    v[k] = to[k] - from[k];
-    largest = std::max(largest, std::abs(v[k]));
-  }
-  if (largest == 0) return {kDirMax, 0, 0};
-  for (size_t k = 0; k < 3; ++k) d[k] = (2 * v[k] * kDirMax + (v[k] < 0 ? -largest : largest)) / (2 * largest);
-  return d;
 }
 
 // t_num / det == units exactly.
@@ -409,7 +397,7 @@ TEST(GoldenCone, EveryAnswerAgreesWithExactArithmetic) {
       std::array<int64_t, 3> target{};
       for (size_t k = 0; k < 3; ++k)
         target[k] = cone.base[k] + int64_t(f * double(cone.apex[k] - cone.base[k]) + (double(rng() % 2001) / 1000 - 1) * r);
-      ray.dir = directionTo(ray.org, target);
+      ray.dir = test::latticeDirectionTo(ray.org, target);
     }
     if (i % 5 == 0) ray.tMax = rng() % (kSegEndNone / 2);
     ray.id = i;

@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <random>
 
+#include "support/lattice_rays.h"
+
 namespace lancer::rtltest {
 
 namespace {
@@ -18,19 +20,6 @@ fx::QRay rayFrom(const Vec3& org, const Vec3& dir, uint32_t id) {
   r.org = org;
   r.dir = dir;
   return r;
-}
-
-// A direction toward `to`, quantized as the lattice rays are (dominant +-kDirMax).
-Vec3 directionTo(const Vec3& from, const Vec3& to) {
-  Vec3 v{}, d{};
-  int64_t largest = 0;
-  for (size_t k = 0; k < 3; ++k) {
-    v[k] = to[k] - from[k];
-    largest = std::max(largest, std::abs(v[k]));
-  }
-  if (largest == 0) return {kDirMax, 0, 0};
-  for (size_t k = 0; k < 3; ++k) d[k] = (2 * v[k] * kDirMax + (v[k] < 0 ? -largest : largest)) / (2 * largest);
-  return d;
 }
 
 int64_t clampPos(int64_t v) { return std::clamp<int64_t>(v, 0, kPosMax); }
@@ -68,7 +57,7 @@ std::vector<QuadricRequest> randomQuadricPairs(size_t count, uint64_t seed) {
     }
     req.ray = rayFrom({pos(rng), pos(rng), pos(rng)}, {dir(rng), dir(rng), dir(rng)}, id);
     req.ray.dir[size_t(rng() % 3)] = rng() % 2 ? kDirMax : -kDirMax;
-    if (i % 4 < 2) req.ray.dir = directionTo(req.ray.org, target);
+    if (i % 4 < 2) req.ray.dir = test::latticeDirectionTo(req.ray.org, target);
     if (i % 5 == 0) req.ray.tMax = rng() % (fx::kSegEndNone / 2);
     pairs.push_back(req);
   }
