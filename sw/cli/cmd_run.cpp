@@ -615,8 +615,8 @@ void reportFirstFailure(const Args& args, const Scene& scene, const Rays& rays, 
     fmt::print(stderr, "{}", text);
     report["first_mismatch"] = {{"ray", m.rayId}, {"report", text}, {"repro_rays", args.repro}};
   } else if (const auto beyond = cmp.arbiter.firstHardwareBeyond) {
-    const std::string text = fmt::format("ray {}: the hardware's answer is beyond its lattice bound\n  replay: {}\n",
-                                         *beyond, reproduce(*beyond, "beyond-bound"));
+    const std::string text = fmt::format("ray {}: the hardware's answer is beyond its lattice bound ({})\n  replay: {}\n",
+                                         *beyond, cmp.arbiter.firstHardwareBeyondWhy, reproduce(*beyond, "beyond-bound"));
     fmt::print(stderr, "{}", text);
     report["first_beyond_bound"] = {{"ray", *beyond}, {"report", text}, {"repro_rays", args.repro}};
   }

@@ -38,19 +38,27 @@ void arbitrate(const ExactOracle& oracle, const Ray& ray, uint32_t index, const 
     lattice = [&](const Triangle& tri) { return latticeTolerance(*quantized, quantizer, ray, tri); };
     quadricLattice = [&](const Quadric& q) { return latticeTolerance(*quantized, quantizer, ray, q); };
   }
-  Verdict ref, hw;
+  Verdict ref;
+  Judgement hw;
   if (anyHit) {
     ref = judgeAnyHit(oracle, ray, reference).verdict;
-    hw = judgeAnyHit(oracle, ray, hardware, lattice, quadricLattice).verdict;
+    hw = judgeAnyHit(oracle, ray, hardware, lattice, quadricLattice);
   } else {
     const std::optional<ExactHit> truth = oracle.intersect(ray);
     ref = judge(oracle, ray, reference, truth).verdict;
-    hw = judge(oracle, ray, hardware, truth, lattice, quadricLattice).verdict;
+    hw = judge(oracle, ray, hardware, truth, lattice, quadricLattice);
   }
   ++counts.reference[size_t(ref)];
-  ++counts.hardware[size_t(hw)];
+  ++counts.hardware[size_t(hw.verdict)];
   if (ref == Verdict::Wrong && !counts.firstReferenceWrong) counts.firstReferenceWrong = index;
-  if (hw == Verdict::Wrong && !counts.firstHardwareBeyond) counts.firstHardwareBeyond = index;
+  if (hw.verdict == Verdict::Wrong && !counts.firstHardwareBeyond) {
+    const auto answer = [](const std::optional<Hit>& h) {
+      return h ? fmt::format("prim {} at t {:a}", h->prim, h->t) : std::string("a miss");
+    };
+    counts.firstHardwareBeyond = index;
+    counts.firstHardwareBeyondWhy =
+        fmt::format("{}; the hardware answered {}, the float reference {}", hw.reason, answer(hardware), answer(reference));
+  }
 }
 
 }  // namespace
@@ -240,7 +248,10 @@ ReferenceComparison& operator+=(ReferenceComparison& into, const ReferenceCompar
     a.reference[k] += b.reference[k];
     a.hardware[k] += b.hardware[k];
   }
-  if (!a.firstHardwareBeyond) a.firstHardwareBeyond = b.firstHardwareBeyond;
+  if (!a.firstHardwareBeyond) {
+    a.firstHardwareBeyond = b.firstHardwareBeyond;
+    a.firstHardwareBeyondWhy = b.firstHardwareBeyondWhy;
+  }
   if (!a.firstReferenceWrong) a.firstReferenceWrong = b.firstReferenceWrong;
   return into;
 }

@@ -35,6 +35,7 @@ struct ArbiterCounts {
   std::array<uint64_t, 4> reference{};   // by Verdict: correct, tie, rounding, wrong
   std::array<uint64_t, 4> hardware{};    // by Verdict: correct, tie, within its bound, beyond it
   std::optional<uint32_t> firstHardwareBeyond;  // the first ray the hardware got wrong beyond its bound
+  std::string firstHardwareBeyondWhy;           // its verdict's reason and both answers
   std::optional<uint32_t> firstReferenceWrong;
 
   uint64_t beyondBound() const { return hardware[3]; }

@@ -161,12 +161,27 @@ std::optional<QuantizedRay> HardwareWaveTracer::latticeRay(const WaveRay& ray, u
     // ray meets its own lattice triangle from there (a ray almost in the plane,
     // or a triangle a few lattice units across whose lattice normal turns far
     // from its float one), the ray in truth leaves the lattice triangle to its
-    // other side: start it there, and it cannot meet the triangle again. (A
-    // quadric is left along its own record's normal; a ray into its solid
-    // meets its far side by right.)
+    // other side: start it there, and it cannot meet the triangle again.
     if (q && hit.primId < normals_.size() &&
         fx::intersect(q->q, quantizer_.quantize(scene_.triangles[hit.primId], hit.primId)).hit) {
       q = offsetTo(-double(ray.side));
+      ++sideFlips_;
+    }
+    // A quadric is left along its own record's normal; a ray into its solid
+    // meets its far side by right. One the loop sends out of the solid that
+    // meets the lattice quadric again (the lattice surface turned from the
+    // float one: a branch a unit or two thick, a grazing ray) in truth passes
+    // through its lattice solid: it starts again past it, off its far side.
+    for (int pass = 0; q && hit.primId >= normals_.size() && !ray.intoSolid && pass < 2; ++pass) {
+      const fx::QQuadric& own = quadrics_[hit.primId - normals_.size()];
+      const fx::IsectResult again = fx::intersectQuadric(q->q, own);
+      if (!again.hit) break;
+      const double tAgain = fx::tOf(again, q->q);
+      glm::dvec3 exit;
+      for (int a = 0; a < 3; ++a) exit[a] = double(q->q.org[a]) + tAgain * double(q->q.dir[a]);
+      const glm::dvec3 outward = latticeNormal(hit.primId, exit);
+      q = quantizer_.quantizeFrom(exit + offset_ * (glm::dot(outward, glm::dvec3(q->q.dir[0], q->q.dir[1], q->q.dir[2])) >= 0.0 ? outward : -outward),
+                                  shortened, index);
       ++sideFlips_;
     }
   }
@@ -262,10 +277,10 @@ void HardwareWaveTracer::compare(int generation, ClassKey cls, std::span<const W
     const Ray& r = asked[*first];
     firstBeyond_ = WaveMismatch{
         generation, cls, index[*first],
-        fmt::format("wave {} ({} ray {} of the wave): the hardware's answer is beyond its lattice bound; the ray as "
-                    "asked: {:a} {:a} {:a} {:a} {:a} {:a} (t max {:a}){}\n",
-                    generation, toString(cls), index[*first], r.origin.x, r.origin.y, r.origin.z, r.dir.x, r.dir.y,
-                    r.dir.z, r.tMax, anyHit ? ", any hit" : "")};
+        fmt::format("wave {} ({} ray {} of the wave): the hardware's answer is beyond its lattice bound ({}); the ray "
+                    "as asked: {:a} {:a} {:a} {:a} {:a} {:a} (t max {:a}){}\n",
+                    generation, toString(cls), index[*first], cmp.arbiter.firstHardwareBeyondWhy, r.origin.x,
+                    r.origin.y, r.origin.z, r.dir.x, r.dir.y, r.dir.z, r.tMax, anyHit ? ", any hit" : "")};
   }
   record(cls).comparison += cmp;
 }
