@@ -721,6 +721,27 @@ std::optional<QuadricShape> movedShape(const QuadricShape& s, double e, double e
   return out;
 }
 
+// The moves a quadric's view tries, each at 1/kMoveSteps of the tolerance up to it.
+constexpr int kMoveSteps = 16;
+
+// The unit vector from a cone's axis toward the ray, square to the axis, at
+// their lines' closest approach (where the ray is parallel to the axis, from
+// the axis to the ray's origin); zero when the ray meets the axis.
+glm::dvec3 towardRay(const QuadricShape& s, const Ray& ray) {
+  const glm::dvec3 w = glm::normalize(s.apex - s.base), d = glm::dvec3(ray.dir), o = glm::dvec3(ray.origin);
+  const glm::dvec3 n = glm::cross(w, d);
+  glm::dvec3 gap;
+  if (glm::length(n) > 1e-12 * glm::length(d)) {
+    // The common perpendicular of the two lines, signed from the axis to the ray.
+    const glm::dvec3 unit = n / glm::length(n);
+    gap = glm::dot(o - s.base, unit) * unit;
+  } else {
+    gap = (o - s.base) - glm::dot(o - s.base, w) * w;
+  }
+  const double length = glm::length(gap);
+  return length > 0.0 ? gap / length : glm::dvec3(0.0);
+}
+
 // What judging asks of one primitive on the ray: the exact relation, the
 // tracer's tolerance for it, whether a move within that tolerance can change
 // whether the ray hits it, and (a quadric) the hits a move gives.
@@ -785,14 +806,28 @@ class Judging {
     // is far below any tolerance it is asked about.
     // Whether the ray hits is not monotonic in the move (a ray almost along a
     // short cone's axis meets its wall moved out a little and passes through
-    // both open ends moved out a lot), so the moves are sampled at the
-    // tolerance and at its halves down to 1/32 of it.
+    // both open ends moved out a lot: the window can be a fifth of the
+    // tolerance wide), so the moves are sampled at every 1/kMoveSteps of it.
+    // A cone is also shifted square to its axis, toward the ray and away: for
+    // a ray almost along a thin cone's axis a shift decides what no change of
+    // its radii does (the SPD's tree, again).
     const QuadricShape shape = QuadricShape::of(q);
-    const int moves = q.kind == Quadric::Kind::Sphere ? 2 : 4;
+    const bool cone = q.kind == Quadric::Kind::Cone;
+    const int moves = cone ? 6 : 2;
+    const glm::dvec3 toward = cone ? towardRay(shape, ray_) : glm::dvec3(0.0);
     bool anyHit = v.rel.hit, anyMiss = !v.rel.hit;
-    for (double e = v.tolerance.edge; e >= v.tolerance.edge / 32.0; e /= 2.0) {
+    for (int step = kMoveSteps; step >= 1; --step) {
+      const double e = v.tolerance.edge * step / kMoveSteps;
       for (int i = 0; i < moves; ++i) {
-        const std::optional<QuadricShape> moved = movedShape(shape, i & 1 ? -e : e, i & 2 ? -e : e);
+        std::optional<QuadricShape> moved;
+        if (i < 4) {
+          moved = movedShape(shape, i & 1 ? -e : e, i & 2 ? -e : e);
+        } else {
+          moved = shape;
+          const glm::dvec3 shift = (i == 4 ? e : -e) * toward;
+          moved->base += shift;
+          moved->apex += shift;
+        }
         const std::optional<QuadricHit> hit = moved ? intersectQuadric(ray_, *moved, prim) : std::nullopt;
         if (!hit) {
           anyMiss = true;

@@ -253,10 +253,11 @@ TEST(ExactQuadric, VerdictsOnTangentsOriginsAndRims) {
 // never wrong.
 using test::RandomScenes;
 
-// Two answers of the hardware on the SPD's scenes that the judge first put
+// Three answers of the hardware on the SPD's scenes that the judge first put
 // beyond the lattice's bound (docs/oracle.md): each within a move of the
 // answered quadric's surface, found only by trying moves below the tolerance
-// (the tree) and by measuring at the moved root nearest the answer (the rings).
+// and shifts square to a cone's axis (the tree) and by measuring at the moved
+// root nearest the answer (the rings).
 TEST(ExactQuadric, MovesBelowTheToleranceAndTheMovedRootNearestTheAnswer) {
   const auto h = [](const char* s) { return float(std::strtod(s, nullptr)); };
   const auto within = [](double edge) {
@@ -292,6 +293,25 @@ TEST(ExactQuadric, MovesBelowTheToleranceAndTheMovedRootNearestTheAnswer) {
     ASSERT_TRUE(truth && truth->prim == 1);
     const Hit answer{0, 15.1885366f, 0.0f, 0.0f};
     EXPECT_EQ(judge(oracle, ray, answer, truth, {}, within(0.0016)).verdict, Verdict::Rounding);
+  }
+  {
+    // The tree again: a shadow ray leaving a joint, almost along the next
+    // branch (a cone 1.2 lattice units thick between two spheres) and 0.0012
+    // outside it where it passes its far end. The branch's wall reaches the
+    // ray only for a growth between 0.0012 and 0.0020 of the tolerance's
+    // 0.0042, and a shift toward the ray decides it as well: blocked is
+    // within the bound, not beyond a tolerance of 0.001.
+    const Scene joint = sceneOf({}, {Quadric::cone({1.15543f, -0.189264f, 2.21941f}, 0.00183195f,
+                                                   {1.15841f, -0.181437f, 2.22643f}, 0.00122741f),
+                                     Quadric::sphere({1.15543f, -0.189264f, 2.21941f}, 0.00183195f),
+                                     Quadric::sphere({1.15841f, -0.181437f, 2.22643f}, 0.00122741f)});
+    const ExactOracle oracle(joint);
+    const Ray ray = rayOf({h("0x1.284fcap+0"), h("-0x1.78975ap-3"), h("0x1.1c1b3ap+1")},
+                          {h("0x1.707306p-3"), h("0x1.3a6012p-1"), h("0x1.897b34p-1")}, h("0x1.893b5ep+5"));
+    ASSERT_TRUE(oracle.hitsOnSegment(ray).empty()) << "the segment is clear in exact arithmetic";
+    const Hit blocked{0, h("0x1.a2566ep-8"), 0.0f, 0.0f};
+    EXPECT_EQ(judgeAnyHit(oracle, ray, blocked, {}, within(0.00417)).verdict, Verdict::Rounding);
+    EXPECT_EQ(judgeAnyHit(oracle, ray, blocked, {}, within(0.001)).verdict, Verdict::Wrong);
   }
 }
 
