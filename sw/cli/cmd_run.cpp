@@ -300,8 +300,8 @@ struct WaveRunFigures {
   // The secondary origins' fixes.
   void printOrigins() const {
     if (tracer.sideFlips()) {
-      fmt::print("  {} secondary origins moved to the other side of their triangle (the lattice ray would have met "
-                 "it again)\n",
+      fmt::print("  {} secondary origins moved to the other side of their triangle or past their quadric (the "
+                 "lattice ray would have met it again)\n",
                  tracer.sideFlips());
     }
     if (tracer.originsOutside()) {

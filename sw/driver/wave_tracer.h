@@ -98,7 +98,8 @@ class HardwareWaveTracer final : public WaveTracer {
   // the scene through its boundary): not traced, answered as misses.
   uint64_t originsOutside() const { return originsOutside_; }
   bool cycleAccurate() const { return cycleAccurate_; }
-  // Secondary origins moved to the other side of their triangle, where the
+  // Secondary origins moved to the other side of their triangle (or past their
+  // lattice quadric, for a ray leaving its solid), where the
   // lattice ray would have met it again from the loop's side.
   uint64_t sideFlips() const { return sideFlips_; }
   double offsetUnits() const { return offset_; }
