@@ -340,12 +340,14 @@ TEST(GoldenSphere, TinyAndHugeRadiiAndTheSceneBox) {
 
 // A sphere and a triangle on the same ray order by closerResult.
 TEST(GoldenSphere, OrdersWithTrianglesByTheSameScale) {
-  const int64_t mid = kPosMax / 2;
-  const QRay ray = rayFrom({100, mid, mid}, {kDirMax, 0, 0});
-  const QSphere s{9, {1100, mid, mid}, 500};  // entered at x = 600: displacement 500
+  // At every width (N = 2^P): the ray from x = N/16, the sphere entered at
+  // x = 3N/8 (displacement 5N/16), the triangle at x = 7N/16 (6N/16).
+  const int64_t n = kPosMax + 1, mid = n / 2, e = n / 32;
+  const QRay ray = rayFrom({n / 16, mid, mid}, {kDirMax, 0, 0});
+  const QSphere s{9, {n / 2, mid, mid}, n / 8};
   QTriangle tri;
   tri.id = 10;
-  tri.v = {{{700, mid - 50, mid - 50}, {700, mid + 50, mid - 50}, {700, mid, mid + 80}}};  // x = 700: displacement 600
+  tri.v = {{{7 * n / 16, mid - e, mid - e}, {7 * n / 16, mid + e, mid - e}, {7 * n / 16, mid, mid + e}}};
   const IsectResult a = intersectQuadric(ray, sphereRecord(s)), b = intersect(ray, tri);
   ASSERT_TRUE(a.hit && b.hit);
   EXPECT_TRUE(closerResult(a, b));
