@@ -29,9 +29,9 @@ void renderWhitted(const Scene& scene, const Accel& accel, const PinholeCamera& 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   writePng(samplesToImage(result.samples, camera.width(), camera.height(), sampling), out);
   fmt::print(
-      "whitted: {} ({} triangles), {} {}x{} at pixel {}: eye hit rays {}, reflect rays {}, refract rays {} "
+      "whitted: {} ({}), {} {}x{} at pixel {}: eye hit rays {}, reflect rays {}, refract rays {} "
       "({} total internal reflections), shadow rays {} ({} blocked), self-hits {}, {} waves, {:.3f} s -> {}\n",
-      scene.name, scene.size(), accel.name(), camera.width(), camera.height(), toString(sampling),
+      scene.name, scene.primitivesText(), accel.name(), camera.width(), camera.height(), toString(sampling),
       result.eyeHitRays, result.reflectRays, result.refractRays, result.totalInternalReflections,
       result.shadowRays, result.shadowRaysBlocked, result.selfHits, result.waveRays.size(), seconds, out);
   report = result.toJson();
@@ -87,8 +87,8 @@ void addRenderCommand(CLI::App& app) {
       const std::vector<Ray> rays = camera.generateRays();
       const TracedRays traced = traceTimed("render", *accel, rays);
       writePng(shadeHits(scene, rays, traced.hits, camera.width(), camera.height()), args->out);
-      fmt::print("render: {} ({} triangles), {} {}x{}, {} of {} rays hit, {:.3f} s -> {}\n", scene.name,
-                 scene.size(), accel->name(), camera.width(), camera.height(), traced.hitCount, rays.size(),
+      fmt::print("render: {} ({}), {} {}x{}, {} of {} rays hit, {:.3f} s -> {}\n", scene.name,
+                 scene.primitivesText(), accel->name(), camera.width(), camera.height(), traced.hitCount, rays.size(),
                  traced.seconds, args->out);
       report = tracerReport("render", scene, *accel, rays.size(), traced, buildSeconds);
     }

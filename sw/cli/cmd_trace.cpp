@@ -46,8 +46,8 @@ void addTraceCommand(CLI::App& app) {
     const Rays rays = loadRays(args->source, scene);
     const TracedRays traced = traceTimed("trace", *accel, rays.rays);
     writeHitsCsv(args->hits, traced.hits);
-    fmt::print("trace: {} ({} triangles), {} rays from {}, {} hit, {} in {:.3f} s -> {}\n", scene.name,
-               scene.size(), rays.rays.size(), rays.origin, traced.hitCount, accel->name(), traced.seconds,
+    fmt::print("trace: {} ({}), {} rays from {}, {} hit, {} in {:.3f} s -> {}\n", scene.name,
+               scene.primitivesText(), rays.rays.size(), rays.origin, traced.hitCount, accel->name(), traced.seconds,
                args->hits);
     nlohmann::json report = tracerReport("trace", scene, *accel, rays.rays.size(), traced, buildSeconds);
     report["rays_source"] = rays.origin;
