@@ -42,8 +42,8 @@ IsectResult missOf(const QRay& ray, uint32_t primId) {
   return res;
 }
 
-// What every quadric test ends with: the nearer root if it is ahead of the
-// origin and `onSurface` keeps its point, else the farther one if so; the hit
+// The test's last step: the nearer root if it is ahead of the origin and
+// `onSurface` (between the planes) keeps its point, else the farther one if so; the hit
 // on the triangles' scale (t_num = num |d_dom|, det = den: a displacement along
 // the dominant axis) and within the segment (t_num 2^F <= t_max det).
 template <class OnSurface>
