@@ -102,7 +102,7 @@ JobResult runIsectJob(const Scene& scene, std::span<const std::optional<Quantize
   JobResult job;
   job.rays.resize(rays.size());
   job.hits.resize(rays.size());
-  uint64_t inputStalls = 0, quadricTests = 0;
+  uint64_t inputStalls = 0;
 
   // Primitives are quantized once; shared vertices quantize to the same integers.
   const std::vector<fx::QTriangle> triangles = quantizer.quantizeTriangles(scene);
@@ -137,7 +137,7 @@ JobResult runIsectJob(const Scene& scene, std::span<const std::optional<Quantize
       }
     }
     job.intersectionTests += tris.requests.size() + quads.requests.size();
-    quadricTests += quads.requests.size();
+    job.quadricTests += quads.requests.size();
 
     auto start = std::chrono::steady_clock::now();
     const StreamStats stats = model.run(tris.requests, tris.model, config.stream);
@@ -168,7 +168,7 @@ JobResult runIsectJob(const Scene& scene, std::span<const std::optional<Quantize
     if (onProgress) onProgress(end - begin);
   }
   job.addCounter("input_stall_cycles", "input stall cycles", double(inputStalls));
-  if (!quadrics.empty()) job.addCounter("quadric_tests", "ray-quadric tests", double(quadricTests));
+  if (!quadrics.empty()) job.addCounter("quadric_tests", "ray-quadric tests", double(job.quadricTests));
   const double tests = double(std::max<uint64_t>(job.intersectionTests, 1));
   if (!config.dualNarrowBits.empty()) {
     job.addCounter("dual_hit_share", "dual: hits of tests", double(goldenHits) / tests);

@@ -44,6 +44,7 @@ struct JobResult {
   uint64_t cycles = 0;
   bool cycleAccurate = true;
   uint64_t intersectionTests = 0;
+  uint64_t quadricTests = 0;  // of which ray-quadric (the isect path on a scene with quadrics)
   uint64_t steps = 0;        // traversal units: cells or nodes entered (0 on the isect path)
   uint64_t memoryReads = 0;  // traversal units: reads of every region
   uint64_t nodeBytes = 0;    // traversal units: bytes of the node-port reads (cells, child groups, nodes)

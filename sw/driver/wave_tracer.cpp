@@ -32,6 +32,17 @@ HardwareWaveTracer::HardwareWaveTracer(fx::UnitKind path, const Scene& scene, co
   quadrics_ = quantizer.quantizeQuadrics(scene);
 }
 
+namespace {
+
+// The point of lattice ray `q` at lattice t.
+glm::dvec3 pointAt(const fx::QRay& q, double t) {
+  glm::dvec3 p;
+  for (int a = 0; a < 3; ++a) p[a] = double(q.org[size_t(a)]) + t * double(q.dir[size_t(a)]);
+  return p;
+}
+
+}  // namespace
+
 glm::dvec3 HardwareWaveTracer::latticeNormal(uint32_t prim, const glm::dvec3& point) const {
   if (prim < normals_.size()) return normals_[prim];
   // A quadric's: the gradient of its record q'Qq + 2g'q + k at q = 2x - S,
@@ -54,9 +65,7 @@ void ClassHardwareStats::add(const JobResult& job, std::span<const std::optional
   for (const auto& r : batch) traced += r.has_value();
   for (const auto& h : job.hits) hits += h.has_value();
   intersectionTests += job.intersectionTests;
-  for (const JobCounter& c : job.counters) {
-    if (c.key == "quadric_tests") quadricTests += uint64_t(c.value);
-  }
+  quadricTests += job.quadricTests;
   steps += job.steps;
   memoryReads += job.memoryReads;
   nodeBytes += job.nodeBytes;
@@ -136,9 +145,7 @@ std::optional<QuantizedRay> HardwareWaveTracer::latticeRay(const WaveRay& ray, u
     // off the triangle along its normal to the side the ray leaves to.
     const fx::QRay& parent = wave_[ray.parent]->q;
     const fx::IsectResult& hit = *waveHits_[ray.parent];
-    const double t = fx::tOf(hit, parent);
-    glm::dvec3 point;
-    for (int a = 0; a < 3; ++a) point[a] = double(parent.org[a]) + t * double(parent.dir[a]);
+    const glm::dvec3 point = pointAt(parent, fx::tOf(hit, parent));
     Ray shortened = ray.ray;
     if (std::isfinite(shortened.tMax)) {  // stop short of the light (an emitter's own triangle)
       const double latticeUnitsPerT = glm::length(glm::dvec3(ray.ray.dir)) / quantizer_.unit();
@@ -176,12 +183,12 @@ std::optional<QuantizedRay> HardwareWaveTracer::latticeRay(const WaveRay& ray, u
       const fx::QQuadric& own = quadrics_[hit.primId - normals_.size()];
       const fx::IsectResult again = fx::intersectQuadric(q->q, own);
       if (!again.hit) break;
-      const double tAgain = fx::tOf(again, q->q);
-      glm::dvec3 exit;
-      for (int a = 0; a < 3; ++a) exit[a] = double(q->q.org[a]) + tAgain * double(q->q.dir[a]);
+      const glm::dvec3 exit = pointAt(q->q, fx::tOf(again, q->q));
       const glm::dvec3 outward = latticeNormal(hit.primId, exit);
-      q = quantizer_.quantizeFrom(exit + offset_ * (glm::dot(outward, glm::dvec3(q->q.dir[0], q->q.dir[1], q->q.dir[2])) >= 0.0 ? outward : -outward),
-                                  shortened, index);
+      // Off the surface to the side the ray goes on to.
+      const glm::dvec3 dir(double(q->q.dir[0]), double(q->q.dir[1]), double(q->q.dir[2]));
+      q = quantizer_.quantizeFrom(exit + offset_ * (glm::dot(outward, dir) >= 0.0 ? outward : -outward), shortened,
+                                  index);
       ++sideFlips_;
     }
   }
