@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include <fmt/format.h>
 
 #include "Vrt_quadric.h"
 #include "driver/isect_run.h"
 #include "driver/model_unit.h"
+#include "driver/report.h"
 #include "driver/verilated_unit.h"
 #include "golden/quadric.h"
 #include "isect/quadric_cases.h"
@@ -35,20 +35,7 @@ struct ModelQuadric : ModelUnit<sc::rt_quadric_model> {
   ModelQuadric() { reset(isect_detail::idleInputs<sc::rt_quadric_model>); }
 };
 
-std::string describe(const QuadricRequest& req) {
-  const fx::QQuadric& q = req.quadric;
-  return fmt::format(
-      "ray {} org ({}, {}, {}) dir ({}, {}, {}) t_max {}; quadric {} S ({}, {}, {}) w ({}, {}, {}) W {} "
-      "Q ({}, {}, {}, {}, {}, {}) g ({}, {}, {}) k {}",
-      req.ray.id, req.ray.org[0], req.ray.org[1], req.ray.org[2], req.ray.dir[0], req.ray.dir[1], req.ray.dir[2],
-      req.ray.tMax, q.id, q.axisSum[0], q.axisSum[1], q.axisSum[2], q.axis[0], q.axis[1], q.axis[2], q.axisLen2,
-      q.quad[0], q.quad[1], q.quad[2], q.quad[3], q.quad[4], q.quad[5], q.lin[0], q.lin[1], q.lin[2], q.constant);
-}
-
-std::string describe(const IsectResult& r) {
-  return fmt::format("hit {} t_num {:#x}{:016x} det {:#x}{:016x} u {} ray {} prim {}", r.hit, uint64_t(r.tNum >> 64),
-                     uint64_t(r.tNum), uint64_t(r.det >> 64), uint64_t(r.det), uint64_t(r.uNum), r.rayId, r.primId);
-}
+std::string describe(const QuadricRequest& req) { return hexFields(req.ray) + "; " + hexFields(req.quadric); }
 
 StreamOptions stalling(double stall, double idle, uint64_t seed) {
   StreamOptions o;
@@ -72,7 +59,7 @@ StreamStats expectGolden(Clocked& unit, std::span<const QuadricRequest> requests
     if (results[i] == expected) continue;
     if (++mismatches <= 5) {
       ADD_FAILURE() << who << " differs from golden at pair " << i << "\n  input  " << describe(requests[i])
-                    << "\n  golden " << describe(expected) << "\n  " << who << " " << describe(results[i]);
+                    << "\n  golden " << hexFields(expected) << "\n  " << who << " " << hexFields(results[i]);
     }
   }
   EXPECT_EQ(mismatches, 0u) << who;
