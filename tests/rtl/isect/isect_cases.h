@@ -17,6 +17,16 @@ namespace lancer::rtltest {
 
 using Vec3 = std::array<int64_t, 3>;
 
+// Stream options with random backpressure: the consumer stalls with `stall`,
+// the producer idles with `idle`, both drawn from `seed`.
+inline StreamOptions backpressure(double stall, double idle, uint64_t seed) {
+  StreamOptions o;
+  o.outputStallProbability = stall;
+  o.inputIdleProbability = idle;
+  o.seed = seed;
+  return o;
+}
+
 // Random pairs: a mix of rays aimed at a point inside the triangle (mostly
 // hits), unaimed rays (mostly misses), large and small triangles, quantized
 // directions (dominant component +-kDirMax) and arbitrary direction codes.

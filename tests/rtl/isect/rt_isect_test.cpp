@@ -30,6 +30,7 @@ namespace {
 
 using fx::IsectResult;
 using fx::u128;
+using rtltest::backpressure;
 
 std::string hex(const fx::Wire& wire) {
   std::string s;
@@ -102,13 +103,6 @@ StreamStats expectBitIdentical(std::span<const IsectRequest> requests, const Str
   return stats;
 }
 
-StreamOptions backpressure(double stall, double idle, uint64_t seed) {
-  StreamOptions o;
-  o.outputStallProbability = stall;
-  o.inputIdleProbability = idle;
-  o.seed = seed;
-  return o;
-}
 
 size_t hits(const std::vector<IsectResult>& results) {
   return size_t(std::count_if(results.begin(), results.end(), [](const auto& r) { return r.hit; }));

@@ -19,6 +19,7 @@
 #include "driver/report.h"
 #include "driver/verilated_unit.h"
 #include "golden/quadric.h"
+#include "isect/isect_cases.h"
 #include "isect/quadric_cases.h"
 #include "isect/rt_quadric_model.h"
 
@@ -26,6 +27,7 @@ namespace lancer {
 namespace {
 
 using fx::IsectResult;
+using rtltest::backpressure;
 using rtltest::QuadricCaseGroup;
 
 struct RtlQuadric : VerilatedUnit<Vrt_quadric> {
@@ -36,14 +38,6 @@ struct ModelQuadric : ModelUnit<sc::rt_quadric_model> {
 };
 
 std::string describe(const QuadricRequest& req) { return hexFields(req.ray) + "; " + hexFields(req.quadric); }
-
-StreamOptions stalling(double stall, double idle, uint64_t seed) {
-  StreamOptions o;
-  o.outputStallProbability = stall;
-  o.inputIdleProbability = idle;
-  o.seed = seed;
-  return o;
-}
 
 // The results of `requests` through a clocked model, against the golden model,
 // in order; the first few differences with their inputs.
@@ -84,7 +78,7 @@ TEST(RtQuadric, RandomPairsMatchGoldenBitForBit) {
   EXPECT_GT(leaving, 50u);
   RtlQuadric rtl;
   expectGolden(rtl, std::span<const QuadricRequest>(pairs), {}, "rtl");
-  expectGolden(rtl, std::span<const QuadricRequest>(pairs), stalling(0.3, 0.2, 11), "rtl (stalls, bubbles)");
+  expectGolden(rtl, std::span<const QuadricRequest>(pairs), backpressure(0.3, 0.2, 11), "rtl (stalls, bubbles)");
 }
 
 TEST(RtQuadric, HardCasesMatchGoldenBitForBit) {
@@ -92,7 +86,7 @@ TEST(RtQuadric, HardCasesMatchGoldenBitForBit) {
   for (const QuadricCaseGroup& g : rtltest::quadricHardCases()) {
     SCOPED_TRACE(g.name);
     ASSERT_FALSE(g.pairs.empty());
-    expectGolden(rtl, std::span<const QuadricRequest>(g.pairs), stalling(0.25, 0.25, 3), "rtl");
+    expectGolden(rtl, std::span<const QuadricRequest>(g.pairs), backpressure(0.25, 0.25, 3), "rtl");
   }
   // The groups reach both verdicts.
   size_t hits = 0;
@@ -115,7 +109,7 @@ TEST(RtQuadric, LatencyAndOneResultPerCycle) {
   EXPECT_EQ(stats.cycles, pairs.size() + fx::kQuadricLatency);
   EXPECT_EQ(stats.inputStalls, 0u);
   // A consumer that stalls: the pipeline fills, then accepts as it drains.
-  const StreamStats stalled = runIsectStream(rtl, std::span<const QuadricRequest>(pairs), results, stalling(0.5, 0.0, 9));
+  const StreamStats stalled = runIsectStream(rtl, std::span<const QuadricRequest>(pairs), results, backpressure(0.5, 0.0, 9));
   EXPECT_GT(stalled.inputStalls, 0u);
   EXPECT_EQ(stalled.results, pairs.size());
 }
@@ -126,7 +120,7 @@ TEST(RtQuadricModel, MatchesGoldenAndTheRtlCycleForCycle) {
   pairs.insert(pairs.end(), hard.begin(), hard.end());
   ModelQuadric model;
   expectGolden(model, std::span<const QuadricRequest>(pairs), {}, "systemc");
-  for (const StreamOptions& options : {StreamOptions{}, stalling(0.3, 0.2, 13), stalling(0.9, 0.0, 2)}) {
+  for (const StreamOptions& options : {StreamOptions{}, backpressure(0.3, 0.2, 13), backpressure(0.9, 0.0, 2)}) {
     RtlQuadric rtl;
     ModelQuadric cycleModel;
     std::vector<IsectResult> a, b;
