@@ -646,11 +646,11 @@ module rt_quadric (
   // farther), then the segment rule (t_num 2^F <= t_max den); the result. A
   // miss is all zeros but its ids.
   // ---------------------------------------------------------------------------
-  // Ahead of the origin and between the planes: |height| <= bound.
-  function automatic logic on_surface(logic [PLANE_W-1:0] height, logic [PLANE_W-1:0] bound, logic ahead);
+  // Ahead of the origin and between the planes: |height| <= half_len (W den).
+  function automatic logic on_surface(logic [PLANE_W-1:0] height, logic [PLANE_W-1:0] half_len, logic ahead);
     logic [PLANE_W-1:0] mag;
     mag = height[PLANE_W-1] ? -height : height;
-    on_surface = ahead && mag <= bound;
+    on_surface = ahead && mag <= half_len;
   endfunction
 
   rt_pkg::isect_res_t res_q;

@@ -30,16 +30,23 @@
   input  logic [31:0]                   idx_rsp_data_i,
   input  logic [SlotW-1:0]              idx_rsp_tag_i,
 
-  // Triangle table reads.
+  // Primitive reads, one port: the triangle table's record at tri_req_addr_o,
+  // or the quadric table's when tri_req_quadric_o (an index entry's kind bit).
+  // A triangle comes back on tri_rsp_*, a quadric on quadric_rsp_* (a unit
+  // built with Quadrics; else never), never both in a cycle.
   output logic                          tri_req_valid_o,
   input  logic                          tri_req_ready_i,
   output logic [rt_pkg::MEM_ADDR_W-1:0] tri_req_addr_o,
+  output logic                          tri_req_quadric_o,
   output logic [SlotW-1:0]              tri_req_tag_o,
   input  logic                          tri_rsp_valid_i,
   input  rt_pkg::isect_tri_t            tri_rsp_data_i,
   input  logic [SlotW-1:0]              tri_rsp_tag_i,
+  input  logic                          quadric_rsp_valid_i,
+  input  rt_pkg::isect_quadric_t        quadric_rsp_data_i,
+  input  logic [SlotW-1:0]              quadric_rsp_tag_i,
 
-  // Performance: a ray-triangle pair enters rt_isect this cycle; some slot
+  // Performance: a ray-primitive pair enters rt_isect or rt_quadric this cycle; some slot
   // waits to enter its next region (the visit arbiter has a request).
   output logic                          perf_isect_fire_o,
   output logic                          perf_step_ready_o,

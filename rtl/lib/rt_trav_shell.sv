@@ -16,13 +16,21 @@
 //              4-entry FIFO)
 //   idx port   one index-list read per test (round robin), credit-limited by
 //              the index buffer (IdxBufDepth entries, the credits)
-//   tri port   one triangle read per index response, in index-response order
+//   tri port   one primitive read per index response, in index-response order:
+//              the entry's kind bit (bit 31) says which table (tri_req_quadric_o)
 //   u_isect    rt_isect; the slot index travels in the ray id field; a
 //              triangle response enters it in the cycle it arrives, or in the
 //              next one when RegRsp (registered at the boundary)
-//   closest    one isect result per cycle updates its slot's closest hit
+//   u_quadric  rt_quadric (Quadrics only): a quadric response enters it as a
+//              triangle's enters rt_isect, with its slot's ray
+//   closest    one result per cycle updates its slot's closest hit
 //              (rt_closest_hit, three stages: the walk sees the result and its
-//              verdict CLOSEST_HIT_LATENCY cycles after it leaves rt_isect)
+//              verdict CLOSEST_HIT_LATENCY cycles after it leaves its
+//              pipeline); rt_isect's result goes first, and rt_quadric's
+//              waits in its pipeline meanwhile (its stages squeeze out the
+//              bubble the triangle left: one primitive a cycle enters the two,
+//              so rt_quadric is always ready; docs/quadrics.md, "In the
+//              traversal units")
 //   check      one exit test started per cycle (round robin over the slots
 //              that want one and are not under test; rt_exit_test, pipelined,
 //              with the walk's exit parameter against the record: the closest
@@ -30,8 +38,9 @@
 //              after the grant. A slot is tested when bound (a hit, or a
 //              segment end); an any-hit ray with a hit holds without the
 //              arithmetic (its walk ends after the region of its hit)
-//   res_*      one record per ray: {ray id, regions entered, tests issued, hit,
-//              the closest hit} (round robin, 2-entry FIFO)
+//   res_*      one record per ray: {ray id, regions entered, tests issued,
+//              ray-quadric tests of them, hit, the closest hit} (round robin,
+//              2-entry FIFO)
 //
 // The walk sees only grants (go, slot index), the responses, the results and
 // the closest-hit state; it gives want vectors, addresses, the visit id, the
@@ -50,8 +59,8 @@
 // CLOSEST_HIT_LATENCY to the walk (the closest-hit verdict); an exit test EXIT_TEST_LATENCY
 // cycles from its grant to its answer.
 // Throughput: per cycle at most one ray accepted, one node read, one visit
-// record, one index read, one triangle read, one intersection test, one
-// closest-hit update, one exit test and one result.
+// record, one index read, one primitive read, one intersection test (of
+// either kind), one closest-hit update, one exit test and one result.
 module rt_trav_shell #(
   parameter int unsigned N           = 32,  // ray slots, 1..256
   parameter int unsigned IdxBufDepth = 64,  // index responses buffered (credits)
@@ -61,9 +70,10 @@ module rt_trav_shell #(
   parameter int unsigned ExitW       = 8,   // width of the exit parameter
   parameter int unsigned DenW        = 8,   // width of the exit test's denominator
   parameter int unsigned RunPorts    = 1,   // index runs the walk may start in a cycle
+  parameter int unsigned Quadrics    = 0,   // 1: rt_quadric beside rt_isect (scenes with spheres and cones)
   parameter int unsigned SlotW     = (N > 1) ? $clog2(N) : 1,  // derived
   parameter int unsigned CfgSlotsW = $clog2(N + 1),            // derived
-  parameter int unsigned ResW      = rt_pkg::ISECT_RES_W + 64  // derived: {ray id, count, tests, hit, hit record}
+  parameter int unsigned ResW      = rt_pkg::ISECT_RES_W + 96  // derived: {ray id, count, tests, quadric tests, hit, hit record}
 ) (
   // ---- The unit's ports ----
 `include "rt_trav_ports.svh"
@@ -80,6 +90,7 @@ module rt_trav_shell #(
   localparam int P        = rt_pkg::POS_W;
   localparam int DIR_W    = rt_pkg::DIR_W;
   localparam int MEMREQ_W = ADDR_W + SlotW;
+  localparam int PRIMREQ_W = 1 + MEMREQ_W;  // {quadric, address, slot}
   localparam int IDXBUF_W = 32 + SlotW;
   localparam int CREDIT_W = $clog2(IdxBufDepth + 1);
   localparam int NP1      = N + 1;
@@ -114,6 +125,7 @@ module rt_trav_shell #(
   logic [N-1:0]     has_hit_q, bounded_q, any_hit_q;
   logic [31:0]      visits_q [N];   // regions entered
   logic [31:0]      tests_q  [N];   // tests issued
+  logic [31:0]      qtests_q [N];   // of them ray-quadric (Quadrics only)
 
   function automatic logic [N-1:0] onehot(input logic valid, input logic [SlotW-1:0] s);
     onehot = valid ? (N'(1) << s) : '0;
@@ -226,10 +238,13 @@ module rt_trav_shell #(
     end
   end
 
-  // ---- Node and triangle responses: in their cycle, or registered ---------------------
+  // ---- Node and primitive responses: in their cycle, or registered ---------------------
   logic               tri_valid;
   logic [SlotW-1:0]   tri_slot;
   rt_pkg::isect_tri_t tri_data;
+  logic                   quad_valid;  // a quadric response (Quadrics only)
+  logic [SlotW-1:0]       quad_slot;
+  rt_pkg::isect_quadric_t quad_data;
 
   if (RegRsp) begin : g_reg_rsp
     // A node or triangle response arriving in cycle c is used in cycle c+1.
@@ -242,6 +257,19 @@ module rt_trav_shell #(
   end else begin : g_direct_rsp
     assign {node_valid, node_tag, node_data} = {node_rsp_valid_i, node_rsp_tag_i, node_rsp_data_i};
     assign {tri_valid, tri_slot, tri_data}         = {tri_rsp_valid_i, tri_rsp_tag_i, tri_rsp_data_i};
+  end
+
+  if (Quadrics != 0 && RegRsp) begin : g_reg_quadric_rsp
+    rt_pipe_reg #(.Width(SlotW + rt_pkg::ISECT_QUADRIC_W)) u_quadric_rsp (
+      .clk_i, .rst_ni, .valid_i(quadric_rsp_valid_i), .data_i({quadric_rsp_tag_i, quadric_rsp_data_i}),
+      .valid_o(quad_valid), .data_o({quad_slot, quad_data}));
+  end else if (Quadrics != 0) begin : g_direct_quadric_rsp
+    assign {quad_valid, quad_slot, quad_data} = {quadric_rsp_valid_i, quadric_rsp_tag_i, quadric_rsp_data_i};
+  end else begin : g_no_quadric_rsp
+    // A unit without rt_quadric takes no quadric response (its image lists none).
+    logic unused_quadric_rsp;
+    assign unused_quadric_rsp = ^{quadric_rsp_valid_i, quadric_rsp_tag_i, quadric_rsp_data_i};
+    assign {quad_valid, quad_slot, quad_data} = '0;
   end
 
   // ---- Node reads and visit records ----------------------------------------------------
@@ -272,8 +300,9 @@ module rt_trav_shell #(
     .out_data_o (visit_data_o)
   );
 
-  // ---- Index reads, index buffer, triangle reads -------------------------------------
+  // ---- Index reads, index buffer, primitive reads -------------------------------------
   logic [ADDR_W-1:0]   tri_addr;
+  logic                tri_quadric;  // the entry's kind bit: the quadric table
   logic                idxbuf_valid, idxbuf_ready, triq_ready;
   logic [IDXBUF_W-1:0] idxbuf_data;
 
@@ -296,35 +325,39 @@ module rt_trav_shell #(
     .out_ready_i(triq_ready),
     .out_data_o (idxbuf_data)
   );
-  assign idxbuf_pop = idxbuf_valid && triq_ready;
-  assign tri_addr   = ADDR_W'(idxbuf_data[IDXBUF_W-1 -: 32]);
+  assign idxbuf_pop  = idxbuf_valid && triq_ready;
+  assign tri_addr    = ADDR_W'(idxbuf_data[IDXBUF_W-1 -: 32]);
+  assign tri_quadric = idxbuf_data[IDXBUF_W-1];
 
-  rt_fifo #(.Width(MEMREQ_W), .Depth(2)) u_tri_q (
+  rt_fifo #(.Width(PRIMREQ_W), .Depth(2)) u_tri_q (
     .clk_i, .rst_ni,
     .in_valid_i (idxbuf_valid),
     .in_ready_o (triq_ready),
-    .in_data_i  ({tri_addr, idxbuf_data[SlotW-1:0]}),
+    .in_data_i  ({tri_quadric, tri_addr, idxbuf_data[SlotW-1:0]}),
     .out_valid_o(tri_req_valid_o),
     .out_ready_i(tri_req_ready_i),
-    .out_data_o ({tri_req_addr_o, tri_req_tag_o})
+    .out_data_o ({tri_req_quadric_o, tri_req_addr_o, tri_req_tag_o})
   );
 
-  // ---- Intersection: the triangle and its slot's ray ------------------------------------
-  // The slot index travels in the ray id field through rt_isect; the real ray
-  // id stays in ray_id_q. rt_isect's results are always taken (res_ready_i =
-  // 1), so its req_ready_o is always 1 and a triangle enters at once.
+  // ---- Intersection: the primitive and its slot's ray ------------------------------------
+  // The slot index travels in the ray id field through rt_isect and
+  // rt_quadric; the real ray id stays in ray_id_q. rt_isect's results are
+  // always taken (res_ready_i = 1), so its req_ready_o is always 1 and a
+  // triangle enters at once. One primitive a cycle: one slot's ray read.
   rt_pkg::isect_ray_t isect_ray;
-  ray_geom_t          tri_geom;
+  ray_geom_t          prim_geom;
+  logic [SlotW-1:0]   prim_slot;
   logic               isect_req_ready, isect_res_valid;
   rt_pkg::isect_res_t isect_res;
 
-  assign tri_geom = geom_q[tri_slot];
+  assign prim_slot = quad_valid ? quad_slot : tri_slot;
+  assign prim_geom = geom_q[prim_slot];
   always_comb begin
-    isect_ray.ray_id  = 32'(tri_slot);
-    isect_ray.org     = tri_geom.org;
-    isect_ray.dir     = tri_geom.dir;
-    isect_ray.t_max   = seg_q[tri_slot];
-    isect_ray.any_hit = any_hit_q[tri_slot];
+    isect_ray.ray_id  = 32'(prim_slot);
+    isect_ray.org     = prim_geom.org;
+    isect_ray.dir     = prim_geom.dir;
+    isect_ray.t_max   = seg_q[prim_slot];
+    isect_ray.any_hit = any_hit_q[prim_slot];
   end
 
   rt_isect u_isect (
@@ -338,7 +371,35 @@ module rt_trav_shell #(
     .res_ready_i (1'b1),
     .res_data_o  (isect_res)
   );
-  assign perf_isect_fire_o = tri_valid && isect_req_ready;
+
+  // rt_quadric beside it. Its result waits while rt_isect's goes to the
+  // closest hit (a triangle's result never waits: its response cannot).
+  logic               quadric_req_ready, quadric_res_valid;
+  rt_pkg::isect_res_t quadric_res;
+  if (Quadrics != 0) begin : g_quadric
+    rt_quadric u_quadric (
+      .clk_i,
+      .rst_ni,
+      .req_valid_i   (quad_valid),
+      .req_ready_o   (quadric_req_ready),
+      .req_ray_i     (isect_ray),
+      .req_quadric_i (quad_data),
+      .res_valid_o   (quadric_res_valid),
+      .res_ready_i   (!isect_res_valid),
+      .res_data_o    (quadric_res)
+    );
+  end else begin : g_no_quadric
+    assign {quadric_req_ready, quadric_res_valid, quadric_res} = '0;
+    logic unused_quad_data;  // no quadric response comes (the tied-off one above)
+    assign unused_quad_data = ^quad_data;
+  end
+  assign perf_isect_fire_o = (tri_valid && isect_req_ready) || quad_valid;
+
+  // The result of this cycle: rt_isect's, else rt_quadric's.
+  logic               prim_res_valid;
+  rt_pkg::isect_res_t prim_res;
+  assign prim_res_valid = isect_res_valid || quadric_res_valid;
+  assign prim_res       = isect_res_valid ? isect_res : quadric_res;
 
   // ---- Closest hit: three stages (rt_closest_hit) ------------------------------------
   // A result leaving rt_isect meets its slot's record here; it reaches the
@@ -351,20 +412,20 @@ module rt_trav_shell #(
   logic [rt_pkg::DET_ABS_W-1:0] take_det;
   logic [2*rt_pkg::BARY_W-1:0] take_bary;
   best_t res_best, res_new;
-  assign res_slot = isect_res.ray_id[SlotW-1:0];
+  assign res_slot = prim_res.ray_id[SlotW-1:0];
   // (The whole element first: Yosys 0.23 takes no field of an array element.)
   assign res_best = best_q[res_slot];
 
   rt_closest_hit #(.SlotW(SlotW), .PayloadW(2 * rt_pkg::BARY_W)) u_closest (
     .clk_i,
     .rst_ni,
-    .valid_i      (isect_res_valid),
+    .valid_i      (prim_res_valid),
     .slot_i       (res_slot),
-    .hit_i        (isect_res.hit),
-    .prim_id_i    (isect_res.prim_id),
-    .t_num_i      (isect_res.t_num),
-    .det_i        (isect_res.det),
-    .payload_i    ({isect_res.u_num, isect_res.v_num}),
+    .hit_i        (prim_res.hit),
+    .prim_id_i    (prim_res.prim_id),
+    .t_num_i      (prim_res.t_num),
+    .det_i        (prim_res.det),
+    .payload_i    ({prim_res.u_num, prim_res.v_num}),
     .has_best_i   (has_hit_q[res_slot]),
     .best_prim_i  (res_best.prim_id),
     .best_t_num_i (res_best.t_num),
@@ -440,13 +501,16 @@ module rt_trav_shell #(
     if (take) best_q[isect_slot] <= res_new;
   end
 
-  // The counts of the result record: regions entered and tests issued (the
-  // runs' triangles; the run ports name different slots in one cycle).
+  // The counts of the result record: regions entered, tests issued (the
+  // runs' primitives; the run ports name different slots in one cycle), and
+  // of them the quadrics (as each enters rt_quadric).
   always_ff @(posedge clk_i) begin
     if (init) begin
       visits_q[init_slot] <= '0;
       tests_q[init_slot]  <= '0;
+      qtests_q[init_slot] <= '0;
     end
+    if (quad_valid) qtests_q[quad_slot] <= qtests_q[quad_slot] + 1'b1;
     if (visit_go) visits_q[visit_slot] <= visits_q[visit_slot] + 1'b1;
     for (int p = 0; p < RunPorts; p++) begin
       if (run_start[p]) begin
@@ -477,7 +541,7 @@ module rt_trav_shell #(
   // The record is assembled only in a cycle with a done grant.
   logic [ResW-1:0] done_rec;
   best_t           done_best;
-  logic [31:0]     done_ray_id, done_visits, done_tests;
+  logic [31:0]     done_ray_id, done_visits, done_tests, done_qtests;
   logic            done_hit;
   always_comb begin
     done_best   = '0;
@@ -491,7 +555,8 @@ module rt_trav_shell #(
   end
   assign done_visits = visits_q[done_slot];
   assign done_tests  = tests_q[done_slot];
-  assign done_rec    = {done_ray_id, done_visits, done_tests, done_hit, done_best};
+  assign done_qtests = (Quadrics != 0) ? qtests_q[done_slot] : '0;
+  assign done_rec    = {done_ray_id, done_visits, done_tests, done_qtests, done_hit, done_best};
 
   rt_fifo #(.Width(ResW), .Depth(2)) u_res_q (
     .clk_i, .rst_ni,
@@ -515,7 +580,12 @@ module rt_trav_shell #(
   `RT_CHECK_IF(a_idx_buf_room, idx_rsp_valid_i, idxbuf_ready)
   `RT_CHECK_IF(a_isect_ready, tri_valid, isect_req_ready)
   `RT_CHECK_IF(a_tri_rsp_slot, tri_valid, fetching[tri_slot])
-  `RT_CHECK_IF(a_res_slot, isect_res_valid, fetching[res_slot])
+  `RT_CHECK_IF(a_res_slot, prim_res_valid, fetching[res_slot])
+  // One primitive response a cycle (one port), and rt_quadric always takes it
+  // (the bubble of each triangle that goes before it makes the room).
+  `RT_CHECK(a_one_primitive, !(tri_valid && quad_valid))
+  `RT_CHECK_IF(a_quadric_ready, quad_valid, quadric_req_ready)
+  `RT_CHECK_IF(a_quadric_rsp_slot, quad_valid, fetching[quad_slot])
   `RT_CHECK_IF(a_init_setup, init, setup_q[init_slot])
   `RT_CHECK(a_cfg_slots, cfg_slots_i != '0 && cfg_slots_i <= CfgSlotsW'(N))
   `RT_CHECK(a_credit_range, credit_q <= CREDIT_W'(IdxBufDepth))

@@ -1,7 +1,7 @@
 // The slot core every traversal unit's walk shares, in two parts.
 //
 // Before the module: RT_WALK_UNIT_PARAMS, the parameters every unit has (the
-// slots and the index buffer, and the widths they imply), first in its
+// slots, the index buffer, whether it holds rt_quadric, and the widths they imply), first in its
 // parameter list. In the port list, rt_trav_ports.svh gives the clock, the
 // reset, the slot count and the streams.
 //
@@ -20,6 +20,7 @@
 `define RT_WALK_UNIT_PARAMS \
   parameter int unsigned RaysInFlight = 32,  /* ray slots, 1..256 */ \
   parameter int unsigned IdxBufDepth  = 64,  /* index responses buffered (credits) */ \
+  parameter int unsigned Quadrics     = 0,   /* 1: rt_quadric beside rt_isect (spheres and cones) */ \
   parameter int unsigned SlotW = (RaysInFlight > 1) ? $clog2(RaysInFlight) : 1,  /* derived */ \
   parameter int unsigned CfgSlotsW = $clog2(RaysInFlight + 1)                     /* derived */
 `define RT_WALK_SETUP_PORTS .clk_i, .rst_ni, .valid_i(alloc), .slot_i(alloc_slot), .ray_i(ray_data_i), \
@@ -32,9 +33,9 @@
   localparam int unsigned N = RaysInFlight;
 `include "rt_walk_ports.svh"
 
-  // The shell (streams, memory ports, rt_isect, closest hits, exit tests, the
+  // The shell (streams, memory ports, rt_isect and rt_quadric, closest hits, exit tests, the
   // counts) and the walk, joined by name.
-  rt_trav_shell #(`RT_WALK_PARAMS, .IdxBufDepth(IdxBufDepth), .RegRsp(RegRsp)) u_shell (.*);
+  rt_trav_shell #(`RT_WALK_PARAMS, .IdxBufDepth(IdxBufDepth), .RegRsp(RegRsp), .Quadrics(Quadrics)) u_shell (.*);
 
   function automatic logic [N-1:0] onehot(input logic valid, input logic [SlotW-1:0] s);
     onehot = valid ? (N'(1) << s) : '0;

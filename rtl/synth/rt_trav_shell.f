@@ -8,4 +8,5 @@ lib/rt_exit_test.sv
 lib/rt_setup_front.sv
 lib/rt_idx_count.sv
 isect/rt_isect.sv
+isect/rt_quadric.sv
 lib/rt_trav_shell.sv

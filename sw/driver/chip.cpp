@@ -29,6 +29,7 @@ ChipFigures& ChipFigures::operator+=(const ChipFigures& o) {
   schedule = o.schedule;
   sort += o.sort;
   treelets += o.treelets;
+  quadricTests += o.quadricTests;
   return *this;
 }
 

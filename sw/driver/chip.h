@@ -35,14 +35,16 @@ constexpr uint32_t nodeReadBytes() {
 
 // The regions of descriptor `Desc`'s image, in port order, not yet placed:
 // its node table (records of the node's bits rounded up to bytes, kGroup of
-// them per read), the index list (32-bit triangle ids), the triangle table
-// (the triangle record's bits rounded up to bytes).
+// them per read), the index list (32-bit primitive entries), the triangle
+// table (the triangle record's bits rounded up to bytes), then the quadric
+// table (likewise; the triangle port reads it too).
 template <class Desc>
-std::array<mem::Region, mem::kPorts> regionsOf(const typename Desc::Image& image) {
+std::array<mem::Region, mem::kRegions> regionsOf(const typename Desc::Image& image) {
   return {mem::Region{Desc::kNames.nodeTable, 0, recordBytes(fx::kNodeBitsOf<Desc>), uint32_t(Desc::kGroup),
                       uint64_t(Desc::nodes(image).size())},
           mem::Region{"index list", 0, 4, 1, uint64_t(image.indices.size())},
-          mem::Region{"triangle table", 0, recordBytes(fx::kIsectTriBits), 1, uint64_t(image.triangles.size())}};
+          mem::Region{"triangle table", 0, recordBytes(fx::kIsectTriBits), 1, uint64_t(image.triangles.size())},
+          mem::Region{"quadric table", 0, recordBytes(fx::kIsectQuadricBits), 1, uint64_t(image.quadrics.size())}};
 }
 
 // The image of descriptor `Desc` in the chip's address space (regionsOf).
@@ -77,6 +79,7 @@ struct ChipFigures {
   Schedule schedule = Schedule::Fifo;
   SortCost sort;  // schedule sorted: what ordering the rays cost
   fx::TreeletCrossings treelets;  // a treelet layout: what a treelet schedule would move (golden walk)
+  uint64_t quadricTests = 0;      // the units' ray-quadric tests (their rt_quadric's work)
 
   int units() const { return int(unitRays.size()); }
   ChipFigures& operator+=(const ChipFigures& o);

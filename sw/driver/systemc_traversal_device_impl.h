@@ -110,6 +110,7 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
                                                            const TraversalRunOptions& options) {
   using Desc = fx::UnitFor<Image>;
   checkTraversalOptions(options, name(), maxRaysInFlight(), Desc::kNames.unit, Desc::kNames.slotsOption);
+  if (impl_ == Impl::ModelRtlIsect) refuseQuadrics(image, name(), Desc::kNames.unit);
   if (impl_ != Impl::Model && options.units > sc::kScChipUnits) {
     throw InputError(fmt::format("--units {}: the SystemC chip of this build has {} units (CMake "
                                  "LANCER_SC_CHIP_UNITS; --model rtl takes up to {})",
@@ -196,6 +197,7 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
     stats.indexReads += t.indexReads;
     stats.triangleReads += t.triangleReads;
     stats.isectTests += t.isectTests;
+    stats.quadricTests += t.quadricTests;
     stats.isectBusyCycles += t.isectTests;  // at most one pair enters a unit per cycle
     stats.unitRays.push_back(t.accepted);
     stats.unitBusyCycles.push_back(t.busyCycles);

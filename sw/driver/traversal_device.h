@@ -63,8 +63,9 @@ struct TraversalRunStats {
   uint64_t stepReadyCycles = 0;  // cycles in which some ray slot could take a step
   uint64_t nodeReads = 0;        // memory reads per region: cell table / child groups,
   uint64_t indexReads = 0;       // index list,
-  uint64_t triangleReads = 0;    // triangle table
-  uint64_t isectTests = 0;       // pairs the intersection pipeline accepted
+  uint64_t triangleReads = 0;    // triangle table (and quadric table: the same port)
+  uint64_t isectTests = 0;       // pairs the intersection pipelines accepted
+  uint64_t quadricTests = 0;     // of which ray-quadric (rt_quadric's)
   uint64_t isectBusyCycles = 0;  // cycles in which it accepted one
   bool cycleAccurate = true;     // false for the golden model (no timing)
   // The chip: per unit the rays it took and the cycles it had one in flight;
@@ -83,6 +84,7 @@ struct TraversalRunStats {
     indexReads += o.indexReads;
     triangleReads += o.triangleReads;
     isectTests += o.isectTests;
+    quadricTests += o.quadricTests;
     isectBusyCycles += o.isectBusyCycles;
     cycleAccurate = o.cycleAccurate;
     addPerUnit(unitRays, o.unitRays);
@@ -114,7 +116,7 @@ using BvhDevice = TraversalDevice<fx::BvhImage>;
 
 // The golden models: each unit's walk (its descriptor's traverse()), no
 // timing. Memory reads are what the hardware would issue (the descriptor's
-// NodeReads), and one index and one triangle read per test.
+// NodeReads), and one index and one primitive read per test.
 template <class Image>
 class GoldenTraversalDevice final : public TraversalDevice<Image> {
  public:
@@ -135,6 +137,7 @@ class GoldenTraversalDevice final : public TraversalDevice<Image> {
       stats.indexReads += t.tests;
       stats.triangleReads += t.tests;
       stats.isectTests += t.tests;
+      stats.quadricTests += t.quadricTests;
     }
     stats.rays = rays.size();
     return stats;

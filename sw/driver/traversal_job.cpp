@@ -128,6 +128,9 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
   job.cycles = total.cycles;
   job.cycleAccurate = total.cycleAccurate;
   job.intersectionTests = total.isectTests;
+  job.quadricTests = total.quadricTests;
+  // Quadrics' ids follow the triangles' (the scene's one id space).
+  if (!image.quadrics.empty()) job.firstQuadric = uint32_t(image.triangles.size());
   job.steps = total.steps;
   job.memoryReads = total.memoryReads();
   job.nodeBytes = total.nodeReads * nodeReadBytes<Unit>();
@@ -139,6 +142,7 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
   job.addCounter("node_bytes", fmt::format("{} bytes", Unit::kNames.nodeTable), double(job.nodeBytes));
   job.addCounter("index_reads", "index list reads", double(total.indexReads));
   job.addCounter("triangle_reads", "triangle reads", double(total.triangleReads));
+  if (!image.quadrics.empty()) job.addCounter("quadric_tests", "ray-quadric tests", double(total.quadricTests));
   if (job.cycleAccurate) {  // timing figures mean nothing for the golden model
     job.addCounter("steps_per_cycle", fmt::format("{}/cycle", Unit::kNames.stepsLabel), double(total.steps) / cycles);
     if (total.stepReadyCycles) {
@@ -151,7 +155,7 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
                    config.raysInFlight ? config.raysInFlight : model.maxRaysInFlight());
     if (!total.unitRays.empty()) {
       job.chip = ChipFigures{memoryConfigOf(options), total.unitRays, total.unitBusyCycles, total.memory,
-                             config.schedule, sort, treelets};
+                             config.schedule, sort, treelets, total.quadricTests};
     }
   }
   return job;

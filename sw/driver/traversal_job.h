@@ -17,12 +17,12 @@
 
 namespace lancer {
 
-// A unit's memory image for a scene: the triangles quantized, then the
-// descriptor's build() with the --grid-res / --octree-* options (0: the golden
-// model's heuristics).
+// A unit's memory image for a scene: the triangles and the native quadrics
+// quantized, then the descriptor's build() with the --grid-res / --octree-*
+// options (0: the golden model's heuristics).
 template <class Unit>
 typename Unit::Image buildImageFor(const Scene& scene, const Quantizer& quantizer, const AccelOptions& options) {
-  return Unit::build(quantizer.quantize(scene), options);
+  return Unit::build(quantizer.quantizeTriangles(scene), options, quantizer.quantizeQuadrics(scene));
 }
 
 // The descriptor's figures of a unit's image (Unit::imageCounters: the grid's
@@ -36,6 +36,7 @@ std::vector<JobCounter> imageFigures(const typename Unit::Image& image) {
   for (const fx::ImageCounter& c : Unit::imageCounters(image)) figures.push_back({c.key, c.label, c.value});
   uint64_t bytes = 0, records = 1;
   for (const mem::Region& r : regionsOf<Unit>(image)) {
+    if (r.name == "quadric table" && r.records == 0) continue;  // a scene of triangles
     std::string key = r.name + "_image_bytes";
     std::replace(key.begin(), key.end(), ' ', '_');
     figures.push_back({key, "image: " + r.name, double(r.bytes())});

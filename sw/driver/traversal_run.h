@@ -74,6 +74,18 @@ inline void checkTraversalOptions(const TraversalRunOptions& options, std::strin
   checkChipOptions(options);
 }
 
+// InputError for an image with quadrics on a model of the unit without
+// rt_quadric (`model`: the mixed system, whose rt_isect is the Verilated one).
+template <class Image>
+void refuseQuadrics(const Image& image, std::string_view model, const char* unit) {
+  if (!image.quadrics.empty()) {
+    throw InputError(fmt::format("the {} model of the {} unit has no quadric pipeline beside its Verilated "
+                                 "rt_isect, and the scene has {} quadrics: use --model systemc or rtl, or "
+                                 "--quadrics tessellate",
+                                 model, unit, image.quadrics.size()));
+  }
+}
+
 // The seeded stream stimulus of one unit of a traversal-unit run, drawn in
 // the same order by every model: per cycle one draw each for the input bubble
 // (only while no ray is on offer), the result stall and the visit stall. Unit
@@ -131,6 +143,7 @@ void idleInputs(Top& top) {
   rspValid = 0;
   top.idx_rsp_valid_i = 0;
   top.tri_rsp_valid_i = 0;
+  top.quadric_rsp_valid_i = 0;
   top.cfg_slots_i = Unit::kMaxSlots;
   configure(top, typename Unit::Desc::Image{});
 }
@@ -143,6 +156,7 @@ template <class Top, class Image>
 struct PortImage {
   using Desc = typename TraversalTop<Top>::Desc;
   static constexpr size_t kTriWords = fx::kIsectTriWords;
+  static constexpr size_t kQuadricWords = size_t(fx::wireWords(fx::kIsectQuadricBits));
   static constexpr size_t kNodeWords = size_t(fx::wireWords(fx::kNodeBitsOf<Desc>));
   static constexpr size_t kGroupWords = Desc::kGroup * kNodeWords;
 
@@ -155,11 +169,15 @@ struct PortImage {
     for (size_t i = 0; i < image.triangles.size(); ++i) {
       fx::packWire(image.triangles[i], std::span<uint32_t>(triWire).subspan(i * kTriWords, kTriWords));
     }
+    quadricWire.resize(image.quadrics.size() * kQuadricWords);
+    for (size_t i = 0; i < image.quadrics.size(); ++i) {
+      fx::packWire(image.quadrics[i], std::span<uint32_t>(quadricWire).subspan(i * kQuadricWords, kQuadricWords));
+    }
   }
 
   const Image& image;
   const std::remove_cvref_t<decltype(Desc::nodes(std::declval<const Image&>()))>& nodes;
-  std::vector<uint32_t> nodeWire, triWire;
+  std::vector<uint32_t> nodeWire, triWire, quadricWire;
 };
 
 // What the units of a run share: the rays and their traces (each written only
@@ -313,8 +331,21 @@ class UnitRun {
       top_.idx_rsp_data_i = image.indices[addr];
       top_.idx_rsp_tag_i = tag;
     }
-    top_.tri_rsp_valid_i = response(memory, mem::Port::Triangle, addr, tag);
-    if (top_.tri_rsp_valid_i) {
+    // The primitive port: a triangle's record, or a quadric's (the request's kind bit).
+    const bool primitive = response(memory, mem::Port::Triangle, addr, tag);
+    const bool quadric = primitive && fx::isQuadricEntry(addr);
+    top_.tri_rsp_valid_i = primitive && !quadric;
+    top_.quadric_rsp_valid_i = quadric;
+    if (quadric) {
+      ++stats_.quadricTests;  // each quadric read is one test of rt_quadric
+      const uint32_t place = fx::entryPlace(addr);
+      if (place >= image.quadrics.size()) {
+        fail(fmt::format("quadric table read at {} outside the image ({} entries)", place, image.quadrics.size()));
+      }
+      writePort(top_.quadric_rsp_data_i, &ports_.quadricWire[size_t(place) * Ports::kQuadricWords],
+                Ports::kQuadricWords);
+      top_.quadric_rsp_tag_i = tag;
+    } else if (primitive) {
       if (addr >= image.triangles.size()) {
         fail(fmt::format("triangle table read at {} outside the image ({} entries)", addr, image.triangles.size()));
       }
@@ -356,8 +387,10 @@ class UnitRun {
     stats_.nodeReads += request(memory, mem::Port::Node, reqValid, reqReady, reqAddr, reqTag);
     stats_.indexReads += request(memory, mem::Port::Index, top_.idx_req_valid_o, top_.idx_req_ready_i,
                                  top_.idx_req_addr_o, top_.idx_req_tag_o);
+    // A primitive read names its table by the entry's kind bit (mem::AddressMap::span).
+    const uint32_t primitive = uint32_t(top_.tri_req_addr_o) | (top_.tri_req_quadric_o ? fx::kQuadricEntryBit : 0u);
     stats_.triangleReads += request(memory, mem::Port::Triangle, top_.tri_req_valid_o, top_.tri_req_ready_i,
-                                    top_.tri_req_addr_o, top_.tri_req_tag_o);
+                                    primitive, top_.tri_req_tag_o);
     if (started_ && top_.perf_step_ready_o) ++stats_.stepReadyCycles;
     if (!top_.perf_isect_fire_o) return false;
     ++stats_.isectTests;
@@ -385,6 +418,7 @@ class UnitRun {
     request(reqValid, reqAddr, reqTag, c.nodeReq, c.nodeAddr, c.nodeTag);
     request(top_.idx_req_valid_o, top_.idx_req_addr_o, top_.idx_req_tag_o, c.idxReq, c.idxAddr, c.idxTag);
     request(top_.tri_req_valid_o, top_.tri_req_addr_o, top_.tri_req_tag_o, c.triReq, c.triAddr, c.triTag);
+    c.triQuadric = top_.tri_req_valid_o && top_.tri_req_quadric_o;
     c.perfIsectFire = top_.perf_isect_fire_o;
     c.perfStepReady = top_.perf_step_ready_o;
     if (c.resValid) {

@@ -107,13 +107,9 @@ struct Walker {
     }
   }
 
-  // Tests every triangle of the leaf; true if an any-hit ray is answered.
+  // Tests every primitive of the leaf; true if an any-hit ray is answered.
   bool testLeaf(const BvhRef& leaf) {
-    for (uint32_t k = 0; k < leaf.count; ++k) {
-      const IsectResult r = intersect(ray, image.triangles[image.indices[leaf.first + k]]);
-      ++trace.tests;
-      if (r.hit && (!trace.hit || closerResult(r, *trace.hit))) trace.hit = r;
-    }
+    for (uint32_t k = 0; k < leaf.count; ++k) testEntry(trace, ray, tablesOf(image), image.indices[leaf.first + k]);
     return ray.anyHit && trace.hit.has_value();
   }
 
@@ -161,7 +157,7 @@ uint32_t bvhPlaneUp(int64_t plane, int64_t base, int shift) {
   return uint32_t((plane - base + (int64_t(1) << shift) - 1) >> shift);
 }
 
-BvhImage buildBvhImage(std::vector<QTriangle> triangles, int leafSize) {
+BvhImage buildBvhImage(std::vector<QTriangle> triangles, int leafSize, std::vector<QQuadric> quadrics) {
   if (leafSize < 1 || leafSize > kBvhMaxLeafSize) {
     throw InputError(fmt::format("BVH leaf size {} is out of range: the unit's {}-bit count allows 1..{}", leafSize,
                                  kBvhCountBits, kBvhMaxLeafSize));
@@ -169,10 +165,14 @@ BvhImage buildBvhImage(std::vector<QTriangle> triangles, int leafSize) {
   BvhImage image;
   image.leafSize = leafSize;
   image.triangles = std::move(triangles);
-  std::vector<Aabb> boxes(image.triangles.size());
-  for (size_t i = 0; i < boxes.size(); ++i) boxes[i] = toAabb(latticeBounds(image.triangles[i]));
+  image.quadrics = std::move(quadrics);
+  const PrimitiveTables primitives = tablesOf(image);
+  const std::vector<uint32_t> entries = primitives.entries();
+  std::vector<Aabb> boxes(entries.size());
+  for (size_t i = 0; i < boxes.size(); ++i) boxes[i] = toAabb(primitives.bounds(entries[i]));
   const SahTree tree = buildSah(boxes, SahOptions{.leafSize = leafSize, .maxDepth = kBvhMaxLevels});
-  image.indices = tree.order;
+  image.indices.resize(tree.order.size());
+  for (size_t i = 0; i < tree.order.size(); ++i) image.indices[i] = entries[tree.order[i]];
   image.depth = tree.depth;
   image.leaves = tree.leaves;
   if (!tree.nodes.empty()) {
@@ -233,13 +233,23 @@ void layoutBvhTreelets(BvhImage& image, uint32_t blockNodes) {
   if (!std::has_single_bit(blockNodes)) {
     throw InputError(fmt::format("BVH treelet blocks of {} nodes: a block must be a power of two", blockNodes));
   }
-  // Triangles in leaf order.
-  std::vector<QTriangle> triangles(image.indices.size());
-  for (size_t i = 0; i < image.indices.size(); ++i) {
-    triangles[i] = image.triangles[image.indices[i]];
-    image.indices[i] = uint32_t(i);
+  // Primitives in leaf order, each kind in its table.
+  std::vector<QTriangle> triangles;
+  std::vector<QQuadric> quadrics;
+  triangles.reserve(image.triangles.size());
+  quadrics.reserve(image.quadrics.size());
+  for (uint32_t& entry : image.indices) {
+    const uint32_t place = entryPlace(entry);
+    if (isQuadricEntry(entry)) {
+      entry = quadricEntry(uint32_t(quadrics.size()));
+      quadrics.push_back(image.quadrics[place]);
+    } else {
+      entry = triangleEntry(uint32_t(triangles.size()));
+      triangles.push_back(image.triangles[place]);
+    }
   }
   image.triangles = std::move(triangles);
+  image.quadrics = std::move(quadrics);
   // Treelets, packed next-fit into the blocks.
   const std::vector<std::vector<uint32_t>> treelets = formTreelets(image.nodes, blockNodes);
   std::vector<uint32_t> placed(image.nodes.size());
@@ -268,11 +278,12 @@ void layoutBvhTreelets(BvhImage& image, uint32_t blockNodes) {
 }
 
 void checkBvhImageFits(const BvhImage& image, int addrBits) {
-  // The index list and the triangle table hold an entry a triangle, the node
-  // table fewer: no leaf size helps, only a smaller scene.
+  // The index list and the primitive tables hold an entry a primitive, the
+  // node table fewer: no leaf size helps, only a smaller scene.
   checkRegionFits("bvh", "node table", image.nodes.size(), "use a smaller scene", addrBits);
   checkRegionFits("bvh", "index list", image.indices.size(), "use a smaller scene", addrBits);
   checkRegionFits("bvh", "triangle table", image.triangles.size(), "use a smaller scene", addrBits);
+  checkRegionFits("bvh", "quadric table", image.quadrics.size(), "use a smaller scene", addrBits);
 }
 
 bool culledBy(const IsectResult& bound, u128 entry, const BvhRaySetup& ray) {

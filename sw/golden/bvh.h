@@ -16,6 +16,7 @@
 
 #include "golden/bvh_formats.h"
 #include "golden/lattice.h"
+#include "golden/primitives.h"
 #include "golden/records.h"
 #include "golden/trace.h"
 
@@ -51,8 +52,9 @@ struct BvhImage {
   int leafSize = 0;
   BvhRef root;                       // the tree's root (cfg_root_i)
   std::vector<BvhNode> nodes;        // interior nodes; the root, if interior, is node 0
-  std::vector<uint32_t> indices;     // triangle ids, leaf by leaf
-  std::vector<QTriangle> triangles;  // by triangle id
+  std::vector<uint32_t> indices;     // primitive entries (golden/primitives.h), leaf by leaf
+  std::vector<QTriangle> triangles;  // by place
+  std::vector<QQuadric> quadrics;    // by place
   int depth = 0;                     // levels, root = 1
   size_t leaves = 0;
   // The treelet layout (layoutBvhTreelets); 0 treeletNodes: the depth-first layout.
@@ -65,11 +67,12 @@ struct BvhImage {
 
 inline constexpr int kDefaultBvhLeafSize = 4;
 
-// Builds the image from the binned-SAH tree over the triangles' lattice boxes:
-// each interior node's two children's boxes quantized outwards in its frame.
+// Builds the image from the binned-SAH tree over the primitives' lattice boxes
+// (a triangle's integer bounding box, a quadric's record bounds): each
+// interior node's two children's boxes quantized outwards in its frame.
 // Throws InputError for a leaf size outside 1..kBvhMaxLeafSize, or an image
 // that does not fit kMemAddrBits.
-BvhImage buildBvhImage(std::vector<QTriangle> triangles, int leafSize);
+BvhImage buildBvhImage(std::vector<QTriangle> triangles, int leafSize, std::vector<QQuadric> quadrics = {});
 
 // The treelet layout (docs/scheduling.md, "The treelet layout"): the tree
 // cut greedily into treelets of at most `blockNodes` interior nodes (Aila &
@@ -78,9 +81,9 @@ BvhImage buildBvhImage(std::vector<QTriangle> triangles, int leafSize);
 // new treelets), packed in depth-first order into aligned blocks of
 // `blockNodes` node-table entries (a block may hold several small treelets;
 // entries left over are padding, never read), each treelet's nodes in
-// depth-first order inside its block. The triangle table is put in leaf order
-// (the index list then counts 0, 1, 2, ...), so a leaf's triangles are
-// adjacent. Every ray walks the same nodes in the same order to the same hit;
+// depth-first order inside its block. The triangle and quadric tables are put
+// in leaf order (the index list then counts 0, 1, 2, ... per kind), so a
+// leaf's primitives are adjacent. Every ray walks the same nodes in the same order to the same hit;
 // only the node-table indices and the triangles' places change.
 // `blockNodes` must be a power of two (InputError otherwise).
 void layoutBvhTreelets(BvhImage& image, uint32_t blockNodes);
@@ -95,7 +98,7 @@ constexpr int bvhSuspendedBits(size_t stackEntries) {
 TreeletCrossings bvhTreeletCrossings(const BvhImage& image, const QRay& ray);
 
 // Throws InputError, naming the first region that overflows, unless the node
-// table, the index list and the triangle table each fit `addrBits` address
+// table, the index list and the primitive tables each fit `addrBits` address
 // bits. buildBvhImage checks the unit's kMemAddrBits.
 void checkBvhImageFits(const BvhImage& image, int addrBits = kMemAddrBits);
 

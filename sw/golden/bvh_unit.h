@@ -50,8 +50,9 @@ struct BvhUnit : UnitBase<UnitKind::Bvh, BvhImage, BvhNode, kBvhNodeFields, kBvh
   }
   static constexpr uint32_t kNodeBytes = uint32_t(kBvhNodeBits + 7) / 8;
   static_assert(AccelOptions{}.bvhLeafSize == kDefaultBvhLeafSize, "a replay omits --bvh-leaf at the default");
-  static Image build(std::vector<QTriangle> triangles, const AccelOptions& options) {
-    Image image = buildBvhImage(std::move(triangles), options.bvhLeafSize ? options.bvhLeafSize : kDefaultBvhLeafSize);
+  static Image build(std::vector<QTriangle> triangles, const AccelOptions& options, std::vector<QQuadric> quadrics = {}) {
+    Image image = buildBvhImage(std::move(triangles), options.bvhLeafSize ? options.bvhLeafSize : kDefaultBvhLeafSize,
+                                std::move(quadrics));
     if (options.bvhTreeletBytes != 0) {
       if (options.bvhTreeletBytes < int(kNodeBytes)) {
         throw InputError(fmt::format("--bvh-treelet-bytes {}: a treelet holds at least one node ({} bytes)",

@@ -85,6 +85,10 @@ inline constexpr uint64_t kSegEndNone = (uint64_t(1) << kSegEndBits) - 1;
 #define LANCER_MEM_ADDR_BITS 24
 #endif
 inline constexpr int kMemAddrBits = LANCER_MEM_ADDR_BITS;
+// An index-list entry names a primitive: its top bit the kind (set: the
+// quadric table's), the rest its place in that table (golden/primitives.h).
+inline constexpr uint32_t kQuadricEntryBit = uint32_t(1) << 31;
+static_assert(kMemAddrBits < 31, "an index entry's place lies below its kind bit");
 
 // ---- Pipeline timing ---------------------------------------------------------
 // Cycles from an accepted request to its result appearing on the output, with

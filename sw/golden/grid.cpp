@@ -13,27 +13,28 @@
 
 namespace lancer::fx {
 
-GridRes chooseGridResolution(std::span<const QTriangle> triangles) {
+GridRes chooseGridResolution(const PrimitiveTables& primitives) {
   std::array<int64_t, 3> lo{kPosMax, kPosMax, kPosMax}, hi{0, 0, 0};
-  for (const QTriangle& t : triangles)
-    for (const auto& v : t.v)
-      for (int a = 0; a < 3; ++a) {
-        lo[a] = std::min(lo[a], v[a]);
-        hi[a] = std::max(hi[a], v[a]);
-      }
+  for (uint32_t entry : primitives.entries()) {
+    const LatticeBox box = primitives.bounds(entry);
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], box.lo[a]);
+      hi[a] = std::max(hi[a], box.hi[a]);
+    }
+  }
   std::array<double, 3> extent{};
   double volume = 1.0;
   for (int a = 0; a < 3; ++a) {
     extent[a] = double(std::max<int64_t>(hi[a] - lo[a], 1));
     volume *= extent[a];
   }
-  const double k = std::cbrt(kCellsPerTriangle * double(std::max<size_t>(triangles.size(), 1)) / volume);
+  const double k = std::cbrt(kCellsPerTriangle * double(std::max<size_t>(primitives.size(), 1)) / volume);
   GridRes res{};
   for (int a = 0; a < 3; ++a) res[a] = int(std::clamp<double>(std::round(extent[a] * k), 1.0, kGridResMax));
   return res;
 }
 
-GridImage buildGridImage(std::vector<QTriangle> triangles, const GridRes& res) {
+GridImage buildGridImage(std::vector<QTriangle> triangles, const GridRes& res, std::vector<QQuadric> quadrics) {
   for (int a = 0; a < 3; ++a) {
     if (res[a] < 1 || res[a] > kGridResMax) {
       throw InputError(fmt::format("grid resolution {}x{}x{} is out of range: each axis must lie in 1..{}", res[0],
@@ -48,6 +49,11 @@ GridImage buildGridImage(std::vector<QTriangle> triangles, const GridRes& res) {
   };
   checkFits("cell table", cellCount);
   checkFits("triangle table", triangles.size());
+  checkFits("quadric table", quadrics.size());
+  image.triangles = std::move(triangles);
+  image.quadrics = std::move(quadrics);
+  const PrimitiveTables primitives = tablesOf(image);
+  const std::vector<uint32_t> entries = primitives.entries();
 
   // Cell range of a triangle on one axis, boundaries included: cell i spans the
   // scaled interval [i 2^P, (i+1) 2^P]; a box [lo, hi] touches it iff
@@ -59,9 +65,9 @@ GridImage buildGridImage(std::vector<QTriangle> triangles, const GridRes& res) {
     return std::pair<int, int>{int(std::max<int64_t>(first, 0)), int(std::min<int64_t>(last, r - 1))};
   };
   // Two passes (count, then fill) so a 256^3 grid needs no per-cell containers.
-  auto forEachCell = [&](uint32_t id, auto&& visit) {
+  auto forEachCell = [&](uint32_t entry, auto&& visit) {
     std::array<std::pair<int, int>, 3> span{};
-    const LatticeBox box = latticeBounds(triangles[id]);
+    const LatticeBox box = primitives.bounds(entry);
     for (int a = 0; a < 3; ++a) span[a] = range(box.lo[a], box.hi[a], res[a]);
     for (int z = span[2].first; z <= span[2].second; ++z)
       for (int y = span[1].first; y <= span[1].second; ++y)
@@ -69,8 +75,8 @@ GridImage buildGridImage(std::vector<QTriangle> triangles, const GridRes& res) {
   };
   image.cells.resize(cellCount);
   uint64_t references = 0;
-  for (uint32_t id = 0; id < triangles.size(); ++id) {
-    forEachCell(id, [&](uint32_t cell) { ++image.cells[cell].count; });
+  for (uint32_t entry : entries) {
+    forEachCell(entry, [&](uint32_t cell) { ++image.cells[cell].count; });
   }
   for (GridCell& cell : image.cells) {
     cell.first = uint32_t(references);
@@ -79,13 +85,12 @@ GridImage buildGridImage(std::vector<QTriangle> triangles, const GridRes& res) {
     cell.count = 0;
   }
   image.indices.resize(references);
-  for (uint32_t id = 0; id < triangles.size(); ++id) {  // ascending ids within each cell
-    forEachCell(id, [&](uint32_t cell) {
+  for (uint32_t entry : entries) {  // ascending entries within each cell
+    forEachCell(entry, [&](uint32_t cell) {
       GridCell& c = image.cells[cell];
-      image.indices[c.first + c.count++] = id;
+      image.indices[c.first + c.count++] = entry;
     });
   }
-  image.triangles = std::move(triangles);
   return image;
 }
 
@@ -142,16 +147,13 @@ bool GridDda::holds(const IsectResult& hit) const {
 
 GridTrace traverseGrid(const GridImage& image, const QRay& ray) {
   GridTrace trace;
+  const PrimitiveTables primitives = tablesOf(image);
   GridDda dda = GridDda::setup(image.res, ray);
   for (;;) {
     const uint32_t id = dda.cellId();
     trace.visits.push_back(id);
     const GridCell& cell = image.cells[id];
-    for (uint32_t k = 0; k < cell.count; ++k) {
-      const IsectResult r = intersect(ray, image.triangles[image.indices[cell.first + k]]);
-      ++trace.tests;
-      if (r.hit && (!trace.hit || closerResult(r, *trace.hit))) trace.hit = r;
-    }
+    for (uint32_t k = 0; k < cell.count; ++k) testEntry(trace, ray, primitives, image.indices[cell.first + k]);
     if (ray.anyHit && trace.hit) break;  // any hit answers: no exit test
     if (const auto bound = walkBound(ray, trace.hit); bound && dda.holds(*bound)) break;
     if (!dda.advance()) break;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "golden/grid_formats.h"
+#include "golden/primitives.h"
 #include "golden/records.h"
 #include "golden/trace.h"
 
@@ -30,24 +31,29 @@ struct GridCell {
 struct GridImage {
   GridRes res{1, 1, 1};
   std::vector<GridCell> cells;       // cell id = (z * Ry + y) * Rx + x
-  std::vector<uint32_t> indices;     // triangle ids; ascending within a cell
-  std::vector<QTriangle> triangles;  // by triangle id
+  std::vector<uint32_t> indices;     // primitive entries (golden/primitives.h); ascending within a cell
+  std::vector<QTriangle> triangles;  // by place (a triangle's place is its id)
+  std::vector<QQuadric> quadrics;    // by place
 
   uint32_t cellId(const std::array<int, 3>& c) const {
     return uint32_t((c[2] * res[1] + c[1]) * res[0] + c[0]);
   }
 };
 
-// Cells about kCellsPerTriangle per triangle, per axis proportional to the
-// scene's extent on the lattice, each axis clamped to 1..kGridResMax.
+// Cells about kCellsPerTriangle per primitive, per axis proportional to the
+// extent of the primitives' lattice boxes, each axis clamped to 1..kGridResMax.
 inline constexpr double kCellsPerTriangle = 4.0;
-GridRes chooseGridResolution(std::span<const QTriangle> triangles);
+GridRes chooseGridResolution(const PrimitiveTables& primitives);
+inline GridRes chooseGridResolution(std::span<const QTriangle> triangles) {
+  return chooseGridResolution(PrimitiveTables{triangles, {}});
+}
 
-// Bins every triangle into every cell its integer bounding box touches, cell
-// boundaries included (so a hit exactly on a boundary is listed on both
-// sides). Throws InputError for a resolution outside 1..kGridResMax or an
-// image that does not fit kMemAddrBits.
-GridImage buildGridImage(std::vector<QTriangle> triangles, const GridRes& res);
+// Bins every primitive into every cell its lattice box (a triangle's integer
+// bounding box, a quadric's record bounds) touches, cell boundaries included
+// (so a hit exactly on a boundary is listed on both sides). Throws InputError
+// for a resolution outside 1..kGridResMax or an image that does not fit
+// kMemAddrBits.
+GridImage buildGridImage(std::vector<QTriangle> triangles, const GridRes& res, std::vector<QQuadric> quadrics = {});
 
 // The DDA state of one ray: only additions and comparisons after setup().
 struct GridDda {

@@ -33,10 +33,10 @@ struct GridUnit : UnitBase<UnitKind::Grid, GridImage, GridCell, kGridCellFields,
              fmt::format("Grid cells per axis, 1..{} (default: from the triangle count)", kGridResMax), false,
              {"grid_resolution_x", "grid_resolution_y", "grid_resolution_z"}, true, kGridResMax}};
   }
-  static Image build(std::vector<QTriangle> triangles, const AccelOptions& options) {
+  static Image build(std::vector<QTriangle> triangles, const AccelOptions& options, std::vector<QQuadric> quadrics = {}) {
     const int r = options.gridResolution;
-    const GridRes res = r ? GridRes{r, r, r} : chooseGridResolution(triangles);
-    return buildGridImage(std::move(triangles), res);
+    const GridRes res = r ? GridRes{r, r, r} : chooseGridResolution(PrimitiveTables{triangles, quadrics});
+    return buildGridImage(std::move(triangles), res, std::move(quadrics));
   }
 
   static void checkImage(const Image& image, std::span<const QRay>) {

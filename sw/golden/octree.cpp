@@ -28,6 +28,7 @@ struct Box {
 
 struct Builder {
   OctreeImage& image;
+  PrimitiveTables primitives;
   void build(uint32_t index, const Box& box, int depth, const std::vector<uint32_t>& tris) {
     image.depth = std::max(image.depth, depth);
     if (depth < image.maxDepth && int(tris.size()) > image.leafSize) {
@@ -35,8 +36,8 @@ struct Builder {
       size_t references = 0;
       for (int i = 0; i < 8; ++i) {
         const Box c = box.child(i);
-        for (uint32_t id : tris) {
-          if (touches(image.triangles[id], c)) lists[i].push_back(id);
+        for (uint32_t entry : tris) {
+          if (touches(primitives.bounds(entry), c)) lists[i].push_back(entry);
         }
         references += lists[i].size();
       }
@@ -55,9 +56,8 @@ struct Builder {
     image.nodes[index] = OctreeNode{true, uint32_t(image.indices.size()), uint32_t(tris.size())};
     image.indices.insert(image.indices.end(), tris.begin(), tris.end());
   }
-  // The triangle's integer bounding box meets the closed box.
-  static bool touches(const QTriangle& t, const Box& b) {
-    const LatticeBox tb = latticeBounds(t);
+  // The primitive's lattice box meets the closed box.
+  static bool touches(const LatticeBox& tb, const Box& b) {
     for (int a = 0; a < 3; ++a) {
       if (tb.hi[a] < b.lo[a] || tb.lo[a] > b.lo[a] + b.side) return false;
     }
@@ -93,11 +93,7 @@ struct Walker {
     trace.visits.push_back(index);
     const OctreeNode& node = image.nodes[index];
     if (node.leaf) {
-      for (uint32_t k = 0; k < node.count; ++k) {
-        const IsectResult r = intersect(ray, image.triangles[image.indices[node.first + k]]);
-        ++trace.tests;
-        if (r.hit && (!trace.hit || closerResult(r, *trace.hit))) trace.hit = r;
-      }
+      for (uint32_t k = 0; k < node.count; ++k) testEntry(trace, ray, tablesOf(image), image.indices[node.first + k]);
       if (ray.anyHit && trace.hit) {  // any hit answers: no exit test
         done = true;
         return;
@@ -135,7 +131,8 @@ int defaultOctreeDepth(size_t triangles) {
   return std::clamp(levels, 1, kOctreeMaxDepth);
 }
 
-OctreeImage buildOctreeImage(std::vector<QTriangle> triangles, int maxDepth, int leafSize) {
+OctreeImage buildOctreeImage(std::vector<QTriangle> triangles, int maxDepth, int leafSize,
+                             std::vector<QQuadric> quadrics) {
   if (maxDepth < 1 || maxDepth > kOctreeMaxDepth) {
     throw InputError(fmt::format("octree depth {} is out of range: the {}-bit position format supports depths 1..{} "
                                  "(a node at depth {} is one lattice unit wide)",
@@ -146,13 +143,14 @@ OctreeImage buildOctreeImage(std::vector<QTriangle> triangles, int maxDepth, int
   image.maxDepth = maxDepth;
   image.leafSize = leafSize;
   image.triangles = std::move(triangles);
-  std::vector<uint32_t> all(image.triangles.size());
-  for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+  image.quadrics = std::move(quadrics);
+  const PrimitiveTables primitives = tablesOf(image);
   image.nodes.resize(1);
-  Builder{image}.build(0, Box{}, 0, all);
+  Builder{image, primitives}.build(0, Box{}, 0, primitives.entries());
   checkRegionFits("octree", "node table", image.nodes.size(), "lower --octree-depth or raise --octree-leaf");
   checkRegionFits("octree", "index list", image.indices.size(), "lower --octree-depth or raise --octree-leaf");
   checkRegionFits("octree", "triangle table", image.triangles.size(), "use a smaller scene");
+  checkRegionFits("octree", "quadric table", image.quadrics.size(), "use a smaller scene");
   return image;
 }
 

@@ -13,6 +13,7 @@
 
 #include "golden/lattice.h"
 #include "golden/octree_formats.h"
+#include "golden/primitives.h"
 #include "golden/records.h"
 #include "golden/trace.h"
 
@@ -24,7 +25,7 @@ namespace lancer::fx {
 struct OctreeNode {
   bool leaf = true;
   uint32_t first = 0;  // interior: index of child 0; leaf: first index-list entry
-  uint32_t count = 0;  // leaf: triangles listed; interior: 0
+  uint32_t count = 0;  // leaf: primitives listed; interior: 0
   bool operator==(const OctreeNode&) const = default;
 };
 
@@ -32,8 +33,9 @@ struct OctreeImage {
   int maxDepth = 0;
   int leafSize = 0;
   std::vector<OctreeNode> nodes;     // node 0 is the root
-  std::vector<uint32_t> indices;     // triangle ids; ascending within a leaf
-  std::vector<QTriangle> triangles;  // by triangle id
+  std::vector<uint32_t> indices;     // primitive entries (golden/primitives.h); ascending within a leaf
+  std::vector<QTriangle> triangles;  // by place (a triangle's place is its id)
+  std::vector<QQuadric> quadrics;    // by place
   int depth = 0;                     // deepest leaf built
 };
 
@@ -43,13 +45,15 @@ inline constexpr int kDefaultOctreeLeafSize = 8;
 int defaultOctreeDepth(size_t triangles);
 
 // Builds top-down over the lattice cube: a node becomes a leaf at maxDepth,
-// when it holds at most leafSize triangles, or when splitting would not lower
+// when it holds at most leafSize primitives, or when splitting would not lower
 // the expected tests of a ray crossing it (the children's counts, summed, at
 // least four times the node's: each child has a quarter of its surface).
-// Triangles are binned by their integer bounding boxes against closed child
-// boxes, so a triangle on a split plane is listed on both sides. Throws InputError for a depth outside 1..kOctreeMaxDepth,
+// Primitives are binned by their lattice boxes (a triangle's integer bounding
+// box, a quadric's record bounds) against closed child boxes, so a primitive
+// on a split plane is listed on both sides. Throws InputError for a depth outside 1..kOctreeMaxDepth,
 // a leaf size < 1, or an image that does not fit kMemAddrBits.
-OctreeImage buildOctreeImage(std::vector<QTriangle> triangles, int maxDepth, int leafSize);
+OctreeImage buildOctreeImage(std::vector<QTriangle> triangles, int maxDepth, int leafSize,
+                             std::vector<QQuadric> quadrics = {});
 
 // One plane parameter over the common denominator, or +-infinity for an axis
 // the ray never crosses.

@@ -34,10 +34,11 @@ struct OctreeUnit : UnitBase<UnitKind::Octree, OctreeImage, OctreeNode, kOctreeN
              fmt::format("Octree leaf size: split nodes holding more triangles (default {})", kDefaultOctreeLeafSize),
              true, {"octree_leaf_size"}}};
   }
-  static Image build(std::vector<QTriangle> triangles, const AccelOptions& options) {
-    const int depth = options.octreeMaxDepth ? options.octreeMaxDepth : defaultOctreeDepth(triangles.size());
+  static Image build(std::vector<QTriangle> triangles, const AccelOptions& options, std::vector<QQuadric> quadrics = {}) {
+    const size_t primitives = triangles.size() + quadrics.size();
+    const int depth = options.octreeMaxDepth ? options.octreeMaxDepth : defaultOctreeDepth(primitives);
     const int leaf = options.octreeLeafSize ? options.octreeLeafSize : kDefaultOctreeLeafSize;
-    return buildOctreeImage(std::move(triangles), depth, leaf);
+    return buildOctreeImage(std::move(triangles), depth, leaf, std::move(quadrics));
   }
 
   static void checkImage(const Image& image, std::span<const QRay> rays) {

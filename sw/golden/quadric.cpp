@@ -1,5 +1,7 @@
 #include "golden/quadric.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "golden/isect.h"
@@ -86,6 +88,31 @@ i128 roundShift(i128 v, int e) {
   return v < 0 ? -i128(mag) : i128(mag);
 }
 
+// The box of a cone's end discs, each radius widened by the rounding of a
+// record at scale 2^e (sqrt of the bound above: (R + delta)^2 >= R^2 + delta^2),
+// and one unit for the doubles and the root's rounding (a hit the pipeline
+// computes lies in the box: the structures list the cone wherever it may hit). A disc of radius R about axis w reaches
+// R sqrt(1 - w_a^2 / W) along axis a.
+LatticeBox coneBounds(const LatticeCone& cone, int scaleExp) {
+  const double len2 = double(cone.apex[0] - cone.base[0]) * double(cone.apex[0] - cone.base[0]) +
+                      double(cone.apex[1] - cone.base[1]) * double(cone.apex[1] - cone.base[1]) +
+                      double(cone.apex[2] - cone.base[2]) * double(cone.apex[2] - cone.base[2]);
+  double radius = double(std::max(cone.baseRadius, cone.apexRadius));
+  if (scaleExp > 0) {
+    const double slope = double(cone.apexRadius - cone.baseRadius);
+    const double sum = 3.0 * std::ldexp(1.0, kPosBits + 1) + 1.0;
+    radius += std::sqrt(std::max(1.0, slope * slope / len2) * sum * sum / std::ldexp(1.0, kQuadricK + 2));
+  }
+  LatticeBox box;
+  for (size_t k = 0; k < 3; ++k) {
+    const double along = double(cone.apex[k] - cone.base[k]);
+    const int64_t reach = int64_t(std::ceil(radius * std::sqrt(std::max(0.0, 1.0 - along * along / len2)))) + 1;
+    box.lo[k] = std::max<int64_t>(0, std::min(cone.base[k], cone.apex[k]) - reach);
+    box.hi[k] = std::min(kPosMax, std::max(cone.base[k], cone.apex[k]) + reach);
+  }
+  return box;
+}
+
 }  // namespace
 
 QQuadric sphereRecord(const QSphere& sphere) {
@@ -98,6 +125,10 @@ QQuadric sphereRecord(const QSphere& sphere) {
   for (size_t k = 0; k < 3; ++k) rec.axisSum[k] = 2 * sphere.center[k];
   rec.quad = {1, 1, 1, 0, 0, 0};
   rec.constant = -4 * sphere.radius * sphere.radius;
+  for (size_t k = 0; k < 3; ++k) {
+    rec.bounds.lo[k] = std::max<int64_t>(0, sphere.center[k] - sphere.radius - 1);
+    rec.bounds.hi[k] = std::min(kPosMax, sphere.center[k] + sphere.radius + 1);
+  }
   return rec;
 }
 
@@ -135,6 +166,7 @@ QQuadric coneRecord(uint32_t id, const LatticeCone& cone) {
   for (size_t p = 0; p < 6; ++p) rec.quad[p] = int64_t(roundShift(quad[p], rec.scaleExp));
   for (size_t k = 0; k < 3; ++k) rec.lin[k] = int64_t(roundShift(-radii * len2 * slope * w[k], rec.scaleExp));
   rec.constant = int64_t(roundShift(-radii * radii * len2 * len2, rec.scaleExp));
+  rec.bounds = coneBounds(cone, rec.scaleExp);
   return rec;
 }
 

@@ -13,6 +13,7 @@
 #include <span>
 
 #include "golden/formats.h"
+#include "golden/lattice.h"
 #include "golden/records.h"
 #include "golden/wide.h"
 
@@ -77,15 +78,22 @@ struct QQuadric {
   std::array<int64_t, 3> lin{};      // g: |g_i| <= 2^(P+K+1)
   int64_t constant = 0;              // k <= 0: |k| <= 2^(2P+K+2)
   int scaleExp = 0;                  // e (host only, for the error bound): exact F = 2^e times the record's, within rounding
+  // Host only, for the structures' builders: a lattice box holding every point
+  // of the surface the record traces (sphereRecord, coneRecord).
+  LatticeBox bounds;
   bool operator==(const QQuadric&) const = default;
   int64_t quadAt(int i, int j) const { return i == j ? quad[size_t(i)] : quad[size_t(6 - i - j)]; }
 };
 
-// The record of a lattice sphere. Throws std::invalid_argument off the lattice
+// The record of a lattice sphere (bounds: c +- (r + 1), a unit for the root's
+// rounding, so every hit the pipeline computes lies in them). Throws std::invalid_argument off the lattice
 // or for a radius outside 1 .. kPosMax.
 QQuadric sphereRecord(const QSphere& sphere);
 
-// The record of a lattice cone. Throws std::invalid_argument on what is no cone
+// The record of a lattice cone; its bounds hold both end discs widened by the
+// record's rounding (docs/quadrics.md, "The cone": |rho^2 - R^2| within
+// max(1, tau^2) (sum |q_i| + 1)^2 / 2^(K+2), |q_i| < 2^(P+1) on the lattice)
+// and a unit, as a sphere's. Throws std::invalid_argument on what is no cone
 // (both radii 0, base = apex) or lies off the lattice (the NFF reader refuses
 // the first two already: here they are the preconditions, checked).
 QQuadric coneRecord(uint32_t id, const LatticeCone& cone);
@@ -174,7 +182,7 @@ inline constexpr PackageParam kQuadricPkgParams[] = {
 // complement), for packFields / packWire.
 std::array<u128, kIsectQuadricValues> fieldArray(const QQuadric& quadric);
 void packWire(const QQuadric& quadric, std::span<uint32_t> wire);
-// A record from its wire image (scaleExp, the host's, is 0).
+// A record from its wire image (scaleExp and bounds, the host's, are 0).
 QQuadric unpackQuadric(std::span<const uint32_t> wire);
 
 // The ray against a quadric's record. With x = o + lambda d the quadric is

@@ -86,15 +86,16 @@ constexpr std::array<FieldSpec, 2> traversalVisitFields(const char* id, int idBi
 }
 
 // ---- <unit>_res_t: a ray's answer from a traversal unit: the
-// structure elements it visited (`visited`: cells, nodes), the tests it issued,
-// and its closest hit, field for field as isect_res_t ---------------------------------
-constexpr std::array<FieldSpec, 9> traversalResFields(const char* visited, const char* visitedDoc) {
+// structure elements it visited (`visited`: cells, nodes), the tests it issued
+// (and of them the ray-quadric ones), and its closest hit, field for field as isect_res_t ---------------------------------
+constexpr std::array<FieldSpec, 10> traversalResFields(const char* visited, const char* visitedDoc) {
   return {{
       {"ray_id", kRayIdBits, 1, false, "ray id"},
       {visited, 32, 1, false, visitedDoc},
-      {"tests", 32, 1, false, "ray-triangle tests issued"},
-      {"hit", 1, 1, false, "1 if the ray hit a triangle"},
-      {"prim_id", kPrimIdBits, 1, false, "closest triangle (zero on a miss)"},
+      {"tests", 32, 1, false, "ray-primitive tests issued"},
+      {"quadric_tests", 32, 1, false, "of them ray-quadric (0 in a unit without rt_quadric)"},
+      {"hit", 1, 1, false, "1 if the ray hit a primitive"},
+      {"prim_id", kPrimIdBits, 1, false, "closest primitive (zero on a miss)"},
       {"t_num", kTNumBits, 1, false, "as isect_res_t"},
       {"det", kDetAbsBits, 1, false, "as isect_res_t"},
       {"u_num", kBaryBits, 1, false, "as isect_res_t"},

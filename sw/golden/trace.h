@@ -14,7 +14,8 @@ namespace lancer::fx {
 // closest hit. The driver compares these bit for bit between models.
 struct TraversalTrace {
   std::vector<uint32_t> visits;    // cell ids (grid) or node indices (octree), in visiting order
-  uint64_t tests = 0;              // ray-triangle tests issued
+  uint64_t tests = 0;              // ray-primitive tests issued
+  uint64_t quadricTests = 0;       // of which ray-quadric (the rest ray-triangle)
   std::optional<IsectResult> hit;  // closest hit (closerResult order)
   bool operator==(const TraversalTrace&) const = default;
 };
@@ -35,21 +36,23 @@ struct TreeletCrossings {
 };
 
 // A traversal unit's result record, its fields unpacked in traversalResFields
-// order (ray id, elements visited, tests, hit, prim id, t_num, det, u_num,
-// v_num), into `trace` of the ray whose own id is `rayId`: the test count and
-// the closest hit. Returns the elements visited, which the caller checks
-// against the visit stream. One decoder for every model of every unit.
-inline uint32_t takeTraversalResult(const std::array<u128, 9>& fields, uint32_t rayId, TraversalTrace& trace) {
+// order (ray id, elements visited, tests, quadric tests, hit, prim id, t_num,
+// det, u_num, v_num), into `trace` of the ray whose own id is `rayId`: the
+// test counts and the closest hit. Returns the elements visited, which the
+// caller checks against the visit stream. One decoder for every model of
+// every unit.
+inline uint32_t takeTraversalResult(const std::array<u128, 10>& fields, uint32_t rayId, TraversalTrace& trace) {
   trace.tests = uint64_t(fields[2]);
-  if (fields[3]) {
+  trace.quadricTests = uint64_t(fields[3]);
+  if (fields[4]) {
     IsectResult hit;
     hit.rayId = rayId;
-    hit.primId = uint32_t(fields[4]);
+    hit.primId = uint32_t(fields[5]);
     hit.hit = true;
-    hit.tNum = fields[5];
-    hit.det = fields[6];
-    hit.uNum = fields[7];
-    hit.vNum = fields[8];
+    hit.tNum = fields[6];
+    hit.det = fields[7];
+    hit.uNum = fields[8];
+    hit.vNum = fields[9];
     trace.hit = hit;
   }
   return uint32_t(fields[1]);

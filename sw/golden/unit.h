@@ -22,7 +22,7 @@
 //   nodeValues(node)                 a node's field values, in kNodeFields order
 //   configValues(image)              the configuration port's field values of a run
 //   buildOptions()                   the options of `lancer run` that build reads (BuildOption)
-//   build(triangles, options)        the image the driver builds for a scene
+//   build(triangles, options, quadrics)  the image the driver builds for a scene
 //   checkImage(image, rays)          InputError for an image or ray the unit cannot take
 //   traverse(image, ray)             the golden walk
 //   NodeReads(image)(trace)          node-port reads the hardware issues for a golden trace

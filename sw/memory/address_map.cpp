@@ -6,7 +6,7 @@
 
 namespace lancer::mem {
 
-AddressMap::AddressMap(std::array<Region, kPorts> regions) : regions_(std::move(regions)) {
+AddressMap::AddressMap(std::array<Region, kRegions> regions) : regions_(std::move(regions)) {
   const uint64_t limit = uint64_t(1) << kAddressBits;
   uint64_t next = kBase;
   for (Region& r : regions_) {

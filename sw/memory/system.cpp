@@ -136,7 +136,7 @@ class HierarchyMemory final : public MemorySystem {
     firstLine_ = AddressMap::kBase / lineBytes_;
     touched_ = std::vector<std::atomic<uint64_t>>(size_t((map.end() / lineBytes_ + 1 - firstLine_ + 63) / 64));
     for (int p = 0; p < kPorts; ++p) {
-      const uint32_t bytes = map.span(Port(p), 0).bytes;
+      const uint32_t bytes = map.maxReadBytes(Port(p));
       maxLines_[size_t(p)] = int((bytes + lineBytes_ - 2) / lineBytes_ + 1);  // a read at any offset
       if (maxLines_[size_t(p)] > c.l1.mshrs) {
         throw InputError(fmt::format("--l1-mshrs {}: a read of the {} ({} bytes) may span {} lines of {} bytes, "

@@ -20,7 +20,10 @@ class rt_stall_pipe {
   static_assert(Stages >= 1);
 
   // rst_ni low: every stage empty.
-  void reset() { valid_.fill(false); }
+  void reset() {
+    valid_.fill(false);
+    items_ = 0;
+  }
 
   // req_ready_o: stage 0 may load this cycle.
   bool ready(bool resReady) const { return stageReady(resReady)[0]; }
@@ -30,7 +33,10 @@ class rt_stall_pipe {
   // computed by `compute(Data&)`, when `load` (req_valid_i).
   template <class Compute>
   void clock(bool resReady, bool load, Compute&& compute) {
+    if (items_ == 0 && !load) return;  // empty and nothing enters: no stage changes
     const std::array<bool, Stages> ready = stageReady(resReady);
+    items_ -= int(valid_[Stages - 1] && ready[Stages - 1]);
+    items_ += int(load && ready[0]);
     // From the output back to the entry: stage s-1 is read before it is written.
     for (size_t s = Stages - 1; s > 0; --s) {
       if (!ready[s]) continue;  // stalled: holds its item
@@ -57,6 +63,7 @@ class rt_stall_pipe {
 
   std::array<bool, Stages> valid_{};
   std::array<Data, Stages> data_{};
+  int items_ = 0;  // valid stages
 };
 
 // The cycle model of such a pipeline on value ports (`Ports`: its port list

@@ -18,6 +18,7 @@ struct TraversalCycle {
   // {valid, addr, tag} of node_req_*, idx_req_*, tri_req_* (addr, tag 0 unless valid).
   bool nodeReq = false, idxReq = false, triReq = false;
   uint32_t nodeAddr = 0, nodeTag = 0, idxAddr = 0, idxTag = 0, triAddr = 0, triTag = 0;
+  bool triQuadric = false;          // tri_req_quadric_o while tri_req_valid_o (the quadric table)
   bool perfIsectFire = false;       // perf_isect_fire_o
   bool perfStepReady = false;       // perf_step_ready_o (units that have it)
   std::vector<uint32_t> resData;    // res_data_o's wire image while res_valid_o, else empty

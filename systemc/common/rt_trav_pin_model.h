@@ -48,6 +48,7 @@ class rt_trav_pin_model : public sc_core::sc_module, public rt_trav_unit_ports<U
     this->sensitive << updated_;
     if constexpr (!model_t::kRegisteredResponses) {
       this->sensitive << this->tri_rsp_valid_i << this->tri_rsp_tag_i << this->tri_rsp_data_i;
+      this->sensitive << this->quadric_rsp_valid_i << this->quadric_rsp_tag_i << this->quadric_rsp_data_i;
     }
     if (isect_) this->sensitive << isect_->req_ready_o;
     SC_METHOD(clocked);
@@ -91,7 +92,7 @@ class rt_trav_pin_model : public sc_core::sc_module, public rt_trav_unit_ports<U
 
   void comb() {
     guarded([this] {
-      readTriangleResponse();
+      readPrimitiveResponse();
       if (isect_) model_->isect.req_ready_o = isect_->req_ready_o.read();
       model_->settle();
       write<1>(this->perf_isect_fire_o, model_->perf_isect_fire_o, last_.perf_isect_fire_o, !combWritten_);
@@ -106,12 +107,18 @@ class rt_trav_pin_model : public sc_core::sc_module, public rt_trav_unit_ports<U
     });
   }
 
-  void readTriangleResponse() {
+  // The primitive port's response: a triangle's or a quadric's.
+  void readPrimitiveResponse() {
     model_t& m = *model_;
     m.tri_rsp_valid_i = this->tri_rsp_valid_i.read();
     if (m.tri_rsp_valid_i) {
       pinToValue<ISECT_TRI_W>(this->tri_rsp_data_i.read(), m.tri_rsp_data_i.value);
       m.tri_rsp_tag_i = this->tri_rsp_tag_i.read();
+    }
+    m.quadric_rsp_valid_i = this->quadric_rsp_valid_i.read();
+    if (m.quadric_rsp_valid_i) {
+      pinToValue<ISECT_QUADRIC_W>(this->quadric_rsp_data_i.read(), m.quadric_rsp_data_i.value);
+      m.quadric_rsp_tag_i = this->quadric_rsp_tag_i.read();
     }
   }
 
@@ -136,7 +143,7 @@ class rt_trav_pin_model : public sc_core::sc_module, public rt_trav_unit_ports<U
       m.idx_rsp_tag_i = this->idx_rsp_tag_i.read();
     }
     m.tri_req_ready_i = this->tri_req_ready_i.read();
-    readTriangleResponse();
+    readPrimitiveResponse();
     if (isect_) {
       m.isect.req_ready_o = isect_->req_ready_o.read();
       m.isect.res_valid_o = isect_->res_valid_o.read();
@@ -173,6 +180,7 @@ class rt_trav_pin_model : public sc_core::sc_module, public rt_trav_unit_ports<U
     write<1>(this->tri_req_valid_o, m.tri_req_valid_o, last_.tri_req_valid_o, all);
     write<A>(this->tri_req_addr_o, m.tri_req_addr_o, last_.tri_req_addr_o, all);
     write<S>(this->tri_req_tag_o, m.tri_req_tag_o, last_.tri_req_tag_o, all);
+    write<1>(this->tri_req_quadric_o, m.tri_req_quadric_o, last_.tri_req_quadric_o, all);
     if (all) {
       combWritten_ = false;
       if (isect_) isect_->res_ready_i.write(m.isect.res_ready_i);

@@ -71,11 +71,17 @@ struct rt_trav_node_port {
   LANCER_SC_READ_PORT(node, Unit::NODE_DATA_W);
 };
 
-// The index and triangle read ports.
+// The index and primitive read ports: the triangle port's request names the
+// quadric table with tri_req_quadric_o, and a quadric's record comes back on
+// quadric_rsp_* (rtl/lib/rt_trav_ports.svh).
 template <class Unit, template <class> class In, template <class> class Out, template <int> class Bits = vl_port_t>
 struct rt_trav_mem_ports {
   LANCER_SC_READ_PORT(idx, 32);
   LANCER_SC_READ_PORT(tri, ISECT_TRI_W);
+  Out<bool> tri_req_quadric_o{"tri_req_quadric_o"};
+  In<bool> quadric_rsp_valid_i{"quadric_rsp_valid_i"};
+  In<Bits<ISECT_QUADRIC_W>> quadric_rsp_data_i{"quadric_rsp_data_i"};
+  In<Bits<Unit::SLOT_W>> quadric_rsp_tag_i{"quadric_rsp_tag_i"};
 };
 
 // All of them: what a unit's cycle model, its pin-level module, the
@@ -97,6 +103,10 @@ template <class A, class B>
 void bindMemPorts(A& a, B& b) {
   LANCER_SC_BIND_READ_PORT(a, b, idx);
   LANCER_SC_BIND_READ_PORT(a, b, tri);
+  a.tri_req_quadric_o(b.tri_req_quadric_o);
+  a.quadric_rsp_valid_i(b.quadric_rsp_valid_i);
+  a.quadric_rsp_data_i(b.quadric_rsp_data_i);
+  a.quadric_rsp_tag_i(b.quadric_rsp_tag_i);
 }
 
 template <class A, class B>

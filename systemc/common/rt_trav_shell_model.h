@@ -13,8 +13,10 @@
 //              credits; the FIFO heads taken in this cycle leave
 //   nodeResponse()   the node/cell response of the cycle (registered when RegRsp)
 //   intersect()      u_isect: the triangle response enters with its slot's ray;
-//              u_closest: the result that left it CLOSEST_HIT_LATENCY cycles
-//              ago updates its slot's closest hit, and counts in its run
+//              u_quadric: a quadric response, likewise; u_closest: the
+//              result that left either CLOSEST_HIT_LATENCY cycles ago (rt_isect's
+//              first, rt_quadric's waiting meanwhile) updates its slot's
+//              closest hit, and counts in its run
 //   (events)   the walk's slot updates; at its grants it pushes the node request
 //              and the visit (push*()), starts index runs (startRun()), ends
 //              a ray (finishRay(): its result, the slot free again), and loads
@@ -24,7 +26,9 @@
 //              setup pipeline, the boundary registers, the outputs
 //
 // As rt_trav_shell does, the shell keeps the free slots, the index runs and
-// the counts of the result record (regions entered, tests issued).
+// the counts of the result record (regions entered, tests issued, quadric
+// tests). It models the unit as the Verilated models are built: with
+// rt_quadric (Quadrics = 1), which a scene of triangles never uses.
 //
 // The model is plain C++ on plain values (base/rt_value.h): its ports are
 // rt_values under the RTL's names, so whoever steps it sets the inputs,
@@ -39,7 +43,9 @@
 // inside this model (it never stalls and its results are always taken, so it
 // is an ISECT_LATENCY-deep delay line of fx::intersect); `rtl` is an rt_isect
 // outside, on the `isect` ports (the Verilated rt_isect the pin-level module
-// holds: the mixed system). RegRsp is the RTL's parameter: node and triangle
+// holds: the mixed system, which takes no quadric: its driver refuses them).
+// u_quadric is always inside: QUADRIC_LATENCY stages of fx::intersectQuadric
+// with rt_quadric's stage control (base/rt_stall_pipe.h). RegRsp is the RTL's parameter: node and triangle
 // responses are used in the cycle after they arrive (rt_grid) or in it
 // (rt_octree).
 
@@ -54,11 +60,14 @@
 
 #include <fmt/format.h>
 
+#include "base/rt_stall_pipe.h"
 #include "base/rt_value.h"
 #include "common/rt_record_bits.h"
 #include "common/rt_trav_ports.h"
 #include "common/rt_trav_unit.h"
 #include "golden/isect.h"
+#include "golden/primitives.h"
+#include "golden/quadric.h"
 #include "golden/record_bits.h"
 #include "isect/rt_isect_ports.h"
 #include "isect/rt_isect_rtl.h"
@@ -182,9 +191,11 @@ struct rt_fifo_model {
 };
 
 // A memory request FIFO entry (node/cell, index, triangle ports; the index
-// buffer's {triangle id, slot}).
+// buffer's {primitive entry, slot}); quadric: the triangle port's read is of
+// the quadric table (the entry's kind bit).
 struct rt_mem_req {
   uint32_t addr = 0, slot = 0;
+  bool quadric = false;
 };
 
 // A visit FIFO entry: {ray_id, element id} (a cell id, a node id).
@@ -251,10 +262,12 @@ struct rt_closest_record {
   }
   bool wantsCheck() const { return hasHit || bounded; }
   bool settled() const { return anyHit && hasHit; }
-  // The unit's result record: {ray id, elements visited, tests, hit, the hit's fields (zero without one)}.
-  std::array<fx::u128, 9> resultValues(uint32_t rayId, uint32_t visited, uint64_t tests) const {
+  // The unit's result record: {ray id, elements visited, tests, quadric
+  // tests, hit, the hit's fields (zero without one)}.
+  std::array<fx::u128, 10> resultValues(uint32_t rayId, uint32_t visited, uint64_t tests,
+                                        uint64_t quadricTests) const {
     const fx::IsectResult hit = hasHit ? best : fx::IsectResult{};
-    return {rayId, visited, tests, hasHit ? 1u : 0u, hit.primId, hit.tNum, hit.det, hit.uNum, hit.vNum};
+    return {rayId, visited, tests, quadricTests, hasHit ? 1u : 0u, hit.primId, hit.tNum, hit.det, hit.uNum, hit.vNum};
   }
 };
 
@@ -342,7 +355,7 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
       }
       isect.req_valid_i = in.valid;
     }
-    this->perf_isect_fire_o = in.valid && (!outsideIsect_ || isect.req_ready_o);
+    this->perf_isect_fire_o = (in.valid && (!outsideIsect_ || isect.req_ready_o)) || quadricInput().valid;
   }
   // The rising edge at the end of the cycle (rst_ni high), from the inputs as
   // they stand. (The combinational outputs follow the next settle().)
@@ -386,8 +399,9 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
     nodeArb_ = visitArb_ = idxArb_ = checkArb_ = doneArb_ = rt_rr_arb_model<N>{};
     checkLine_.fill(-1);
     checkGrant_ = -1;
-    nodeRsp_.valid = triRsp_.valid = false;
+    nodeRsp_.valid = triRsp_.valid = quadricRsp_.valid = false;
     pipe_.clear();
+    quadricPipe_.reset();
     closest_.clear();
     isect.res_ready_i = true;  // rt_trav_shell takes every rt_isect result
     writeOutputs(false);
@@ -429,16 +443,26 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
     }
   }
 
-  // u_isect in this cycle: the triangle response enters with its slot's ray;
-  // the result leaving it enters u_closest (rt_closest_hit), and the one that
-  // left it CLOSEST_HIT_LATENCY cycles ago updates its slot's closest hit and
-  // is returned: the walk sees a result that many cycles after rt_isect (the
-  // RTL writes through and forwards between back-to-back results of a slot,
-  // which is this sequential update).
+  // u_isect and u_quadric in this cycle: the triangle or quadric response
+  // enters its pipeline with its slot's ray; the result leaving rt_isect, else
+  // the one leaving rt_quadric (which holds it otherwise), enters u_closest
+  // (rt_closest_hit), and the one that left CLOSEST_HIT_LATENCY cycles ago
+  // updates its slot's closest hit and is returned: the walk sees a result
+  // that many cycles after its pipeline (the RTL writes through and forwards
+  // between back-to-back results of a slot, which is this sequential update).
   rt_isect_result intersect(const slot_mask& expect) {
     const tri_in in = triInput();
     if (in.valid && (in.slot >= N || !expect.test(in.slot))) {
       fail(fmt::format("triangle response for slot {}, which is not fetching", in.slot));
+    }
+    const quadric_in quadricIn = quadricInput();
+    if (quadricIn.valid) {
+      if (quadricIn.slot >= N || !expect.test(quadricIn.slot)) {
+        fail(fmt::format("quadric response for slot {}, which is not fetching", quadricIn.slot));
+      }
+      if (in.valid) fail("a triangle and a quadric response in one cycle (one primitive port)");
+      if (outsideIsect_) fail("a quadric response in the mixed system (its rt_isect is outside; no rt_quadric)");
+      ++quadricTests_[size_t(quadricIn.slot)];
     }
     rt_isect_result leaving;
     if (outsideIsect_) {
@@ -459,6 +483,18 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
       }
       pipe_.push(in.valid, entering);
     }
+    // rt_quadric: its result leaves when rt_isect's does not (res_ready_i).
+    const bool quadricTaken = !leaving.valid;
+    if (quadricIn.valid && !quadricPipe_.ready(quadricTaken)) fail("rt_quadric not ready for a quadric response");
+    if (!leaving.valid && quadricPipe_.outValid()) {
+      leaving.valid = true;
+      leaving.res = quadricPipe_.out();
+    }
+    quadricPipe_.clock(quadricTaken, quadricIn.valid, [&](fx::IsectResult& out) {
+      std::array<uint32_t, size_t(fx::wireWords(ISECT_QUADRIC_W))> wire{};
+      fromValue<ISECT_QUADRIC_W>(*quadricIn.data, wire);
+      out = fx::intersectQuadric(ray_[size_t(quadricIn.slot)], fx::unpackQuadric(wire));
+    });
     if (leaving.valid) {
       leaving.slot = int(leaving.res.rayId & SLOT_MASK);
       if (leaving.slot >= N || !expect.test(leaving.slot)) {
@@ -494,6 +530,7 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
     hit_[size_t(k)].start(ray);
     visits_[size_t(k)] = 0;
     tests_[size_t(k)] = 0;
+    quadricTests_[size_t(k)] = 0;
     return ray;
   }
 
@@ -515,7 +552,8 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
   }
   // The done grant: the ray's result record; the slot is free again.
   void finishRay(int k) {
-    const auto values = hit_[size_t(k)].resultValues(rayId_[size_t(k)], visits_[size_t(k)], tests_[size_t(k)]);
+    const auto values =
+        hit_[size_t(k)].resultValues(rayId_[size_t(k)], visits_[size_t(k)], tests_[size_t(k)], quadricTests_[size_t(k)]);
     std::array<uint32_t, size_t(fx::wireWords(Unit::RESULT_W))> wire;
     fx::wire_bits::packFixed<Unit::descriptor::kResFieldList>(values, wire);
     push(resQ_, resHead_, toValue<Unit::RESULT_W>(wire));
@@ -537,7 +575,8 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
       idxBuf_.pop();
     }
     if (this->idx_rsp_valid_i.read()) {
-      idxBuf_.push({addrOf(uint32_t(this->idx_rsp_data_i.read())), uint32_t(this->idx_rsp_tag_i.read()) & SLOT_MASK});
+      const uint32_t entry = uint32_t(this->idx_rsp_data_i.read());
+      idxBuf_.push({addrOf(entry), uint32_t(this->idx_rsp_tag_i.read()) & SLOT_MASK, fx::isQuadricEntry(entry)});
     }
     if (g.idx >= 0 && !idxBufPop_) --credits_;
     if (idxBufPop_ && g.idx < 0) ++credits_;
@@ -558,6 +597,7 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
     if constexpr (RegRsp) {
       registerResponse(nodeRsp_, this->node_rsp_valid_i, this->node_rsp_tag_i, this->node_rsp_data_i);
       registerResponse(triRsp_, this->tri_rsp_valid_i, this->tri_rsp_tag_i, this->tri_rsp_data_i);
+      registerResponse(quadricRsp_, this->quadric_rsp_valid_i, this->quadric_rsp_tag_i, this->quadric_rsp_data_i);
     }
     writeOutputs(stepReady);
   }
@@ -575,12 +615,16 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
     uint32_t tag = 0;
     Data data{};
   };
-  // The triangle response entering u_isect in this cycle.
-  struct tri_in {
+  // The triangle response entering u_isect in this cycle, or the quadric
+  // response entering u_quadric.
+  template <int W>
+  struct response_in {
     bool valid = false;
     int slot = -1;
-    const value_t<ISECT_TRI_W>* data = nullptr;
+    const value_t<W>* data = nullptr;
   };
+  using tri_in = response_in<ISECT_TRI_W>;
+  using quadric_in = response_in<ISECT_QUADRIC_W>;
 
   static int goes(int granted, bool room) { return room ? granted : -1; }
   static void ack(rt_rr_arb_model<N>& arb, int granted) {
@@ -606,13 +650,23 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
     }
   }
 
-  tri_in triInput() const {
+  // A response as its pipeline takes it: registered at the boundary (RegRsp),
+  // or from the ports.
+  template <int W, class Reg, class Valid, class Tag, class Data>
+  static response_in<W> responseInput(const Reg& reg, const Valid& valid, const Tag& tag, const Data& data) {
     if constexpr (RegRsp) {
-      return {triRsp_.valid, int(triRsp_.tag & SLOT_MASK), &triRsp_.data};
+      return {reg.valid, int(reg.tag & SLOT_MASK), &reg.data};
     } else {
-      const bool valid = this->tri_rsp_valid_i.read();
-      return {valid, valid ? int(uint32_t(this->tri_rsp_tag_i.read()) & SLOT_MASK) : -1, &this->tri_rsp_data_i.read()};
+      const bool v = valid.read();
+      return {v, v ? int(uint32_t(tag.read()) & SLOT_MASK) : -1, &data.read()};
     }
+  }
+  tri_in triInput() const {
+    return responseInput<ISECT_TRI_W>(triRsp_, this->tri_rsp_valid_i, this->tri_rsp_tag_i, this->tri_rsp_data_i);
+  }
+  quadric_in quadricInput() const {
+    return responseInput<ISECT_QUADRIC_W>(quadricRsp_, this->quadric_rsp_valid_i, this->quadric_rsp_tag_i,
+                                          this->quadric_rsp_data_i);
   }
 
   // The slots whose exit test is in flight (rt_trav_shell's testing_q),
@@ -640,6 +694,7 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
     writeRequest(nodeQ_, this->node_req_valid_o, this->node_req_addr_o, this->node_req_tag_o);
     writeRequest(idxQ_, this->idx_req_valid_o, this->idx_req_addr_o, this->idx_req_tag_o);
     writeRequest(triQ_, this->tri_req_valid_o, this->tri_req_addr_o, this->tri_req_tag_o);
+    if (!triQ_.empty()) this->tri_req_quadric_o = triQ_.front().quadric;
     this->visit_valid_o = !visitQ_.empty();
     if (!visitQ_.empty() && visitHead_) {
       std::array<uint32_t, size_t(fx::wireWords(Unit::VISIT_W))> wire{};
@@ -666,6 +721,7 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
   std::array<rt_index_run, N> run_{};
   std::array<uint32_t, N> visits_{};
   std::array<uint64_t, N> tests_{};
+  std::array<uint64_t, N> quadricTests_{};
   slot_mask free_;     // FREE: allocation takes the lowest usable one
   slot_mask idxWant_;  // index runs with reads left to issue
 
@@ -683,8 +739,10 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
   int checkGrant_ = -1;  // this cycle's grant
   boundary_reg<node_data_t> nodeRsp_;  // RegRsp only
   boundary_reg<value_t<ISECT_TRI_W>> triRsp_;
+  boundary_reg<value_t<ISECT_QUADRIC_W>> quadricRsp_;
 
   rt_sparse_delay_line<fx::IsectResult, ISECT_LATENCY> pipe_;  // u_isect inside (rt_isect_impl::model)
+  rt_stall_pipe<QUADRIC_LATENCY, fx::IsectResult> quadricPipe_;  // u_quadric
   rt_sparse_delay_line<rt_isect_result, fx::kClosestHitLatency> closest_;  // u_closest's stages R to Y
 
   // Whether a record FIFO's head changed since its data output was written.

@@ -12,8 +12,8 @@ namespace lancer::sc {
 
 namespace {
 
-// {ray_id, elements, tests, hit, prim_id, t_num, det, u_num, v_num} and {ray_id, element id}.
-constexpr size_t kResValues = 9;
+// {ray_id, elements, tests, quadric tests, hit, prim_id, t_num, det, u_num, v_num} and {ray_id, element id}.
+constexpr size_t kResValues = 10;
 constexpr size_t kVisitValues = 2;
 
 }  // namespace
@@ -50,6 +50,7 @@ bool rt_trav_stream::sample(uint64_t cycle, const rt_trav_sample& s) {
   bool progress = rayFire;
   uint64_t* const reads[3] = {&tally_.nodeReads, &tally_.indexReads, &tally_.triangleReads};
   for (int p = 0; p < 3; ++p) *reads[p] += s.req[p] && s.reqReady[p];
+  tally_.quadricTests += s.quadricRsp;
   if (s.perfIsectFire) {
     ++tally_.isectTests;
     progress = true;
@@ -96,7 +97,7 @@ bool rt_trav_stream::sample(uint64_t cycle, const rt_trav_sample& s) {
     c.triReq = s.req[TRIANGLE];
     if (c.nodeReq) c.nodeAddr = s.addr[NODE], c.nodeTag = s.tag[NODE];
     if (c.idxReq) c.idxAddr = s.addr[INDEX], c.idxTag = s.tag[INDEX];
-    if (c.triReq) c.triAddr = s.addr[TRIANGLE], c.triTag = s.tag[TRIANGLE];
+    if (c.triReq) c.triAddr = s.addr[TRIANGLE], c.triTag = s.tag[TRIANGLE], c.triQuadric = s.triQuadric;
     c.perfIsectFire = s.perfIsectFire;
     c.perfStepReady = s.perfStepReady;
     if (s.resValid) c.resData.assign(s.resWire.begin(), s.resWire.end());

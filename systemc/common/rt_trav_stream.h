@@ -40,6 +40,7 @@ struct rt_trav_tally {
   uint64_t accepted = 0, results = 0, visits = 0;
   uint64_t nodeReads = 0, indexReads = 0, triangleReads = 0;
   uint64_t isectTests = 0;       // cycles with perf_isect_fire_o
+  uint64_t quadricTests = 0;     // quadric responses (each one test of rt_quadric)
   uint64_t stepReadyCycles = 0;  // cycles with perf_step_ready_o
   std::vector<uint32_t> resultSteps;  // the result record's element count (cells, nodes) per ray (of this unit)
   std::string error;
@@ -54,7 +55,9 @@ struct rt_trav_sample {
   bool req[3] = {};
   bool reqReady[3] = {true, true, true};  // the memory took the request (req && reqReady)
   uint32_t addr[3] = {}, tag[3] = {};
+  bool triQuadric = false;  // tri_req_quadric_o: the triangle port's read is of the quadric table
   bool rsp[3] = {};
+  bool quadricRsp = false;  // quadric_rsp_valid_i (the primitive port's response is a quadric's)
   bool perfIsectFire = false, perfStepReady = false;
   std::span<const uint32_t> resWire, visitWire;  // when the testbench asked for them (wantsData)
 };

@@ -16,6 +16,7 @@
 #include "common/rt_trav_ports.h"
 #include "common/rt_trav_stream.h"
 #include "common/rt_trav_unit.h"
+#include "golden/primitives.h"
 #include "isect/rt_isect_types.h"
 #include "memory/dispatcher.h"
 #include "memory/system.h"
@@ -139,6 +140,7 @@ class rt_trav_tb : public sc_core::sc_module {
     side.node_rsp_valid_i.write(false);
     side.idx_rsp_valid_i.write(false);
     side.tri_rsp_valid_i.write(false);
+    side.quadric_rsp_valid_i.write(false);
   }
 
   // Edges 0 .. RESET_CYCLES-1 drive reset and the configuration; from edge
@@ -212,7 +214,9 @@ class rt_trav_tb : public sc_core::sc_module {
     s.visitReady = driven.visitReady;
     request(u, s, mem::Port::Node, side.node_req_valid_o, side.node_req_addr_o, side.node_req_tag_o);
     request(u, s, mem::Port::Index, side.idx_req_valid_o, side.idx_req_addr_o, side.idx_req_tag_o);
+    s.triQuadric = side.tri_req_valid_o.read() && side.tri_req_quadric_o.read();
     request(u, s, mem::Port::Triangle, side.tri_req_valid_o, side.tri_req_addr_o, side.tri_req_tag_o);
+    s.quadricRsp = side.quadric_rsp_valid_i.read();
     s.perfIsectFire = side.perf_isect_fire_o.read();
     s.perfStepReady = side.perf_step_ready_o.read();
     std::array<uint32_t, size_t(fx::wireWords(Unit::RESULT_W))> resWire{};
@@ -238,7 +242,9 @@ class rt_trav_tb : public sc_core::sc_module {
     s.addr[p] = uint32_t(addr.read());
     s.tag[p] = uint32_t(tag.read());
     if (s.reqReady[p]) {
-      memory_->request(u, port, s.addr[p], s.tag[p]);
+      // A primitive read names its table by the entry's kind bit (mem::AddressMap::span).
+      const bool quadric = port == mem::Port::Triangle && s.triQuadric;
+      memory_->request(u, port, s.addr[p] | (quadric ? fx::kQuadricEntryBit : 0u), s.tag[p]);
     } else {
       memory_->blocked(u, port);
     }
@@ -274,8 +280,20 @@ class rt_trav_tb : public sc_core::sc_module {
       side.idx_rsp_data_i.write(typename Unit::idx_data_t(image_->indices[addr]));
       side.idx_rsp_tag_i.write(slot_t(tag));
     }
-    const bool tri = memory_->response(u, mem::Port::Triangle, addr, tag);
+    // The primitive port: a triangle's record, or a quadric's (the request's kind bit).
+    const bool primitive = memory_->response(u, mem::Port::Triangle, addr, tag);
+    const bool tri = primitive && !fx::isQuadricEntry(addr);
     side.tri_rsp_valid_i.write(tri);
+    side.quadric_rsp_valid_i.write(primitive && !tri);
+    if (primitive && !tri) {
+      const uint32_t place = fx::entryPlace(addr);
+      if (place >= image_->quadrics.size()) outside("quadric table", place, image_->quadrics.size());
+      std::array<uint32_t, size_t(fx::wireWords(ISECT_QUADRIC_W))> wire{};
+      fx::packWire(image_->quadrics[place], wire);
+      assignPort<ISECT_QUADRIC_W>(quadricPort_, wire);
+      side.quadric_rsp_data_i.write(quadricPort_);
+      side.quadric_rsp_tag_i.write(slot_t(tag));
+    }
     if (tri) {
       if (addr >= image_->triangles.size()) outside("triangle table", addr, image_->triangles.size());
       const std::span<uint32_t> wire(triWire_.data() + size_t(addr) * fx::kIsectTriWords, fx::kIsectTriWords);
@@ -318,6 +336,7 @@ class rt_trav_tb : public sc_core::sc_module {
   // The response ports' values, reused (an sc_bv allocates when constructed).
   typename Unit::node_data_t nodePort_{};
   isect_tri_t triPort_{};
+  vl_port_t<ISECT_QUADRIC_W> quadricPort_{};
 };
 
 }  // namespace lancer::sc

@@ -24,6 +24,7 @@
 #include <systemc>
 
 #include "base/rt_value.h"
+#include "golden/quadric.h"
 #include "golden/records.h"
 
 namespace lancer::sc {
@@ -39,6 +40,8 @@ inline constexpr int ISECT_RAY_W = fx::kIsectRayBits;
 inline constexpr int ISECT_TRI_W = fx::kIsectTriBits;
 inline constexpr int ISECT_RES_W = fx::kIsectResBits;
 inline constexpr int ISECT_LATENCY = fx::kIsectLatency;
+inline constexpr int ISECT_QUADRIC_W = fx::kIsectQuadricBits;
+inline constexpr int QUADRIC_LATENCY = fx::kQuadricLatency;
 
 // The types Verilator gives req_ray_i, req_tri_i and res_data_o.
 using isect_ray_t = vl_port_t<ISECT_RAY_W>;

@@ -7,9 +7,6 @@
 
 namespace lancer::sc {
 
-inline constexpr int ISECT_QUADRIC_W = fx::kIsectQuadricBits;
-inline constexpr int QUADRIC_LATENCY = fx::kQuadricLatency;
-
 // rt_quadric's request and result streams (rtl/isect/rt_quadric.sv), declared
 // as rt_isect_ports declares rt_isect's.
 template <template <class> class In, template <class> class Out, template <int> class Bits = vl_port_t>

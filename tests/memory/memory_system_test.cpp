@@ -75,7 +75,7 @@ TEST(CacheTags, HitsAndMissesEqualAPlainLruOnEveryAccess) {
 // Regions of the shapes the units read: 4-byte cells, 4-byte indices, 27-byte triangles.
 AddressMap smallMap(uint64_t records = 5000, uint32_t nodeBytes = 4, uint32_t group = 1) {
   return AddressMap({Region{"node table", 0, nodeBytes, group, records}, Region{"index list", 0, 4, 1, records},
-                     Region{"triangle table", 0, 27, 1, records}});
+                     Region{"triangle table", 0, 27, 1, records}, Region{"quadric table", 0, 68, 1, 0}});
 }
 
 MemoryConfig hierarchy() {

@@ -2,7 +2,8 @@
 
 // What every Verilated traversal unit must do, as one typed suite over the
 // unit's descriptor (tests/support/unit_traits.h): the unit's hard cases with
-// all slots under jitter, stalls and bubbles and then with one slot; the
+// all slots under jitter, stalls and bubbles and then with one slot; a scene
+// of triangles, spheres and cones likewise; the
 // bunny's random rays at several builds of the image; the bunny's camera rays; one slot, all slots and no stalls, repeatable; an FST
 // waveform on request; the performance sweep (disabled: figures, not a
 // check). A unit's test file instantiates it in one line and keeps only its
@@ -52,6 +53,20 @@ TYPED_TEST_P(RtTraversal, HardCasesMatchGolden) {
     const std::vector<QRay> some(c.rays.begin(), c.rays.begin() + std::max<size_t>(1, c.rays.size() / 3));
     U::expectSameTraces(c.image, some, U::rough(seed + 1, 1));
   }
+}
+
+// Triangles, spheres and cones in one image: rt_quadric beside rt_isect, the
+// quadric records on the triangle port, under jitter, stalls and bubbles, with
+// all slots and one; the tests of each kind counted as golden counts them.
+TYPED_TEST_P(RtTraversal, MixedPrimitivesMatchGolden) {
+  using U = RtlUnit<TypeParam>;
+  const auto c = U::mixedCase(24, 48, 600, 4046);
+  U::expectSameTraces(c.image, c.rays, U::rough(46));
+  const std::vector<QRay> some(c.rays.begin(), c.rays.begin() + 100);
+  U::expectSameTraces(c.image, some, U::rough(47, 1));
+  uint64_t quadricTests = 0;
+  for (const QRay& ray : c.rays) quadricTests += TypeParam::traverse(c.image, ray).quadricTests;
+  EXPECT_GT(quadricTests, c.rays.size() / 2);  // the quadric pipeline was busy
 }
 
 // The bunny's random rays through the unit's image at several builds (a leaf
@@ -132,7 +147,8 @@ TYPED_TEST_P(RtTraversal, DISABLED_Sweep) {
   printSweep<typename U::Image>(U::rtl(), c.image, c.rays);
 }
 
-REGISTER_TYPED_TEST_SUITE_P(RtTraversal, HardCasesMatchGolden, BunnyRandomRaysAtSeveralBuilds, BunnyCameraRays,
+REGISTER_TYPED_TEST_SUITE_P(RtTraversal, HardCasesMatchGolden, MixedPrimitivesMatchGolden,
+                            BunnyRandomRaysAtSeveralBuilds, BunnyCameraRays,
                             OneRayInFlightAllSlotsAndNoStalls, WritesAnFstWaveformWhenAsked,
                             RejectsBadInputAndRecovers, DISABLED_Sweep);
 

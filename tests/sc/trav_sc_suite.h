@@ -127,6 +127,26 @@ TYPED_TEST_P(ScTraversal, EmptyRunAndInvalidOptions) {
   }
 }
 
+// Triangles, spheres and cones in one image: every implementation with
+// rt_quadric against golden (the mixed system, whose rt_isect is the Verilated
+// one and which has no rt_quadric, refuses them by name), and the cycle model
+// against the Verilated RTL cycle for cycle.
+TYPED_TEST_P(ScTraversal, MixedPrimitivesMatchGoldenAndTheRtl) {
+  using U = ScUnit<TypeParam>;
+  const auto c = U::mixedCase(24, 48, 300, 4047);
+  for (SystemCImpl impl : U::impls()) {
+    typename U::Device device(impl);
+    std::vector<fx::TraversalTrace> traces;
+    if (impl == SystemCImpl::ModelRtlIsect) {
+      EXPECT_THROW(device.run(c.image, c.rays, traces, U::rough(48)), InputError);
+      continue;
+    }
+    U::expectSameTraces(device, c.image, c.rays, U::rough(48), fmt::format("{}: {}", device.name(), c.name));
+  }
+  expectModelMatchesRtlCycleForCycle<typename U::Device, typename U::Traits::Verilator>(std::vector{c},
+                                                                                       U::timingSettings());
+}
+
 TYPED_TEST_P(ScTraversal, ModelMatchesVerilatedRtlCycleForCycle) {
   using U = ScUnit<TypeParam>;
   expectModelMatchesRtlCycleForCycle<typename U::Device, typename U::Traits::Verilator>(U::cycleCases(),
@@ -176,6 +196,7 @@ TYPED_TEST_P(ScTraversal, SharesTheKernelWithAnotherUnit) {
 }
 
 REGISTER_TYPED_TEST_SUITE_P(ScTraversal, MatchesGoldenOnBunnyCameraRays, MatchesGoldenOnHardCasesWithAllSlotsAndOneSlot,
+                            MixedPrimitivesMatchGoldenAndTheRtl,
                             MatchesGoldenWithOneSlotAllSlotsAndWithoutBackpressure,
                             RepeatedRunsAreIndependentAndReproducible, EmptyRunAndInvalidOptions,
                             ModelMatchesVerilatedRtlCycleForCycle, StatsEqualTheCxxVerilatedDevice, NamesAndFactory,

@@ -14,8 +14,10 @@
 
 #include <fmt/format.h>
 
+#include "driver/quantize.h"
 #include "driver/traversal_device.h"
 #include "golden/trace.h"
+#include "support/mixed_scenes.h"
 #include "support/traversal_cases.h"
 #include "support/unit_traits.h"
 
@@ -57,6 +59,7 @@ GoldenAndDevice expectGoldenTraces(TraversalDevice<Image>& golden, TraversalDevi
   EXPECT_EQ(r.indexReads, g.indexReads) << what;
   EXPECT_EQ(r.triangleReads, g.triangleReads) << what;
   EXPECT_EQ(r.isectTests, g.isectTests) << what;
+  EXPECT_EQ(r.quadricTests, g.quadricTests) << what;
   EXPECT_EQ(r.isectBusyCycles, r.isectTests) << what;
   EXPECT_TRUE(r.cycleAccurate) << what;
   EXPECT_GT(r.cycles, 0u) << what;
@@ -79,6 +82,21 @@ struct UnitRuns {
   static Case bunnyCase(int side) {
     const QuantizedScene q = bunny(side, side);
     return {fmt::format("bunny {}x{}", side, side), Traits::image(q.triangles), q.rays};
+  }
+  // A random scene of triangles, spheres and cones (support/mixed_scenes.h)
+  // in the image the driver would build, with rays at its primitives (a third
+  // hard: grazing a sphere, at a cone's rim, from a surface).
+  static Case mixedCase(int triangles, int quadrics, int rays, uint32_t seed) {
+    RandomScenes random;
+    random.rng.seed(seed);
+    const Scene scene = random.scene(triangles, quadrics);
+    const Quantizer quantizer(scene.bounds);
+    Case c{fmt::format("mixed {} triangles {} quadrics", triangles, quadrics),
+           Desc::build(quantizer.quantizeTriangles(scene), AccelOptions{}, quantizer.quantizeQuadrics(scene)), {}};
+    while (int(c.rays.size()) < rays) {
+      if (const auto q = quantizer.quantize(random.ray(scene), uint32_t(c.rays.size()))) c.rays.push_back(q->q);
+    }
+    return c;
   }
   static TraversalRunOptions rough(uint64_t seed, int raysInFlight = 0) {
     return roughTraversalOptions(seed, raysInFlight);
