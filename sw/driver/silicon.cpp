@@ -75,10 +75,15 @@ DramEnergy dramEnergy() {
 
 std::optional<ChipSilicon> chipSilicon(const RunClock& clock, const ChipFigures& chip, uint64_t cycles,
                                        uint64_t rays) {
-  // The traversal unit's row (its synthesis holds its rt_isect).
+  // The traversal unit's row (its synthesis holds its rt_isect), and
+  // rt_quadric's when the run's scene has quadrics (the unit is mapped
+  // without it: Quadrics = 0; a chip for quadrics has one beside each
+  // rt_isect).
   const UnitClock* unit = nullptr;
+  const UnitClock* quadric = nullptr;
   for (const UnitClock& r : clock.rows) {
-    if (r.top != "rt_isect" && r.silicon) unit = &r;
+    if (!r.silicon || r.top == "rt_isect") continue;
+    (r.top == "rt_quadric" ? quadric : unit) = &r;
   }
   if (!unit) return std::nullopt;
   const UnitSilicon& u = *unit->silicon;
@@ -99,6 +104,16 @@ std::optional<ChipSilicon> chipSilicon(const RunClock& clock, const ChipFigures&
   s.cellsJ = u.dynamicPjPerCycle() * 1e-12 * double(busy);
   s.macrosJ = u.macroPjPerCycleBound() * 1e-12 * double(busy);
   double leakageW = s.units * (u.leakageW + u.macroLeakageW());
+  if (quadric) {
+    // rt_quadric's cells: its area and leakage in every unit, and its
+    // measured energy of a cycle once per quadric test (its activity is that
+    // of a stream of tests: scripts/silicon-activity --accel quadric).
+    const UnitSilicon& q = *quadric->silicon;
+    s.quadricPerUnit = q.logicAreaUm2 * 1e-6;
+    s.logicPerUnit += s.quadricPerUnit;
+    s.cellsJ += q.dynamicPjPerCycle() * 1e-12 * double(chip.quadricTests);
+    leakageW += s.units * q.leakageW;
+  }
 
   const mem::MemoryConfig& m = chip.memory;
   if (m.kind == mem::MemoryKind::Hierarchy) {
@@ -125,6 +140,7 @@ nlohmann::json ChipSilicon::toJson() const {
       {"node_nm", nodeNm},
       {"area_mm2",
        {{"logic_per_unit", logicPerUnit},
+        {"quadric_per_unit", quadricPerUnit},
         {"macros_per_unit", macrosPerUnit},
         {"l1_per_unit", l1PerUnit},
         {"memories", units * (macrosPerUnit + l1PerUnit) + l2},
@@ -164,6 +180,7 @@ std::string ChipSilicon::summary() const {
   std::string out = fmt::format(
       "  silicon             {} ({} nm): {:.1f} mm² = {} x ({:.2f} cells + {:.2f} macros + {:.2f} L1) + {:.2f} L2\n",
       library, nodeNm, areaMm2(), units, logicPerUnit, macrosPerUnit, l1PerUnit, l2);
+  if (quadricPerUnit > 0) out += fmt::format("                      (the cells hold rt_quadric's {:.2f})\n", quadricPerUnit);
   out += fmt::format("  energy              {:.1f} nJ/ray (cells {:.1f}, macros ≤{:.1f}, L1 {:.1f}, L2 {:.1f}, DRAM {:.2f}, "
                      "leakage {:.1f}); {:.2f} W; {:.2f} M rays/s per mm²\n",
                      nanojoulesPerRay(), cellsJ * perRay, macrosJ * perRay, l1J * perRay, l2J * perRay, dramJ * perRay,

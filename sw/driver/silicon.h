@@ -8,7 +8,8 @@
 //
 // Energy of a run, each part from what the run did:
 //   cells      the unit's dynamic energy per cycle at its measured activity x busy cycles
-//              (an idle unit is clock-gated: it spends leakage only)
+//              (an idle unit is clock-gated: it spends leakage only); with quadrics,
+//              rt_quadric's (mapped on its own) per cycle x the quadric tests
 //   macros     every macro port accessed once per busy cycle (an upper bound: the RTL reads
 //              its arrays combinationally, so which cycles a real macro would be read is not known)
 //   L1, L2     lookups x read energy + fills x write energy (one 64-byte line each)
@@ -52,8 +53,8 @@ struct ChipSilicon {
   std::string library;  // "sky130_fd_sc_hd tt_025C_1v80"
   int nodeNm = 0;
   int units = 0;
-  // Area, mm².
-  double logicPerUnit = 0, macrosPerUnit = 0, l1PerUnit = 0, l2 = 0;
+  // Area, mm² (logicPerUnit holds quadricPerUnit: rt_quadric's cells, when the scene has quadrics).
+  double logicPerUnit = 0, macrosPerUnit = 0, l1PerUnit = 0, l2 = 0, quadricPerUnit = 0;
   // Energy of the run, joules.
   double cellsJ = 0, macrosJ = 0, l1J = 0, l2J = 0, dramJ = 0, leakageJ = 0;
   double seconds = 0;

@@ -141,6 +141,35 @@ TEST(ChipSiliconTest, AreaAndEnergyOfARunFromItsCounts) {
   EXPECT_NE(s->summary().find("nJ/ray"), std::string::npos);
 }
 
+// A scene with quadrics: each unit holds an rt_quadric beside its rt_isect
+// (mapped on its own, its row in the run's clock), its cells' area and
+// leakage in every unit, its energy of a cycle once per quadric test.
+TEST(ChipSiliconTest, QuadricsAddTheQuadricPipelinePerUnit) {
+  UnitSilicon quadricCells = silicon(110, 2.5e6);
+  quadricCells.macros.clear();
+  quadricCells.dynamicW = 0.22;  // 2 nJ a cycle at 110 MHz
+  const std::vector<UnitClock> table = {row("rt_isect", 749, silicon(120, 7e5)), row("rt_quadric", 600, quadricCells),
+                                        row("rt_grid", 700, silicon(100, 4e6))};
+  const RunClock clock = chooseRunClock(table, fx::UnitKind::Grid, 16, 16, std::nullopt, true);
+  ASSERT_EQ(clock.mhz, 100);  // the slowest of the run's units: the grid
+  ChipFigures chip;
+  chip.unitRays = {500, 500};
+  chip.unitBusyCycles = {1000, 600};
+  chip.quadricTests = 300;
+  const auto s = chipSilicon(clock, chip, 1000, 1000);
+  ASSERT_TRUE(s.has_value());
+  EXPECT_NEAR(s->quadricPerUnit, 2.5, 1e-12);
+  EXPECT_NEAR(s->logicPerUnit, 4.0 + 2.5, 1e-12);
+  EXPECT_NEAR(s->cellsJ, 5e-9 * 1600 + 2e-9 * 300, 1e-15);
+  const double leakW = 2 * (1e-3 + 2e-3 + 1e-3);  // the grid's cells and macro, rt_quadric's cells
+  EXPECT_NEAR(s->leakageJ, leakW * 1000 / 100e6, 1e-15);
+  EXPECT_NEAR(s->toJson()["area_mm2"]["quadric_per_unit"].get<double>(), 2.5, 1e-12);
+  EXPECT_NE(s->summary().find("rt_quadric"), std::string::npos);
+  // Without quadrics in the scene the run's clock has no rt_quadric row: none of it.
+  const RunClock plain = chooseRunClock(table, fx::UnitKind::Grid, 16, 16, std::nullopt, false);
+  EXPECT_NEAR(chipSilicon(plain, chip, 1000, 1000)->logicPerUnit, 4.0, 1e-12);
+}
+
 TEST(ChipSiliconTest, NoSiliconFiguresNoFigures) {
   const std::vector<UnitClock> table = {row("rt_isect", 749, std::nullopt), row("rt_grid", 700, std::nullopt)};
   const RunClock clock = chooseRunClock(table, fx::UnitKind::Grid, 16, 16, std::nullopt);
