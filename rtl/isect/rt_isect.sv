@@ -67,35 +67,17 @@ module rt_isect (
   localparam int NUM_STAGES = 6;
 
   // ---------------------------------------------------------------------------
-  // Stage control: valid bits and the ready chain.
-  // stage_ready[s]: register s may load this cycle (it is empty, or its content
-  // moves on). stage_load[s]: it loads a valid item.
+  // Stage control (rt_stall_stages): stage_load[s], register s loads a valid
+  // item; the ready chain, the result's valid bit and the stream checks.
   // ---------------------------------------------------------------------------
-  logic [NUM_STAGES-1:0] valid_q, valid_d;
-  logic [NUM_STAGES-1:0] valid_in;
-  logic [NUM_STAGES-1:0] stage_ready;
   logic [NUM_STAGES-1:0] stage_load;
 
-  assign valid_in = {valid_q[NUM_STAGES-2:0], req_valid_i};
-
-  // Register s may load when some register at or after it is empty, or the
-  // result is taken this cycle: the closed form of "the next stage is empty or
-  // advancing", with no combinational loop through a vector.
-  for (genvar s = 0; s < NUM_STAGES; s++) begin : g_ready
-    assign stage_ready[s] = res_ready_i || !(&valid_q[NUM_STAGES-1:s]);
-  end
-
-  assign stage_load  = valid_in & stage_ready;
-  assign valid_d     = (valid_q & ~stage_ready) | stage_load;
-  assign req_ready_o = stage_ready[0];
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      valid_q <= '0;
-    end else begin
-      valid_q <= valid_d;
-    end
-  end
+  rt_stall_stages #(
+    .Stages(NUM_STAGES), .ReqW(rt_pkg::ISECT_RAY_W + rt_pkg::ISECT_TRI_W), .ResW(rt_pkg::ISECT_RES_W)
+  ) u_stages (
+    .clk_i, .rst_ni, .req_valid_i, .req_ready_o, .req_data_i({req_ray_i, req_tri_i}),
+    .res_valid_o, .res_ready_i, .res_data_i(res_data_o), .stage_load_o(stage_load)
+  );
 
   // ---------------------------------------------------------------------------
   // Vectors of the datapath. Packed like rt_pkg's `logic [2:0][W-1:0]` fields
@@ -385,7 +367,6 @@ module rt_isect (
     end
   end
 
-  assign res_valid_o = valid_q[NUM_STAGES-1];
   assign res_data_o  = res_q;
 
   // ---------------------------------------------------------------------------
@@ -397,36 +378,7 @@ module rt_isect (
   `RT_ASSERT_STATIC(g_latency_check, rt_pkg::ISECT_LATENCY == NUM_STAGES,
                     "rt_isect: its stages differ from rt_pkg::ISECT_LATENCY")
 
-  // Valid and ready are never X once out of reset.
-  `RT_ASSERT_KNOWN(a_res_valid_known, res_valid_o)
-  `RT_ASSERT_KNOWN(a_req_ready_known, req_ready_o)
-  `RT_ASSERT_KNOWN(a_req_valid_known, req_valid_i)
-  // Output stream: a result that is not taken stays, unchanged. Input stream
-  // (the producer's duty): an offered request stays, unchanged. Checked
-  // against copies taken in a stall only: $stable would make a simulator copy
-  // the wide records in every evaluation.
-  logic               res_stall_q, req_stall_q;
-  rt_pkg::isect_res_t res_held_q;
-  rt_pkg::isect_ray_t ray_held_q;
-  rt_pkg::isect_tri_t tri_held_q;
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      res_stall_q <= 1'b0;
-      req_stall_q <= 1'b0;
-    end else begin
-      res_stall_q <= res_valid_o && !res_ready_i;
-      req_stall_q <= req_valid_i && !req_ready_o;
-      if (res_valid_o && !res_ready_i) res_held_q <= res_data_o;
-      if (req_valid_i && !req_ready_o) begin
-        ray_held_q <= req_ray_i;
-        tri_held_q <= req_tri_i;
-      end
-    end
-  end
-  `RT_CHECK_IF(a_res_hold, res_stall_q, res_valid_o && res_data_o == res_held_q)
-  `RT_CHECK_IF(a_req_hold, req_stall_q, req_valid_i && req_ray_i == ray_held_q && req_tri_i == tri_held_q)
-  // A full pipeline whose result is taken accepts a new request (II = 1).
-  `RT_CHECK_IF(a_full_throughput, res_ready_i, req_ready_o)
+  // The stream checks are rt_stall_stages'.
 `endif
 
 endmodule

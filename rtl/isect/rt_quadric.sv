@@ -96,28 +96,16 @@ module rt_quadric (
   localparam int NUM_STAGES = FRONT + ROOT_STAGES + 4;
 
   // ---------------------------------------------------------------------------
-  // Stage control, as rt_isect's: valid bits and the ready chain.
+  // Stage control, as rt_isect's (rt_stall_stages).
   // ---------------------------------------------------------------------------
-  logic [NUM_STAGES-1:0] valid_q, valid_d;
-  logic [NUM_STAGES-1:0] valid_in;
-  logic [NUM_STAGES-1:0] stage_ready;
   logic [NUM_STAGES-1:0] stage_load;
 
-  assign valid_in = {valid_q[NUM_STAGES-2:0], req_valid_i};
-  for (genvar s = 0; s < NUM_STAGES; s++) begin : g_ready
-    assign stage_ready[s] = res_ready_i || !(&valid_q[NUM_STAGES-1:s]);
-  end
-  assign stage_load  = valid_in & stage_ready;
-  assign valid_d     = (valid_q & ~stage_ready) | stage_load;
-  assign req_ready_o = stage_ready[0];
-
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      valid_q <= '0;
-    end else begin
-      valid_q <= valid_d;
-    end
-  end
+  rt_stall_stages #(
+    .Stages(NUM_STAGES), .ReqW(rt_pkg::ISECT_RAY_W + rt_pkg::ISECT_QUADRIC_W), .ResW(rt_pkg::ISECT_RES_W)
+  ) u_stages (
+    .clk_i, .rst_ni, .req_valid_i, .req_ready_o, .req_data_i({req_ray_i, req_quadric_i}),
+    .res_valid_o, .res_ready_i, .res_data_i(res_data_o), .stage_load_o(stage_load)
+  );
 
   // ---------------------------------------------------------------------------
   // Datapath functions. Flat vectors (Yosys 0.23 reads no struct arguments);
@@ -679,40 +667,13 @@ module rt_quadric (
     end
   end
 
-  assign res_valid_o = valid_q[NUM_STAGES-1];
   assign res_data_o  = res_q;
 
 `ifdef RT_ASSERT_ON
 `include "rt_assert.svh"
   `RT_ASSERT_STATIC(g_latency_check, rt_pkg::QUADRIC_LATENCY == NUM_STAGES,
                     "rt_quadric: its stages differ from rt_pkg::QUADRIC_LATENCY")
-  `RT_ASSERT_KNOWN(a_res_valid_known, res_valid_o)
-  `RT_ASSERT_KNOWN(a_req_ready_known, req_ready_o)
-  `RT_ASSERT_KNOWN(a_req_valid_known, req_valid_i)
-  // Output stream: a result that is not taken stays, unchanged. Input stream
-  // (the producer's duty): an offered request stays, unchanged.
-  logic                   res_stall_q, req_stall_q;
-  rt_pkg::isect_res_t     res_held_q;
-  rt_pkg::isect_ray_t     ray_held_q;
-  rt_pkg::isect_quadric_t quadric_held_q;
-  always_ff @(posedge clk_i) begin
-    if (!rst_ni) begin
-      res_stall_q <= 1'b0;
-      req_stall_q <= 1'b0;
-    end else begin
-      res_stall_q <= res_valid_o && !res_ready_i;
-      req_stall_q <= req_valid_i && !req_ready_o;
-      if (res_valid_o && !res_ready_i) res_held_q <= res_data_o;
-      if (req_valid_i && !req_ready_o) begin
-        ray_held_q     <= req_ray_i;
-        quadric_held_q <= req_quadric_i;
-      end
-    end
-  end
-  `RT_CHECK_IF(a_res_hold, res_stall_q, res_valid_o && res_data_o == res_held_q)
-  `RT_CHECK_IF(a_req_hold, req_stall_q, req_valid_i && req_ray_i == ray_held_q && req_quadric_i == quadric_held_q)
-  // A full pipeline whose result is taken accepts a new request (II = 1).
-  `RT_CHECK_IF(a_full_throughput, res_ready_i, req_ready_o)
+  // The stream checks are rt_stall_stages'.
 `endif
 
 endmodule

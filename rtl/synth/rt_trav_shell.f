@@ -7,6 +7,7 @@ lib/rt_closest_hit.sv
 lib/rt_exit_test.sv
 lib/rt_setup_front.sv
 lib/rt_idx_count.sv
+lib/rt_stall_stages.sv
 isect/rt_isect.sv
 isect/rt_quadric.sv
 lib/rt_trav_shell.sv

@@ -131,7 +131,9 @@ TEST(DriverQuadricJob, AgreesWithTheReferenceWithinTheLatticeBound) {
   // A hit on a quadric carries its side: the camera is outside every solid.
   for (size_t i = 0; i < job.hits.size(); ++i) {
     const auto hit = sceneHit(job, i);
-    if (hit && n.scene.isQuadric(hit->prim)) EXPECT_EQ(hit->u, 0.0f) << i;
+    if (hit && n.scene.isQuadric(hit->prim)) {
+      EXPECT_EQ(hit->u, 0.0f) << i;
+    }
   }
 }
 

@@ -9,7 +9,7 @@
 # typedefs of rt_pkg.sv out of the package into the compilation unit, and
 # rename rt_pkg::isect_*_t to isect_*_t in the DUT; nothing else changes.
 #
-# cmake -DVECTOR_TOOL=... -DIVERILOG=... -DVVP=... -DPKG=rt_pkg.sv -DDUT=rt_isect.sv
+# cmake -DVECTOR_TOOL=... -DIVERILOG=... -DVVP=... -DPKG=rt_pkg.sv -DDUT="rt_stall_stages.sv|rt_isect.sv"
 #       -DTB=tb_rt_isect.sv -DWORK=dir [-DRANDOM=n] [-DMAX_HARD=n] [-DSTALL=pct]
 #       [-DIDLE=pct] [-DSEED=s] -P run_icarus.cmake
 foreach(var VECTOR_TOOL IVERILOG VVP PKG DUT TB WORK)
@@ -53,13 +53,20 @@ endif()
 file(WRITE ${WORK}/rt_pkg_icarus.sv
   "// Icarus-11 copy of ${PKG}: struct typedefs moved out of the package.\n"
   "${pkg_params}endpackage\n\n${pkg_types}")
-file(READ ${DUT} dut)
-string(REGEX REPLACE "rt_pkg::(isect_[a-z_]+_t)" "\\1" dut "${dut}")
-file(WRITE ${WORK}/rt_isect_icarus.sv "// Icarus-11 copy of ${DUT}: type names unscoped.\n${dut}")
+# DUT: the sources of rt_isect in compile order, separated by '|'.
+string(REPLACE "|" ";" dut_sources "${DUT}")
+set(dut_copies)
+foreach(source ${dut_sources})
+  file(READ ${source} dut)
+  string(REGEX REPLACE "rt_pkg::(isect_[a-z_]+_t)" "\\1" dut "${dut}")
+  get_filename_component(name ${source} NAME_WE)
+  file(WRITE ${WORK}/${name}_icarus.sv "// Icarus-11 copy of ${source}: type names unscoped.\n${dut}")
+  list(APPEND dut_copies ${WORK}/${name}_icarus.sv)
+endforeach()
 
 # 3. Compile and run.
 execute_process(COMMAND ${IVERILOG} -g2012 -Wall -Wno-timescale -o ${WORK}/tb_rt_isect.vvp
-                        -s tb_rt_isect ${WORK}/rt_pkg_icarus.sv ${WORK}/rt_isect_icarus.sv ${TB}
+                        -s tb_rt_isect ${WORK}/rt_pkg_icarus.sv ${dut_copies} ${TB}
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "iverilog failed (${rc}):\n${out}")
