@@ -38,7 +38,8 @@ std::string describeTraversalMismatch(std::string_view unit, std::string_view el
                      model.visits.size(), golden.visits.size(), first);
   out += fmt::format("    model  from step {}:{}\n", first, visitRun(model.visits, first));
   out += fmt::format("    golden from step {}:{}\n", first, visitRun(golden.visits, first));
-  out += fmt::format("  tests    model {}, golden {}\n", model.tests, golden.tests);
+  out += fmt::format("  tests    model {} ({} of quadrics), golden {} ({})\n", model.tests, model.quadricTests,
+                     golden.tests, golden.quadricTests);
   out += fmt::format("  model    {}\n", model.hit ? hexFields(*model.hit) : "(miss)");
   out += fmt::format("  golden   {}\n", golden.hit ? hexFields(*golden.hit) : "(miss)");
   if (model.hit && golden.hit) {
