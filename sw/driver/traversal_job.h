@@ -35,8 +35,10 @@ std::vector<JobCounter> imageFigures(const typename Unit::Image& image) {
   std::vector<JobCounter> figures;
   for (const fx::ImageCounter& c : Unit::imageCounters(image)) figures.push_back({c.key, c.label, c.value});
   uint64_t bytes = 0, records = 1;
-  for (const mem::Region& r : regionsOf<Unit>(image)) {
-    if (r.name == "quadric table" && r.records == 0) continue;  // a scene of triangles
+  const auto regions = regionsOf<Unit>(image);
+  for (size_t i = 0; i < regions.size(); ++i) {
+    const mem::Region& r = regions[i];
+    if (i == mem::kQuadricRegion && r.records == 0) continue;  // a scene of triangles
     std::string key = r.name + "_image_bytes";
     std::replace(key.begin(), key.end(), ' ', '_');
     figures.push_back({key, "image: " + r.name, double(r.bytes())});

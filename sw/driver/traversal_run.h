@@ -388,7 +388,7 @@ class UnitRun {
     stats_.indexReads += request(memory, mem::Port::Index, top_.idx_req_valid_o, top_.idx_req_ready_i,
                                  top_.idx_req_addr_o, top_.idx_req_tag_o);
     // A primitive read names its table by the entry's kind bit (mem::AddressMap::span).
-    const uint32_t primitive = uint32_t(top_.tri_req_addr_o) | (top_.tri_req_quadric_o ? fx::kQuadricEntryBit : 0u);
+    const uint32_t primitive = fx::primitiveEntry(uint32_t(top_.tri_req_addr_o), top_.tri_req_quadric_o);
     stats_.triangleReads += request(memory, mem::Port::Triangle, top_.tri_req_valid_o, top_.tri_req_ready_i,
                                     primitive, top_.tri_req_tag_o);
     if (started_ && top_.perf_step_ready_o) ++stats_.stepReadyCycles;

@@ -21,6 +21,11 @@ inline constexpr uint32_t triangleEntry(uint32_t place) { return place; }
 inline constexpr uint32_t quadricEntry(uint32_t place) { return place | kQuadricEntryBit; }
 inline constexpr bool isQuadricEntry(uint32_t entry) { return (entry & kQuadricEntryBit) != 0; }
 inline constexpr uint32_t entryPlace(uint32_t entry) { return entry & ~kQuadricEntryBit; }
+// The entry a primitive read names: its place and its table (a port's
+// address and its kind bit, tri_req_quadric_o).
+inline constexpr uint32_t primitiveEntry(uint32_t place, bool quadric) {
+  return quadric ? quadricEntry(place) : triangleEntry(place);
+}
 
 // The primitive tables of an image, by place.
 struct PrimitiveTables {

@@ -94,9 +94,8 @@ i128 roundShift(i128 v, int e) {
 // computes lies in the box: the structures list the cone wherever it may hit). A disc of radius R about axis w reaches
 // R sqrt(1 - w_a^2 / W) along axis a.
 LatticeBox coneBounds(const LatticeCone& cone, int scaleExp) {
-  const double len2 = double(cone.apex[0] - cone.base[0]) * double(cone.apex[0] - cone.base[0]) +
-                      double(cone.apex[1] - cone.base[1]) * double(cone.apex[1] - cone.base[1]) +
-                      double(cone.apex[2] - cone.base[2]) * double(cone.apex[2] - cone.base[2]);
+  double len2 = 0;
+  for (size_t k = 0; k < 3; ++k) len2 += double(cone.apex[k] - cone.base[k]) * double(cone.apex[k] - cone.base[k]);
   double radius = double(std::max(cone.baseRadius, cone.apexRadius));
   if (scaleExp > 0) {
     const double slope = double(cone.apexRadius - cone.baseRadius);

@@ -88,8 +88,8 @@ class rt_trav_tb : public sc_core::sc_module {
     active_ = units;
     cfg_ = Unit::config(image);
     nodes_.start(image);
-    triPacked_.assign(image.triangles.size(), 0);
-    triWire_.resize(image.triangles.size() * fx::kIsectTriWords);
+    triWires_.start(image.triangles.size());
+    quadricWires_.start(image.quadrics.size());
     dispatcher_.emplace(job.rays.size(), units, job.dispatchBatch);
     owner_.assign(job.rays.size(), -1);
     for (int u = 0; u < units; ++u) {
@@ -244,7 +244,7 @@ class rt_trav_tb : public sc_core::sc_module {
     if (s.reqReady[p]) {
       // A primitive read names its table by the entry's kind bit (mem::AddressMap::span).
       const bool quadric = port == mem::Port::Triangle && s.triQuadric;
-      memory_->request(u, port, s.addr[p] | (quadric ? fx::kQuadricEntryBit : 0u), s.tag[p]);
+      memory_->request(u, port, fx::primitiveEntry(s.addr[p], quadric), s.tag[p]);
     } else {
       memory_->blocked(u, port);
     }
@@ -288,20 +288,13 @@ class rt_trav_tb : public sc_core::sc_module {
     if (primitive && !tri) {
       const uint32_t place = fx::entryPlace(addr);
       if (place >= image_->quadrics.size()) outside("quadric table", place, image_->quadrics.size());
-      std::array<uint32_t, size_t(fx::wireWords(ISECT_QUADRIC_W))> wire{};
-      fx::packWire(image_->quadrics[place], wire);
-      assignPort<ISECT_QUADRIC_W>(quadricPort_, wire);
+      assignPort<ISECT_QUADRIC_W>(quadricPort_, quadricWires_.wire(image_->quadrics, place));
       side.quadric_rsp_data_i.write(quadricPort_);
       side.quadric_rsp_tag_i.write(slot_t(tag));
     }
     if (tri) {
       if (addr >= image_->triangles.size()) outside("triangle table", addr, image_->triangles.size());
-      const std::span<uint32_t> wire(triWire_.data() + size_t(addr) * fx::kIsectTriWords, fx::kIsectTriWords);
-      if (!triPacked_[addr]) {
-        fx::packWire(image_->triangles[addr], wire);
-        triPacked_[addr] = 1;
-      }
-      assignPort<ISECT_TRI_W>(triPort_, wire);
+      assignPort<ISECT_TRI_W>(triPort_, triWires_.wire(image_->triangles, addr));
       side.tri_rsp_data_i.write(triPort_);
       side.tri_rsp_tag_i.write(slot_t(tag));
     }
@@ -330,9 +323,27 @@ class rt_trav_tb : public sc_core::sc_module {
   std::string error_;
   bool finished_ = false;
   typename Unit::node_packer nodes_;
-  // Triangle wire images packed on first use in a run (fx::packWire by triangle id).
-  std::vector<uint32_t> triWire_;
-  std::vector<uint8_t> triPacked_;
+  // The primitive tables' wire images, each record packed on first use in a run.
+  template <size_t Words>
+  struct packed_table {
+    std::vector<uint32_t> words;
+    std::vector<uint8_t> packed;
+    void start(size_t records) {
+      packed.assign(records, 0);
+      words.resize(records * Words);
+    }
+    template <class Record>
+    std::span<const uint32_t> wire(const std::vector<Record>& table, uint32_t place) {
+      const std::span<uint32_t> out(words.data() + size_t(place) * Words, Words);
+      if (!packed[place]) {
+        fx::packWire(table[place], out);
+        packed[place] = 1;
+      }
+      return out;
+    }
+  };
+  packed_table<fx::kIsectTriWords> triWires_;
+  packed_table<size_t(fx::wireWords(ISECT_QUADRIC_W))> quadricWires_;
   // The response ports' values, reused (an sc_bv allocates when constructed).
   typename Unit::node_data_t nodePort_{};
   isect_tri_t triPort_{};

@@ -14,7 +14,6 @@
 
 #include "common/accel_options.h"
 #include "driver/chip.h"
-#include "driver/quantize.h"
 #include "golden/primitives.h"
 #include "golden/units.h"
 #include "support/mixed_scenes.h"
@@ -22,23 +21,7 @@
 namespace lancer {
 namespace {
 
-struct MixedCase {
-  std::vector<fx::QTriangle> triangles;
-  std::vector<fx::QQuadric> quadrics;
-  std::vector<fx::QRay> rays;
-};
-
-MixedCase mixedCase(int triangles, int quadrics, int rays, uint32_t seed) {
-  test::RandomScenes random;
-  random.rng.seed(seed);
-  const Scene scene = random.scene(triangles, quadrics);
-  const Quantizer quantizer(scene.bounds);
-  MixedCase c{quantizer.quantizeTriangles(scene), quantizer.quantizeQuadrics(scene), {}};
-  while (int(c.rays.size()) < rays) {
-    if (const auto q = quantizer.quantize(random.ray(scene), uint32_t(c.rays.size()))) c.rays.push_back(q->q);
-  }
-  return c;
-}
+using test::quantizedMixedScene;
 
 // The closest hit of every primitive of the tables (closerResult), and the
 // quadric tests a walk of them all would count.
@@ -49,7 +32,7 @@ std::optional<fx::IsectResult> closestOfAll(const fx::PrimitiveTables& tables, c
 }
 
 TEST(GoldenMixedWalk, EveryUnitFindsTheClosestOfAllPrimitives) {
-  const MixedCase c = mixedCase(40, 80, 4000, 4041);
+  const test::QuantizedMixedScene c = quantizedMixedScene(40, 80, 4000, 4041);
   fx::forEachTraversalUnit([&](auto unit) {
     using U = decltype(unit);
     const typename U::Image image = U::build(c.triangles, AccelOptions{}, c.quadrics);
@@ -88,7 +71,7 @@ bool holds(const fx::LatticeBox& box, const std::array<double, 3>& p, double sla
 }
 
 TEST(GoldenMixedWalk, QuadricBoundsHoldEveryComputedHit) {
-  const MixedCase c = mixedCase(0, 200, 20000, 4042);
+  const test::QuantizedMixedScene c = quantizedMixedScene(0, 200, 20000, 4042);
   uint64_t hits = 0, rounded = 0;
   for (const fx::QQuadric& q : c.quadrics) rounded += q.scaleExp > 0;
   EXPECT_GT(rounded, 0u);  // cones whose records are rounded are among them
@@ -112,7 +95,7 @@ TEST(GoldenMixedWalk, QuadricBoundsHoldEveryComputedHit) {
 // The treelet layout puts each kind's table in leaf order: the walks keep
 // their hits (records carry their ids), their visits and tests.
 TEST(GoldenMixedWalk, BvhTreeletLayoutKeepsEveryWalk) {
-  const MixedCase c = mixedCase(60, 60, 1500, 4043);
+  const test::QuantizedMixedScene c = quantizedMixedScene(60, 60, 1500, 4043);
   const fx::BvhImage plain = fx::buildBvhImage(c.triangles, fx::kDefaultBvhLeafSize, c.quadrics);
   fx::BvhImage blocked = plain;
   fx::layoutBvhTreelets(blocked, 4);
@@ -133,7 +116,7 @@ TEST(GoldenMixedWalk, BvhTreeletLayoutKeepsEveryWalk) {
 
 // Each cell's and leaf's list is ascending: its triangles, then its quadrics.
 TEST(GoldenMixedWalk, ListsHoldTrianglesThenQuadrics) {
-  const MixedCase c = mixedCase(30, 30, 0, 4044);
+  const test::QuantizedMixedScene c = quantizedMixedScene(30, 30, 0, 4044);
   const fx::GridImage grid = fx::buildGridImage(c.triangles, {8, 8, 8}, c.quadrics);
   for (const fx::GridCell& cell : grid.cells) {
     const auto first = grid.indices.begin() + cell.first;
@@ -151,7 +134,7 @@ TEST(GoldenMixedWalk, ListsHoldTrianglesThenQuadrics) {
 // The image's size counts the quadric table (68 bytes a record at 16/16),
 // which the triangle port reads at an entry with the kind bit.
 TEST(GoldenMixedWalk, AddressMapPlacesTheQuadricTable) {
-  const MixedCase c = mixedCase(10, 10, 0, 4045);
+  const test::QuantizedMixedScene c = quantizedMixedScene(10, 10, 0, 4045);
   const fx::GridImage image = fx::GridUnit::build(c.triangles, AccelOptions{}, c.quadrics);
   const mem::AddressMap map = addressMapOf<fx::GridUnit>(image);
   const mem::Region& quadrics = map.quadricRegion();

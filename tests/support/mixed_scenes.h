@@ -15,6 +15,9 @@
 
 #include <glm/glm.hpp>
 
+#include "driver/quantize.h"
+#include "golden/quadric.h"
+#include "golden/records.h"
 #include "ref/quadric.h"
 #include "scene/scene.h"
 
@@ -118,5 +121,26 @@ struct RandomScenes {
     return Ray{origin, target - origin, tMax};
   }
 };
+
+// A random mixed scene (RandomScenes, seeded) on the lattice: its triangles and
+// quadrics quantized as the driver quantizes them, and `rays` of its rays
+// that enter the lattice, ids 0, 1, ... (what the traversal units' tests give
+// their images and devices).
+struct QuantizedMixedScene {
+  std::vector<fx::QTriangle> triangles;
+  std::vector<fx::QQuadric> quadrics;
+  std::vector<fx::QRay> rays;
+};
+inline QuantizedMixedScene quantizedMixedScene(int triangles, int quadrics, int rays, uint32_t seed) {
+  RandomScenes random;
+  random.rng.seed(seed);
+  const Scene scene = random.scene(triangles, quadrics);
+  const Quantizer quantizer(scene.bounds);
+  QuantizedMixedScene q{quantizer.quantizeTriangles(scene), quantizer.quantizeQuadrics(scene), {}};
+  while (int(q.rays.size()) < rays) {
+    if (const auto ray = quantizer.quantize(random.ray(scene), uint32_t(q.rays.size()))) q.rays.push_back(ray->q);
+  }
+  return q;
+}
 
 }  // namespace lancer::test

@@ -14,7 +14,6 @@
 
 #include <fmt/format.h>
 
-#include "driver/quantize.h"
 #include "driver/traversal_device.h"
 #include "golden/trace.h"
 #include "support/mixed_scenes.h"
@@ -87,16 +86,9 @@ struct UnitRuns {
   // in the image the driver would build, with rays at its primitives (a third
   // hard: grazing a sphere, at a cone's rim, from a surface).
   static Case mixedCase(int triangles, int quadrics, int rays, uint32_t seed) {
-    RandomScenes random;
-    random.rng.seed(seed);
-    const Scene scene = random.scene(triangles, quadrics);
-    const Quantizer quantizer(scene.bounds);
-    Case c{fmt::format("mixed {} triangles {} quadrics", triangles, quadrics),
-           Desc::build(quantizer.quantizeTriangles(scene), AccelOptions{}, quantizer.quantizeQuadrics(scene)), {}};
-    while (int(c.rays.size()) < rays) {
-      if (const auto q = quantizer.quantize(random.ray(scene), uint32_t(c.rays.size()))) c.rays.push_back(q->q);
-    }
-    return c;
+    QuantizedMixedScene q = quantizedMixedScene(triangles, quadrics, rays, seed);
+    return {fmt::format("mixed {} triangles {} quadrics", triangles, quadrics),
+            Desc::build(std::move(q.triangles), AccelOptions{}, std::move(q.quadrics)), std::move(q.rays)};
   }
   static TraversalRunOptions rough(uint64_t seed, int raysInFlight = 0) {
     return roughTraversalOptions(seed, raysInFlight);
