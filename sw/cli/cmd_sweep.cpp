@@ -79,7 +79,8 @@ void addSweep(CLI::App& app) {
   cmd->add_option("--spec", a->specFile, "JSON sweep spec (options given here override it)");
   cmd->add_option("--widths", a->widths, "Widths P/D (or P for P/P), 4..24, e.g. 8/8,10/10,16/16")->delimiter(',');
   cmd->add_option("--scenes", a->scenes, "Scenes (files or builtin:cornell)")->delimiter(',');
-  cmd->add_option("--units", a->units, "Units: isect (host BVH + pipeline), grid, octree (default isect)")->delimiter(',');
+  cmd->add_option("--units", a->units, "Units: isect (host BVH + pipeline), quadric (rt_quadric on the scenes' native "
+                 "spheres and cones), grid, octree, bvh (default isect)")->delimiter(',');
   cmd->add_option("--models", a->models, "Models (default golden,rtl)")->delimiter(',');
   cmd->add_option("--image", a->spec.image, "Camera rays: IMAGE x IMAGE, auto-framed")->capture_default_str();
   cmd->add_option("--chunks", a->spec.chunks, "Split each scene's camera rays into this many jobs")->capture_default_str();

@@ -78,15 +78,17 @@ std::string executeJob(const std::string& out, const Spec& spec, const Job& job)
   }
 
   const std::string runReport = work + "/run.json";
-  std::vector<std::string> run{lancer, "run", "--scene", scene, "--rays", rays, "--accel", job.unit, "--model",
-                               job.model, "--pos-bits", std::to_string(job.width.pos), "--dir-bits",
+  std::vector<std::string> run{lancer, "run", "--scene", scene, "--rays", rays, "--model", job.model,
+                               "--pos-bits", std::to_string(job.width.pos), "--dir-bits",
                                std::to_string(job.width.dir), "--report", runReport, "--repro",
                                work + "/mismatch.rays"};
+  const std::vector<std::string> unitArgs = runUnitArgs(job.unit);
+  run.insert(run.end(), unitArgs.begin(), unitArgs.end());
   if (spec.clockMhz) run.insert(run.end(), {"--clock-mhz", fmt::format("{}", *spec.clockMhz)});
   std::vector<std::string> structure;
   if (job.unit == "grid" && spec.gridRes) structure = {"--grid-res", std::to_string(spec.gridRes)};
   run.insert(run.end(), structure.begin(), structure.end());
-  if (job.unit != "isect") run.insert(run.end(), {"--mem-latency", std::to_string(spec.memLatency)});
+  if (isTraversalUnit(job.unit)) run.insert(run.end(), {"--mem-latency", std::to_string(spec.memLatency)});
   // A run whose only failure is answers beyond the hardware's bound (exit 4, no
   // mismatch) keeps its result: the merge counts them as the sweep's failures.
   const int rc = runLogged(run, log);
@@ -94,10 +96,16 @@ std::string executeJob(const std::string& out, const Spec& spec, const Job& job)
   const bool onlyBeyond = rc == 4 && result["run"].is_object() && result["run"].value("mismatches", 1) == 0;
   if (rc != 0 && !onlyBeyond) return fail(fmt::format("lancer run exited {}: {}", rc, errorLine(log)));
   if (!result["run"].is_object()) return fail(fmt::format("lancer run wrote no report {}", runReport));
+  if (job.unit == "quadric") {
+    const nlohmann::json primitives = result["run"].value("primitives", nlohmann::json::object());
+    if (primitives.value("spheres", 0) + primitives.value("cones", 0) == 0) {
+      return fail("the scene has no sphere or cone: the quadric unit would test nothing (sweep it with isect)");
+    }
+  }
 
   // The float structure's walk on the same rays, with the hardware's structure
   // parameters: what the conservative fixed-point walk visits beyond it.
-  if (job.unit != "isect") {
+  if (isTraversalUnit(job.unit)) {
     const nlohmann::json& r = result["run"];
     std::vector<std::string> trace{lancer, "trace", "--scene", scene, "--rays", rays, "--accel", job.unit,
                                    "--report", work + "/trace.json", "--hits", "/dev/null"};

@@ -25,7 +25,7 @@ struct Totals {
   uint64_t rays = 0, inLattice = 0, hit = 0, disagreements = 0, hitMiss = 0, prim = 0, compared = 0;
   double tErrMax = 0, tErrSum = 0;
   uint64_t arbHwCorrect = 0, arbHwTie = 0, arbHwWithin = 0, arbHwBeyond = 0, arbRefWrong = 0;
-  uint64_t cycles = 0, tests = 0, steps = 0, refNodes = 0, mismatches = 0;
+  uint64_t cycles = 0, tests = 0, quadricTests = 0, steps = 0, refNodes = 0, mismatches = 0;
   bool cycleAccurate = true, refComparable = true;
   double modelSeconds = 0;
   uint64_t crackRays = 0, crackMisses = 0, crackRefDiffers = 0, crackRejected = 0;
@@ -54,6 +54,7 @@ struct Totals {
     arbRefWrong += a.value("reference", nlohmann::json::object()).value("wrong", uint64_t(0));
     cycles += r.value("cycles", uint64_t(0));
     tests += r.value("intersection_tests", uint64_t(0));
+    quadricTests += r.value("quadric_tests", uint64_t(0));
     cycleAccurate = cycleAccurate && r.value("cycle_accurate", false);
     mismatches += r.value("mismatches", uint64_t(0));
     modelSeconds += r.value("model_seconds", 0.0);
@@ -82,7 +83,7 @@ struct Totals {
     tErrMax = std::max(tErrMax, t.tErrMax), tErrSum += t.tErrSum;
     arbHwCorrect += t.arbHwCorrect, arbHwTie += t.arbHwTie, arbHwWithin += t.arbHwWithin;
     arbHwBeyond += t.arbHwBeyond, arbRefWrong += t.arbRefWrong;
-    cycles += t.cycles, tests += t.tests, steps += t.steps, refNodes += t.refNodes, mismatches += t.mismatches;
+    cycles += t.cycles, tests += t.tests, quadricTests += t.quadricTests, steps += t.steps, refNodes += t.refNodes, mismatches += t.mismatches;
     cycleAccurate = cycleAccurate && t.cycleAccurate;
     refComparable = refComparable && t.refComparable;
     modelSeconds += t.modelSeconds;
@@ -116,7 +117,7 @@ const std::vector<Column>& columns() {
       {"unit_steps", true}, {"reference_steps", true}, {"extra_steps_fraction", true},
       {"steps_vs_widest_fraction", true},
       {"mismatches_vs_golden", true}, {"isect_latency_cycles", true}, {"cycles", true},
-      {"cycles_per_ray", true}, {"tests_per_cycle", true}, {"tests_per_ray", true}, {"cells", true},
+      {"cycles_per_ray", true}, {"tests_per_cycle", true}, {"tests_per_ray", true}, {"quadric_tests_per_ray", true}, {"cells", true},
       {"flip_flops", true}, {"logic_depth", true}, {"fmax_mhz_est", true}, {"ns_per_ray_at_fmax", true},
       {"area_um2", true}, {"sta_fmax_mhz", true}, {"ns_per_ray_at_sta", true}, {"pj_per_ray", true},
       {"cells_x_ns_per_ray", true}, {"host_model_seconds", false}, {"host_rays_per_second", false},
@@ -198,7 +199,7 @@ nlohmann::json sweepRow(const Width& w, const std::string& unit, const std::stri
   const double pjPerRay = si.value("pj_per_cycle", NAN) * cyclesPerRay;
   const double tErrMean = ratio(t.tErrSum, double(t.compared));
   const bool hasCamera = t.cameraJobs > 0;
-  const bool walks = unit != "isect";  // a traversal unit: it takes steps
+  const bool walks = isTraversalUnit(unit);
   const auto ifCracks = [&](uint64_t v) { return t.crackJobs ? nlohmann::json(v) : nlohmann::json(nullptr); };
   return {{"width", w.name()}, {"pos_bits", w.pos}, {"dir_bits", w.dir}, {"unit", unit}, {"model", model},
           {"scene", scene}, {"rays", t.rays}, {"rays_in_lattice", t.inLattice},
@@ -224,6 +225,7 @@ nlohmann::json sweepRow(const Width& w, const std::string& unit, const std::stri
           {"cycles_per_ray", num(cyclesPerRay)},
           {"tests_per_cycle", timed ? num(ratio(double(t.tests), double(t.cycles))) : nullptr},
           {"tests_per_ray", num(ratio(double(t.tests), double(t.inLattice)))},
+          {"quadric_tests_per_ray", num(ratio(double(t.quadricTests), double(t.inLattice)))},
           {"cells", num(cells)}, {"flip_flops", num(syn.value("flip_flops", NAN))},
           {"logic_depth", num(depth)}, {"fmax_mhz_est", num(fmax)}, {"ns_per_ray_at_fmax", num(nsPerRay)},
           {"cells_x_ns_per_ray", num(cells * nsPerRay)},

@@ -68,7 +68,7 @@ Width parseWidth(const std::string& text, const std::string& where) {
 
 const std::vector<std::string>& sweepUnits() {
   static const std::vector<std::string> units = [] {
-    std::vector<std::string> names{"isect"};
+    std::vector<std::string> names{"isect", "quadric"};
     fx::forEachTraversalUnit([&](auto unit) { names.emplace_back(decltype(unit)::kNames.unit); });
     return names;
   }();
@@ -76,6 +76,15 @@ const std::vector<std::string>& sweepUnits() {
 }
 
 std::string synthTopOf(const std::string& unit) { return "rt_" + unit; }
+
+std::vector<std::string> runUnitArgs(const std::string& unit) {
+  if (unit == "quadric") return {"--accel", "isect", "--quadrics", "native"};
+  return {"--accel", unit};
+}
+
+bool isTraversalUnit(const std::string& unit) { return unit != "isect" && unit != "quadric"; }
+
+bool takesCrackRays(const std::string& unit) { return unit != "quadric"; }
 
 void Spec::validate() const {
   if (widths.empty()) throw InputError("--widths: no width to sweep");
@@ -220,7 +229,7 @@ std::vector<Job> makePlan(const Spec& spec) {
           for (int c = 0; c < spec.chunks; ++c) {
             jobs.push_back({fmt::format("{}.c{}of{}", base, c, spec.chunks), w, unit, model, s, "camera", c});
           }
-          if (spec.crackRays > 0) jobs.push_back({base + ".cracks", w, unit, model, s, "cracks", 0});
+          if (spec.crackRays > 0 && takesCrackRays(unit)) jobs.push_back({base + ".cracks", w, unit, model, s, "cracks", 0});
         }
       }
     }

@@ -27,9 +27,17 @@ struct Width {
 // "P/D" (or "P" for P/P); throws InputError naming `where` unless both lie in 4..24.
 Width parseWidth(const std::string& text, const std::string& where);
 
-// The units a sweep can measure (each also its `lancer run --accel`), and the Yosys top of each.
+// The units a sweep can measure and the Yosys top of each: isect (rt_isect fed
+// by the host's BVH), quadric (rt_quadric beside it on the scene's native
+// spheres and cones) and every traversal unit.
 const std::vector<std::string>& sweepUnits();
 std::string synthTopOf(const std::string& unit);
+// What selects the unit in `lancer run`: --accel, and --quadrics native for quadric.
+std::vector<std::string> runUnitArgs(const std::string& unit);
+// A traversal unit walks a structure (it takes steps and has a float walk to compare with).
+bool isTraversalUnit(const std::string& unit);
+// Crack rays aim at shared triangle edges, which the quadric pipeline never tests.
+bool takesCrackRays(const std::string& unit);
 
 struct Spec {
   std::vector<Width> widths;

@@ -41,6 +41,23 @@ for r in rows:
 print("ok   cracks: 0 of", rows[0]["crack_rays"])
 PY
 
+# The quadric unit (rt_quadric on native spheres and cones): a scene without
+# any is an error naming the job; on the sphereflake its row counts quadric
+# tests and takes no crack rays.
+check quadric-none 4 "unit quadric, model golden, scene builtin:cornell.*no sphere or cone" -- \
+  "$lancer" sweep --widths "$width" "${base[@]}" --scenes builtin:cornell --units quadric --out "$work/q0"
+check quadric 0 "1 jobs planned" -- \
+  "$lancer" sweep --widths "$width" "${base[@]}" --scenes builtin:spd-balls@1 --units quadric --out "$work/q"
+python3 - "$work/q/sweep.csv" <<'PY' || fail "quadric: the quadric row does not hold"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) == 1 and rows[0]["unit"] == "quadric", rows
+r = rows[0]
+assert float(r["quadric_tests_per_ray"]) > 0, r
+assert r["crack_rays"] == "" and r["misclassified_fraction"] != "" and r["arbiter_hw_beyond_bound"] == "0", r
+print("ok   quadric row:", r["quadric_tests_per_ray"], "quadric tests a ray")
+PY
+
 # A failed build names the width and keeps the other width's results.
 check bad-build 4 "width 6/6: configuring .* failed \\(exit 1\\): LANCER_MEM_ADDR_BITS must lie in 10..30" -- \
   "$lancer" sweep --widths "$width,6/6" "${base[@]}" --scenes builtin:cornell --tree-pattern "$work/tree-{pos}-{dir}" \

@@ -82,6 +82,28 @@ TEST(Sweep, PlanHasOneJobPerWidthUnitModelSceneAndRaySet) {
   EXPECT_EQ(sceneTag(s, 1), "s1-cornell");
 }
 
+// The quadric unit is rt_quadric beside rt_isect on native spheres and cones:
+// no crack rays (they aim at shared triangle edges) and no structure walk.
+TEST(Sweep, QuadricUnitRunsNativeQuadricsWithoutCrackRays) {
+  Spec s;
+  s.widths = {{10, 10}};
+  s.scenes = {"builtin:spd-balls@1"};
+  s.units = {"quadric", "bvh"};
+  s.models = {"golden"};
+  s.crackRays = 16;
+  EXPECT_NO_THROW(s.validate());
+  std::set<std::string> keys;
+  for (const Job& j : makePlan(s)) keys.insert(j.key);
+  EXPECT_EQ(keys, (std::set<std::string>{"w10-10.quadric.golden.s0.c0of1", "w10-10.bvh.golden.s0.c0of1",
+                                         "w10-10.bvh.golden.s0.cracks"}));
+  EXPECT_EQ(runUnitArgs("quadric"), (std::vector<std::string>{"--accel", "isect", "--quadrics", "native"}));
+  EXPECT_EQ(runUnitArgs("octree"), (std::vector<std::string>{"--accel", "octree"}));
+  EXPECT_EQ(synthTopOf("quadric"), "rt_quadric");
+  EXPECT_FALSE(isTraversalUnit("quadric"));
+  EXPECT_FALSE(isTraversalUnit("isect"));
+  EXPECT_TRUE(isTraversalUnit("grid"));
+}
+
 TEST(Sweep, CrackRaysAllHitAClosedMeshOnThisLattice) {
   const Scene scene = closedMesh();
   const Quantizer quantizer(scene.bounds);
