@@ -12,12 +12,13 @@
 // an offered request until it is taken); the consumer deasserts res_ready_i
 // with StreamOptions::outputStallProbability; both draw from one
 // std::mt19937_64 seeded with StreamOptions::seed, the idle draw before the
-// stall draw, as rt_isect_tb draws in the SystemC kernel. So every
+// stall draw, as rt_pipe_tb draws in the SystemC kernel. So every
 // cycle-accurate model sees the same stimulus for the same options.
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <random>
 #include <span>
 #include <stdexcept>
@@ -74,6 +75,18 @@ void writePrimitive(Top& top, const fx::QQuadric& quadric) {
 
 }  // namespace isect_detail
 
+// The quadric pipeline's waveforms sit beside the triangles': x.fst gives
+// x.quadric.fst (then x.quadric.1.fst, ...), so that each file holds one module.
+inline StreamOptions quadricWaves(const StreamOptions& options) {
+  if (options.wavePath.empty()) return options;
+  StreamOptions out = options;
+  std::filesystem::path p(options.wavePath);
+  const std::string ext = p.extension().string();
+  p.replace_extension();
+  out.wavePath = p.string() + ".quadric" + ext;
+  return out;
+}
+
 // Without a transfer for this long the model has lost a request or a result
 // (a stalled stream moves every 1 / (1 - p) cycles: 10^4 at p = 0.9999).
 // Stall or idle probabilities of 1 never move, and end here.
@@ -83,7 +96,7 @@ inline constexpr uint64_t kIsectWatchdogCycles = 1000000;
 // order. The model is not reset: a finished run leaves every stage empty. The
 // StreamStats cycles run from the first cycle a request is offered to the
 // cycle the last result is taken. With `trace`, the ports of every cycle of
-// the run are appended to it (cycle 0: the run's first), as rt_isect_tb
+// the run are appended to it (cycle 0: the run's first), as rt_pipe_tb
 // samples them. Throws std::runtime_error naming Clocked::kModel when the
 // stream stops (watchdog) or a result comes without a request.
 template <class Clocked, class Request>

@@ -1,6 +1,8 @@
 #include "driver/systemc_isect_device.h"
 
+#include <array>
 #include <mutex>
+#include <type_traits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -15,6 +17,7 @@
 #include "isect/rt_quadric_model.h"
 #include "isect/rt_isect_top.h"
 #include "isect/rt_isect_types.h"
+#include "isect/rt_pipe_kind.h"
 
 namespace lancer {
 
@@ -79,17 +82,31 @@ StreamStats SystemCIsectDevice::runQuadrics(std::span<const QuadricRequest> requ
                                             std::vector<fx::IsectResult>& results,
                                             const StreamOptions& options) {
   checkProbabilities(name(), options);
-  if (impl_ != Impl::Model) {
-    throw InputError(fmt::format("--model {}: the quadric pipeline has its cycle model (--model systemc) and its "
-                                 "RTL (--model rtl), not yet a {} form: use one of those for a scene with quadrics",
-                                 name(), impl_ == Impl::Pins ? "pin-level" : "SystemC-Verilated"));
-  }
+  if (impl_ != Impl::Model) return runKernel(requests, results, quadricWaves(options));
   return runCycleModel<sc::rt_quadric_model>(requests, results, options, trace_);
 }
 
-StreamStats SystemCIsectDevice::runKernel(std::span<const IsectRequest> requests,
+namespace {
+
+// The pipeline a request enters, and its primitive's port value.
+template <class Request>
+using KindOf = std::conditional_t<std::is_same_v<Request, IsectRequest>, sc::isect_kind, sc::quadric_kind>;
+
+// A request's primitive as its port's value (its record's wire image).
+template <class Kind, class Request>
+sc::vl_port_t<Kind::PRIM_W> primitivePort(const Request& r) {
+  std::array<uint32_t, size_t(fx::wireWords(Kind::PRIM_W))> wire;  // fixed size: packing allocates nothing
+  fx::packWire(isect_detail::primitiveOf(r), wire);
+  return sc::toPort<Kind::PRIM_W>(wire);
+}
+
+}  // namespace
+
+template <class Request>
+StreamStats SystemCIsectDevice::runKernel(std::span<const Request> requests,
                                           std::vector<fx::IsectResult>& results,
                                           const StreamOptions& options) {
+  using Kind = KindOf<Request>;
   const bool wave = impl_ == Impl::Rtl && !options.wavePath.empty();
   if (wave && !wavesAvailable()) {
     throw std::runtime_error("rtl-systemc: this build has no FST tracing (LANCER_SC_RTL_WAVES=OFF)");
@@ -97,16 +114,14 @@ StreamStats SystemCIsectDevice::runKernel(std::span<const IsectRequest> requests
   StreamStats stats;
   if (requests.empty()) return stats;
 
-  sc::rt_isect_job job;
+  sc::rt_pipe_job<Kind> job;
   job.rays.reserve(requests.size());
-  job.tris.reserve(requests.size());
-  fx::RayWire rayWire;  // fixed-size images: packing allocates nothing
-  fx::TriWire triWire;
-  for (const IsectRequest& r : requests) {
+  job.prims.reserve(requests.size());
+  fx::RayWire rayWire;
+  for (const Request& r : requests) {
     fx::packWire(r.ray, rayWire);
-    fx::packWire(r.tri, triWire);
     job.rays.push_back(sc::toPort<sc::ISECT_RAY_W>(rayWire));
-    job.tris.push_back(sc::toPort<sc::ISECT_TRI_W>(triWire));
+    job.prims.push_back(primitivePort<Kind>(r));
   }
   job.inputIdleProbability = options.inputIdleProbability;
   job.outputStallProbability = options.outputStallProbability;
@@ -120,8 +135,8 @@ StreamStats SystemCIsectDevice::runKernel(std::span<const IsectRequest> requests
   // traversal devices (sw/driver/systemc_kernel.h): elaborated together on first use.
   const std::lock_guard<std::mutex> lock(systemc_kernel::mutex());
   sc::rt_isect_top& top = systemc_kernel::isectSystem();
-  sc::rt_isect_tb& tb = top.tb(impl_ == Impl::Rtl ? sc::rt_isect_impl::rtl : sc::rt_isect_impl::model);
-  if (wave) top.open_wave(nextWaveFile(options.wavePath));
+  sc::rt_pipe_tb<Kind>& tb = top.tb<Kind>(impl_ == Impl::Rtl ? sc::rt_isect_impl::rtl : sc::rt_isect_impl::model);
+  if (wave) top.open_wave<Kind>(nextWaveFile(options.wavePath));
   try {
     tb.start(job);
     // The bench's clock stops after the last result, so sc_start() returns by
@@ -133,7 +148,7 @@ StreamStats SystemCIsectDevice::runKernel(std::span<const IsectRequest> requests
     throw std::runtime_error(fmt::format("{}: SystemC: {}", name(), report.what()));
   }
   if (wave) top.close_wave();
-  const sc::rt_isect_tally& tally = tb.tally();
+  const sc::rt_pipe_tally& tally = tb.tally();
   if (!tally.error.empty() || tally.busy || tally.taken != requests.size()) {
     results.resize(resultsBefore);
     throw std::runtime_error(fmt::format("{}: run abandoned: {}", name(),

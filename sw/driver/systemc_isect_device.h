@@ -14,9 +14,11 @@ namespace lancer {
 //                   the run loop that clocks the Verilated RTL (isect_run.h
 //                   over ModelUnit): no kernel;
 //   "systemc-pins"  Impl::Pins: the same model bound to sc_in/sc_out
-//                   (rt_isect_pin_model) in the SystemC kernel;
+//                   (rt_pipe_pin_model) in the SystemC kernel;
 //   "rtl-systemc"   Impl::Rtl: Vrt_isect_sc, rtl/isect/rt_isect.sv Verilated
 //                   with --sc.
+// Each has the quadric pipeline beside (runQuadrics): rt_quadric_model, in
+// the kernel as a pin-level module, and Vrt_quadric_sc.
 //
 // The kernel's two sit in one SystemC system, each on its own testbench, and
 // bind to the same signals. SystemC elaborates once per process and cannot
@@ -33,9 +35,6 @@ namespace lancer {
 // offered to the cycle the last result is taken, both included. With no
 // backpressure that is requests + fx::kIsectLatency, as the golden device reports.
 //
-// The quadric pipeline (runQuadrics) has its cycle model on value ports only
-// (rt_quadric_model: "systemc"); "systemc-pins" and "rtl-systemc" refuse it.
-//
 // Options: stall/idle probabilities must lie in [0, 1). StreamOptions::wavePath
 // writes an FST of the Verilated RTL for "rtl-systemc" (when built with
 // LANCER_SC_RTL_WAVES) and is ignored by the cycle model (it has no RTL signals).
@@ -48,8 +47,6 @@ class SystemCIsectDevice final : public IsectDevice {
   std::string_view name() const override;
   StreamStats run(std::span<const IsectRequest> requests, std::vector<fx::IsectResult>& results,
                   const StreamOptions& options = {}) override;
-  // rt_quadric_model on value ports ("systemc"); the pin-level and the
-  // SystemC-Verilated forms have no quadric pipeline yet and throw InputError.
   StreamStats runQuadrics(std::span<const QuadricRequest> requests, std::vector<fx::IsectResult>& results,
                           const StreamOptions& options = {}) override;
 
@@ -62,7 +59,8 @@ class SystemCIsectDevice final : public IsectDevice {
   static bool wavesAvailable();
 
  private:
-  StreamStats runKernel(std::span<const IsectRequest> requests, std::vector<fx::IsectResult>& results,
+  template <class Request>
+  StreamStats runKernel(std::span<const Request> requests, std::vector<fx::IsectResult>& results,
                         const StreamOptions& options);
 
   Impl impl_;

@@ -1,6 +1,5 @@
 #include "driver/verilator_isect_device.h"
 
-#include <filesystem>
 #include <string>
 
 #include "Vrt_isect.h"
@@ -9,22 +8,6 @@
 #include "driver/verilated_unit.h"
 
 namespace lancer {
-
-namespace {
-
-// The quadric pipeline's waveforms sit beside the triangles': x.fst gives
-// x.quadric.fst (then x.quadric.1.fst, ...), so that each file holds one module.
-StreamOptions quadricWaves(const StreamOptions& options) {
-  if (options.wavePath.empty()) return options;
-  StreamOptions out = options;
-  std::filesystem::path p(options.wavePath);
-  const std::string ext = p.extension().string();
-  p.replace_extension();
-  out.wavePath = p.string() + ".quadric" + ext;
-  return out;
-}
-
-}  // namespace
 
 VerilatorIsectDevice::VerilatorIsectDevice() : unit_(std::make_unique<VerilatedUnit<Vrt_isect>>("rt_isect")) {
   unit_->reset(isect_detail::idleInputs<Vrt_isect>);

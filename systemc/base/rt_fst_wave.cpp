@@ -36,6 +36,10 @@ void rt_fst_wave::open([[maybe_unused]] const std::string& path,
                        [[maybe_unused]] const std::function<void(VerilatedFstSc*)>& attach) {
 #if LANCER_SC_RTL_FST
   close();
+  // Verilator traces a model only once elaboration is complete (else it
+  // aborts the process): a waveform asked for before the process's first
+  // run completes it here, at time zero, with every clock at rest.
+  if (sc_core::sc_get_status() == sc_core::SC_ELABORATION) sc_core::sc_start(sc_core::SC_ZERO_TIME);
   auto fst = std::make_unique<VerilatedFstSc>();  // registers itself with the kernel
   attach(fst.get());
   fst->open(path.c_str());

@@ -29,7 +29,7 @@ namespace lancer::sc {
 //
 // Plain C++ on value ports (base/rt_value.h), under the RTL's names: the run
 // loop clocks it directly (the fast path, sw/driver/isect_run.h), and
-// rt_isect_pin_model binds it to sc_in/sc_out. The caller orders evaluation:
+// rt_pipe_pin_model binds it to sc_in/sc_out. The caller orders evaluation:
 // set the inputs, settle() for req_ready_o, clock() at the rising edge.
 struct rt_isect_model
     : rt_pipe_model<rt_isect_model, rt_isect_ports<rt_value, rt_value, value_t>, ISECT_LATENCY, ISECT_RES_W> {

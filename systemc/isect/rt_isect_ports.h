@@ -1,6 +1,6 @@
 #pragma once
 
-// rt_isect's request and result streams, declared once for each side that
+// rt_isect's and rt_quadric's request and result streams, declared once for each side that
 // meets them: In and Out are what rt_isect's inputs and outputs are there —
 // <sc_in, sc_out> in the cycle model, <sc_out, sc_in> in the testbench,
 // <sc_signal, sc_signal> in a bench or a traversal unit that holds rt_isect,
@@ -27,23 +27,53 @@ struct rt_isect_ports {
   Out<Bits<ISECT_RES_W>> res_data_o{"res_data_o"};
 };
 
+// rt_quadric's streams (rtl/isect/rt_quadric.sv): rt_isect's, with a sphere or
+// cone record where rt_isect takes a triangle.
+template <template <class> class In, template <class> class Out, template <int> class Bits = vl_port_t>
+struct rt_quadric_ports {
+  // Requests: one ray-quadric pair per transfer.
+  In<bool> req_valid_i{"req_valid_i"};
+  Out<bool> req_ready_o{"req_ready_o"};
+  In<Bits<ISECT_RAY_W>> req_ray_i{"req_ray_i"};
+  In<Bits<ISECT_QUADRIC_W>> req_quadric_i{"req_quadric_i"};
+
+  // Results, in request order.
+  Out<bool> res_valid_o{"res_valid_o"};
+  In<bool> res_ready_i{"res_ready_i"};
+  Out<Bits<ISECT_RES_W>> res_data_o{"res_data_o"};
+};
+
 // sc_signal under one template parameter, for the In/Out of a port list.
 template <class T>
 using rt_signal = sc_core::sc_signal<T>;
 
 using rt_isect_signals = rt_isect_ports<rt_signal, rt_signal>;
 
+// Binds the ports both pipelines have (all but the primitive's) to signals of
+// the same names.
+template <class M, class Signals>
+void bindStreamPorts(M& m, Signals& s) {
+  m.req_valid_i(s.req_valid_i);
+  m.req_ready_o(s.req_ready_o);
+  m.req_ray_i(s.req_ray_i);
+  m.res_valid_o(s.res_valid_o);
+  m.res_ready_i(s.res_ready_i);
+  m.res_data_o(s.res_data_o);
+}
+
 // Binds a module's rt_isect ports (the cycle model's, the testbench's, the
 // Verilated class's: the same names) to signals of the same names.
 template <class M, class Signals>
 void bindIsectPorts(M& m, Signals& s) {
-  m.req_valid_i(s.req_valid_i);
-  m.req_ready_o(s.req_ready_o);
-  m.req_ray_i(s.req_ray_i);
+  bindStreamPorts(m, s);
   m.req_tri_i(s.req_tri_i);
-  m.res_valid_o(s.res_valid_o);
-  m.res_ready_i(s.res_ready_i);
-  m.res_data_o(s.res_data_o);
+}
+
+// The same of rt_quadric's ports.
+template <class M, class Signals>
+void bindQuadricPorts(M& m, Signals& s) {
+  bindStreamPorts(m, s);
+  m.req_quadric_i(s.req_quadric_i);
 }
 
 }  // namespace lancer::sc

@@ -3,25 +3,10 @@
 #include "base/rt_stall_pipe.h"
 #include "base/rt_value.h"
 #include "golden/quadric.h"
+#include "isect/rt_isect_ports.h"
 #include "isect/rt_isect_types.h"
 
 namespace lancer::sc {
-
-// rt_quadric's request and result streams (rtl/isect/rt_quadric.sv), declared
-// as rt_isect_ports declares rt_isect's.
-template <template <class> class In, template <class> class Out, template <int> class Bits = vl_port_t>
-struct rt_quadric_ports {
-  // Requests: one ray-quadric pair per transfer.
-  In<bool> req_valid_i{"req_valid_i"};
-  Out<bool> req_ready_o{"req_ready_o"};
-  In<Bits<ISECT_RAY_W>> req_ray_i{"req_ray_i"};
-  In<Bits<ISECT_QUADRIC_W>> req_quadric_i{"req_quadric_i"};
-
-  // Results, in request order.
-  Out<bool> res_valid_o{"res_valid_o"};
-  In<bool> res_ready_i{"res_ready_i"};
-  Out<Bits<ISECT_RES_W>> res_data_o{"res_data_o"};
-};
 
 // rt_quadric_model: the cycle model of rt_quadric, cycle for cycle and bit for
 // bit at its ports, as rt_isect_model is rt_isect's: QUADRIC_LATENCY stages

@@ -105,10 +105,10 @@ TEST(DriverQuadricJob, EveryModelMatchesGoldenOnAMixedScene) {
   EXPECT_GT(onQuadrics, n.rays.size() / 10) << "the camera sees the quadrics";
   EXPECT_EQ(ideal.firstQuadric, n.scene.size());
 
-  // The models with a quadric pipeline this build has (a tree without the
-  // hardware models, the sanitizers', has golden alone).
+  // Every model this build has (a tree without the hardware models, the
+  // sanitizers', has golden alone).
   for (const std::string& name : isectDeviceNames()) {
-    if (name == "golden" || name == "systemc-pins" || name == "rtl-systemc") continue;
+    if (name == "golden") continue;
     const std::unique_ptr<IsectDevice> model = makeIsectDevice(name);
     const JobResult job = n.run(*model);
     EXPECT_EQ(job.mismatchedRays, 0u) << model->name();
@@ -134,19 +134,6 @@ TEST(DriverQuadricJob, AgreesWithTheReferenceWithinTheLatticeBound) {
     if (hit && n.scene.isQuadric(hit->prim)) {
       EXPECT_EQ(hit->u, 0.0f) << i;
     }
-  }
-}
-
-TEST(DriverQuadricJob, PinLevelModelsRefuseQuadricsByName) {
-  const std::vector<std::string> names = isectDeviceNames();
-  if (std::find(names.begin(), names.end(), "systemc-pins") == names.end()) GTEST_SKIP() << "no SystemC models";
-  NativeJob n;
-  const std::unique_ptr<IsectDevice> pins = makeIsectDevice("systemc-pins");
-  try {
-    n.run(*pins);
-    FAIL() << "systemc-pins traced quadrics";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--model systemc-pins: the quadric pipeline"), std::string::npos) << e.what();
   }
 }
 

@@ -12,14 +12,16 @@
 #include "isect/rt_isect_cycle.h"
 #include "isect/rt_isect_ports.h"
 #include "isect/rt_isect_types.h"
+#include "isect/rt_pipe_kind.h"
 
 namespace lancer::sc {
 
 // One run of the testbench: the requests as port values, how to drive them, and
 // where the results (and optionally the per-cycle port trace) go.
-struct rt_isect_job {
+template <class Kind>
+struct rt_pipe_job {
   std::vector<isect_ray_t> rays;
-  std::vector<isect_tri_t> tris;  // tris[i] goes with rays[i]
+  std::vector<vl_port_t<Kind::PRIM_W>> prims;  // prims[i] (a triangle, a quadric) goes with rays[i]
   double inputIdleProbability = 0.0;    // chance per cycle the producer holds back
   double outputStallProbability = 0.0;  // chance per cycle res_ready_i is low
   uint64_t seed = 1;
@@ -29,7 +31,7 @@ struct rt_isect_job {
 };
 
 // What the testbench counted during a run, in cycles after reset.
-struct rt_isect_tally {
+struct rt_pipe_tally {
   uint64_t firstOffer = 0;   // cycle the first request was offered (req_valid_i high)
   uint64_t lastTake = 0;     // cycle the last result was taken (res_valid_o && res_ready_i)
   uint64_t accepted = 0;     // req_valid_i && req_ready_o
@@ -39,7 +41,8 @@ struct rt_isect_tally {
   std::string error;         // set if the run was abandoned
 };
 
-// rt_isect_tb: the testbench of one rt_isect implementation. It owns the clock
+// rt_pipe_tb<Kind>: the testbench of one implementation of a pipeline
+// (rt_pipe_kind.h: rt_isect, rt_quadric). It owns the clock
 // and reset and plays both stream partners; its ports carry the names of the DUT
 // ports they connect to (req_valid_i is an output here), so the DUT and the
 // testbench bind to the same signals with the same code.
@@ -62,7 +65,8 @@ struct rt_isect_tally {
 // before the stall draw, a draw only for a non-zero probability, true when
 // rng() < p * 2^64. So every cycle-accurate device sees the same stimulus for
 // the same options, and two that behave the same report the same StreamStats.
-struct rt_isect_tb : sc_core::sc_module, rt_isect_ports<sc_core::sc_out, sc_core::sc_in> {
+template <class Kind>
+struct rt_pipe_tb : sc_core::sc_module, Kind::template ports<sc_core::sc_out, sc_core::sc_in> {
   static constexpr int RESET_CYCLES = 2;
 
   sc_core::sc_out<bool> clk_i{"clk_i"};
@@ -70,13 +74,13 @@ struct rt_isect_tb : sc_core::sc_module, rt_isect_ports<sc_core::sc_out, sc_core
 
   rt_gated_clock u_clk{"u_clk"};
 
-  SC_HAS_PROCESS(rt_isect_tb);
-  explicit rt_isect_tb(sc_core::sc_module_name name);
+  SC_HAS_PROCESS(rt_pipe_tb);
+  explicit rt_pipe_tb(sc_core::sc_module_name name);
 
   // Arms the testbench for one run; call while the simulation is paused, then
   // sc_start() until tally().busy is false. The job must outlive the run.
-  void start(const rt_isect_job& job);
-  const rt_isect_tally& tally() const { return tally_; }
+  void start(const rt_pipe_job<Kind>& job);
+  const rt_pipe_tally& tally() const { return tally_; }
 
  private:
   void stream();
@@ -86,8 +90,8 @@ struct rt_isect_tb : sc_core::sc_module, rt_isect_ports<sc_core::sc_out, sc_core
   bool coin(uint64_t threshold) { return threshold != 0 && rng_() < threshold; }
   void abandon(const std::string& why);
 
-  const rt_isect_job* job_ = nullptr;
-  rt_isect_tally tally_;
+  const rt_pipe_job<Kind>* job_ = nullptr;
+  rt_pipe_tally tally_;
 
   uint64_t edge_ = 0;  // rising edges since start()
   std::mt19937_64 rng_;
@@ -101,5 +105,9 @@ struct rt_isect_tb : sc_core::sc_module, rt_isect_ports<sc_core::sc_out, sc_core
   uint64_t monitorEdge_ = 0;
   uint64_t monitorTaken_ = 0;
 };
+
+// Instantiated once for each pipeline, in rt_pipe_tb.cpp.
+extern template struct rt_pipe_tb<isect_kind>;
+extern template struct rt_pipe_tb<quadric_kind>;
 
 }  // namespace lancer::sc

@@ -1,4 +1,4 @@
-#include "isect/rt_isect_tb.h"
+#include "isect/rt_pipe_tb.h"
 
 #include <fmt/format.h>
 
@@ -6,22 +6,24 @@
 
 namespace lancer::sc {
 
-rt_isect_tb::rt_isect_tb(sc_core::sc_module_name name)
+template <class Kind>
+rt_pipe_tb<Kind>::rt_pipe_tb(sc_core::sc_module_name name)
     : sc_core::sc_module(name) {
-  u_clk.clk_o(clk_i);
+  u_clk.clk_o(this->clk_i);
 
   SC_METHOD(stream);
-  sensitive << clk_i.pos();
+  sensitive << this->clk_i.pos();
   dont_initialize();
 
   SC_METHOD(monitor);
-  sensitive << clk_i.pos();
+  sensitive << this->clk_i.pos();
   dont_initialize();
 }
 
-void rt_isect_tb::start(const rt_isect_job& job) {
+template <class Kind>
+void rt_pipe_tb<Kind>::start(const rt_pipe_job<Kind>& job) {
   job_ = &job;
-  tally_ = rt_isect_tally{};
+  tally_ = rt_pipe_tally{};
   tally_.busy = true;
   edge_ = monitorEdge_ = 0;
   rng_.seed(job.seed);
@@ -34,7 +36,8 @@ void rt_isect_tb::start(const rt_isect_job& job) {
   u_clk.start();
 }
 
-void rt_isect_tb::abandon(const std::string& why) {
+template <class Kind>
+void rt_pipe_tb<Kind>::abandon(const std::string& why) {
   tally_.error = why;
   tally_.busy = false;
   u_clk.stop();
@@ -44,23 +47,25 @@ void rt_isect_tb::abandon(const std::string& why) {
 // edge RESET_CYCLES on, the value written after edge e is sampled at edge e+1,
 // which ends cycle e - RESET_CYCLES. Both partners sample the ports as they were
 // before the edge and write what the next cycle sees.
-void rt_isect_tb::stream() {
+template <class Kind>
+void rt_pipe_tb<Kind>::stream() {
   const uint64_t edge = edge_++;
   produce(edge);
   consume(edge);
 }
 
-void rt_isect_tb::produce(uint64_t edge) {
+template <class Kind>
+void rt_pipe_tb<Kind>::produce(uint64_t edge) {
   if (edge < RESET_CYCLES) {
-    rst_ni.write(false);
-    req_valid_i.write(false);
+    this->rst_ni.write(false);
+    this->req_valid_i.write(false);
     return;
   }
   bool holding = false;
   if (edge == RESET_CYCLES) {
-    rst_ni.write(true);
-  } else if (req_valid_i.read()) {
-    if (req_ready_o.read()) {
+    this->rst_ni.write(true);
+  } else if (this->req_valid_i.read()) {
+    if (this->req_ready_o.read()) {
       ++tally_.accepted;
       ++next_;
     } else {
@@ -70,35 +75,36 @@ void rt_isect_tb::produce(uint64_t edge) {
   }
   if (holding) return;  // the offered request stays, unchanged
   if (next_ < job_->rays.size() && !coin(idleThreshold_)) {
-    req_ray_i.write(job_->rays[next_]);
-    req_tri_i.write(job_->tris[next_]);
-    req_valid_i.write(true);
+    this->req_ray_i.write(job_->rays[next_]);
+    Kind::prim(*this).write(job_->prims[next_]);
+    this->req_valid_i.write(true);
     if (!offered_) {
       offered_ = true;
       tally_.firstOffer = edge - RESET_CYCLES;
     }
   } else {
-    req_valid_i.write(false);
+    this->req_valid_i.write(false);
   }
 }
 
-void rt_isect_tb::consume(uint64_t edge) {
+template <class Kind>
+void rt_pipe_tb<Kind>::consume(uint64_t edge) {
   if (edge < RESET_CYCLES) {
-    res_ready_i.write(false);
+    this->res_ready_i.write(false);
     return;
   }
   if (edge > RESET_CYCLES) {
     const uint64_t cycle = edge - RESET_CYCLES - 1;
-    if (res_valid_o.read() && res_ready_i.read()) {
+    if (this->res_valid_o.read() && this->res_ready_i.read()) {
       fx::ResWire wire;
-      fromPort<ISECT_RES_W>(res_data_o.read(), wire);
+      fromPort<ISECT_RES_W>(this->res_data_o.read(), wire);
       fx::unpackResult(wire, job_->results->emplace_back());
       lastProgress_ = cycle;
       if (++tally_.taken == job_->rays.size()) {
         tally_.lastTake = cycle;
         tally_.busy = false;
         u_clk.stop();  // this was the last rising edge of the run
-        res_ready_i.write(false);
+        this->res_ready_i.write(false);
         return;
       }
     } else if (cycle - lastProgress_ > job_->watchdogCycles) {
@@ -107,21 +113,25 @@ void rt_isect_tb::consume(uint64_t edge) {
       return;
     }
   }
-  res_ready_i.write(!coin(stallThreshold_));
+  this->res_ready_i.write(!coin(stallThreshold_));
 }
 
-void rt_isect_tb::monitor() {
+template <class Kind>
+void rt_pipe_tb<Kind>::monitor() {
   const uint64_t edge = monitorEdge_++;
   if (job_->trace == nullptr || edge <= RESET_CYCLES || monitorTaken_ >= job_->rays.size()) return;
   IsectCycle c;
   c.cycle = edge - RESET_CYCLES - 1;
-  c.reqValid = req_valid_i.read();
-  c.reqReady = req_ready_o.read();
-  c.resValid = res_valid_o.read();
-  c.resReady = res_ready_i.read();
-  if (c.resValid) c.resData = fromPort<ISECT_RES_W>(res_data_o.read());
+  c.reqValid = this->req_valid_i.read();
+  c.reqReady = this->req_ready_o.read();
+  c.resValid = this->res_valid_o.read();
+  c.resReady = this->res_ready_i.read();
+  if (c.resValid) c.resData = fromPort<ISECT_RES_W>(this->res_data_o.read());
   if (c.resValid && c.resReady) ++monitorTaken_;
   job_->trace->push_back(std::move(c));
 }
+
+template struct rt_pipe_tb<isect_kind>;
+template struct rt_pipe_tb<quadric_kind>;
 
 }  // namespace lancer::sc
