@@ -138,8 +138,10 @@ def cached_figures(tree, top, silicon=True):
         return None
     current = (isinstance(fig, dict) and "error" not in fig and "fmax_mhz" in fig
                and fig.get("pkg_sha256") == file_sha256(pkg) and fig.get("sources_sha256") == sources_sha256(top)
-               # with OpenSTA installed, the figures include the silicon flow's (scripts/sweep-synth)
-               and ("silicon" in fig or not silicon or not shutil.which("sta")))
+               # with OpenSTA installed, the figures include the silicon flow's (scripts/sweep-synth),
+               # but for a tree without the hardware models, whose activity cannot be measured
+               and ("silicon" in fig or not silicon or not shutil.which("sta")
+                    or not (Path(tree) / "rtl" / "lancer_fst_activity").exists()))
     return fig if current else None
 
 

@@ -16,6 +16,7 @@ void addConvertCommand(CLI::App& app) {
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand(
       "convert", fmt::format("Write the scene as Lancer read it, every coordinate exact: {}", kWrittenFormats));
+  args->scene.quadrics = QuadricForm::Tessellate;  // the formats written hold triangles
   args->scene.add(*cmd);
   cmd->add_option("--out", args->out, fmt::format("Output file: {}", kWrittenFormats))->required();
   cmd->callback([args] {

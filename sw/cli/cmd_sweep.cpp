@@ -158,6 +158,7 @@ void addCrackRays(CLI::App& app) {
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand(
       "crack-rays", "Rays exactly through shared edges and vertices on this build's lattice (docs/accuracy.md)");
+  a->scene.quadrics = QuadricForm::Tessellate;  // cracks are at shared triangle edges
   a->scene.add(*cmd);
   cmd->add_option("--count", a->count, "Rays, about half at edges and half at vertices")->capture_default_str();
   cmd->add_option("--seed", a->seed, "Seed of the choice")->capture_default_str();

@@ -35,10 +35,10 @@ void SceneOptions::add(CLI::App& app) {
   app.add_option_function<std::string>(
          "--quadrics",
          [this](const std::string& form) { quadrics = form == "native" ? QuadricForm::Native : QuadricForm::Tessellate; },
-         "NFF spheres and cones: tessellate (triangles; every structure) or native (quadrics: the reference "
-         "structures, embree and --accel isect, whose quadric pipeline is rt_quadric)")
+         "NFF spheres and cones: native (quadrics: rt_quadric beside rt_isect in every unit and model, the "
+         "reference structures, embree) or tessellate (triangles, for comparison)")
       ->check(CLI::IsMember({"tessellate", "native"}))
-      ->default_str("tessellate");
+      ->default_str(toString(quadrics));
 }
 
 Scene SceneOptions::load() const {

@@ -23,7 +23,9 @@ namespace lancer::cli {
 struct SceneOptions {
   std::string scene = kDefaultSceneName;
   int subdivide = 0;
-  QuadricForm quadrics = QuadricForm::Tessellate;
+  // NFF's spheres and cones: quadrics, unless a command needs triangles (the
+  // scene writer, crack rays at shared edges) and sets Tessellate before add().
+  QuadricForm quadrics = QuadricForm::Native;
   void add(CLI::App& app);
   // The scene, subdivided --subdivide times (for large benchmark meshes).
   Scene load() const;

@@ -66,9 +66,11 @@ std::string executeJob(const std::string& out, const Spec& spec, const Job& job)
   if (job.set == "cracks") {
     rays = work + "/cracks.rays";
     const std::string report = work + "/cracks.json";
-    if (std::string e = step({lancer, "crack-rays", "--scene", scene, "--count", std::to_string(spec.crackRays),
-                              "--seed", std::to_string(spec.seed), "--out", rays, "--report", report},
-                             "lancer crack-rays");
+    std::vector<std::string> crack{lancer, "crack-rays", "--scene", scene, "--count", std::to_string(spec.crackRays),
+                                   "--seed", std::to_string(spec.seed), "--out", rays, "--report", report};
+    const std::vector<std::string> form = quadricFormArgs(job.unit);
+    crack.insert(crack.end(), form.begin(), form.end());
+    if (std::string e = step(crack, "lancer crack-rays");
         !e.empty()) {
       return e;
     }
@@ -107,8 +109,10 @@ std::string executeJob(const std::string& out, const Spec& spec, const Job& job)
   // parameters: what the conservative fixed-point walk visits beyond it.
   if (isTraversalUnit(job.unit)) {
     const nlohmann::json& r = result["run"];
-    std::vector<std::string> trace{lancer, "trace", "--scene", scene, "--rays", rays, "--accel", job.unit,
-                                   "--report", work + "/trace.json", "--hits", "/dev/null"};
+    std::vector<std::string> trace{lancer, "trace", "--scene", scene, "--rays", rays, "--report",
+                                   work + "/trace.json", "--hits", "/dev/null"};
+    const std::vector<std::string> unitArgs = runUnitArgs(job.unit);
+    trace.insert(trace.end(), unitArgs.begin(), unitArgs.end());
     // Each build option as the unit reported it (the float grid is cubic: its
     // three axes must agree; the BVH is the same SAH builder over float boxes).
     bool comparable = true;

@@ -77,9 +77,15 @@ const std::vector<std::string>& sweepUnits() {
 
 std::string synthTopOf(const std::string& unit) { return "rt_" + unit; }
 
+std::vector<std::string> quadricFormArgs(const std::string& unit) {
+  return {"--quadrics", unit == "quadric" ? "native" : "tessellate"};
+}
+
 std::vector<std::string> runUnitArgs(const std::string& unit) {
-  if (unit == "quadric") return {"--accel", "isect", "--quadrics", "native"};
-  return {"--accel", unit};
+  std::vector<std::string> args{"--accel", unit == "quadric" ? "isect" : unit};
+  const std::vector<std::string> form = quadricFormArgs(unit);
+  args.insert(args.end(), form.begin(), form.end());
+  return args;
 }
 
 bool isTraversalUnit(const std::string& unit) { return unit != "isect" && unit != "quadric"; }

@@ -32,8 +32,12 @@ Width parseWidth(const std::string& text, const std::string& where);
 // spheres and cones) and every traversal unit.
 const std::vector<std::string>& sweepUnits();
 std::string synthTopOf(const std::string& unit);
-// What selects the unit in `lancer run`: --accel, and --quadrics native for quadric.
+// What selects the unit in `lancer run`: --accel, and how the unit reads NFF's
+// spheres and cones (--quadrics): natively for quadric, as triangles for the
+// others (their rows measure triangles: rt_isect's accuracy and the units'
+// synthesis without rt_quadric). The same form goes to crack-rays and trace.
 std::vector<std::string> runUnitArgs(const std::string& unit);
+std::vector<std::string> quadricFormArgs(const std::string& unit);
 // A traversal unit walks a structure (it takes steps and has a float walk to compare with).
 bool isTraversalUnit(const std::string& unit);
 // Crack rays aim at shared triangle edges, which the quadric pipeline never tests.

@@ -34,7 +34,8 @@ class rt_pipe_bench : public sc_core::sc_module, public Kind::template ports<rt_
   void bind(M& m) {
     m.clk_i(clk_i);
     m.rst_ni(rst_ni);
-    Kind::bind(m, *this);
+    bindStreamPorts(m, *this);
+    Kind::prim(m)(Kind::prim(*this));
   }
 };
 

@@ -3,8 +3,8 @@
 // The intersection path's two pipelines as one parameter of its SystemC system
 // (the testbench rt_pipe_tb, the pin-level model rt_pipe_pin_model, the bench
 // rt_pipe_bench, rt_isect_top): rt_isect takes a triangle on req_tri_i,
-// rt_quadric a sphere or cone record on req_quadric_i; their other ports, their
-// stage control and their result records are the same.
+// rt_quadric a sphere or cone record on req_quadric_i; their other ports
+// (rt_stream_ports), their stage control and their result records are the same.
 
 #include "isect/rt_isect_model.h"
 #include "isect/rt_isect_ports.h"
@@ -13,26 +13,21 @@
 
 namespace lancer::sc {
 
-struct isect_kind {
-  static constexpr int PRIM_W = ISECT_TRI_W;
+template <template <template <class> class, template <class> class, template <int> class> class Ports, class Model,
+          int PrimW>
+struct rt_pipe_kind {
+  static constexpr int PRIM_W = PrimW;  // the primitive port's width
   template <template <class> class In, template <class> class Out, template <int> class Bits = vl_port_t>
-  using ports = rt_isect_ports<In, Out, Bits>;
-  using model = rt_isect_model;
-  template <class Ports>
-  static auto& prim(Ports& p) { return p.req_tri_i; }
-  template <class M, class Signals>
-  static void bind(M& m, Signals& s) { bindIsectPorts(m, s); }
+  using ports = Ports<In, Out, Bits>;
+  using model = Model;  // the cycle model on value ports
 };
 
-struct quadric_kind {
-  static constexpr int PRIM_W = ISECT_QUADRIC_W;
-  template <template <class> class In, template <class> class Out, template <int> class Bits = vl_port_t>
-  using ports = rt_quadric_ports<In, Out, Bits>;
-  using model = rt_quadric_model;
-  template <class Ports>
-  static auto& prim(Ports& p) { return p.req_quadric_i; }
-  template <class M, class Signals>
-  static void bind(M& m, Signals& s) { bindQuadricPorts(m, s); }
+// Each kind names its primitive's port: prim(x) of a module, a model or signals.
+struct isect_kind : rt_pipe_kind<rt_isect_ports, rt_isect_model, ISECT_TRI_W> {
+  static auto& prim(auto& ports) { return ports.req_tri_i; }
+};
+struct quadric_kind : rt_pipe_kind<rt_quadric_ports, rt_quadric_model, ISECT_QUADRIC_W> {
+  static auto& prim(auto& ports) { return ports.req_quadric_i; }
 };
 
 }  // namespace lancer::sc

@@ -279,11 +279,7 @@ TEST(ScCycleAccuracy, StatsEqualTheCxxVerilatedDevice) {
     const StreamStats want = cxx.run(requests, expected, options);
     for (SystemCIsectDevice& device : devices) {
       std::vector<fx::IsectResult> results;
-      const StreamStats got = device.run(requests, results, options);
-      EXPECT_EQ(got.cycles, want.cycles) << device.name();
-      EXPECT_EQ(got.requests, want.requests) << device.name();
-      EXPECT_EQ(got.results, want.results) << device.name();
-      EXPECT_EQ(got.inputStalls, want.inputStalls) << device.name();
+      sctest::expectSameStats(device.run(requests, results, options), want, device.name());
       EXPECT_EQ(results, expected) << device.name();
     }
   }

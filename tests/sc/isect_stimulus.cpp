@@ -1,5 +1,7 @@
 #include "isect_stimulus.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -260,5 +262,12 @@ std::string describe(const IsectRequest& request) {
 }
 
 std::string describe(const fx::IsectResult& result) { return hexWire(fx::packWire(result)); }
+
+void expectSameStats(const StreamStats& got, const StreamStats& want, std::string_view who) {
+  EXPECT_EQ(got.cycles, want.cycles) << who;
+  EXPECT_EQ(got.requests, want.requests) << who;
+  EXPECT_EQ(got.results, want.results) << who;
+  EXPECT_EQ(got.inputStalls, want.inputStalls) << who;
+}
 
 }  // namespace lancer::sctest

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "driver/isect_device.h"
@@ -28,6 +29,10 @@ struct HardCases {
   std::vector<uint32_t> meshRays;  // ray ids that must hit the closed mesh
 };
 HardCases hardCases();
+
+// The stats of a run equal to the reference device's on the same stimulus
+// (every cycle-accurate device draws it alike from the same options).
+void expectSameStats(const StreamStats& got, const StreamStats& want, std::string_view who);
 
 // A reproducer line for a request: both records as hex wire images.
 std::string describe(const IsectRequest& request);

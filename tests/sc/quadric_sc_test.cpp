@@ -17,6 +17,7 @@
 #include "driver/verilator_isect_device.h"
 #include "golden/quadric.h"
 #include "isect/quadric_cases.h"
+#include "isect_stimulus.h"
 
 namespace lancer {
 namespace {
@@ -88,11 +89,7 @@ TEST(ScQuadric, EveryFormMatchesTheRtlCycleForCycle) {
       std::vector<sc::IsectCycle> trace;
       device.setCycleTrace(&trace);
       std::vector<fx::IsectResult> results;
-      const StreamStats got = device.runQuadrics(requests, results, options);
-      EXPECT_EQ(got.cycles, want.cycles) << device.name();
-      EXPECT_EQ(got.requests, want.requests) << device.name();
-      EXPECT_EQ(got.results, want.results) << device.name();
-      EXPECT_EQ(got.inputStalls, want.inputStalls) << device.name();
+      sctest::expectSameStats(device.runQuadrics(requests, results, options), want, device.name());
       EXPECT_EQ(results, expected) << device.name();
       if (impl == impls.front()) {
         firstTrace = std::move(trace);

@@ -97,7 +97,8 @@ TEST(Sweep, QuadricUnitRunsNativeQuadricsWithoutCrackRays) {
   EXPECT_EQ(keys, (std::set<std::string>{"w10-10.quadric.golden.s0.c0of1", "w10-10.bvh.golden.s0.c0of1",
                                          "w10-10.bvh.golden.s0.cracks"}));
   EXPECT_EQ(runUnitArgs("quadric"), (std::vector<std::string>{"--accel", "isect", "--quadrics", "native"}));
-  EXPECT_EQ(runUnitArgs("octree"), (std::vector<std::string>{"--accel", "octree"}));
+  EXPECT_EQ(runUnitArgs("octree"), (std::vector<std::string>{"--accel", "octree", "--quadrics", "tessellate"}));
+  EXPECT_EQ(quadricFormArgs("isect"), (std::vector<std::string>{"--quadrics", "tessellate"}));
   EXPECT_EQ(synthTopOf("quadric"), "rt_quadric");
   EXPECT_FALSE(isTraversalUnit("quadric"));
   EXPECT_FALSE(isTraversalUnit("isect"));
