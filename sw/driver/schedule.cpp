@@ -28,6 +28,16 @@ uint64_t spreadBits(uint64_t v) {
 }
 static_assert(kSortOriginBits == 10, "spreadBits spreads 10 bits");
 
+// An origin coordinate's cell of the key: its top kSortOriginBits bits; a
+// position narrower than that (8-bit formats) fills them from the top.
+uint64_t originCell(uint64_t coordinate) {
+  if constexpr (fx::kPosBits >= kSortOriginBits) {
+    return coordinate >> (fx::kPosBits - kSortOriginBits);
+  } else {
+    return coordinate << (kSortOriginBits - fx::kPosBits);
+  }
+}
+
 }  // namespace
 
 std::string_view toString(Schedule schedule) { return schedule == Schedule::Fifo ? "fifo" : "sorted"; }
@@ -45,13 +55,12 @@ Schedule parseSchedule(std::string_view name) {
   throw InputError(fmt::format("--schedule {}: no such schedule (available: {})", name, fmt::join(scheduleNames(), ", ")));
 }
 
+
 uint64_t rayOrderKey(const fx::QRay& ray) {
-  constexpr int kDrop = fx::kPosBits - kSortOriginBits;  // the origin's low bits, below the key's cells
-  static_assert(kDrop >= 0, "positions have at least kSortOriginBits bits");
   uint64_t octant = 0, morton = 0;
   for (int a = 0; a < 3; ++a) {
     octant |= uint64_t(ray.dir[size_t(a)] < 0) << a;
-    morton |= spreadBits(uint64_t(ray.org[size_t(a)]) >> kDrop) << (2 - a);
+    morton |= spreadBits(originCell(uint64_t(ray.org[size_t(a)]))) << (2 - a);
   }
   return (morton << 3) | octant;
 }
