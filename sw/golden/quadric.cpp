@@ -88,6 +88,38 @@ i128 roundShift(i128 v, int e) {
   return v < 0 ? -i128(mag) : i128(mag);
 }
 
+}  // namespace
+
+u128 roundShiftProduct(u128 a, u128 b, int e) {
+  // The product in four 64-bit limbs, least significant first (schoolbook).
+  std::array<uint64_t, 4> limbs{};
+  const uint64_t x[2] = {uint64_t(a), uint64_t(a >> 64)}, y[2] = {uint64_t(b), uint64_t(b >> 64)};
+  for (size_t i = 0; i < 2; ++i) {
+    u128 carry = 0;
+    for (size_t j = 0; j < 2; ++j) {
+      const u128 t = u128(x[i]) * y[j] + limbs[i + j] + carry;
+      limbs[i + j] = uint64_t(t);
+      carry = t >> 64;
+    }
+    limbs[i + 2] = uint64_t(carry);
+  }
+  if (e == 0) return u128(limbs[0]) | u128(limbs[1]) << 64;
+  // Half a unit of the result, then the bits from e up.
+  u128 carry = u128(1) << ((e - 1) % 64);
+  for (size_t i = size_t((e - 1) / 64); i < 4 && carry; ++i) {
+    const u128 t = u128(limbs[i]) + carry;
+    limbs[i] = uint64_t(t);
+    carry = t >> 64;
+  }
+  const auto limb = [&](int i) { return i < 4 ? limbs[size_t(i)] : uint64_t(0); };
+  const int k = e / 64, s = e % 64;
+  u128 out = (u128(limb(k)) | u128(limb(k + 1)) << 64) >> s;
+  if (s) out |= u128(limb(k + 2)) << (128 - s);
+  return out;
+}
+
+namespace {
+
 // The box of a cone's end discs, each radius widened by the rounding of a
 // record at scale 2^e (sqrt of the bound above: (R + delta)^2 >= R^2 + delta^2),
 // and one unit for the doubles and the root's rounding (a hit the pipeline
@@ -164,7 +196,7 @@ QQuadric coneRecord(uint32_t id, const LatticeCone& cone) {
   rec.scaleExp = std::max(0, bitLength(largest) - kQuadricK);
   for (size_t p = 0; p < 6; ++p) rec.quad[p] = int64_t(roundShift(quad[p], rec.scaleExp));
   for (size_t k = 0; k < 3; ++k) rec.lin[k] = int64_t(roundShift(-radii * len2 * slope * w[k], rec.scaleExp));
-  rec.constant = int64_t(roundShift(-radii * radii * len2 * len2, rec.scaleExp));
+  rec.constant = -int64_t(roundShiftProduct(u128(radii * radii), u128(len2 * len2), rec.scaleExp));
   rec.bounds = coneBounds(cone, rec.scaleExp);
   return rec;
 }

@@ -32,6 +32,11 @@ struct QSphere {
 // method (one result bit a step).
 u128 isqrt(u128 v);
 
+// a b / 2^e rounded to nearest, ties away from zero, for a product of up to
+// 256 bits whose quotient fits 128: a cone's constant is 6P + 6 bits before
+// its scale (150 at 24/24), beyond a 128-bit product.
+u128 roundShiftProduct(u128 a, u128 b, int e);
+
 // ---- The cone ----------------------------------------------------------------
 // An NFF cone on the lattice: base center b and apex center a (0 .. kPosMax per
 // axis, a != b), radii r0 at b and r1 at a (0 .. kPosMax lattice units, not
@@ -127,7 +132,7 @@ static_assert(kQuadricK >= 8, "too few bits for the quadric");
 static_assert(kQuadricDiscBits <= 128, "the discriminant is computed in 128-bit integers");
 static_assert(kQuadricPlaneBits <= 127, "the plane test is computed in 128-bit integers");
 static_assert(kQuadricConstBits <= 64, "the record's constant is a 64-bit integer");
-static_assert(6 * kPosBits + 6 <= 126, "the host computes a cone's exact quadric in 128-bit integers");
+static_assert(5 * kPosBits + 3 <= 126, "the host computes a cone's quadric and linear terms in 128-bit integers");
 static_assert(kQuadricNumBits + kDirBits - 2 <= kTNumBits && kQuadricDenBits <= kDetAbsBits,
               "a quadric's hit fits the triangles' result record");
 

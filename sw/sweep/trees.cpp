@@ -80,10 +80,10 @@ TreeResult buildTree(const Spec& spec, const Width& w, const std::string& out) {
     }
   }
 
-  // A tree without the hardware models (--cmake-arg=-DLANCER_HW_MODELS=OFF:
-  // golden alone, minutes less a width) has no waveform tool, and its
-  // syntheses no measured activity (scripts/sweep-synth).
-  std::vector<std::string> build{"cmake", "--build", r.dir, "--target", "lancer"};
+  // rt_pkg.sv for the syntheses. A tree without the hardware models
+  // (--cmake-arg=-DLANCER_HW_MODELS=OFF: golden alone, minutes less a width)
+  // has no waveform tool, and its syntheses no measured activity (scripts/sweep-synth).
+  std::vector<std::string> build{"cmake", "--build", r.dir, "--target", "lancer", "rt_pkg"};
   if (cacheValue(r.dir, "LANCER_HW_MODELS") != "OFF") build.push_back("lancer_fst_activity");
   build.insert(build.end(), {"-j", std::to_string(spec.buildJobs)});
   const auto start = std::chrono::steady_clock::now();

@@ -354,6 +354,36 @@ TEST(GoldenSphere, OrdersWithTrianglesByTheSameScale) {
   EXPECT_FALSE(closerResult(b, a));
 }
 
+// A cone's constant is a product of up to 6P + 6 bits (150 at 24/24), scaled
+// back below 2^63: the 256-bit product rounds as GMP's exact quotient does.
+TEST(GoldenCone, ConstantsBeyond128BitsRoundExactly) {
+  std::mt19937_64 rng(7);
+  const auto toMpz = [](u128 v) -> mpz_class {
+    mpz_class z(uint64_t(v >> 64));
+    z <<= 64;
+    return z + mpz_class(uint64_t(v));
+  };
+  for (int n = 0; n < 20000; ++n) {
+    const int aBits = 1 + int(rng() % 60), bBits = 1 + int(rng() % 110);
+    const u128 a = (u128(rng()) | u128(rng()) << 64) >> (128 - aBits);
+    const u128 b = (u128(rng()) | u128(rng()) << 64) >> (128 - bBits);
+    const mpz_class product = toMpz(a) * toMpz(b);
+    // Every scale that leaves a quotient of at most 127 bits, and ties.
+    const int least = std::max(0, int(mpz_sizeinbase(product.get_mpz_t(), 2)) - 127);
+    for (const int e : {least, least + 1, least + int(rng() % 40)}) {
+      mpz_class want = product;
+      if (e > 0) {
+        want += mpz_class(1) << (e - 1);
+        want >>= e;
+      }
+      ASSERT_EQ(toMpz(roundShiftProduct(a, b, e)), want) << "a bits " << aBits << ", b bits " << bBits << ", e " << e;
+    }
+  }
+  // A tie rounds away from zero: 3 / 2 -> 2, and 2^130 + 2^129 halves exactly.
+  EXPECT_EQ(roundShiftProduct(3, 1, 1), u128(2));
+  EXPECT_EQ(roundShiftProduct(u128(3) << 64, u128(1) << 65, 129), u128(3));
+}
+
 TEST(GoldenCone, RefusesWhatIsNoCone) {
   EXPECT_THROW(coneRecord(1, {{10, 10, 10}, {10, 10, 90}, 0, 0}), std::invalid_argument);
   EXPECT_THROW(coneRecord(1, {{10, 10, 10}, {10, 10, 10}, 5, 3}), std::invalid_argument);
