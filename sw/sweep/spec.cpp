@@ -30,6 +30,14 @@ int parseBits(const std::string& text, const std::string& all, const std::string
   return value;
 }
 
+// The quadric record's K >= 8 bits (sw/golden/quadric.h), as cmake/NumberFormats.cmake checks.
+Width checkQuadricBits(const Width& w, const std::string& all, const std::string& where) {
+  if (w.pos < 5 || w.pos + w.dir < 12) {
+    throw InputError(fmt::format("{}: width {}: the quadric pipeline needs P >= 5 and P + D >= 12", where, all));
+  }
+  return w;
+}
+
 std::string replaceAll(std::string s, const std::string& from, const std::string& to) {
   for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) s.replace(at, from.size(), to);
   return s;
@@ -61,9 +69,10 @@ Width parseWidth(const std::string& text, const std::string& where) {
   const size_t slash = text.find('/');
   if (slash == std::string::npos) {
     const int bits = parseBits(text, text, where);
-    return {bits, bits};
+    return checkQuadricBits({bits, bits}, text, where);
   }
-  return {parseBits(text.substr(0, slash), text, where), parseBits(text.substr(slash + 1), text, where)};
+  return checkQuadricBits({parseBits(text.substr(0, slash), text, where), parseBits(text.substr(slash + 1), text, where)},
+                          text, where);
 }
 
 const std::vector<std::string>& sweepUnits() {

@@ -24,7 +24,8 @@ struct Width {
   auto operator<=>(const Width&) const = default;
 };
 
-// "P/D" (or "P" for P/P); throws InputError naming `where` unless both lie in 4..24.
+// "P/D" (or "P" for P/P); throws InputError naming `where` unless both lie in
+// 4..24 and hold the quadric record (P >= 5, P + D >= 12).
 Width parseWidth(const std::string& text, const std::string& where);
 
 // The units a sweep can measure and the Yosys top of each: isect (rt_isect fed

@@ -35,7 +35,9 @@ TEST(Sweep, WidthsParseAndStayWithinTheFormats) {
   EXPECT_EQ(parseWidth("10/12", "t"), (Width{10, 12}));
   EXPECT_EQ(parseWidth("8", "t"), (Width{8, 8}));
   EXPECT_EQ(parseWidth("24/4", "t").name(), "24/4");
-  for (const char* bad : {"3/10", "10/25", "0", "x/8", "8/", "/8", "8/8/8"}) {
+  EXPECT_EQ(parseWidth("6/6", "t"), (Width{6, 6}));
+  EXPECT_EQ(parseWidth("5/7", "t"), (Width{5, 7}));
+  for (const char* bad : {"3/10", "10/25", "0", "x/8", "8/", "/8", "8/8/8", "4/12", "6/5", "4"}) {
     EXPECT_THROW(parseWidth(bad, "--widths"), InputError) << bad;
   }
   try {
