@@ -165,8 +165,22 @@ int runSweep(const Spec& spec, const RunOptions& options) {
     if (!e.empty()) errors.push_back(e);
   }
   fmt::print("sweep: {} jobs planned, {} with results, {} to run, in {}\n", plan.size(), done, todo.size(), out);
+  // A synthesis reads its tree's generated package: a width whose last
+  // synthesis failed or never ran needs its tree too.
+  if (spec.synth) {
+    const nlohmann::json synth = readJson(out + "/synth.json");
+    for (const Width& w : spec.widths) {
+      for (const std::string& unit : spec.synthUnits.empty() ? spec.units : spec.synthUnits) {
+        const nlohmann::json s = synth.is_object() ? synth.value(w.name(), nlohmann::json::object())
+                                                       .value(synthTopOf(unit), nlohmann::json())
+                                                 : nlohmann::json();
+        if (!s.is_object() || s.contains("error")) needed.insert(w);
+      }
+    }
+  }
 
-  // The trees of the widths that have jobs to run (the others keep their record).
+  // The trees of the widths that have jobs to run or a synthesis to make (the
+  // others keep their record).
   nlohmann::json trees = readJson(out + "/trees.json");
   if (!trees.is_object()) trees = nlohmann::json::object();
   std::set<Width> broken;
