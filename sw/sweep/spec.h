@@ -67,6 +67,8 @@ struct Spec {
   // Throws InputError naming the option for an empty or invalid field.
   void validate() const;
   std::string treeOf(const Width& w) const;
+  // The units --synth maps: synthUnits, or every unit of the sweep.
+  const std::vector<std::string>& synthesizedUnits() const { return synthUnits.empty() ? units : synthUnits; }
   // --tree WIDTH=DIR; throws InputError naming it when it is not that.
   void addTree(const std::string& widthEqualsDir);
   // The source tree made absolute (this build's source when empty), and the

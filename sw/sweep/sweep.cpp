@@ -168,12 +168,11 @@ int runSweep(const Spec& spec, const RunOptions& options) {
   // A synthesis reads its tree's generated package: a width whose last
   // synthesis failed or never ran needs its tree too.
   if (spec.synth) {
-    const nlohmann::json synth = readJson(out + "/synth.json");
+    nlohmann::json synth = readJson(out + "/synth.json");
+    if (!synth.is_object()) synth = nlohmann::json::object();
     for (const Width& w : spec.widths) {
-      for (const std::string& unit : spec.synthUnits.empty() ? spec.units : spec.synthUnits) {
-        const nlohmann::json s = synth.is_object() ? synth.value(w.name(), nlohmann::json::object())
-                                                       .value(synthTopOf(unit), nlohmann::json())
-                                                 : nlohmann::json();
+      for (const std::string& unit : spec.synthesizedUnits()) {
+        const nlohmann::json s = synth.value(w.name(), nlohmann::json::object()).value(synthTopOf(unit), nlohmann::json());
         if (!s.is_object() || s.contains("error")) needed.insert(w);
       }
     }
@@ -212,7 +211,7 @@ int runSweep(const Spec& spec, const RunOptions& options) {
     if (!synth.is_object()) synth = nlohmann::json::object();
     for (const Width& w : spec.widths) {
       if (broken.count(w)) continue;
-      for (const std::string& unit : spec.synthUnits.empty() ? spec.units : spec.synthUnits) {
+      for (const std::string& unit : spec.synthesizedUnits()) {
         const std::string top = synthTopOf(unit);
         fmt::print("sweep: width {}: synthesis of {}\n", w.name(), top);
         std::fflush(stdout);
