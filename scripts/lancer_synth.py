@@ -141,8 +141,15 @@ def cached_figures(tree, top, silicon=True):
                # with OpenSTA installed, the figures include the silicon flow's (scripts/sweep-synth),
                # but for a tree without the hardware models, whose activity cannot be measured
                and ("silicon" in fig or not silicon or not shutil.which("sta")
-                    or not (Path(tree) / "rtl" / "lancer_fst_activity").exists()))
+                    or not has_hardware_models(tree)))
     return fig if current else None
+
+
+def has_hardware_models(tree):
+    """Whether TREE was built with the hardware models (LANCER_HW_MODELS, the
+    default): only then can a Verilated run measure a unit's toggle rates,
+    which the silicon flow's power needs."""
+    return (Path(tree) / "rtl" / "lancer_fst_activity").exists()
 
 
 def run_figures(work, top, pkg):

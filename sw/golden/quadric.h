@@ -52,7 +52,14 @@ struct LatticeCone {
 // 2P + 2D + 2K + 10 bits signed: all 128 at 16/16, K = 27) and whose result
 // fits the triangles' record (t_num 3P + 2D + 3 bits, det 2(P + D) + 3 bits:
 // docs/quadrics.md, "The cone").
-inline constexpr int kQuadricK = std::min({59 - kPosBits - kDirBits, kPosBits + kDirBits - 4, 2 * kPosBits - 2});
+// Of any widths, so that the sweep can refuse a width before building it; below
+// kQuadricMinK the record cannot hold a cone (P >= 5 and P + D >= 12 within
+// the widths' 4..24; cmake/NumberFormats.cmake keeps its own copy of the rule).
+constexpr int quadricCoefficientBits(int posBits, int dirBits) {
+  return std::min({59 - posBits - dirBits, posBits + dirBits - 4, 2 * posBits - 2});
+}
+inline constexpr int kQuadricMinK = 8;
+inline constexpr int kQuadricK = quadricCoefficientBits(kPosBits, kDirBits);
 
 // ---- The record: one for spheres and cones ------------------------------------
 // A quadric q'Qq + 2g'q + k = 0 in the frame q = 2x - S (x on the lattice; the
@@ -128,7 +135,7 @@ inline constexpr int kQuadricDenBits = kPosBits + kDirBits + kQuadricK + 7;
 inline constexpr int kQuadricOriginHeightBits = 2 * kPosBits + 4;  // q.w, signed
 inline constexpr int kQuadricDirHeightBits = kPosBits + kDirBits + 2;  // d.w, signed
 inline constexpr int kQuadricPlaneBits = 3 * kPosBits + kDirBits + kQuadricK + 12;
-static_assert(kQuadricK >= 8, "too few bits for the quadric");
+static_assert(kQuadricK >= kQuadricMinK, "too few bits for the quadric");
 static_assert(kQuadricDiscBits <= 128, "the discriminant is computed in 128-bit integers");
 static_assert(kQuadricPlaneBits <= 127, "the plane test is computed in 128-bit integers");
 static_assert(kQuadricConstBits <= 64, "the record's constant is a 64-bit integer");

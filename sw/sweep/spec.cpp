@@ -11,6 +11,7 @@
 
 #include "common/error.h"
 #include "common/json_keys.h"
+#include "golden/quadric.h"
 #include "golden/units.h"
 
 namespace lancer::sweep {
@@ -32,8 +33,9 @@ int parseBits(const std::string& text, const std::string& all, const std::string
 
 // The quadric record's K >= 8 bits (sw/golden/quadric.h), as cmake/NumberFormats.cmake checks.
 Width checkQuadricBits(const Width& w, const std::string& all, const std::string& where) {
-  if (w.pos < 5 || w.pos + w.dir < 12) {
-    throw InputError(fmt::format("{}: width {}: the quadric pipeline needs P >= 5 and P + D >= 12", where, all));
+  if (fx::quadricCoefficientBits(w.pos, w.dir) < fx::kQuadricMinK) {
+    throw InputError(fmt::format("{}: width {}: the quadric pipeline needs P >= 5 and P + D >= 12 (K = {} bits, at least {})",
+                                 where, all, fx::quadricCoefficientBits(w.pos, w.dir), fx::kQuadricMinK));
   }
   return w;
 }

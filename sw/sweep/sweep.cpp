@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <filesystem>
 #include <fstream>
@@ -34,13 +35,22 @@ void failJob(const std::string& out, const Spec& spec, const Job& job, const std
                       "\n");
 }
 
-// Loads every scene and writes its camera rays in chunks; returns, per scene,
-// "" or why it does not load.
-std::vector<std::string> writeCameraRays(const std::string& out, const Spec& spec) {
+// What the sweep found of one scene before running any job.
+struct SceneCheck {
+  std::string error;         // why it does not load, or ""
+  bool hasQuadrics = false;  // read natively, it has a sphere or a cone (asked only with the quadric unit)
+};
+
+// Loads every scene and writes its camera rays in chunks; with the quadric
+// unit, reads each natively too, so that its jobs on a scene without spheres
+// or cones fail before they run.
+std::vector<SceneCheck> writeCameraRays(const std::string& out, const Spec& spec) {
   fs::create_directories(out + "/rays");
-  std::vector<std::string> errors;
+  const bool quadricUnit = std::ranges::find(spec.units, "quadric") != spec.units.end();
+  std::vector<SceneCheck> checks(spec.scenes.size());
   for (int s = 0; s < int(spec.scenes.size()); ++s) {
     try {
+      if (quadricUnit) checks[size_t(s)].hasQuadrics = !loadScene(spec.scenes[size_t(s)], QuadricForm::Native).quadrics.empty();
       const Scene scene = loadScene(spec.scenes[size_t(s)]);
       CameraOptions camera;
       camera.width = camera.height = spec.image;
@@ -53,12 +63,11 @@ std::vector<std::string> writeCameraRays(const std::string& out, const Spec& spe
                       fmt::format("{}: camera {}x{}, rays {}..{}", spec.scenes[size_t(s)], spec.image, spec.image,
                                   from, to - 1));
       }
-      errors.emplace_back();
     } catch (const InputError& e) {
-      errors.push_back(fmt::format("scene {} does not load: {}", spec.scenes[size_t(s)], e.what()));
+      checks[size_t(s)].error = fmt::format("scene {} does not load: {}", spec.scenes[size_t(s)], e.what());
     }
   }
-  return errors;
+  return checks;
 }
 
 int runLocal(const std::string& out, const Spec& spec, const std::vector<Job>& jobs, int parallel,
@@ -147,22 +156,24 @@ int runSweep(const Spec& spec, const RunOptions& options) {
   writeAtomically(out + "/plan.json", nlohmann::json{{"spec", spec.toJson()}, {"jobs", jobs}}.dump(2) + "\n");
 
   std::vector<std::string> errors;
-  const std::vector<std::string> sceneErrors = writeCameraRays(out, spec);
+  const std::vector<SceneCheck> scenes = writeCameraRays(out, spec);
   std::vector<Job> todo;
   std::set<Width> needed;
   size_t done = 0;
   for (const Job& j : plan) {
     if (jobDone(out, spec, j)) {
       ++done;
-    } else if (!sceneErrors[size_t(j.scene)].empty()) {
-      failJob(out, spec, j, sceneErrors[size_t(j.scene)]);
+    } else if (!scenes[size_t(j.scene)].error.empty()) {
+      failJob(out, spec, j, scenes[size_t(j.scene)].error);
+    } else if (j.unit == "quadric" && !scenes[size_t(j.scene)].hasQuadrics) {
+      failJob(out, spec, j, "the scene has no sphere or cone: the quadric unit would test nothing (sweep it with isect)");
     } else {
       todo.push_back(j);
       needed.insert(j.width);
     }
   }
-  for (const std::string& e : sceneErrors) {
-    if (!e.empty()) errors.push_back(e);
+  for (const SceneCheck& scene : scenes) {
+    if (!scene.error.empty()) errors.push_back(scene.error);
   }
   fmt::print("sweep: {} jobs planned, {} with results, {} to run, in {}\n", plan.size(), done, todo.size(), out);
   // A synthesis reads its tree's generated package: a width whose last
