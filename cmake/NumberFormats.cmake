@@ -7,7 +7,7 @@ if(LANCER_POS_BITS LESS 4 OR LANCER_POS_BITS GREATER 24 OR LANCER_DIR_BITS LESS 
                       "(got ${LANCER_POS_BITS} and ${LANCER_DIR_BITS})")
 endif()
 # The quadric record rounds its coefficients to K >= 8 bits, K = min(59 - P - D,
-# P + D - 4, 2P - 2) (sw/golden/quadric.h): P >= 5 and P + D >= 12.
+# P + D - 4, 2P - 2, 60 - 2P) (sw/golden/quadric.h): P >= 5 and P + D >= 12.
 math(EXPR lancer_width_sum "${LANCER_POS_BITS} + ${LANCER_DIR_BITS}")
 if(LANCER_POS_BITS LESS 5 OR lancer_width_sum LESS 12)
   message(FATAL_ERROR "LANCER_POS_BITS=${LANCER_POS_BITS}, LANCER_DIR_BITS=${LANCER_DIR_BITS}: the quadric "

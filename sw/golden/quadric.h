@@ -51,12 +51,14 @@ struct LatticeCone {
 // whose per-ray arithmetic stays in 128-bit integers (the discriminant,
 // 2P + 2D + 2K + 10 bits signed: all 128 at 16/16, K = 27) and whose result
 // fits the triangles' record (t_num 3P + 2D + 3 bits, det 2(P + D) + 3 bits:
-// docs/quadrics.md, "The cone").
+// docs/quadrics.md, "The cone"), and whose constant k (2P + K + 4 bits
+// signed) fits the record's 64-bit field: the last binds only at a wide P
+// and a narrow D (24/4: K = 12).
 // Of any widths, so that the sweep can refuse a width before building it; below
 // kQuadricMinK the record cannot hold a cone (P >= 5 and P + D >= 12 within
 // the widths' 4..24; cmake/NumberFormats.cmake keeps its own copy of the rule).
 constexpr int quadricCoefficientBits(int posBits, int dirBits) {
-  return std::min({59 - posBits - dirBits, posBits + dirBits - 4, 2 * posBits - 2});
+  return std::min({59 - posBits - dirBits, posBits + dirBits - 4, 2 * posBits - 2, 60 - 2 * posBits});
 }
 inline constexpr int kQuadricMinK = 8;
 inline constexpr int kQuadricK = quadricCoefficientBits(kPosBits, kDirBits);
