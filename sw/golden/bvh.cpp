@@ -70,47 +70,50 @@ struct Walker {
   const BvhImage& image;
   const QRay& ray;
   const BvhRaySetup& setup;
-  TraversalTrace& trace;
+  BvhWalk& walk;
   TreeletCrossings* crossings = nullptr;  // counted where the layout has treelet blocks
   uint32_t block = 0;                      // the block the walk is in (the root's at the start)
+  bool suspends = false;                   // stop where it would cross into another block
 
-  struct Entry {
-    BvhRef ref;
-    u128 entry = 0;
-  };
+  using Entry = BvhWalkEntry;
 
   void run() {
-    std::vector<Entry> stack;
-    stack.reserve(kBvhStackDepth);
-    std::optional<Entry> next = Entry{image.root, 0};
-    while (next) {
-      const Entry current = *next;
-      next.reset();
+    TraversalTrace& trace = walk.trace;
+    while (walk.next) {
+      const Entry current = *walk.next;
+      std::optional<Entry> next;
       const auto bound = walkBound(ray, trace.hit);
       if (!(bound && culledBy(*bound, current.entry, setup))) {
-        if (crossings && !current.ref.leaf && image.blockOf(current.ref.first) != block) {
+        if (image.treeletNodes != 0 && !current.ref.leaf && image.blockOf(current.ref.first) != block) {
+          if (suspends) return;  // walk.next waits for its block
           block = image.blockOf(current.ref.first);
-          ++crossings->crossings;
-          crossings->stateBits += uint64_t(bvhSuspendedBits(stack.size()));
+          if (crossings) {
+            ++crossings->crossings;
+            crossings->stateBits += uint64_t(bvhSuspendedBits(walk.stack.size()));
+          }
         }
         trace.visits.push_back(current.ref.visitId());
         if (current.ref.leaf) {
-          if (testLeaf(current.ref)) return;
+          if (testLeaf(current.ref)) {
+            walk.next.reset();
+            return;
+          }
         } else {
-          next = descend(image.nodes[current.ref.first], stack);
+          next = descend(image.nodes[current.ref.first], walk.stack);
         }
       }
-      if (!next && !stack.empty()) {
-        next = stack.back();
-        stack.pop_back();
+      if (!next && !walk.stack.empty()) {
+        next = walk.stack.back();
+        walk.stack.pop_back();
       }
+      walk.next = next;
     }
   }
 
   // Tests every primitive of the leaf; true if an any-hit ray is answered.
   bool testLeaf(const BvhRef& leaf) {
-    for (uint32_t k = 0; k < leaf.count; ++k) testEntry(trace, ray, tablesOf(image), image.indices[leaf.first + k]);
-    return ray.anyHit && trace.hit.has_value();
+    for (uint32_t k = 0; k < leaf.count; ++k) testEntry(walk.trace, ray, tablesOf(image), image.indices[leaf.first + k]);
+    return ray.anyHit && walk.trace.hit.has_value();
   }
 
   // Both children's box tests; the nearer one entered next (child 0 on a
@@ -292,19 +295,31 @@ bool culledBy(const IsectResult& bound, u128 entry, const BvhRaySetup& ray) {
   return !(mul256((entry - 1) * ray.dominant, bound.det) < mul256(bound.tNum, ray.common));
 }
 
-TraversalTrace traverseBvh(const BvhImage& image, const QRay& ray) {
-  TraversalTrace trace;
+BvhWalk startBvhWalk(const BvhImage& image) {
+  BvhWalk walk;
+  walk.next = BvhWalkEntry{image.root, 0};
+  walk.stack.reserve(kBvhStackDepth);
+  return walk;
+}
+
+void continueBvhWalk(const BvhImage& image, const QRay& ray, BvhWalk& walk, uint32_t block) {
   const BvhRaySetup setup = BvhRaySetup::setup(ray);
-  Walker{image, ray, setup, trace}.run();
-  return trace;
+  Walker{image, ray, setup, walk, nullptr, block, true}.run();
+}
+
+TraversalTrace traverseBvh(const BvhImage& image, const QRay& ray) {
+  BvhWalk walk = startBvhWalk(image);
+  const BvhRaySetup setup = BvhRaySetup::setup(ray);
+  Walker{image, ray, setup, walk}.run();
+  return std::move(walk.trace);
 }
 
 TreeletCrossings bvhTreeletCrossings(const BvhImage& image, const QRay& ray) {
   TreeletCrossings crossings;
   if (image.treeletNodes == 0) return crossings;
-  TraversalTrace trace;
+  BvhWalk walk = startBvhWalk(image);
   const BvhRaySetup setup = BvhRaySetup::setup(ray);
-  Walker{image, ray, setup, trace, &crossings}.run();
+  Walker{image, ray, setup, walk, &crossings}.run();
   crossings.rays = 1;
   return crossings;
 }

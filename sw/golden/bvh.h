@@ -160,4 +160,28 @@ bool culledBy(const IsectResult& bound, u128 entry, const BvhRaySetup& ray);
 // refuses those).
 TraversalTrace traverseBvh(const BvhImage& image, const QRay& ray);
 
+// ---- A walk set aside and resumed (the treelet schedule, docs/scheduling.md) ----
+// The walk's state between two treelet visits: the node it is about to enter
+// (its box test passed, not culled), the nodes still to try, and what it has
+// done so far (its trace: visits, tests, closest hit). A walk suspended where
+// it would enter an interior node of another block and resumed there takes
+// exactly the unbroken walk's steps, in any interleaving with other rays.
+struct BvhWalkEntry {
+  BvhRef ref;
+  u128 entry = 0;
+  bool operator==(const BvhWalkEntry&) const = default;
+};
+struct BvhWalk {
+  std::optional<BvhWalkEntry> next;  // none: the walk is over
+  std::vector<BvhWalkEntry> stack;
+  TraversalTrace trace;
+  bool done() const { return !next.has_value(); }
+  // The treelet block the walk waits for: its next node's (the treelet layout, !done()).
+  uint32_t waitsFor(const BvhImage& image) const { return next->ref.leaf ? 0 : image.blockOf(next->ref.first); }
+};
+BvhWalk startBvhWalk(const BvhImage& image);
+// Walks on until the walk ends or is about to enter an interior node of
+// another block than `block` (without the treelet layout: to the end).
+void continueBvhWalk(const BvhImage& image, const QRay& ray, BvhWalk& walk, uint32_t block);
+
 }  // namespace lancer::fx

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <deque>
 #include <functional>
 #include <map>
 #include <random>
@@ -498,6 +499,53 @@ TEST(GoldenBvhTreelets, CrossingsAreTheInteriorNodesEnteredInAnotherBlock) {
   }
   EXPECT_GT(all.crossings, 300u);
   EXPECT_GT(all.stateBits, all.crossings * uint64_t(bvhSuspendedBits(0))) << "some crossings with a stack";
+}
+
+// Walks set aside where they leave a block and resumed block by block, the
+// fullest queue first (the treelet schedule's order, every ray's walk
+// interleaved with the others'), end where their unbroken walks end: the same
+// visits, tests and hit; each suspension is one of bvhTreeletCrossings'.
+TEST(GoldenBvhTreelets, SuspendedWalksResumedBlockByBlockTakeTheUnbrokenWalk) {
+  static const std::vector<QTriangle> tris = quantizeScene(loadScene(test::kBunny));
+  for (const uint32_t blockNodes : {1u, 16u, 256u}) {
+    BvhImage image = buildBvhImage(tris, 4);
+    layoutBvhTreelets(image, blockNodes);
+    std::mt19937_64 rng{blockNodes};
+    std::vector<QRay> rays;
+    for (uint32_t i = 0; i < 400; ++i) {
+      rays.push_back(randomLatticeRay(rng, i));
+      rays.back().anyHit = i % 3 == 0;
+    }
+    std::vector<BvhWalk> walks;
+    std::map<uint32_t, std::deque<size_t>> queues;  // block -> rays waiting for it
+    for (size_t r = 0; r < rays.size(); ++r) {
+      walks.push_back(startBvhWalk(image));
+      queues[walks.back().waitsFor(image)].push_back(r);
+    }
+    uint64_t suspensions = 0;
+    while (!queues.empty()) {
+      auto fullest = std::max_element(queues.begin(), queues.end(),
+                                       [](const auto& a, const auto& b) { return a.second.size() < b.second.size(); });
+      const uint32_t block = fullest->first;
+      std::deque<size_t> batch = std::move(fullest->second);
+      queues.erase(fullest);
+      for (const size_t r : batch) {
+        continueBvhWalk(image, rays[r], walks[r], block);
+        if (!walks[r].done()) {
+          ASSERT_NE(walks[r].waitsFor(image), block) << "ray " << r << " stops only to leave its block";
+          queues[walks[r].waitsFor(image)].push_back(r);
+          ++suspensions;
+        }
+      }
+    }
+    uint64_t crossings = 0;
+    for (size_t r = 0; r < rays.size(); ++r) {
+      ASSERT_EQ(walks[r].trace, traverseBvh(image, rays[r])) << "ray " << r << ", blocks of " << blockNodes;
+      crossings += bvhTreeletCrossings(image, rays[r]).crossings;
+    }
+    EXPECT_EQ(suspensions, crossings) << "blocks of " << blockNodes;
+    if (blockNodes == 1) EXPECT_GT(suspensions, rays.size());
+  }
 }
 
 TEST(GoldenBvhTreelets, TheBudgetIsAtLeastOneNodeAndBlocksArePowersOfTwo) {
