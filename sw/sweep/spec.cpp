@@ -33,9 +33,9 @@ int parseBits(const std::string& text, const std::string& all, const std::string
 
 // The quadric record's K >= 8 bits (sw/golden/quadric.h), as cmake/NumberFormats.cmake checks.
 Width checkQuadricBits(const Width& w, const std::string& all, const std::string& where) {
-  if (fx::quadricCoefficientBits(w.pos, w.dir) < fx::kQuadricMinK) {
+  if (const int k = fx::quadricCoefficientBits(w.pos, w.dir); k < fx::kQuadricMinK) {
     throw InputError(fmt::format("{}: width {}: the quadric pipeline needs P >= 5 and P + D >= 12 (K = {} bits, at least {})",
-                                 where, all, fx::quadricCoefficientBits(w.pos, w.dir), fx::kQuadricMinK));
+                                 where, all, k, fx::kQuadricMinK));
   }
   return w;
 }

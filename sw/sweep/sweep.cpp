@@ -42,16 +42,19 @@ struct SceneCheck {
 };
 
 // Loads every scene and writes its camera rays in chunks; with the quadric
-// unit, reads each natively too, so that its jobs on a scene without spheres
-// or cones fail before they run.
+// unit, reads each natively first (again tessellated only if it has quadrics),
+// so that its jobs on a scene without spheres or cones fail before they run.
 std::vector<SceneCheck> writeCameraRays(const std::string& out, const Spec& spec) {
   fs::create_directories(out + "/rays");
   const bool quadricUnit = std::ranges::find(spec.units, "quadric") != spec.units.end();
   std::vector<SceneCheck> checks(spec.scenes.size());
   for (int s = 0; s < int(spec.scenes.size()); ++s) {
     try {
-      if (quadricUnit) checks[size_t(s)].hasQuadrics = !loadScene(spec.scenes[size_t(s)], QuadricForm::Native).quadrics.empty();
-      const Scene scene = loadScene(spec.scenes[size_t(s)]);
+      const std::string& name = spec.scenes[size_t(s)];
+      Scene scene = loadScene(name, quadricUnit ? QuadricForm::Native : QuadricForm::Tessellate);
+      checks[size_t(s)].hasQuadrics = !scene.quadrics.empty();
+      // The camera rays are the tessellated scene's; without quadrics both forms read the same.
+      if (checks[size_t(s)].hasQuadrics) scene = loadScene(name);
       CameraOptions camera;
       camera.width = camera.height = spec.image;
       const std::vector<Ray> rays = frameScene(scene, camera).generateRays();
@@ -60,7 +63,7 @@ std::vector<SceneCheck> writeCameraRays(const std::string& out, const Spec& spec
         const size_t to = rays.size() * size_t(c + 1) / size_t(spec.chunks);
         const std::vector<Ray> chunk(rays.begin() + long(from), rays.begin() + long(to));
         writeRaysFile(cameraRaysPath(out, spec, s, c), chunk,
-                      fmt::format("{}: camera {}x{}, rays {}..{}", spec.scenes[size_t(s)], spec.image, spec.image,
+                      fmt::format("{}: camera {}x{}, rays {}..{}", name, spec.image, spec.image,
                                   from, to - 1));
       }
     } catch (const InputError& e) {
