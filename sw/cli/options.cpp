@@ -212,8 +212,13 @@ void ChipArgs::add(CLI::App& app, JobConfig& job) {
   opt("--dram-queue", job.memory.dram.queueDepth, "hierarchy: requests queued per DRAM channel");
   opt("--dispatch-batch", job.dispatchBatch, "Consecutive rays the dispatcher hands a unit at once");
   opt("--schedule", schedule,
-      "The order the dispatcher hands a wave's rays out: fifo (as they come) or sorted (by origin, then direction "
-      "octant; docs/scheduling.md)");
+      "The order the dispatcher hands a wave's rays out: fifo (as they come), sorted (by origin, then direction "
+      "octant) or treelet (the BVH unit sets walks aside at treelet blocks, ray queues hand them out block by "
+      "block; needs --bvh-treelet-bytes; docs/scheduling.md)");
+  opt("--queue-kib", job.queues.kib, "treelet: KiB of the on-chip ray queue memory (beyond it, walks wait in DRAM)");
+  opt("--queue-bytes-per-cycle", job.queues.bytesPerCycle, "treelet: the ray queue memory's read and write port width");
+  opt("--queue-launch-below", job.queues.launchBelow,
+      "treelet: launch fresh rays while the queue memory is less full than this fraction, else work on the fullest queue");
   opt("--host-threads", job.hostThreads, "Host threads clocking the units (0: one per core, at most one per unit; docs/chip.md)");
 }
 
@@ -226,6 +231,10 @@ std::string ChipArgs::replayOptions(const JobConfig& job) {
   std::string out;
   if (job.units != 1) out += fmt::format(" --units {}", job.units);
   if (job.schedule != Schedule::Fifo) out += fmt::format(" --schedule {}", toString(job.schedule));
+  if (job.schedule == Schedule::Treelet) {
+    out += fmt::format(" --queue-kib {} --queue-bytes-per-cycle {} --queue-launch-below {:g}", job.queues.kib,
+                       job.queues.bytesPerCycle, job.queues.launchBelow);
+  }
   if (job.memory.kind == mem::MemoryKind::Fixed) return out;
   const mem::MemoryConfig& m = job.memory;
   return out + fmt::format(" --memory hierarchy --l1-kib {} --l1-ways {} --l1-line-bytes {} --l1-mshrs {} --l1-latency {} "

@@ -30,6 +30,8 @@ ChipFigures& ChipFigures::operator+=(const ChipFigures& o) {
   sort += o.sort;
   treelets += o.treelets;
   quadricTests += o.quadricTests;
+  queueConfig = o.queueConfig;
+  queues += o.queues;
   return *this;
 }
 
@@ -69,13 +71,21 @@ nlohmann::json ChipFigures::toJson(uint64_t cycles, uint64_t rays, double clockH
                       {"memory_stats", stats},
                       {"schedule", toString(schedule)}};
   if (treelets.rays > 0) {
-    // Each crossing writes the walk's state to a queue and reads it back.
+    // Each suspension writes the walk's state to a queue and reads it back.
     const double bytes = double(treelets.stateBits) / 8.0;
     j["treelet_walk"] = {{"crossings_per_ray", ratio(double(treelets.crossings), double(treelets.rays))},
-                         {"state_bytes_per_crossing", ratio(bytes, double(treelets.crossings))},
+                         {"suspensions_per_ray", ratio(double(treelets.suspensions), double(treelets.rays))},
+                         {"state_bytes_per_suspension", ratio(bytes, double(treelets.suspensions))},
                          {"state_bytes_per_ray", ratio(bytes, double(treelets.rays))}};
   }
-  if (schedule == Schedule::Sorted) {
+  if (schedule == Schedule::Treelet) {
+    j["ray_queues"] = {{"config", queueConfig},
+                       {"stats", queues},
+                       {"suspensions_per_ray", ratio(double(queues.suspensions), double(rays))},
+                       {"queue_bytes_per_ray", ratio(double(queues.bytesWritten + queues.bytesRead), double(rays))},
+                       {"overflow_dram_bytes_per_ray", ratio(double(queues.overflowBytes), double(rays))}};
+  }
+  if (sortsRays(schedule)) {
     // The rate with the chip's estimated sort added to the cycles, beside the rate without it.
     j["sort"] = sort;
     j["rays_per_second_with_sort"] = r.raysPerSecondWithSort;
@@ -104,6 +114,14 @@ std::string ChipFigures::summary(uint64_t cycles, uint64_t rays, double clockHz)
                        "~{} cycles, {:.1f} MB of DRAM (estimate; {:.1f} M rays/s with it)\n",
                        sort.rays, sort.sorts, sort.hostSeconds, sort.chipCycles, double(sort.dramBytes) / 1e6,
                        r.raysPerSecondWithSort / 1e6);
+  } else if (schedule == Schedule::Treelet) {
+    out += fmt::format("  schedule            treelet: {:.2f} suspensions/ray, {} block switches; ray queues {} KiB "
+                       "(peak {:.0f} KiB, mean {:.0f} KiB), {:.0f} queue bytes/ray; overflow {} walks, {:.1f} DRAM "
+                       "bytes/ray; fresh rays launched sorted (a chip's sort ~{} cycles: {:.1f} M rays/s with it)\n",
+                       ratio(double(queues.suspensions), double(rays)), queues.blockSwitches, queueConfig.kib,
+                       double(queues.peakBytes) / 1024.0, ratio(double(queues.byteCycles), double(queues.cycles)) / 1024.0,
+                       ratio(double(queues.bytesWritten + queues.bytesRead), double(rays)), queues.overflows,
+                       ratio(double(queues.overflowBytes), double(rays)), sort.chipCycles, r.raysPerSecondWithSort / 1e6);
   } else {
     out += "  schedule            fifo: rays in the order they come\n";
   }

@@ -80,6 +80,8 @@ struct ChipFigures {
   SortCost sort;  // schedule sorted: what ordering the rays cost
   fx::TreeletCrossings treelets;  // a treelet layout: what a treelet schedule would move (golden walk)
   uint64_t quadricTests = 0;      // the units' ray-quadric tests (their rt_quadric's work)
+  mem::RayQueueConfig queueConfig;  // schedule treelet: the ray queues
+  mem::RayQueueStats queues;
 
   int units() const { return int(unitRays.size()); }
   ChipFigures& operator+=(const ChipFigures& o);

@@ -74,6 +74,7 @@ struct JobConfig {
   int units = 1;
   int dispatchBatch = 32;
   Schedule schedule = Schedule::Fifo;  // the order the dispatcher hands rays out (driver/schedule.h)
+  mem::RayQueueConfig queues;          // the treelet schedule's ray queues
   int hostThreads = 1;
   mem::MemoryConfig memory;
   // Rays per model run, per unit: a chip of N units runs N times as many at

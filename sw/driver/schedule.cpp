@@ -15,7 +15,7 @@ namespace lancer {
 
 namespace {
 
-constexpr Schedule kSchedules[] = {Schedule::Fifo, Schedule::Sorted};
+constexpr Schedule kSchedules[] = {Schedule::Fifo, Schedule::Sorted, Schedule::Treelet};
 
 // Bit i of v to bit 3i (v below 2^10).
 uint64_t spreadBits(uint64_t v) {
@@ -40,7 +40,14 @@ uint64_t originCell(uint64_t coordinate) {
 
 }  // namespace
 
-std::string_view toString(Schedule schedule) { return schedule == Schedule::Fifo ? "fifo" : "sorted"; }
+std::string_view toString(Schedule schedule) {
+  switch (schedule) {
+    case Schedule::Fifo: return "fifo";
+    case Schedule::Sorted: return "sorted";
+    case Schedule::Treelet: return "treelet";
+  }
+  return "?";
+}
 
 std::vector<std::string> scheduleNames() {
   std::vector<std::string> names;
@@ -71,7 +78,7 @@ std::vector<uint32_t> dispatchOrder(Schedule schedule, std::span<const std::opti
   for (size_t i = 0; i < rays.size(); ++i) {
     if (rays[i]) order.push_back(uint32_t(i));
   }
-  if (schedule == Schedule::Sorted) {
+  if (sortsRays(schedule)) {
     std::vector<uint64_t> keyed(order.size());  // {key, index}: one 64-bit compare, ties by index
     for (size_t k = 0; k < order.size(); ++k) keyed[k] = (rayOrderKey(rays[order[k]]->q) << 31) | order[k];
     std::sort(keyed.begin(), keyed.end());

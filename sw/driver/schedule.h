@@ -2,9 +2,12 @@
 
 // The order in which a chip's dispatcher hands out a job's rays
 // (docs/scheduling.md). `fifo` hands them out as they come; `sorted` orders a
-// wave by a key of its rays first. A schedule changes only which rays meet in
-// the units and the caches at once: every ray is the same ray, walked the same
-// way, so its hit, its visits and its tests are the same under any schedule.
+// wave by a key of its rays first; `treelet` has the units set walks aside
+// where they leave a treelet block and hands them out again block by block
+// from the ray queues (memory/ray_queues.h). A schedule changes only which
+// rays meet in the units and the caches at once: every ray is the same ray,
+// walked the same way, so its hit, its visits and its tests are the same
+// under any schedule.
 
 #include <cstdint>
 #include <optional>
@@ -20,9 +23,13 @@
 
 namespace lancer {
 
-enum class Schedule { Fifo, Sorted };
+enum class Schedule { Fifo, Sorted, Treelet };
 
 std::string_view toString(Schedule schedule);
+// Whether the schedule orders a job's rays by rayOrderKey before they are
+// handed out (sorted; treelet launches its fresh rays in that order too), and
+// so pays the sort (SortCost).
+constexpr bool sortsRays(Schedule schedule) { return schedule != Schedule::Fifo; }
 // Throws InputError naming --schedule and the schedules for an unknown name.
 Schedule parseSchedule(std::string_view name);
 std::vector<std::string> scheduleNames();
@@ -41,7 +48,8 @@ uint64_t rayOrderKey(const fx::QRay& ray);
 
 // The indices of `rays`' lattice rays (nullopt ones left out) in the order
 // `schedule` hands them to the chip: by index for fifo; by (rayOrderKey,
-// index) for sorted, so the order is a function of the rays alone.
+// index) for sorted and treelet (sortsRays), so the order is a function of
+// the rays alone.
 std::vector<uint32_t> dispatchOrder(Schedule schedule, std::span<const std::optional<QuantizedRay>> rays);
 
 // What ordering the rays costs. The host's time is measured; a chip's is

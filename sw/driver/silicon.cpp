@@ -65,6 +65,10 @@ SramFigures cacheSram(const char* kind, const char* sizeKey, double kib) {
 
 SramFigures l1Sram(double kib) { return cacheSram("l1", "capacity_kib", kib); }
 SramFigures l2BankSram(double bankKib) { return cacheSram("l2_bank", "bank_kib", bankKib); }
+RayQueueSram rayQueueSram(double kib) {
+  const int banks = int(std::ceil(kib / kRayQueueBankKib));
+  return {banks, l2BankSram(kib / banks)};
+}
 
 DramEnergy dramEnergy() {
   const nlohmann::json& dram = sramTable()["dram"];
@@ -128,6 +132,14 @@ std::optional<ChipSilicon> chipSilicon(const RunClock& clock, const ChipFigures&
     s.dramJ = double(chip.stats.dramBytes) * 8.0 * s.dram.pjPerBit * 1e-12;
     leakageW += (s.units * mem::kPorts * l1.leakageMw + m.l2.banks * bank.leakageMw) * 1e-3;
   }
+  if (chip.schedule == Schedule::Treelet) {
+    const RayQueueSram q = rayQueueSram(chip.queueConfig.kib);
+    const auto accesses = [](uint64_t bytes) { return std::ceil(double(bytes) / kRayQueueAccessBytes); };
+    s.queues = q.banks * q.bank.areaMm2;
+    s.queuesJ = (accesses(chip.queues.bytesWritten) * q.bank.writeEnergyPj +
+                 accesses(chip.queues.bytesRead) * q.bank.readEnergyPj) * 1e-12;
+    leakageW += q.banks * q.bank.leakageMw * 1e-3;
+  }
   s.leakageJ = leakageW * s.seconds;
   return s;
 }
@@ -143,15 +155,17 @@ nlohmann::json ChipSilicon::toJson() const {
         {"quadric_per_unit", quadricPerUnit},
         {"macros_per_unit", macrosPerUnit},
         {"l1_per_unit", l1PerUnit},
-        {"memories", units * (macrosPerUnit + l1PerUnit) + l2},
+        {"memories", units * (macrosPerUnit + l1PerUnit) + l2 + queues},
         {"l2", l2},
+        {"ray_queues", queues},
         {"units", units},
         {"total", areaMm2()}}},
       {"power_w",
-       {{"dynamic", (cellsJ + macrosJ + l1J + l2J) * watts},
+       {{"dynamic", (cellsJ + macrosJ + l1J + l2J + queuesJ) * watts},
         {"dynamic_cells", cellsJ * watts},
         {"dynamic_macros_bound", macrosJ * watts},
         {"dynamic_caches", (l1J + l2J) * watts},
+        {"dynamic_ray_queues", queuesJ * watts},
         {"leakage", leakageJ * watts},
         {"dram", dramJ * watts},
         {"total", energyJ() * watts}}},
@@ -161,6 +175,7 @@ nlohmann::json ChipSilicon::toJson() const {
         {"macros_bound", macrosJ * perRay},
         {"l1", l1J * perRay},
         {"l2", l2J * perRay},
+        {"ray_queues", queuesJ * perRay},
         {"dram", dramJ * perRay},
         {"leakage", leakageJ * perRay}}},
       {"mrays_per_s_per_mm2", mraysPerSecondPerMm2()},
@@ -181,6 +196,10 @@ std::string ChipSilicon::summary() const {
       "  silicon             {} ({} nm): {:.1f} mm² = {} x ({:.2f} cells + {:.2f} macros + {:.2f} L1) + {:.2f} L2\n",
       library, nodeNm, areaMm2(), units, logicPerUnit, macrosPerUnit, l1PerUnit, l2);
   if (quadricPerUnit > 0) out += fmt::format("                      (the cells hold rt_quadric's {:.2f})\n", quadricPerUnit);
+  if (queues > 0) {
+    out += fmt::format("                      + {:.2f} ray queues ({:.1f} nJ/ray of their reads and writes)\n", queues,
+                       queuesJ * perRay);
+  }
   out += fmt::format("  energy              {:.1f} nJ/ray (cells {:.1f}, macros ≤{:.1f}, L1 {:.1f}, L2 {:.1f}, DRAM {:.2f}, "
                      "leakage {:.1f}); {:.2f} W; {:.2f} M rays/s per mm²\n",
                      nanojoulesPerRay(), cellsJ * perRay, macrosJ * perRay, l1J * perRay, l2J * perRay, dramJ * perRay,

@@ -40,6 +40,16 @@ struct SramFigures {
 // CACTI points, extrapolated along the end segments.
 SramFigures l1Sram(double kib);
 SramFigures l2BankSram(double bankKib);
+// The ray queue memory of `kib` (the treelet schedule): banks of the L2's
+// kind, kRayQueueBankKib each (one bank of `kib` below that), accessed a
+// 64-byte line at a time as the table's banks are.
+inline constexpr double kRayQueueBankKib = 128;
+inline constexpr double kRayQueueAccessBytes = 64;
+struct RayQueueSram {
+  int banks = 0;
+  SramFigures bank;
+};
+RayQueueSram rayQueueSram(double kib);
 
 // The DRAM interface the energy is priced for, with its cited figure.
 struct DramEnergy {
@@ -54,16 +64,17 @@ struct ChipSilicon {
   int nodeNm = 0;
   int units = 0;
   // Area, mm² (logicPerUnit holds quadricPerUnit: rt_quadric's cells, when the scene has quadrics).
-  double logicPerUnit = 0, macrosPerUnit = 0, l1PerUnit = 0, l2 = 0, quadricPerUnit = 0;
+  // queues: the treelet schedule's ray queue memory (none under the other schedules).
+  double logicPerUnit = 0, macrosPerUnit = 0, l1PerUnit = 0, l2 = 0, quadricPerUnit = 0, queues = 0;
   // Energy of the run, joules.
-  double cellsJ = 0, macrosJ = 0, l1J = 0, l2J = 0, dramJ = 0, leakageJ = 0;
+  double cellsJ = 0, macrosJ = 0, l1J = 0, l2J = 0, queuesJ = 0, dramJ = 0, leakageJ = 0;
   double seconds = 0;
   uint64_t rays = 0;
   DramEnergy dram;
   std::string workload;  // where the unit's activity was measured
 
-  double areaMm2() const { return units * (logicPerUnit + macrosPerUnit + l1PerUnit) + l2; }
-  double energyJ() const { return cellsJ + macrosJ + l1J + l2J + dramJ + leakageJ; }
+  double areaMm2() const { return units * (logicPerUnit + macrosPerUnit + l1PerUnit) + l2 + queues; }
+  double energyJ() const { return cellsJ + macrosJ + l1J + l2J + queuesJ + dramJ + leakageJ; }
   double nanojoulesPerRay() const { return rays ? energyJ() / double(rays) * 1e9 : 0.0; }
   double mraysPerSecondPerMm2() const { return seconds > 0 ? double(rays) / seconds / 1e6 / areaMm2() : 0.0; }
   // The report's library, area_mm2, power_w, energy_nj_per_ray and mrays_per_s_per_mm2.

@@ -117,6 +117,11 @@ TraversalRunStats SystemCTraversalDevice<Image, Unit>::run(const Image& image, s
                                  options.units, sc::kScChipUnits, kMaxUnits));
   }
   Desc::checkImage(image, rays);
+  if (options.treelets && impl_ != Impl::Model) {
+    throw InputError(fmt::format("--schedule treelet: the {} model of the {} unit has no ray queues (its SystemC "
+                                 "testbench dispatches in order); use --model systemc",
+                                 name(), Desc::kNames.unit));
+  }
   for (const double p : {options.stream.outputStallProbability, options.stream.inputIdleProbability}) {
     if (!(p >= 0.0 && p < 1.0)) {
       throw InputError(fmt::format("{}: stall and idle probabilities must lie in [0, 1), got {}", name(), p));

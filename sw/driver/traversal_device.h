@@ -8,6 +8,7 @@
 #include "driver/isect_device.h"
 #include "golden/trace.h"
 #include "golden/units.h"
+#include "memory/ray_queues.h"
 #include "memory/system.h"
 
 namespace lancer {
@@ -30,6 +31,10 @@ struct TraversalRunOptions {
   // caches stay warm from batch to batch and wave to wave, as on a chip
   // tracing one frame (driver/job.cpp). Null: the run makes its own, empty.
   mem::MemorySystem* sharedMemory = nullptr;
+  // The treelet schedule (docs/scheduling.md): the units set walks aside at
+  // treelet blocks, and the ray queues hand the rays out block by block.
+  bool treelets = false;
+  mem::RayQueueConfig queues;
 };
 
 inline constexpr int kMaxUnits = 64;
@@ -72,6 +77,7 @@ struct TraversalRunStats {
   // what the memory system did (empty for the golden model).
   std::vector<uint64_t> unitRays, unitBusyCycles;
   mem::MemoryStats memory;
+  mem::RayQueueStats queues;  // the treelet schedule's
 
   uint64_t memoryReads() const { return nodeReads + indexReads + triangleReads; }
   // The stats of consecutive runs, as of one.
@@ -90,6 +96,7 @@ struct TraversalRunStats {
     addPerUnit(unitRays, o.unitRays);
     addPerUnit(unitBusyCycles, o.unitBusyCycles);
     memory += o.memory;
+    queues += o.queues;
     return *this;
   }
 };

@@ -59,6 +59,8 @@ TraversalRunOptions traversalOptionsOf(const JobConfig& config) {
   options.dispatchBatch = config.dispatchBatch;
   options.hostThreads = config.hostThreads;
   options.memory = config.memory;
+  options.treelets = config.schedule == Schedule::Treelet;
+  options.queues = config.queues;
   return options;
 }
 
@@ -76,6 +78,17 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
     throw InputError(fmt::format("--mem-latency {} must be >= 1 and --mem-jitter {} >= 0", config.memLatency,
                                  config.memLatencyJitter));
   }
+  if (config.schedule == Schedule::Treelet) {
+    if constexpr (!requires { Unit::kWalkFieldList; }) {
+      throw InputError(fmt::format("--schedule treelet: the {} unit cannot set walks aside; the treelet schedule "
+                                   "runs on the BVH unit (--accel bvh)",
+                                   Unit::kNames.unit));
+    } else if (!Unit::hasTreelets(image)) {
+      throw InputError("--schedule treelet needs a treelet layout of the BVH: --bvh-treelet-bytes N (the on-chip "
+                       "budget of a treelet, e.g. 32768; docs/scheduling.md)");
+    }
+    config.queues.validate();
+  }
   JobResult job;
   job.rays.assign(rays.begin(), rays.end());
   job.hits.resize(rays.size());
@@ -89,7 +102,7 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
   auto start = std::chrono::steady_clock::now();
   const std::vector<uint32_t> order = dispatchOrder(config.schedule, job.rays);
   SortCost sort;
-  if (config.schedule == Schedule::Sorted) {
+  if (sortsRays(config.schedule)) {
     sort = chipSortCost(order.size(), memoryConfigOf(options));
     sort.hostSeconds = secondsSince(start);
   }
@@ -156,7 +169,7 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
                    config.raysInFlight ? config.raysInFlight : model.maxRaysInFlight());
     if (!total.unitRays.empty()) {
       job.chip = ChipFigures{memoryConfigOf(options), total.unitRays, total.unitBusyCycles, total.memory,
-                             config.schedule, sort, treelets, total.quadricTests};
+                             config.schedule, sort, treelets, total.quadricTests, config.queues, total.queues};
     }
   }
   return job;

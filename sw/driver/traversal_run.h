@@ -180,18 +180,50 @@ struct PortImage {
   std::vector<uint32_t> nodeWire, triWire, quadricWire;
 };
 
-// What the units of a run share: the rays and their traces (each written only
-// by the unit that took the ray), and the dispatcher.
+// What the units of a run share: the rays and their traces, the walks, and
+// the dispatcher. A walk is a ray's way through a unit from its offer to its
+// result: a ray's first walk has the ray's index as its id; under the treelet
+// schedule a walk set aside is resumed as a new walk, with the next id
+// (rays.size() + k for the k-th). Each walk's record is written only by the
+// unit that took it; walks are added only between cycles (addResumed).
 struct ChipRays {
   ChipRays(std::span<const fx::QRay> r, std::vector<fx::TraversalTrace>& t, int units, int batch)
       : rays(r), traces(t), owner(r.size(), -1), finished(r.size(), 0), resultElements(r.size(), 0),
         dispatcher(r.size(), units, batch) {}
   std::span<const fx::QRay> rays;
   std::vector<fx::TraversalTrace>& traces;
-  std::vector<int> owner;  // the unit that took each ray (-1: none yet)
-  std::vector<uint8_t> finished;
-  std::vector<uint32_t> resultElements;
+  std::deque<int> owner;  // per walk: the unit that took it (-1: none yet)
+  std::deque<uint8_t> finished;
+  std::deque<uint32_t> resultElements;
+  // A resumed walk: its ray, the walk record it resumes (the unit's walk
+  // record, as the result port gave it), its visits.
+  struct Resumed {
+    size_t ray;
+    std::vector<uint32_t> walk;
+    std::vector<uint32_t> visits;
+  };
+  std::deque<Resumed> resumed;
   Dispatcher dispatcher;
+
+  size_t walks() const { return owner.size(); }
+  size_t rayOf(size_t walk) const { return walk < rays.size() ? walk : resumed[walk - rays.size()].ray; }
+  const Resumed* resumedWalk(size_t walk) const { return walk < rays.size() ? nullptr : &resumed[walk - rays.size()]; }
+  std::vector<uint32_t>& visitsOf(size_t walk) {
+    return walk < rays.size() ? traces[walk].visits : resumed[walk - rays.size()].visits;
+  }
+  size_t addResumed(size_t ray, std::vector<uint32_t> walk) {
+    resumed.push_back(Resumed{ray, std::move(walk), {}});
+    owner.push_back(-1);
+    finished.push_back(0);
+    resultElements.push_back(0);
+    return walks() - 1;
+  }
+};
+
+// A walk a unit set aside in this cycle, for the ray queues at its end.
+struct SuspendedWalk {
+  size_t walk;
+  std::vector<uint32_t> record;
 };
 
 // One Verilated unit of a chip, cycle by cycle: it offers the rays the
@@ -218,6 +250,13 @@ class UnitRun {
   static constexpr size_t kResWords = size_t(fx::wireWords(fx::recordBits(Desc::kResFields)));
   static constexpr size_t kVisitWords = size_t(fx::wireWords(fx::recordBits(kVisitFields)));
   static constexpr size_t kFirstVisits = 16;  // a ray's visit list starts this long
+  static constexpr size_t kWalkWords = [] {
+    if constexpr (requires { Desc::kWalkFieldList; }) {
+      return size_t(fx::wireWords(fx::recordBits(Desc::kWalkFieldList)));
+    } else {
+      return size_t(0);
+    }
+  }();
   static size_t visitRay(uint64_t visit) { return uint32_t(visit >> kVisitRayLsb); }  // {ray_id, element}
 
  public:
@@ -232,11 +271,21 @@ class UnitRun {
                   "res_data_o does not match the unit's result record: rebuild rt_pkg");
   }
 
+  // Whether the clocked model can set walks aside (the treelet schedule).
+  static constexpr bool kSuspends = requires(Top& t) { t.cfg_suspend_i; };
+
   // The run's slots and the unit's configuration port.
   void configure() {
     top_.cfg_slots_i = options_.raysInFlight == 0 ? Unit::kMaxSlots : options_.raysInFlight;
     trav_detail::configure(top_, ports_.image);
+    if constexpr (kSuspends) {
+      top_.cfg_suspend_i = options_.treelets;
+      top_.cfg_block_shift_i = Desc::treeletBlockShift(ports_.image);
+    }
   }
+
+  // The walks this unit set aside in the cycle just run (taken at its end).
+  std::vector<SuspendedWalk>& suspended() { return suspended_; }
 
   // One cycle of the chip: the memory's responses and this unit's offer, the
   // inputs settled, the handshakes, the rising edge. True if the unit made
@@ -294,12 +343,17 @@ class UnitRun {
   // offer holds until taken. The ray crosses the port with its index in the
   // run as its id.
   void offerRay(uint64_t now) {
-    if (!offering_ && shared_.dispatcher.holds(index_) && !stim_.idle()) {
+    if (!offering_ && shared_.dispatcher.holds(index_, now) && !stim_.idle()) {
       offeredRay_ = shared_.dispatcher.next(index_);
-      fx::QRay wireRay = shared_.rays[offeredRay_];
+      fx::QRay wireRay = shared_.rays[shared_.rayOf(offeredRay_)];
       wireRay.id = uint32_t(offeredRay_);
       fx::packWire(wireRay, rayWire_);
       writePort(top_.ray_data_i, rayWire_.data(), fx::kIsectRayWords);
+      if constexpr (kSuspends) {
+        const ChipRays::Resumed* resumed = shared_.resumedWalk(offeredRay_);
+        top_.ray_resume_i = resumed != nullptr;
+        if (resumed) writePort(top_.ray_walk_i, resumed->walk.data(), resumed->walk.size());
+      }
       offering_ = true;
       if (!started_) {
         started_ = true;
@@ -436,7 +490,7 @@ class UnitRun {
   // trail the ray's result; a second result is an error).
   size_t ownRay(uint64_t id, const char* what, bool result) const {
     const size_t k = size_t(id);
-    if (k >= shared_.rays.size() || shared_.owner[k] != index_ || (result && shared_.finished[k])) {
+    if (k >= shared_.walks() || shared_.owner[k] != index_ || (result && shared_.finished[k])) {
       fail(fmt::format("unit {}: a {} for ray {} that is not in flight in it", index_, what, k));
     }
     return k;
@@ -445,7 +499,7 @@ class UnitRun {
   bool takeVisit(uint64_t now) {
     const uint64_t visit = top_.visit_data_o;  // {ray_id, element}
     const size_t k = ownRay(visitRay(visit), "visit record", false);
-    std::vector<uint32_t>& visits = shared_.traces[k].visits;
+    std::vector<uint32_t>& visits = shared_.visitsOf(k);
     if (visits.empty()) visits.reserve(kFirstVisits);  // one allocation for most walks, not five
     visits.push_back(uint32_t((visit >> kVisitIdLsb) & kVisitIdMask));
     ++stats_.steps;
@@ -458,7 +512,25 @@ class UnitRun {
     res_ = fx::wire_bits::unpackFixed<Desc::kResFieldList>(resWire_);
     const size_t k = ownRay(uint64_t(res_[0]), "result", true);
     shared_.finished[k] = 1;
-    shared_.resultElements[k] = fx::takeTraversalResult(res_, shared_.rays[k].id, shared_.traces[k]);
+    const size_t ray = shared_.rayOf(k);
+    if (k == ray) {  // a ray's first walk: its result is the whole trace's so far
+      shared_.resultElements[k] = fx::takeTraversalResult(res_, shared_.rays[ray].id, shared_.traces[ray]);
+    } else {  // a resumed walk counts on from the walks before it
+      fx::TraversalTrace part;
+      shared_.resultElements[k] = fx::takeTraversalResult(res_, shared_.rays[ray].id, part);
+      fx::TraversalTrace& trace = shared_.traces[ray];
+      trace.tests += part.tests;
+      trace.quadricTests += part.quadricTests;
+      trace.hit = part.hit;
+    }
+    if constexpr (kSuspends) {
+      if (top_.res_suspended_o) {  // not over: its record to the ray queues (its hit so far is in it)
+        shared_.traces[ray].hit.reset();
+        std::vector<uint32_t> record(kWalkWords);
+        readPort(top_.res_walk_o, record.data(), kWalkWords);
+        suspended_.push_back(SuspendedWalk{k, std::move(record)});
+      }
+    }
     ++results_;
     lastCycle_ = now;
     return true;
@@ -477,6 +549,7 @@ class UnitRun {
   std::array<fx::u128, fx::valueCount(Desc::kResFields)> res_{};
   fx::RayWire rayWire_{};
   TraversalRunStats stats_;
+  std::vector<SuspendedWalk> suspended_;
   size_t offeredRay_ = 0;
   uint64_t accepted_ = 0, results_ = 0, busyCycles_ = 0;
   bool offering_ = false, started_ = false;
@@ -491,9 +564,13 @@ class UnitRun {
 // unit order, so a run is the same whatever the threads.
 template <class Clocked, class Image>
 class ChipRun {
+  using Desc = typename TraversalTop<typename Clocked::top_type>::Desc;
+
  public:
-  ChipRun(std::deque<UnitRun<Clocked, Image>>& units, mem::MemorySystem& memory, ChipRays& shared, int threads)
-      : units_(units), memory_(memory), shared_(shared), threads_(threads), progress_(units.size(), 0) {}
+  ChipRun(std::deque<UnitRun<Clocked, Image>>& units, mem::MemorySystem& memory, ChipRays& shared, int threads,
+          const Image& image)
+      : units_(units), memory_(memory), shared_(shared), threads_(threads), image_(image),
+        progress_(units.size(), 0) {}
 
   void run() {
     shared_.dispatcher.refill();
@@ -535,6 +612,20 @@ class ChipRun {
   // The end of every cycle, alone: the memory's work, the dispatcher, the
   // end of the run, the watchdog.
   void endCycle() {
+    // The walks set aside in this cycle, unit by unit, into the ray queues.
+    if constexpr (requires { Desc::kWalkFieldList; }) {
+      if (mem::RayQueues* queues = shared_.dispatcher.queues()) {
+        for (auto& unit : units_) {
+          for (SuspendedWalk& w : unit.suspended()) {
+            const auto values = fx::wire_bits::unpackFixed<Desc::kWalkFieldList>(w.record);
+            const auto at = Desc::suspended(image_, values);
+            queues->suspend(shared_.addResumed(shared_.rayOf(w.walk), std::move(w.record)), at.block, at.bits);
+          }
+          unit.suspended().clear();
+        }
+        queues->endCycle();
+      }
+    }
     memory_.tick();
     shared_.dispatcher.refill();
     bool progress = false;
@@ -546,9 +637,10 @@ class ChipRun {
       results += units_[u].results();
     }
     if (progress) lastProgress_ = memory_.cycle();
+    const bool queued = shared_.dispatcher.queues() && !shared_.dispatcher.queues()->empty();
     if (failed_.load()) {
       stop_ = true;
-    } else if (results == shared_.rays.size() && drained && memory_.idle()) {  // (the memory's scan last: it is long)
+    } else if (results == shared_.walks() && !queued && drained && memory_.idle()) {  // (the memory's scan last: it is long)
       stop_ = true;
     } else if (memory_.cycle() - lastProgress_ > kTraversalWatchdogCycles) {
       stop_ = true;
@@ -566,6 +658,7 @@ class ChipRun {
   mem::MemorySystem& memory_;
   ChipRays& shared_;
   int threads_;
+  const Image& image_;
   std::vector<uint8_t> progress_;
   bool stop_ = false;
   std::atomic<bool> failed_{false};
@@ -600,6 +693,16 @@ TraversalRunStats runTraversalChip(std::vector<std::unique_ptr<Clocked>>& pool, 
   mem::MemorySystem& memory = memoryFor<Desc>(options, image, own);
   const trav_detail::PortImage<Top, Image> ports(image);
   trav_detail::ChipRays shared(rays, traces, units, options.dispatchBatch);
+  if (options.treelets) {
+    if constexpr (!trav_detail::UnitRun<Clocked, Image>::kSuspends) {
+      throw InputError(fmt::format("--schedule treelet: the {} model of the {} unit cannot set walks aside (no "
+                                   "suspend and resume ports); the treelet schedule runs on the BVH unit's golden "
+                                   "and systemc models",
+                                   Clocked::kModel, Desc::kNames.unit));
+    }
+    options.queues.validate();
+    shared.dispatcher.useQueues(std::make_unique<mem::RayQueues>(options.queues, rays.size(), memory));
+  }
   std::deque<trav_detail::UnitRun<Clocked, Image>> runs;  // (not movable: a deque grows in place)
   for (int u = 0; u < units; ++u) {
     Clocked& unit = *pool[size_t(u)];
@@ -613,7 +716,7 @@ TraversalRunStats runTraversalChip(std::vector<std::unique_ptr<Clocked>>& pool, 
   const int threads = options.hostThreads > 0
                           ? std::min(options.hostThreads, units)
                           : std::min(units, std::max(1, int(std::thread::hardware_concurrency())));
-  trav_detail::ChipRun<Clocked, Image> chip(runs, memory, shared, threads);
+  trav_detail::ChipRun<Clocked, Image> chip(runs, memory, shared, threads, image);
   try {
     chip.run();
   } catch (...) {
@@ -641,11 +744,19 @@ TraversalRunStats runTraversalChip(std::vector<std::unique_ptr<Clocked>>& pool, 
   stats.rays = rays.size();
   stats.cycles = last - first + 1;
   stats.memory = memory.stats();
-  for (size_t k = 0; k < rays.size(); ++k) {
-    if (shared.resultElements[k] != traces[k].visits.size()) {
-      throw std::runtime_error(fmt::format("{}: ray {} reports {} {} but {} visit records came out", Clocked::kModel,
-                                           k, shared.resultElements[k], Desc::kNames.elements, traces[k].visits.size()));
+  if (const mem::RayQueues* queues = shared.dispatcher.queues()) stats.queues = queues->stats();
+  for (size_t k = 0; k < shared.walks(); ++k) {
+    const size_t visits = shared.visitsOf(k).size();
+    if (shared.resultElements[k] != visits) {
+      throw std::runtime_error(fmt::format("{}: ray {} reports {} {} but {} visit records came out{}", Clocked::kModel,
+                                           shared.rayOf(k), shared.resultElements[k], Desc::kNames.elements, visits,
+                                           k < rays.size() ? "" : " (a resumed walk)"));
     }
+  }
+  // A ray's resumed walks' visits follow its first walk's, in the order the walks were resumed.
+  for (trav_detail::ChipRays::Resumed& walk : shared.resumed) {
+    std::vector<uint32_t>& into = traces[walk.ray].visits;
+    into.insert(into.end(), walk.visits.begin(), walk.visits.end());
   }
   return stats;
 }

@@ -85,11 +85,15 @@ struct Walker {
       const auto bound = walkBound(ray, trace.hit);
       if (!(bound && culledBy(*bound, current.entry, setup))) {
         if (image.treeletNodes != 0 && !current.ref.leaf && image.blockOf(current.ref.first) != block) {
-          if (suspends) return;  // walk.next waits for its block
+          const bool suspension = walk.stack.size() <= size_t(kBvhSuspendEntries);
+          if (suspends && suspension) return;  // walk.next waits for its block
           block = image.blockOf(current.ref.first);
           if (crossings) {
             ++crossings->crossings;
-            crossings->stateBits += uint64_t(bvhSuspendedBits(walk.stack.size()));
+            if (suspension) {
+              ++crossings->suspensions;
+              crossings->stateBits += uint64_t(bvhSuspendedBits(walk.stack.size()));
+            }
           }
         }
         trace.visits.push_back(current.ref.visitId());
@@ -305,6 +309,44 @@ BvhWalk startBvhWalk(const BvhImage& image) {
 void continueBvhWalk(const BvhImage& image, const QRay& ray, BvhWalk& walk, uint32_t block) {
   const BvhRaySetup setup = BvhRaySetup::setup(ray);
   Walker{image, ray, setup, walk, nullptr, block, true}.run();
+}
+
+std::array<u128, valueCount(kBvhWalkFields)> bvhWalkValues(const BvhWalk& walk) {
+  if (walk.stack.size() > size_t(kBvhSuspendEntries) || !walk.next) {
+    throw std::logic_error("bvh_walk_t: a finished walk, or a stack deeper than the suspend window");
+  }
+  const auto ref = [](const BvhRef& r) {
+    return (u128(r.leaf ? 1 : 0) << (kBvhCountBits + 32)) | (u128(r.count) << 32) | r.first;
+  };
+  std::array<u128, valueCount(kBvhWalkFields)> v{};
+  size_t k = 0;
+  const IsectResult hit = walk.trace.hit.value_or(IsectResult{});
+  for (const u128 x : {u128(walk.trace.hit ? 1 : 0), u128(hit.primId), hit.tNum, hit.det, hit.uNum, hit.vNum,
+                       ref(walk.next->ref), walk.next->entry, u128(walk.stack.size())}) {
+    v[k++] = x;
+  }
+  for (int e = 0; e < kBvhSuspendEntries; ++e) v[k + size_t(e)] = e < int(walk.stack.size()) ? ref(walk.stack[size_t(e)].ref) : 0;
+  k += kBvhSuspendEntries;
+  for (int e = 0; e < kBvhSuspendEntries; ++e) v[k + size_t(e)] = e < int(walk.stack.size()) ? walk.stack[size_t(e)].entry : 0;
+  return v;
+}
+
+BvhWalk bvhWalkOf(std::span<const u128> v, uint32_t rayId) {
+  const auto ref = [](u128 x) {
+    return BvhRef{((x >> (kBvhCountBits + 32)) & 1) != 0, uint32_t(x >> 32) & ((1u << kBvhCountBits) - 1),
+                  uint32_t(x)};
+  };
+  BvhWalk walk;
+  if (v[0] != 0) {
+    walk.trace.hit = IsectResult{.rayId = rayId, .primId = uint32_t(v[1]), .hit = true, .tNum = v[2], .det = v[3],
+                                 .uNum = v[4], .vNum = v[5]};
+  }
+  walk.next = BvhWalkEntry{ref(v[6]), v[7]};
+  const size_t sp = size_t(v[8]);
+  if (sp > size_t(kBvhSuspendEntries)) throw std::logic_error("bvh_walk_t: sp beyond the suspend window");
+  walk.stack.reserve(kBvhStackDepth);
+  for (size_t e = 0; e < sp; ++e) walk.stack.push_back(BvhWalkEntry{ref(v[9 + e]), v[9 + kBvhSuspendEntries + e]});
+  return walk;
 }
 
 TraversalTrace traverseBvh(const BvhImage& image, const QRay& ray) {

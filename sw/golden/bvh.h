@@ -88,11 +88,12 @@ BvhImage buildBvhImage(std::vector<QTriangle> triangles, int leafSize, std::vect
 // `blockNodes` must be a power of two (InputError otherwise).
 void layoutBvhTreelets(BvhImage& image, uint32_t blockNodes);
 
-// The BVH walk's state when it leaves a treelet (TreeletCrossings): the ray,
-// its closest hit so far, the candidate node, the stack pointer and `stackEntries` entries.
+// The BVH walk's state when it is suspended (TreeletCrossings), as a ray
+// queue holds it: the ray record and its bvh_walk_t with `stackEntries`
+// stack entries (the unused ones of the window are not stored).
+inline constexpr int kBvhStackEntryBits = kBvhRefBits + kBvhEntryBits;  // {reference, entry parameter}
 constexpr int bvhSuspendedBits(size_t stackEntries) {
-  constexpr int kEntry = kBvhRefBits + kBvhEntryBits;  // {reference, entry parameter}
-  return kIsectRayBits + kIsectResBits + kEntry * (1 + int(stackEntries)) + std::bit_width(unsigned(kBvhStackDepth));
+  return kIsectRayBits + kBvhWalkBits - kBvhStackEntryBits * (kBvhSuspendEntries - int(stackEntries));
 }
 // The crossings of `ray`'s walk over a treelet layout (none without one).
 TreeletCrossings bvhTreeletCrossings(const BvhImage& image, const QRay& ray);
@@ -181,7 +182,17 @@ struct BvhWalk {
 };
 BvhWalk startBvhWalk(const BvhImage& image);
 // Walks on until the walk ends or is about to enter an interior node of
-// another block than `block` (without the treelet layout: to the end).
+// another block than the one it is in (`block` at the start) with at most
+// kBvhSuspendEntries entries on its stack (without the treelet layout: to the
+// end). With more entries it goes on into that block, as the unit does.
 void continueBvhWalk(const BvhImage& image, const QRay& ray, BvhWalk& walk, uint32_t block);
+
+// A suspended walk as bvh_walk_t carries it (the unit's res_walk_o and
+// ray_walk_i): the closest hit so far (trace.hit; its ray id is not carried),
+// the next node, the stack (at most kBvhSuspendEntries entries). The visits
+// and counts are the trace's, not the record's.
+std::array<u128, valueCount(kBvhWalkFields)> bvhWalkValues(const BvhWalk& walk);
+// The record's walk: its next node, stack and closest hit (for ray `rayId`).
+BvhWalk bvhWalkOf(std::span<const u128> values, uint32_t rayId);
 
 }  // namespace lancer::fx

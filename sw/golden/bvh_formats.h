@@ -48,6 +48,7 @@ inline constexpr FieldSpec kBvhRefFields[] = {
     {"count", kBvhCountBits, 1, false, "leaf: triangles listed; interior: 0"},
     {"first", 32, 1, false, "leaf: first index-list entry; interior: node-table index"},
 };
+inline constexpr int kBvhRefBits = recordBits(kBvhRefFields);
 // ---- bvh_node_t: one entry of the node table, an interior node's two children -------
 inline constexpr FieldSpec kBvhNodeFields[] = {
     {"base", kPosBits, 3, false, "the node's lowest corner, [0]=x"},
@@ -63,14 +64,43 @@ inline constexpr auto kBvhVisitFields =
     traversalVisitFields("node_id", 32, "interior: node-table index; leaf: 2^31 + first index-list entry");
 inline constexpr auto kBvhResFields = traversalResFields("nodes", "nodes entered");
 
+// ---- The treelet schedule: a walk set aside and resumed (docs/scheduling.md) -----
+// With suspension on (cfg_suspend_i), a walk about to enter an interior node of
+// another treelet block than the one it is in (block = node-table index >>
+// cfg_block_shift_i) leaves the unit, its state on the result port
+// (res_suspended_o, res_walk_o), when its stack holds at most
+// kBvhSuspendEntries entries; with more it goes on into that block. A
+// resumed ray comes back on the ray port with its state (ray_resume_i,
+// ray_walk_i) and enters that node first. The window bounds the record: a
+// suspension carries the stack's bottom kBvhSuspendEntries entries, not 32.
+inline constexpr int kBvhSuspendEntries = 8;
+inline constexpr int kBvhSpBits = std::bit_width(unsigned(kBvhStackDepth));  // 0 .. kBvhStackDepth
+inline constexpr int kBvhBlockShiftBits = 5;                                  // a block of 2^0 .. 2^31 entries
+// ---- bvh_walk_t: a suspended walk: its closest hit so far, the node it enters
+// next, its stack --------------------------------------------------------------------
+inline constexpr FieldSpec kBvhWalkFields[] = {
+    {"has_hit", 1, 1, false, "1: the ray has a closest hit so far (the fields below); 0: none yet"},
+    {"prim_id", kPrimIdBits, 1, false, "the closest hit so far: as isect_res_t (zero without one)"},
+    {"t_num", kTNumBits, 1, false, "as isect_res_t"},
+    {"det", kDetAbsBits, 1, false, "as isect_res_t"},
+    {"u_num", kBaryBits, 1, false, "as isect_res_t"},
+    {"v_num", kBaryBits, 1, false, "as isect_res_t"},
+    {"next_ref", kBvhRefBits, 1, false, "the node entered on resuming (bvh_ref_t; box test passed, not culled)"},
+    {"next_entry", kBvhEntryBits, 1, false, "its entry parameter"},
+    {"sp", kBvhSpBits, 1, false, "stack entries, 0 .. BVH_SUSPEND_ENTRIES"},
+    {"stack_ref", kBvhRefBits, kBvhSuspendEntries, false, "stack entry k (bottom first; k < sp): bvh_ref_t"},
+    {"stack_entry", kBvhEntryBits, kBvhSuspendEntries, false, "its entry parameter"},
+};
+
 inline constexpr RecordSpec kBvhRecords[] = {
     {"bvh_ref_t", "BVH_REF_W", "a BVH child reference", kBvhRefFields},
     {"bvh_node_t", "BVH_NODE_W", "a BVH node table entry", kBvhNodeFields},
+    {"bvh_walk_t", "BVH_WALK_W", "a BVH walk set aside (treelet schedule)", kBvhWalkFields},
     {"bvh_visit_t", "BVH_VISIT_W", "a BVH unit node step", kBvhVisitFields},
     {"bvh_res_t", "BVH_RESULT_W", "a BVH unit ray result", kBvhResFields},
 };
-inline constexpr int kBvhRefBits = recordBits(kBvhRefFields);
 inline constexpr int kBvhNodeBits = recordBits(kBvhNodeFields);
+inline constexpr int kBvhWalkBits = recordBits(kBvhWalkFields);
 static_assert(kMemAddrBits <= 31, "a leaf's visit id sets bit 31 over an index-list entry");
 
 // rt_bvh_setup's register stages (docs/bvh-unit.md): |d| and o', the pair
@@ -88,6 +118,8 @@ inline constexpr PackageParam kBvhFormatParams[] = {
     {"BVH_WIDTH", kBvhWidth},        {"BVH_PLANE_W", kBvhPlaneBits},      {"BVH_SHIFT_W", kBvhShiftBits},
     {"BVH_COUNT_W", kBvhCountBits},  {"BVH_STACK_DEPTH", kBvhStackDepth}, {"BVH_T_W", kBvhTBits},
     {"BVH_ENTRY_W", kBvhEntryBits},  {"BVH_COMMON_W", kBvhCommonBits},
+    {"BVH_SUSPEND_ENTRIES", kBvhSuspendEntries}, {"BVH_SP_W", kBvhSpBits},
+    {"BVH_BLOCK_SHIFT_W", kBvhBlockShiftBits},
 };
 inline constexpr PackageParam kBvhLatencies[] = {
     {"BVH_SETUP_LATENCY", kBvhSetupLatency},

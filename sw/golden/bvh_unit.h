@@ -75,6 +75,23 @@ struct BvhUnit : UnitBase<UnitKind::Bvh, BvhImage, BvhNode, kBvhNodeFields, kBvh
   }
 
   static TraversalTrace traverse(const Image& image, const QRay& ray) { return traverseBvh(image, ray); }
+  // The treelet schedule (docs/scheduling.md): the unit suspends walks
+  // (bvh_walk_t) at the blocks of a treelet layout, 2^shift node-table entries
+  // each (cfg_block_shift_i); a suspended walk waits for the block of the node
+  // it enters next, and a ray queue holds bvhSuspendedBits of it.
+  static constexpr const auto& kWalkFieldList = kBvhWalkFields;
+  static bool hasTreelets(const Image& image) { return image.treeletNodes != 0; }
+  static uint32_t treeletBlockShift(const Image& image) {
+    return image.treeletNodes ? uint32_t(std::countr_zero(image.treeletNodes)) : 0;
+  }
+  struct Suspended {
+    uint32_t block;
+    int bits;
+  };
+  static Suspended suspended(const Image& image, std::span<const u128> walk) {
+    const BvhWalk w = bvhWalkOf(walk, 0);
+    return {w.waitsFor(image), bvhSuspendedBits(w.stack.size())};
+  }
   // The treelet layout's crossings of a ray's walk (none without the layout).
   static TreeletCrossings treeletCrossings(const Image& image, const QRay& ray) { return bvhTreeletCrossings(image, ray); }
 

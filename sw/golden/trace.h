@@ -20,19 +20,22 @@ struct TraversalTrace {
   bool operator==(const TraversalTrace&) const = default;
 };
 
-// What a treelet schedule would move for rays (docs/scheduling.md, "The
-// treelet schedule"): how often their walks enter an interior node in another
-// treelet block than the one they are in (each a suspension and a
-// resumption), and the walk's state at each (the unit's own measure of it:
+// What a treelet schedule moves for rays (docs/scheduling.md, "The treelet
+// schedule"): how often their walks enter an interior node in another treelet
+// block than the one they are in, how many of those crossings suspend the walk
+// (a suspension and a resumption each: the stack fits the unit's suspend
+// window), and the state moved at those (the unit's own measure of it:
 // bvhSuspendedBits).
 struct TreeletCrossings {
   uint64_t rays = 0;
   uint64_t crossings = 0;
-  uint64_t stateBits = 0;  // summed over the crossings
+  uint64_t suspensions = 0;  // of the crossings, those with the stack within the window
+  uint64_t stateBits = 0;    // summed over the suspensions
   TreeletCrossings& operator+=(const TreeletCrossings& o) {
-    *this = {rays + o.rays, crossings + o.crossings, stateBits + o.stateBits};
+    *this = {rays + o.rays, crossings + o.crossings, suspensions + o.suspensions, stateBits + o.stateBits};
     return *this;
   }
+  bool operator==(const TreeletCrossings&) const = default;
 };
 
 // A traversal unit's result record, its fields unpacked in traversalResFields

@@ -42,6 +42,7 @@ MemoryStats& MemoryStats::operator+=(const MemoryStats& o) {
   reads += o.reads;
   dramLines += o.dramLines;
   dramBytes += o.dramBytes;
+  transferBytes += o.transferBytes;
   footprintLines += o.footprintLines;
   footprintBytes += o.footprintBytes;
   l1FullCycles += o.l1FullCycles;
@@ -61,6 +62,7 @@ void to_json(nlohmann::json& j, const MemoryStats& s) {
   j = {{"reads", s.reads},
        {"dram_lines", s.dramLines},
        {"dram_bytes", s.dramBytes},
+       {"transfer_bytes", s.transferBytes},
        {"footprint_lines", s.footprintLines}, {"footprint_bytes", s.footprintBytes},
        {"stall_cycles",
         {{"l1_full", s.l1FullCycles},
@@ -88,7 +90,7 @@ namespace {
 // (seed*3+1, +2, +3), so a chip of one unit is cycle for cycle that run.
 class FixedMemory final : public MemorySystem {
  public:
-  FixedMemory(const MemoryConfig& c, int units) : MemorySystem(units), ports_(size_t(units)) {
+  FixedMemory(const MemoryConfig& c, int units) : MemorySystem(units), ports_(size_t(units)), latency_(c.fixedLatency) {
     for (int u = 0; u < units; ++u) {
       const uint64_t seed = unitSeed(c.seed, u);
       for (int p = 0; p < kPorts; ++p) ports_[size_t(u)][size_t(p)].restart(c.fixedLatency, c.fixedJitter, seed * 3 + uint64_t(p) + 1);
@@ -103,6 +105,11 @@ class FixedMemory final : public MemorySystem {
     return at(unit, port).respond(now_, record, tag);
   }
   void blocked(int, Port) override {}
+  // No DRAM here: a transfer takes the fixed latency, and costs no bandwidth.
+  uint64_t transfer(uint64_t bytes) override {
+    transferBytes_ += bytes;
+    return now_ + uint64_t(latency_);
+  }
   void tick() override { ++now_; }
   bool idle() const override {
     for (const auto& unit : ports_) {
@@ -115,14 +122,20 @@ class FixedMemory final : public MemorySystem {
   MemoryStats stats() const override {
     MemoryStats s;  // no caches: reads only
     for (uint64_t r : reads_) s.reads += r;
+    s.transferBytes = transferBytes_;
     return s;
   }
-  void clearStats() override { std::fill(reads_.begin(), reads_.end(), 0); }
+  void clearStats() override {
+    std::fill(reads_.begin(), reads_.end(), 0);
+    transferBytes_ = 0;
+  }
 
  private:
   fx::MemoryReadPort& at(int unit, Port port) { return ports_[size_t(unit)][size_t(port)]; }
   std::vector<std::array<fx::MemoryReadPort, kPorts>> ports_;
   std::vector<uint64_t> reads_ = std::vector<uint64_t>(ports_.size(), 0);  // per unit: request() runs on the unit's thread
+  int latency_;
+  uint64_t transferBytes_ = 0;
 };
 
 // The hierarchy (docs/chip.md): per unit and port an L1 (tags, MSHRs, an
@@ -198,6 +211,23 @@ class HierarchyMemory final : public MemorySystem {
   }
 
   void blocked(int unit, Port port) override { ++l1(unit, port).refusedCycles; }
+
+  // Line by line over the channels in turn, each line after the channel's
+  // work so far (a miss later waits behind it): the same bandwidth as the
+  // caches' lines, counted in the DRAM bytes.
+  uint64_t transfer(uint64_t bytes) override {
+    double donePs = nowPs();
+    for (uint64_t moved = 0; moved < bytes; moved += lineBytes_) {
+      Channel& ch = channels_[nextTransferChannel_];
+      nextTransferChannel_ = (nextTransferChannel_ + 1) % channels_.size();
+      const double start = std::max(nowPs(), ch.freePs);
+      ch.freePs = start + transferPs_;
+      donePs = std::max(donePs, start + latencyPs_ + transferPs_);
+      stats_.dramBytes += lineBytes_;
+      stats_.transferBytes += lineBytes_;
+    }
+    return uint64_t(std::ceil(donePs / periodPs_));
+  }
 
   void tick() override {
     const uint64_t lookupAt = now_ + uint64_t(config_.l1.hitLatency);
@@ -428,6 +458,7 @@ class HierarchyMemory final : public MemorySystem {
   std::vector<L1> l1s_;  // unit-major: l1s_[unit * kPorts + port]
   std::vector<Bank> banks_;
   std::vector<Channel> channels_;
+  size_t nextTransferChannel_ = 0;
   CacheTags l2Tags_;
   double periodPs_, transferPs_, latencyPs_;
   MemoryStats stats_;

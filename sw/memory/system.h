@@ -42,7 +42,8 @@ struct MemoryStats {
   Cache l2;
   uint64_t reads = 0;          // requests the units made
   uint64_t dramLines = 0;      // lines DRAM returned
-  uint64_t dramBytes = 0;
+  uint64_t dramBytes = 0;       // the caches' lines and the transfers'
+  uint64_t transferBytes = 0;   // of them, transfer()'s (the ray queues' overflow)
   // The lines of the image the units read, each counted once per run: a run's
   // footprint. No schedule of the run's rays reads fewer from DRAM than its
   // footprint less what the caches held when it began (docs/scheduling.md).
@@ -81,6 +82,11 @@ class MemorySystem {
   virtual bool response(int unit, Port port, uint32_t& record, uint32_t& tag) = 0;
   // The unit had a request on `port` this cycle but the port was not ready.
   virtual void blocked(int unit, Port port) = 0;
+  // Bytes moved between the chip and DRAM outside the caches (the ray
+  // queues' overflow, memory/ray_queues.h), from this cycle: in lines over the
+  // DRAM channels, behind their work and ahead of later misses. Returns the
+  // cycle by which the last line has moved. (Called between cycles, alone.)
+  virtual uint64_t transfer(uint64_t bytes) = 0;
   // The end of this cycle.
   virtual void tick() = 0;
   // Nothing in flight anywhere.

@@ -119,6 +119,7 @@ void rt_bvh_model::visit(int k) {
   Slot& s = slots_[size_t(k)];
   pushVisit(k, s.cur.ref.visitId());
   if (!s.cur.ref.leaf) {
+    s.block = s.cur.ref.first >> cfg_block_shift_i.read();
     setState(k, State::NodeReq);
   } else if (s.cur.ref.count > 0) {
     startRun(k, s.cur.ref.first, s.cur.ref.count);
@@ -146,7 +147,11 @@ void rt_bvh_model::check(int k) {
   const Slot& s = slots_[size_t(k)];
   const rt_closest_record& h = hit(k);
   const bool holds = h.settled() || fx::culledBy(h.best, s.cur.entry, s.setup);
-  setState(k, holds ? State::Pop : State::Enter);
+  if (holds) {
+    setState(k, State::Pop);
+  } else {
+    enter(k);
+  }
 }
 
 // BOX: both children entered -> the nearer is the candidate, the farther
@@ -187,7 +192,38 @@ void rt_bvh_model::finishLeaves(const slot_mask& finishing) {
 // The candidate rule: CHECK if the slot is bound and the entry is not 0, else ENTER.
 void rt_bvh_model::candidate(int k, const Candidate& c) {
   slots_[size_t(k)].cur = c;
-  setState(k, hit(k).wantsCheck() && c.entry != 0 ? State::Check : State::Enter);
+  if (hit(k).wantsCheck() && c.entry != 0) {
+    setState(k, State::Check);
+  } else {
+    enter(k);
+  }
+}
+
+// ENTER, unless suspension is on and the candidate is an interior node of
+// another block than the slot's with at most BVH_SUSPEND_ENTRIES entries on
+// the stack: then DONE, suspended (its result carries the walk).
+void rt_bvh_model::enter(int k) {
+  Slot& s = slots_[size_t(k)];
+  s.suspending = cfg_suspend_i.read() && !s.cur.ref.leaf && (s.cur.ref.first >> cfg_block_shift_i.read()) != s.block &&
+                 s.sp <= fx::kBvhSuspendEntries;
+  setState(k, s.suspending ? State::Done : State::Enter);
+}
+
+// The done slot's walk record, if it is suspended: the closest hit so far, the
+// candidate, the stack (fx::bvhWalkValues' packing).
+rt_bvh_model::walk_in rt_bvh_model::suspendedWalk(int k) const {
+  const Slot& s = slots_[size_t(k)];
+  if (!s.suspending) return {};
+  fx::BvhWalk walk;
+  if (hit(k).hasHit) walk.trace.hit = hit(k).best;
+  walk.next = fx::BvhWalkEntry{s.cur.ref, s.cur.entry};
+  for (int e = 0; e < s.sp; ++e) {
+    const Candidate& c = stacks_[size_t(k)][size_t(e)];
+    walk.stack.push_back(fx::BvhWalkEntry{c.ref, c.entry});
+  }
+  std::array<uint32_t, size_t(fx::wireWords(rt_bvh_unit::WALK_W))> wire{};
+  fx::wire_bits::packFixed<fx::kBvhWalkFields>(fx::bvhWalkValues(walk), wire);
+  return walk_in{true, toValue<rt_bvh_unit::WALK_W>(wire)};
 }
 
 // The sets a slot in state `st` belongs to, joined or left.
@@ -207,17 +243,34 @@ void rt_bvh_model::mark(int k, State st, bool join) {
   }
 }
 
-// SETUP -> ENTER at the end of accept + BVH_SETUP_LATENCY: the per-ray setup, the root with entry 0.
+// SETUP -> ENTER at the end of accept + BVH_SETUP_LATENCY: the per-ray setup,
+// the root with entry 0; or a resumed walk's candidate (its box test passed,
+// not culled), stack and closest hit, in the candidate's block.
 void rt_bvh_model::load(int k) {
   Slot& s = slots_[size_t(k)];
-  const fx::QRay ray = loadRay(k);
-  s.setup = fx::BvhRaySetup::setup(ray);
-  s.anyHit = ray.anyHit;
+  s.anyHit = false;
   s.hitSeen = false;
-  std::array<uint32_t, size_t(fx::wireWords(rt_bvh_unit::CFG_W))> root{};
-  fromValue<rt_bvh_unit::CFG_W>(cfg_i.read(), root);
-  s.cur = Candidate{unpackRef(root.data()), 0};
-  s.sp = 0;
+  s.suspending = false;
+  if (const walk_in* resumed = resumedWalk()) {
+    std::array<uint32_t, size_t(fx::wireWords(rt_bvh_unit::WALK_W))> wire{};
+    fromValue<rt_bvh_unit::WALK_W>(resumed->walk, wire);
+    const fx::BvhWalk walk = fx::bvhWalkOf(fx::wire_bits::unpackFixed<fx::kBvhWalkFields>(wire), uint32_t(k));
+    const fx::QRay ray = loadRay(k, walk.trace.hit);
+    s.setup = fx::BvhRaySetup::setup(ray);
+    s.anyHit = ray.anyHit;
+    s.cur = Candidate{walk.next->ref, walk.next->entry};
+    s.sp = int(walk.stack.size());
+    for (size_t e = 0; e < walk.stack.size(); ++e) stacks_[size_t(k)][e] = Candidate{walk.stack[e].ref, walk.stack[e].entry};
+  } else {
+    const fx::QRay ray = loadRay(k);
+    s.setup = fx::BvhRaySetup::setup(ray);
+    s.anyHit = ray.anyHit;
+    std::array<uint32_t, size_t(fx::wireWords(rt_bvh_unit::CFG_W))> root{};
+    fromValue<rt_bvh_unit::CFG_W>(cfg_i.read(), root);
+    s.cur = Candidate{unpackRef(root.data()), 0};
+    s.sp = 0;
+  }
+  s.block = s.cur.ref.first >> cfg_block_shift_i.read();
   setState(k, State::Enter);
 }
 

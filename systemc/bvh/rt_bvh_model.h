@@ -48,6 +48,8 @@ class rt_bvh_model : public rt_walk_model<rt_bvh_model, rt_bvh_unit, /*RegRsp=*/
     bool hitSeen = false;   // a result of the ray was a hit
     Candidate cur;
     int sp = 0;
+    uint32_t block = 0;       // the treelet block of the last interior node entered
+    bool suspending = false;  // DONE: the walk is set aside, not over
   };
   // The stacks of all slots, one memory as in the RTL (and apart from the
   // slots' registers, which every cycle reads: they stay small and near).
@@ -76,6 +78,8 @@ class rt_bvh_model : public rt_walk_model<rt_bvh_model, rt_bvh_unit, /*RegRsp=*/
   void finishLeaves(const slot_mask& finishing);
   void load(int k);
   void candidate(int k, const Candidate& c);
+  void enter(int k);
+  walk_in suspendedWalk(int k) const;
   State& stateOf(int k) { return slots_[size_t(k)].state; }
   void mark(int k, State st, bool join);
 

@@ -54,6 +54,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -206,13 +207,14 @@ struct rt_visit_entry {
 // The setup pipeline's valid/slot/ray registers, Stages of them (the unit's
 // SETUP_LATENCY; the arithmetic happens at the slot load, after the last).
 // Per cycle: shift(), then load() the ray accepted in it.
-template <int Stages>
+template <int Stages, class Extra>
 struct rt_setup_pipe {
   static_assert(Stages >= 1);
   struct stage {
     bool valid = false;
     int slot = 0;
     value_t<ISECT_RAY_W> ray{};
+    Extra extra{};  // what comes with the ray (a resumed walk)
   };
   std::array<stage, Stages> s{};
 
@@ -225,16 +227,44 @@ struct rt_setup_pipe {
       if (s[i - 1].valid) {
         s[i].slot = s[i - 1].slot;
         s[i].ray = s[i - 1].ray;
+        s[i].extra = s[i - 1].extra;
       }
       s[i].valid = s[i - 1].valid;
     }
     s[0].valid = false;
   }
-  void load(int slot, const value_t<ISECT_RAY_W>& ray) {
+  void load(int slot, const value_t<ISECT_RAY_W>& ray, const Extra& extra) {
     s[0].valid = true;
     s[0].slot = slot;
     s[0].ray = ray;
+    s[0].extra = extra;
   }
+};
+
+// The suspension ports of a unit that can set a walk aside (Unit::kSuspends;
+// docs/scheduling.md, "The treelet schedule"): with cfg_suspend_i, a walk
+// about to enter an interior node of another block (node index >>
+// cfg_block_shift_i) than its own leaves on the result port with its state
+// (res_suspended_o, res_walk_o); a ray offered with ray_resume_i resumes the
+// walk of ray_walk_i. A unit without them has none of these ports.
+template <class Unit, bool = Unit::kSuspends>
+struct rt_suspend_ports {
+  struct walk_in {};  // nothing comes with a ray
+};
+template <class Unit>
+struct rt_suspend_ports<Unit, true> {
+  using walk_t = value_t<Unit::WALK_W>;
+  rt_value<bool> cfg_suspend_i;
+  rt_value<uint32_t> cfg_block_shift_i;
+  rt_value<bool> ray_resume_i;
+  rt_value<walk_t> ray_walk_i;
+  rt_value<bool> res_suspended_o;
+  rt_value<walk_t> res_walk_o;
+  // A resumed walk on its way through the setup pipeline, and a result record's.
+  struct walk_in {
+    bool carried = false;  // the ray resumes this walk; the result suspends it
+    walk_t walk{};
+  };
 };
 
 // A slot's closest-hit record, as rt_trav_shell keeps it: the closest hit so
@@ -259,6 +289,11 @@ struct rt_closest_record {
   void take(const fx::IsectResult& res) {
     hasHit = true;
     best = res;
+  }
+  // A resumed walk's: the closest hit it carries, or none yet.
+  void resume(const fx::QRay& ray, const std::optional<fx::IsectResult>& hit) {
+    start(ray);
+    if (hit) take(*hit);
   }
   bool wantsCheck() const { return hasHit || bounded; }
   bool settled() const { return anyHit && hasHit; }
@@ -315,8 +350,10 @@ inline fx::QTriangle unpackTriangle(const uint32_t* wire) {
 }
 
 template <class Unit, bool RegRsp>
-class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, value_t> {
+class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, value_t>,
+                            public rt_suspend_ports<Unit> {
  public:
+  using walk_in = typename rt_suspend_ports<Unit>::walk_in;
   static constexpr int N = Unit::RAYS_IN_FLIGHT;
   static constexpr bool kRegisteredResponses = RegRsp;
   using slot_mask = rt_slot_mask<N>;
@@ -518,8 +555,9 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
   int loadSlot() const { return q_setup_.last().valid ? q_setup_.last().slot : -1; }
 
   // The slot's records from that ray (rt_trav_shell's init): its id, its ray
-  // for u_isect (with the slot index as id, returned), its closest hit.
-  fx::QRay loadRay(int k) {
+  // for u_isect (with the slot index as id, returned), its closest hit (a
+  // resumed walk's: `hit`, the one its record carries).
+  fx::QRay loadRay(int k, const std::optional<fx::IsectResult>& hit = std::nullopt) {
     fx::QRay ray;
     std::array<uint32_t, fx::kIsectRayWords> wire{};
     fromValue<ISECT_RAY_W>(q_setup_.last().ray, wire);
@@ -527,7 +565,7 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
     rayId_[size_t(k)] = ray.id;
     ray.id = uint32_t(k);
     ray_[size_t(k)] = ray;
-    hit_[size_t(k)].start(ray);
+    hit_[size_t(k)].resume(ray, hit);
     visits_[size_t(k)] = 0;
     tests_[size_t(k)] = 0;
     quadricTests_[size_t(k)] = 0;
@@ -550,13 +588,23 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
     push(visitQ_, visitHead_, rt_visit_entry{rayId_[size_t(k)], id});
     ++visits_[size_t(k)];
   }
-  // The done grant: the ray's result record; the slot is free again.
-  void finishRay(int k) {
+  // The resumed walk leaving the setup pipeline with its ray (loadSlot()), if it is one.
+  const walk_in* resumedWalk() const {
+    if constexpr (Unit::kSuspends) {
+      return q_setup_.last().extra.carried ? &q_setup_.last().extra : nullptr;
+    } else {
+      return nullptr;
+    }
+  }
+
+  // The done grant: the ray's result record (its counts since it entered the
+  // slot), with the walk's record when the walk is suspended; the slot is free again.
+  void finishRay(int k, const walk_in& suspended = {}) {
     const auto values =
         hit_[size_t(k)].resultValues(rayId_[size_t(k)], visits_[size_t(k)], tests_[size_t(k)], quadricTests_[size_t(k)]);
     std::array<uint32_t, size_t(fx::wireWords(Unit::RESULT_W))> wire;
     fx::wire_bits::packFixed<Unit::descriptor::kResFieldList>(values, wire);
-    push(resQ_, resHead_, toValue<Unit::RESULT_W>(wire));
+    push(resQ_, resHead_, res_entry{toValue<Unit::RESULT_W>(wire), suspended});
     free_.set(k);
   }
 
@@ -591,7 +639,12 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
     q_setup_.shift();
     if (g.alloc >= 0) {
       free_.reset(g.alloc);
-      q_setup_.load(g.alloc, this->ray_data_i.read());
+      walk_in resumed;
+      if constexpr (Unit::kSuspends) {
+        resumed.carried = this->ray_resume_i.read();
+        if (resumed.carried) resumed.walk = this->ray_walk_i.read();
+      }
+      q_setup_.load(g.alloc, this->ray_data_i.read(), resumed);
     }
 
     if constexpr (RegRsp) {
@@ -703,7 +756,13 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
       this->visit_data_o = toValue<Unit::VISIT_W>(wire);
     }
     this->res_valid_o = !resQ_.empty();
-    if (!resQ_.empty() && resHead_) this->res_data_o = resQ_.front();
+    if (!resQ_.empty() && resHead_) {
+      this->res_data_o = resQ_.front().res;
+      if constexpr (Unit::kSuspends) {
+        this->res_suspended_o = resQ_.front().walk.carried;
+        this->res_walk_o = resQ_.front().walk.walk;
+      }
+    }
     visitHead_ = resHead_ = false;
 
     const int usable = std::min<int>(int(this->cfg_slots_i.read()), N);
@@ -725,11 +784,16 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
   slot_mask free_;     // FREE: allocation takes the lowest usable one
   slot_mask idxWant_;  // index runs with reads left to issue
 
-  rt_setup_pipe<Unit::SETUP_LATENCY> q_setup_;
+  // A result FIFO entry: the record, and a suspended walk's (walk.carried).
+  struct res_entry {
+    res_t res{};
+    walk_in walk{};
+  };
+  rt_setup_pipe<Unit::SETUP_LATENCY, walk_in> q_setup_;
   rt_fifo_model<rt_mem_req, MEMREQ_FIFO_DEPTH> nodeQ_, idxQ_, triQ_;
   rt_fifo_model<rt_mem_req, IDX_BUF_DEPTH> idxBuf_;  // {triangle id, slot}
   rt_fifo_model<rt_visit_entry, VISIT_FIFO_DEPTH> visitQ_;
-  rt_fifo_model<res_t, RES_FIFO_DEPTH> resQ_;
+  rt_fifo_model<res_entry, RES_FIFO_DEPTH> resQ_;
   int credits_ = IDX_BUF_DEPTH;  // index buffer entries not yet claimed by a request
   bool idxBufPop_ = false;       // this cycle's
   rt_rr_arb_model<N> nodeArb_, visitArb_, idxArb_, checkArb_, doneArb_;

@@ -115,7 +115,7 @@ bool rt_trav_stream::sample(uint64_t cycle, const rt_trav_sample& s) {
 
 rt_trav_stream::Drive rt_trav_stream::drive(uint64_t cycle) {
   Drive d;
-  if (!offering_ && dispatcher_->holds(unit_) && !coin(idleThreshold_)) {
+  if (!offering_ && dispatcher_->holds(unit_, cycle) && !coin(idleThreshold_)) {
     d.newOffer = true;
     offering_ = true;
     current_ = dispatcher_->next(unit_);

@@ -68,6 +68,16 @@ struct rt_trav_unit {
   static constexpr int VISIT_W = fx::recordBits(Desc::kVisitFields);
   static constexpr auto kResFields = Desc::kResFields;
   static constexpr auto kVisitFields = Desc::kVisitFields;
+  // A unit that can set a walk aside (the treelet schedule, docs/scheduling.md)
+  // has a walk record: its suspension ports carry it (WALK_W bits; 1 otherwise, unused).
+  static constexpr bool kSuspends = requires { Desc::kWalkFieldList; };
+  static constexpr int WALK_W = [] {
+    if constexpr (kSuspends) {
+      return fx::recordBits(Desc::kWalkFieldList);
+    } else {
+      return 1;
+    }
+  }();
   static_assert(Desc::kGroup == 1 || NODE_W % 32 == 0, "the nodes of a group start on word boundaries");
 
   using descriptor = Desc;

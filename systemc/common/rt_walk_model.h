@@ -10,6 +10,8 @@
 //   State& stateOf(int k)         slot k's state register
 //   void mark(int k, State, bool join)  the sets a slot in that state belongs to, joined or left
 //   void load(int k)              SETUP's end: the slot's per-ray setup
+//   walk_in suspendedWalk(int k)  (a unit that suspends walks) the done slot's
+//                                 walk record if it is suspended, else none
 
 #include "common/rt_trav_shell_model.h"
 
@@ -37,7 +39,11 @@ class rt_walk_model : public rt_trav_shell_model<Unit, RegRsp> {
   // the registers stand at the end of the cycle).
   void endWalkCycle(const rt_trav_grants& g, const typename rt_trav_shell_model<Unit, RegRsp>::slot_mask& entering) {
     if (g.done >= 0) {
-      this->finishRay(g.done);
+      if constexpr (Unit::kSuspends) {
+        this->finishRay(g.done, derived().suspendedWalk(g.done));
+      } else {
+        this->finishRay(g.done);
+      }
       setState(g.done, Derived::State::Free);
     }
     if (this->loadSlot() >= 0) derived().load(this->loadSlot());

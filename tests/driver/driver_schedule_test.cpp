@@ -28,7 +28,7 @@ TEST(Schedule, NamesRoundTripAndAnUnknownOneIsAnError) {
     parseSchedule("random");
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "--schedule random: no such schedule (available: fifo, sorted)");
+    EXPECT_STREQ(e.what(), "--schedule random: no such schedule (available: fifo, sorted, treelet)");
   }
 }
 

@@ -20,6 +20,7 @@
 #include "golden/stimulus.h"
 #include "memory/address_map.h"
 #include "memory/cache.h"
+#include "memory/ray_queues.h"
 #include "memory/system.h"
 
 namespace lancer::mem {
@@ -326,6 +327,146 @@ TEST(HierarchyMemory, TooFewMshrsForARecordIsAnError) {
   c.l1.mshrs = 2;
   c.l1.lineBytes = 32;
   EXPECT_THROW(MemorySystem::make(c, smallMap(1000, 16, 8), 1), InputError);  // 128-byte groups: 5 lines
+}
+
+// A transfer (the ray queues' overflow) moves its bytes in lines over the DRAM
+// channels: it takes their bandwidth and latency, counts in the DRAM bytes, and
+// a miss after it waits behind it.
+TEST(HierarchyMemory, ATransferTakesTheDramChannelsAndAMissWaitsBehindIt) {
+  MemoryConfig c = hierarchy();
+  c.clockMhz = 1000;  // 1 ns cycles
+  c.l1.hitLatency = 2;
+  c.l2.latency = 10;
+  c.dram.latencyNs = 40;
+  c.dram.gbps = 64;  // 2 channels: 2 ns a 64-byte line on each
+  c.dram.channels = 2;
+  auto memory = MemorySystem::make(c, smallMap(), 1);
+  // 20 lines over two channels: 10 each, 2 ns apart; the last done at 18 + 40 + 2.
+  EXPECT_EQ(memory->transfer(20 * 64), 60u);
+  EXPECT_EQ(memory->stats().transferBytes, 20u * 64);
+  EXPECT_EQ(memory->stats().dramBytes, 20u * 64);
+  // The cold read of AColdReadTakesEveryLevelsLatency (answered in cycle 55)
+  // now finds its channel busy until 20 ns.
+  memory->request(0, Port::Index, 0, 5);
+  uint32_t record = 0, tag = 0;
+  uint64_t answered = 0;
+  for (int i = 0; i < 200 && answered == 0; ++i) {
+    memory->tick();
+    if (memory->response(0, Port::Index, record, tag)) answered = memory->cycle();
+  }
+  EXPECT_EQ(answered, 55u + 18u);
+  // The fixed model has no DRAM: a transfer takes its latency, and is counted.
+  MemoryConfig fixed;
+  fixed.fixedLatency = 7;
+  auto flat = MemorySystem::make(fixed, smallMap(), 1);
+  EXPECT_EQ(flat->transfer(100), 7u);
+  EXPECT_EQ(flat->stats().transferBytes, 100u);
+}
+
+// The treelet schedule's ray queues (memory/ray_queues.h): fresh rays first,
+// then the fullest block's queue; every walk handed out once; the ports' bytes
+// per cycle; records without room on chip to DRAM and back.
+TEST(RayQueues, FreshRaysFirstThenTheFullestBlockEachWalkOnce) {
+  MemoryConfig c;  // fixed latency 20
+  auto memory = MemorySystem::make(c, smallMap(), 1);
+  RayQueueConfig q;
+  q.kib = 1;
+  q.bytesPerCycle = 16;
+  q.wordBytes = 16;
+  q.launchBelow = 0.5;
+  RayQueues queues(q, 6, *memory);
+  std::vector<RayQueues::Handed> out;
+  queues.handOut(4, out);
+  ASSERT_EQ(out.size(), 4u);
+  for (size_t i = 0; i < 4; ++i) EXPECT_EQ(out[i].segment, i);
+  EXPECT_EQ(out[0].readyAt, 0u);  // fresh rays come from the ray generator
+  // Walks 10..14 suspended in cycle 0: a 16-byte record each (100 bits), one
+  // cycle each on the write port; blocks 7 (three walks) and 3 (two).
+  queues.suspend(10, 7, 100);
+  queues.suspend(11, 3, 100);
+  queues.suspend(12, 7, 100);
+  queues.suspend(13, 3, 100);
+  queues.suspend(14, 7, 100);
+  EXPECT_EQ(queues.stats().writeWaitCycles, 0u + 1 + 2 + 3 + 4);
+  for (int i = 0; i < 6; ++i) {  // the last write is done at the end of cycle 5
+    queues.endCycle();
+    memory->tick();
+  }
+  // 80 bytes on chip, below half of 1 KiB: the fresh rays left come first.
+  queues.handOut(4, out);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(out[0].segment, 4u);
+  EXPECT_EQ(out[1].segment, 5u);
+  // Then the fullest block, 7, oldest first; each record read through the
+  // read port, a cycle each.
+  queues.handOut(2, out);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(out[0].segment, 10u);
+  EXPECT_EQ(out[1].segment, 12u);
+  EXPECT_EQ(out[0].readyAt, memory->cycle() + 1);
+  EXPECT_EQ(out[1].readyAt, memory->cycle() + 2);
+  // The dispatcher stays on block 7 while it holds a walk, though block 3 is fuller now.
+  queues.handOut(4, out);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].segment, 14u);
+  queues.handOut(4, out);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(out[0].segment, 11u);
+  EXPECT_EQ(out[1].segment, 13u);
+  EXPECT_TRUE(queues.empty());
+  queues.handOut(4, out);
+  EXPECT_TRUE(out.empty());
+  const RayQueueStats& s = queues.stats();
+  EXPECT_EQ(s.launched, 6u);
+  EXPECT_EQ(s.suspensions, 5u);
+  EXPECT_EQ(s.bytesWritten, 5u * 16);
+  EXPECT_EQ(s.bytesRead, s.bytesWritten);
+  EXPECT_EQ(s.peakBytes, 5u * 16);
+  EXPECT_EQ(s.blockSwitches, 2u);
+  EXPECT_EQ(s.overflows, 0u);
+}
+
+TEST(RayQueues, ARecordWithoutRoomOnChipGoesToDramAndBack) {
+  MemoryConfig c = hierarchy();
+  auto memory = MemorySystem::make(c, smallMap(), 1);
+  RayQueueConfig q;
+  q.kib = 1;
+  RayQueues queues(q, 0, *memory);
+  queues.suspend(0, 1, 8 * 600);  // 608 bytes in 16-byte words: on chip
+  queues.suspend(1, 1, 8 * 600);  // no room left: DRAM
+  EXPECT_EQ(queues.stats().overflows, 1u);
+  EXPECT_EQ(queues.stats().bytesWritten, 608u);
+  for (int i = 0; i < 1000; ++i) {
+    queues.endCycle();
+    memory->tick();
+  }
+  std::vector<RayQueues::Handed> out;
+  queues.handOut(2, out);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_GT(out[1].readyAt, out[0].readyAt);  // from DRAM, after the latency
+  const RayQueueStats& s = queues.stats();
+  EXPECT_EQ(s.overflowBytes, 2u * 608);  // written and read back
+  EXPECT_EQ(memory->stats().transferBytes, 2u * 640);  // in whole 64-byte lines
+  EXPECT_EQ(s.bytesRead, 608u);
+  EXPECT_TRUE(queues.empty());
+}
+
+TEST(RayQueueConfig, ImpossibleSettingsNameTheirOption) {
+  const auto message = [](auto change) {
+    RayQueueConfig q;
+    change(q);
+    try {
+      q.validate();
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message([](RayQueueConfig& q) { q.kib = 0; }), "--queue-kib 0: use 1..1048576");
+  EXPECT_EQ(message([](RayQueueConfig& q) { q.bytesPerCycle = 0; }), "--queue-bytes-per-cycle 0: use 1..4096");
+  EXPECT_EQ(message([](RayQueueConfig& q) { q.launchBelow = 1.5; }),
+            "--queue-launch-below 1.5: a fraction of the queue memory, in (0, 1]");
+  EXPECT_EQ(message([](RayQueueConfig&) {}), "no error");
 }
 
 }  // namespace
