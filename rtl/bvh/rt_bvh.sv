@@ -62,6 +62,12 @@
 //   candidate(x): CHECK if the slot is bound and x's entry != 0, else ENTER
 //   CHECK -the exit test's answer-> POP (culled: the bound lies before the node) | ENTER
 //   DONE -done grant-> FREE
+//   ENTER(x) with cfg_suspend_i, x interior, x's block (x.first >>
+//          cfg_block_shift_i) not the slot's (the block of the last interior
+//          node it entered) and at most BVH_SUSPEND_ENTRIES entries on its
+//          stack: DONE, suspended instead (its result carries the walk:
+//          res_suspended_o, res_walk_o); it resumes as a new ray with
+//          ray_resume_i, x its candidate (ENTER at init, in x's block)
 //
 // Which slots act in a cycle. The box answer (one per cycle: one node response
 // a cycle) names one slot. FETCH ends the cycle after the result that
@@ -88,9 +94,20 @@ module rt_bvh #(
 
   // Configuration, static while rays are in flight.
   input  rt_pkg::bvh_ref_t                       cfg_root_i,   // the root's reference
+  // The treelet schedule (docs/scheduling.md): set walks aside where they
+  // leave their treelet block of 2^cfg_block_shift_i node-table entries.
+  input  logic                                   cfg_suspend_i,
+  input  logic [rt_pkg::BVH_BLOCK_SHIFT_W-1:0]   cfg_block_shift_i,
 
-  // One result per ray, one record per node entered.
+  // With a ray accepted: it resumes the walk of ray_walk_i.
+  input  logic                                   ray_resume_i,
+  input  rt_pkg::bvh_walk_t                      ray_walk_i,
+
+  // One result per ray (per walk: a suspended walk's result comes with its
+  // record, res_walk_o, 0 otherwise), one record per node entered.
   output rt_pkg::bvh_res_t                         res_data_o,
+  output logic                                     res_suspended_o,
+  output rt_pkg::bvh_walk_t                        res_walk_o,
   output rt_pkg::bvh_visit_t                       visit_data_o
 );
 
@@ -101,6 +118,8 @@ module rt_bvh #(
   localparam int unsigned DenW      = rt_pkg::BVH_COMMON_W;
   localparam int unsigned RunPorts  = 1;
   localparam bit          RegRsp    = 1'b0;  // node responses straight to the walk
+  // A suspended walk's record less its closest hit (the result carries that).
+  localparam int unsigned WalkPartW = rt_pkg::BVH_WALK_W - `RT_WALK_HIT_W;
 `define RT_WALK_CORE_BODY
 `include "rt_walk_core.svh"
 
@@ -147,6 +166,8 @@ module rt_bvh #(
   logic [ENTRY_W-1:0]     cur_entry_q [N];
   logic [SP_W-1:0]        sp_q     [N];
   logic [CAND_W-1:0]      stack_q  [N * STACK];
+  logic [31:0]            blk_q    [N];     // the treelet block of the last interior node entered
+  logic [N-1:0]           suspending_q;     // DONE: the walk is set aside, not over
 
   // ---- Events ----------------------------------------------------------------------------
   // The walk's own (the shell's are the slot core's: rt_walk_core.svh).
@@ -261,6 +282,56 @@ module rt_bvh #(
   assign box_check = bound[box_slot] && box_entry[box_pick] != '0;
   assign pop_check = bound[pop_slot_q] && pop_top[ENTRY_W-1:0] != '0;
 
+  // ---- Suspension (the treelet schedule) ------------------------------------------------
+  // A candidate about to be entered leaves the unit instead when it is an
+  // interior node of another block than the slot's and the stack (as it
+  // stands after the event) fits the record's window.
+  localparam int SUSPEND = rt_pkg::BVH_SUSPEND_ENTRIES;
+  // (A reference's leaf bit is its top bit, its first field the low 32: bvh_ref_t.)
+  function automatic logic leaves(input logic leaf, input logic [31:0] first, input logic [31:0] blk,
+                                  input logic [SP_W-1:0] sp);
+    leaves = cfg_suspend_i && !leaf && (first >> cfg_block_shift_i) != blk && sp <= SP_W'(SUSPEND);
+  endfunction
+  logic [REF_W-1:0] pop_ref, check_ref;
+  logic box_leaves, pop_leaves, check_leaves;
+  assign pop_ref      = pop_top[ENTRY_W +: REF_W];
+  assign check_ref    = cur_ref_q[check_slot];
+  assign box_leaves   = leaves(box_ref[box_pick][REF_W-1], box_ref[box_pick][31:0], blk_q[box_slot],
+                               sp_q[box_slot] + SP_W'(box_both));
+  assign pop_leaves   = leaves(pop_ref[REF_W-1], pop_ref[31:0], blk_q[pop_slot_q], pop_sp - 1'b1);
+  assign check_leaves = leaves(check_ref[REF_W-1], check_ref[31:0], blk_q[check_slot], sp_q[check_slot]);
+
+  // A resumed walk's record, captured with its ray and carried beside the
+  // ray's setup (BVH_SETUP_LATENCY stages, as rt_mirror_pairs): at init the
+  // slot takes its candidate, stack and closest hit.
+  localparam int L = rt_pkg::BVH_SETUP_LATENCY;
+  logic [L-1:0]              rsm_q;
+  logic [rt_pkg::BVH_WALK_W-1:0] rsm_walk_q [L];
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      rsm_q <= '0;
+    end else begin
+      rsm_q[0] <= alloc && ray_resume_i;
+      for (int i = 1; i < L; i++) rsm_q[i] <= rsm_q[i-1];
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    rsm_walk_q[0] <= ray_walk_i;
+    for (int i = 1; i < L; i++) rsm_walk_q[i] <= rsm_walk_q[i-1];
+  end
+  rt_pkg::bvh_walk_t init_walk;
+  assign init_walk   = rsm_walk_q[L-1];
+  assign init_resume = rsm_q[L-1];
+  assign init_hit    = {init_walk.has_hit, init_walk.prim_id, init_walk.t_num, init_walk.det, init_walk.u_num,
+                        init_walk.v_num};
+  // The candidate at init: the root, or the resumed walk's next node.
+  logic [REF_W-1:0]   init_ref;
+  logic [ENTRY_W-1:0] init_entry;
+  ref_t               init_ref_s;
+  assign init_ref   = init_resume ? init_walk.next_ref : cfg_root_i;
+  assign init_entry = init_resume ? init_walk.next_entry : '0;
+  assign init_ref_s = init_ref;
+
   // ---- State (reset) ---------------------------------------------------------------------
   // Each vector loses the slots whose event leaves its state and gains those
   // whose event enters it.
@@ -274,26 +345,31 @@ module rt_bvh #(
       pop_q       <= '0;
       check_q     <= '0;
       done_q      <= '0;
+      suspending_q <= '0;
       hit_seen_q  <= '0;
       fin_q       <= 1'b0;
       fin_slot_q  <= '0;
     end else begin : b_next
       logic [N-1:0] visit_node, visit_fetch, visit_pop, box_to_check, box_to_enter, box_to_pop;
       logic [N-1:0] pop_to_done, pop_to_check, pop_to_enter, fin_to_done;
+      logic [N-1:0] box_to_leave, pop_to_leave, check_to_enter, check_to_leave, leave;
       logic         fin_done;
       visit_node   = visit_oh & {N{!visit_ref.leaf}};
       visit_fetch  = visit_oh & {N{visit_ref.leaf && !visit_empty}};
       visit_pop    = visit_oh & {N{visit_ref.leaf && visit_empty}};
       box_to_pop   = box_oh & {N{box_none}};
       box_to_check = box_oh & {N{!box_none && box_check}};
-      box_to_enter = box_oh & {N{!box_none && !box_check}};
+      box_to_enter = box_oh & {N{!box_none && !box_check && !box_leaves}};
+      box_to_leave = box_oh & {N{!box_none && !box_check && box_leaves}};
       pop_to_done  = pop_oh & {N{pop_empty}};
       pop_to_check = pop_oh & {N{!pop_empty && pop_check}};
-      pop_to_enter = pop_oh & {N{!pop_empty && !pop_check}};
+      pop_to_enter = pop_oh & {N{!pop_empty && !pop_check && !pop_leaves}};
+      pop_to_leave = pop_oh & {N{!pop_empty && !pop_check && pop_leaves}};
+      check_to_enter = check_oh & {N{!check_holds && !check_leaves}};
+      check_to_leave = check_oh & {N{!check_holds && check_leaves}};
       fin_done     = any_hit_q[fin_slot_q] && hit_seen_q[fin_slot_q];
       fin_to_done  = fin_oh & {N{fin_done}};
-      enter_q     <= (enter_q & ~visit_oh) | init_oh | box_to_enter | pop_to_enter
-                     | (check_oh & {N{!check_holds}});
+      enter_q     <= (enter_q & ~visit_oh) | init_oh | box_to_enter | pop_to_enter | check_to_enter;
       node_req_q  <= (node_req_q & ~node_oh) | visit_node;
       wait_node_q <= (wait_node_q & ~rsp_oh) | node_oh;
       box_q       <= (box_q & ~box_oh) | rsp_oh;
@@ -301,7 +377,10 @@ module rt_bvh #(
       pop_q       <= (pop_q & ~pop_oh) | visit_pop | box_to_pop | (fin_oh & ~fin_to_done)
                      | (check_oh & {N{check_holds}});
       check_q     <= (check_q & ~check_oh) | box_to_check | pop_to_check;
-      done_q      <= (done_q & ~done_oh) | pop_to_done | fin_to_done;
+      leave        = box_to_leave | pop_to_leave | check_to_leave;
+      done_q      <= (done_q & ~done_oh) | pop_to_done | fin_to_done | leave;
+      // Set when the walk leaves, cleared when the slot takes its next ray.
+      suspending_q <= (suspending_q & ~init_oh) | leave;
       hit_seen_q  <= (hit_seen_q & ~init_oh) | onehot(isect_valid && isect_hit, isect_slot);
       // The result that completes the leaf: FETCH ends in the next cycle.
       fin_q       <= res_last;
@@ -324,18 +403,46 @@ module rt_bvh #(
       sp_q[pop_slot_q]        <= pop_sp - 1'b1;
     end
     if (init) begin
-      cur_ref_q[init_slot]   <= cfg_root_i;
-      cur_entry_q[init_slot] <= '0;
-      sp_q[init_slot]        <= '0;
+      cur_ref_q[init_slot]   <= init_ref;
+      cur_entry_q[init_slot] <= init_entry;
+      sp_q[init_slot]        <= init_resume ? SP_W'(init_walk.sp) : '0;
     end
   end
 
-  // The stack: the box answer pushes the farther child.
+  // The block the slot is in: its first node's at init, then each interior node's it enters.
+  always_ff @(posedge clk_i) begin : p_block
+    if (visit_go && !visit_ref.leaf) blk_q[visit_slot] <= visit_ref.first >> cfg_block_shift_i;
+    if (init) blk_q[init_slot] <= init_ref_s.first >> cfg_block_shift_i;
+  end
+
+  // The stack: the box answer pushes the farther child; a resumed walk's
+  // entries come in at init (the window's; those above its sp are never read).
   always_ff @(posedge clk_i) begin : p_stack
     if (box_valid && box_both) begin
       stack_q[stack_addr(box_slot, STK_W'(sp_q[box_slot]))] <= {box_ref[!box_pick], box_entry[!box_pick]};
     end
+    if (init && init_resume) begin
+      for (int k = 0; k < SUSPEND; k++) begin
+        stack_q[stack_addr(init_slot, STK_W'(k))] <= {init_walk.stack_ref[k], init_walk.stack_entry[k]};
+      end
+    end
   end
+
+  // A suspended walk's part of its record, for done_slot: its candidate, sp
+  // and the stack's window (entries at or above sp read as 0).
+  logic [SUSPEND-1:0][REF_W-1:0]   done_stack_ref;
+  logic [SUSPEND-1:0][ENTRY_W-1:0] done_stack_entry;
+  always_comb begin
+    for (int k = 0; k < SUSPEND; k++) begin
+      {done_stack_ref[k], done_stack_entry[k]} = SP_W'(k) < sp_q[done_slot]
+          ? stack_q[stack_addr(done_slot, STK_W'(k))] : '0;
+    end
+  end
+  assign done_suspend = suspending_q[done_slot];
+  assign done_walk    = {cur_ref_q[done_slot], cur_entry_q[done_slot], sp_q[done_slot], done_stack_ref,
+                         done_stack_entry};
+  assign res_suspended_o = res_suspend;
+  assign res_walk_o      = res_walk;
 
   // The ray's setup.
   always_ff @(posedge clk_i) begin : p_ray
@@ -361,6 +468,8 @@ module rt_bvh #(
   assign node_ref        = cur_ref_q[node_slot];
   assign idx_ref         = cur_ref_q[idx_slot];
   assign unused_node_ref = {node_ref.leaf, node_ref.count};
+  logic [REF_W-1-32:0] unused_init_ref;
+  assign unused_init_ref = {init_ref_s.leaf, init_ref_s.count};
   assign unused_idx_ref  = {idx_ref.leaf, idx_ref.count};
   assign visit_id = visit_ref.first | {visit_ref.leaf, 31'd0};
   // A leaf's triangles are counted when it is entered.

@@ -105,6 +105,7 @@ module rt_grid #(
   localparam int unsigned ExitW     = rt_pkg::GRID_ACC_W;
   localparam int unsigned DenW      = rt_pkg::GRID_TRIPLE_W;
   localparam int unsigned RunPorts  = 2;
+  localparam int unsigned WalkPartW = 0;     // walks are not set aside
   localparam int unsigned QW        = (CellQueue > 1) ? $clog2(CellQueue) : 1;
   localparam bit          RegRsp    = 1'b1;  // the shell registers node responses
 `define RT_WALK_CORE_BODY

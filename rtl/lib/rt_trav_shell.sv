@@ -40,7 +40,10 @@
 //              arithmetic (its walk ends after the region of its hit)
 //   res_*      one record per ray: {ray id, regions entered, tests issued,
 //              ray-quadric tests of them, hit, the closest hit} (round robin,
-//              2-entry FIFO)
+//              2-entry FIFO); with a suspended walk's record beside it
+//              (res_suspend, res_walk: the treelet schedule)
+//   resume     a resumed ray's init loads the closest hit its walk carried
+//              (init_resume, init_hit) instead of the segment end
 //
 // The walk sees only grants (go, slot index), the responses, the results and
 // the closest-hit state; it gives want vectors, addresses, the visit id, the
@@ -71,7 +74,9 @@ module rt_trav_shell #(
   parameter int unsigned DenW        = 8,   // width of the exit test's denominator
   parameter int unsigned RunPorts    = 1,   // index runs the walk may start in a cycle
   parameter int unsigned Quadrics    = 0,   // 1: rt_quadric beside rt_isect (scenes with spheres and cones)
+  parameter int unsigned WalkPartW   = 0,   // a suspended walk's part of its record (0: the unit suspends none)
   parameter int unsigned SlotW     = (N > 1) ? $clog2(N) : 1,  // derived
+  parameter int unsigned WalkPortW = (WalkPartW > 0) ? WalkPartW : 1,  // derived
   parameter int unsigned CfgSlotsW = $clog2(N + 1),            // derived
   parameter int unsigned ResW      = rt_pkg::ISECT_RES_W + 96  // derived: {ray id, count, tests, quadric tests, hit, hit record}
 ) (
@@ -489,13 +494,17 @@ module rt_trav_shell #(
     init_best.det     = rt_pkg::DET_ABS_W'(1) << rt_pkg::SEG_FRAC_W;
   end
 
+  // A resumed walk's closest hit so far, if it has one, replaces the segment end.
+  logic init_has_hit;
+  assign init_has_hit = init_resume && init_hit[BEST_W];
+
   always_ff @(posedge clk_i) begin
     if (init) begin
       ray_id_q[init_slot] <= init_ray.ray_id;
       geom_q[init_slot]   <= init_geom;
       dom_q[init_slot]    <= init_dom;
       den_q[init_slot]    <= init_den;
-      best_q[init_slot]   <= init_best;
+      best_q[init_slot]   <= init_has_hit ? init_hit[BEST_W-1:0] : init_best;
       seg_q[init_slot]    <= init_ray.t_max;
     end
     if (take) best_q[isect_slot] <= res_new;
@@ -529,7 +538,7 @@ module rt_trav_shell #(
     end else begin
       testing_q <= (testing_q | (N'(check_grant) << check_grant_slot)) & ~(N'(check_go) << check_slot);
       if (init) begin
-        has_hit_q[init_slot] <= 1'b0;
+        has_hit_q[init_slot] <= init_has_hit;
         bounded_q[init_slot] <= init_ray.t_max != '1;
         any_hit_q[init_slot] <= init_ray.any_hit;
       end
@@ -558,14 +567,36 @@ module rt_trav_shell #(
   assign done_qtests = (Quadrics != 0) ? qtests_q[done_slot] : '0;
   assign done_rec    = {done_ray_id, done_visits, done_tests, done_qtests, done_hit, done_best};
 
-  rt_fifo #(.Width(ResW), .Depth(2)) u_res_q (
+  // A suspended walk's part rides with its result (none in a unit that
+  // suspends no walk: the FIFO holds the record only).
+  localparam int SUS_W = (WalkPartW > 0) ? 1 + WalkPartW : 0;
+  localparam int RESQ_W = ResW + SUS_W;
+  logic [RESQ_W-1:0] resq_in, resq_out;
+  if (WalkPartW > 0) begin : g_suspension
+    logic               out_suspend;
+    logic [WalkPartW-1:0] out_walk;
+    assign resq_in = {done_rec, done_suspend, done_suspend ? done_walk : '0};
+    assign {res_data_o, out_suspend, out_walk} = resq_out;
+    assign res_suspend = out_suspend;
+    // The walk record: the result's {hit, closest hit}, then the walk's part.
+    assign res_walk    = out_suspend ? {res_data_o[BEST_W:0], out_walk} : '0;
+  end else begin : g_no_suspension
+    assign resq_in     = done_rec;
+    assign res_data_o  = resq_out;
+    assign res_suspend = 1'b0;
+    assign res_walk    = '0;
+    logic unused_walk;
+    assign unused_walk = ^{done_suspend, done_walk};
+  end
+
+  rt_fifo #(.Width(RESQ_W), .Depth(2)) u_res_q (
     .clk_i, .rst_ni,
     .in_valid_i (done_go),
     .in_ready_o (resq_ready),
-    .in_data_i  (done_rec),
+    .in_data_i  (resq_in),
     .out_valid_o(res_valid_o),
     .out_ready_i(res_ready_i),
-    .out_data_o (res_data_o)
+    .out_data_o (resq_out)
   );
 
 `ifdef RT_ASSERT_ON
@@ -591,6 +622,8 @@ module rt_trav_shell #(
   `RT_CHECK(a_credit_range, credit_q <= CREDIT_W'(IdxBufDepth))
   `RT_ASSERT_STATIC(g_exit_latency_check, rt_pkg::EXIT_TEST_LATENCY == 1 + 4,
                     "rt_trav_shell: the registered grant and rt_exit_test's 4 stages differ from rt_pkg::EXIT_TEST_LATENCY")
+  `RT_ASSERT_STATIC(g_hit_width_check, `RT_WALK_HIT_W == 1 + BEST_W,
+                    "rt_trav_shell: a walk record's closest hit is not {hit, the kept record}")
   `RT_ASSERT_STATIC(g_slots_check, N <= 256,
                     "rt_trav_shell: RaysInFlight must lie in 1..256 (the setup carries an 8-bit slot)")
 `endif

@@ -7,7 +7,8 @@
 //
 // In the body (define RT_WALK_CORE_BODY before the include), once the unit
 // has set the figures of its ports toward the shell (VisitIdW, ExitW, DenW,
-// RunPorts) and whether the shell registers node responses (RegRsp): the
+// RunPorts, WalkPartW: its walk record less the closest hit, 0 if it does not
+// set walks aside) and whether the shell registers node responses (RegRsp): the
 // walk's nets toward the shell (rt_walk_ports.svh), the shell itself, the
 // shell's events as one-hot slot vectors, which each walk's state vectors
 // lose and gain, and the checks that every grant of the shell names a slot
@@ -23,6 +24,10 @@
   parameter int unsigned Quadrics     = 0,   /* 1: rt_quadric beside rt_isect (spheres and cones) */ \
   parameter int unsigned SlotW = (RaysInFlight > 1) ? $clog2(RaysInFlight) : 1,  /* derived */ \
   parameter int unsigned CfgSlotsW = $clog2(RaysInFlight + 1)                     /* derived */
+// A closest hit as a walk record carries it (also in rt_walk_ports.svh, for the shell).
+`ifndef RT_WALK_HIT_W
+`define RT_WALK_HIT_W (1 + 32 + rt_pkg::T_NUM_W + rt_pkg::DET_ABS_W + 2 * rt_pkg::BARY_W)
+`endif
 `define RT_WALK_SETUP_PORTS .clk_i, .rst_ni, .valid_i(alloc), .slot_i(alloc_slot), .ray_i(ray_data_i), \
                             .valid_o(init), .slot_o(init_slot), .ray_o(init_ray), .dom_o(init_dom)
 `endif
@@ -31,7 +36,19 @@
 `undef RT_WALK_CORE_BODY
 
   localparam int unsigned N = RaysInFlight;
+  localparam int unsigned WalkPortW = (WalkPartW > 0) ? WalkPartW : 1;
 `include "rt_walk_ports.svh"
+
+  // A unit that does not set walks aside (WalkPartW = 0): no ray resumes, no
+  // result is a suspension.
+  if (WalkPartW == 0) begin : g_no_suspension
+    assign init_resume  = 1'b0;
+    assign init_hit     = '0;
+    assign done_suspend = 1'b0;
+    assign done_walk    = '0;
+    logic unused_suspension;
+    assign unused_suspension = ^{res_suspend, res_walk};
+  end
 
   // The shell (streams, memory ports, rt_isect and rt_quadric, closest hits, exit tests, the
   // counts) and the walk, joined by name.

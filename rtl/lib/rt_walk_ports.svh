@@ -7,8 +7,9 @@
 // Define RT_WALK_PORTS_OF_SHELL before including it in the shell's port list
 // (every entry then ends with a comma: more ports must follow); without it, it
 // declares the unit's nets. It undefines what it defines.
-// Needs N, SlotW, NodeRspW, VisitIdW, ExitW, DenW and RunPorts (the unit's
-// figures, which RT_WALK_PARAMS passes to the shell by name).
+// Needs N, SlotW, NodeRspW, VisitIdW, ExitW, DenW, RunPorts and WalkPartW (the
+// unit's figures, which RT_WALK_PARAMS passes to the shell by name; WalkPartW
+// 0: the unit does not set walks aside) and WalkPortW (WalkPartW, at least 1).
 `ifdef RT_WALK_PORTS_OF_SHELL
   `define RT_TO_SHELL input
   `define RT_TO_WALK  output
@@ -20,7 +21,11 @@
 `endif
 `ifndef RT_WALK_PARAMS
   `define RT_WALK_PARAMS .N(N), .SlotW(SlotW), .NodeRspW(NodeRspW), .VisitIdW(VisitIdW), \
-                         .ExitW(ExitW), .DenW(DenW), .RunPorts(RunPorts)
+                         .ExitW(ExitW), .DenW(DenW), .RunPorts(RunPorts), .WalkPartW(WalkPartW)
+`endif
+`ifndef RT_WALK_HIT_W
+  // A closest hit as a walk record carries it: {has hit, prim id, t_num, det, u_num, v_num}.
+  `define RT_WALK_HIT_W (1 + 32 + rt_pkg::T_NUM_W + rt_pkg::DET_ABS_W + 2 * rt_pkg::BARY_W)
 `endif
 
   // Allocation (the shell's: a ray accepted into a free alloc_slot) and the
@@ -85,6 +90,19 @@
   `RT_TO_SHELL logic [N-1:0]                     want_done                 `RT_END
   `RT_TO_WALK  logic                             done_go                   `RT_END
   `RT_TO_WALK  logic [SlotW-1:0]                 done_slot                 `RT_END
+
+  // Walks set aside and resumed (the treelet schedule: a unit with WalkPartW
+  // > 0; the others tie these off). A resumed ray's closest hit so far comes
+  // with its init; a suspended walk's own part (its record less the closest
+  // hit, which the result record carries) goes with done_slot's result, and
+  // leaves with it as {the result's hit, the part} (res_walk: 0 unless
+  // res_suspend).
+  `RT_TO_SHELL logic                             init_resume               `RT_END  // init: the ray resumes a walk
+  `RT_TO_SHELL logic [`RT_WALK_HIT_W-1:0]        init_hit                  `RT_END  // its closest hit so far
+  `RT_TO_SHELL logic                             done_suspend              `RT_END  // done_slot's walk is set aside:
+  `RT_TO_SHELL logic [WalkPortW-1:0]             done_walk                 `RT_END  // its part of the walk record
+  `RT_TO_WALK  logic                             res_suspend               `RT_END  // with the result leaving (res_valid_o)
+  `RT_TO_WALK  logic [`RT_WALK_HIT_W+WalkPortW-1:0] res_walk               `RT_END
 
 `undef RT_TO_SHELL
 `undef RT_TO_WALK

@@ -124,6 +124,7 @@ module rt_octree #(
   localparam int unsigned ExitW     = rt_pkg::OCTREE_T_W;
   localparam int unsigned DenW      = rt_pkg::OCTREE_COMMON_W;
   localparam int unsigned RunPorts  = 1;
+  localparam int unsigned WalkPartW = 0;     // walks are not set aside
   localparam bit          RegRsp    = 1'b0;  // node responses straight to the walk
 `define RT_WALK_CORE_BODY
 `include "rt_walk_core.svh"

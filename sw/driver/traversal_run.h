@@ -696,8 +696,8 @@ TraversalRunStats runTraversalChip(std::vector<std::unique_ptr<Clocked>>& pool, 
   if (options.treelets) {
     if constexpr (!trav_detail::UnitRun<Clocked, Image>::kSuspends) {
       throw InputError(fmt::format("--schedule treelet: the {} model of the {} unit cannot set walks aside (no "
-                                   "suspend and resume ports); the treelet schedule runs on the BVH unit's golden "
-                                   "and systemc models",
+                                   "suspend and resume ports); the treelet schedule runs on the BVH unit's golden, "
+                                   "systemc and rtl models",
                                    Clocked::kModel, Desc::kNames.unit));
     }
     options.queues.validate();

@@ -80,6 +80,7 @@ struct BvhUnit : UnitBase<UnitKind::Bvh, BvhImage, BvhNode, kBvhNodeFields, kBvh
   // each (cfg_block_shift_i); a suspended walk waits for the block of the node
   // it enters next, and a ray queue holds bvhSuspendedBits of it.
   static constexpr const auto& kWalkFieldList = kBvhWalkFields;
+  static constexpr int kBlockShiftBits = kBvhBlockShiftBits;  // cfg_block_shift_i
   static bool hasTreelets(const Image& image) { return image.treeletNodes != 0; }
   static uint32_t treeletBlockShift(const Image& image) {
     return image.treeletNodes ? uint32_t(std::countr_zero(image.treeletNodes)) : 0;

@@ -13,11 +13,42 @@
 
 namespace lancer::sc {
 
+// The suspension ports' signals of a unit that sets walks aside (the treelet
+// schedule, which only the run loop drives: docs/scheduling.md). Here nothing
+// drives the inputs (suspension off) and nothing reads the outputs.
+template <class Unit, bool = Unit::kSuspends>
+struct rt_suspend_wires {
+  template <class Dut>
+  void bindSuspendPorts(Dut&) {}
+};
+template <class Unit>
+struct rt_suspend_wires<Unit, true> {
+  sc_core::sc_signal<bool> cfg_suspend_i{"cfg_suspend_i"};
+  sc_core::sc_signal<vl_port_t<Unit::BLOCK_SHIFT_W>> cfg_block_shift_i{"cfg_block_shift_i"};
+  sc_core::sc_signal<bool> ray_resume_i{"ray_resume_i"};
+  sc_core::sc_signal<vl_port_t<Unit::WALK_W>> ray_walk_i{"ray_walk_i"};
+  sc_core::sc_signal<bool> res_suspended_o{"res_suspended_o"};
+  sc_core::sc_signal<vl_port_t<Unit::WALK_W>> res_walk_o{"res_walk_o"};
+  // A DUT with the ports (the Verilated RTL's SystemC class) on these signals.
+  template <class Dut>
+  void bindSuspendPorts(Dut& dut) {
+    if constexpr (requires { dut.ray_resume_i; }) {
+      dut.cfg_suspend_i(cfg_suspend_i);
+      dut.cfg_block_shift_i(cfg_block_shift_i);
+      dut.ray_resume_i(ray_resume_i);
+      dut.ray_walk_i(ray_walk_i);
+      dut.res_suspended_o(res_suspended_o);
+      dut.res_walk_o(res_walk_o);
+    }
+  }
+};
+
 // rt_trav_wires: the signals between one unit and its side of the chip's
 // testbench, named after the RTL ports they carry (common/rt_trav_ports.h).
 template <class Unit>
 class rt_trav_wires : public sc_core::sc_module,
-                      public rt_trav_unit_ports<Unit, rt_signal, rt_signal> {
+                      public rt_trav_unit_ports<Unit, rt_signal, rt_signal>,
+                      public rt_suspend_wires<Unit> {
  public:
   sc_core::sc_signal<typename Unit::cfg_t> cfg_i{Unit::kNames.cfgPort};
 
@@ -55,6 +86,7 @@ class rt_trav_bench : public sc_core::sc_module {
       bindHostPorts(dut, w);
       bindMemPorts(dut, w);
       Unit::bindUnitPorts(dut, w);
+      w.bindSuspendPorts(dut);
       // Its side of the testbench: clock, reset, configuration, streams, the memory side of the ports.
       rt_trav_side<Unit>& side = u_tb.sides[size_t(u)];
       bindHostPorts(side, w);

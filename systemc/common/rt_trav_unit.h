@@ -78,6 +78,13 @@ struct rt_trav_unit {
       return 1;
     }
   }();
+  static constexpr int BLOCK_SHIFT_W = [] {
+    if constexpr (kSuspends) {
+      return Desc::kBlockShiftBits;
+    } else {
+      return 1;
+    }
+  }();
   static_assert(Desc::kGroup == 1 || NODE_W % 32 == 0, "the nodes of a group start on word boundaries");
 
   using descriptor = Desc;

@@ -113,5 +113,43 @@ TEST(RtBvh, DISABLED_AgainstTheOctree) {
   show("octree", makeTraversalDevice<fx::OctreeUnit>("rtl")->run(octree, q.rays, traces, TraversalRunOptions{}));
 }
 
+// The treelet schedule on the RTL (docs/scheduling.md): the hard cases with
+// each node its own block, on chips of one and four units, with the stream's
+// bubbles and stalls, queue memories that overflow and that do not: every ray
+// takes its unbroken walk, and the RTL sets aside the same walks in the same
+// cycles as the SystemC model (the same cycles, traces and queue figures).
+TEST(RtBvhTreelets, TheRtlSetsTheSameWalksAsideInTheSameCyclesAsTheCycleModel) {
+  const auto rtl = makeTraversalDevice<fx::BvhUnit>("rtl");
+  const auto model = makeTraversalDevice<fx::BvhUnit>("systemc");
+  uint64_t suspensions = 0;
+  for (BvhCase c : test::bvhHardCases()) {
+    c.image.treeletNodes = 1;
+    for (const int units : {1, 4}) {
+      for (const int kib : {1, 64}) {
+        TraversalRunOptions o;
+        o.units = units;
+        o.memory.kind = mem::MemoryKind::Hierarchy;
+        o.stream.outputStallProbability = 0.3;
+        o.stream.inputIdleProbability = 0.2;
+        o.treelets = true;
+        o.queues.kib = kib;
+        o.dispatchBatch = 4;
+        std::vector<fx::TraversalTrace> traces, modelTraces;
+        const TraversalRunStats s = rtl->run(c.image, c.rays, traces, o);
+        const TraversalRunStats m = model->run(c.image, c.rays, modelTraces, o);
+        const std::string where = fmt::format("{}, {} units, {} KiB", c.name, units, kib);
+        for (size_t k = 0; k < c.rays.size(); ++k) {
+          ASSERT_EQ(traces.at(k), fx::traverseBvh(c.image, c.rays[k])) << where << ", ray " << k;
+        }
+        EXPECT_EQ(s.cycles, m.cycles) << where;
+        EXPECT_EQ(s.queues, m.queues) << where;
+        EXPECT_EQ(s.unitRays, m.unitRays) << where;
+        suspensions += s.queues.suspensions;
+      }
+    }
+  }
+  EXPECT_GT(suspensions, 1000u);
+}
+
 }  // namespace
 }  // namespace lancer::rtltest
