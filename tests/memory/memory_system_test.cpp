@@ -212,22 +212,33 @@ TEST(HierarchyMemory, ASeedlessRunIsTheSameTwice) {
 
 // One read, cold: L1 tag check, the L2 bank, DRAM (latency and one line's
 // transfer on its channel), back through the L2, the L1 fill, the response.
-TEST(HierarchyMemory, AColdReadTakesEveryLevelsLatency) {
+// A hierarchy of round figures: 1 ns cycles, L1 hits in 2, the L2 in 10, DRAM
+// in 40 ns plus 2 ns a 64-byte line on each of its 2 channels.
+MemoryConfig roundHierarchy() {
   MemoryConfig c = hierarchy();
-  c.clockMhz = 1000;  // 1 ns cycles
+  c.clockMhz = 1000;
   c.l1.hitLatency = 2;
   c.l2.latency = 10;
   c.dram.latencyNs = 40;
-  c.dram.gbps = 64;  // 64-byte line, 1 channel... 2 channels: 2 ns a line
+  c.dram.gbps = 64;
   c.dram.channels = 2;
-  auto memory = MemorySystem::make(c, smallMap(), 1);
-  memory->request(0, Port::Index, 0, 5);
-  uint32_t record = 0, tag = 0;
-  uint64_t answered = 0;
-  for (int i = 0; i < 200 && answered == 0; ++i) {
-    memory->tick();
-    if (memory->response(0, Port::Index, record, tag)) answered = memory->cycle();
+  return c;
+}
+
+// The cycle in which one index read (record 0, tag 5) asked now is answered.
+uint64_t answerOfOneRead(MemorySystem& memory, uint32_t& record, uint32_t& tag) {
+  memory.request(0, Port::Index, 0, 5);
+  for (int i = 0; i < 200; ++i) {
+    memory.tick();
+    if (memory.response(0, Port::Index, record, tag)) return memory.cycle();
   }
+  return 0;
+}
+
+TEST(HierarchyMemory, AColdReadTakesEveryLevelsLatency) {
+  auto memory = MemorySystem::make(roundHierarchy(), smallMap(), 1);
+  uint32_t record = 0, tag = 0;
+  const uint64_t answered = answerOfOneRead(*memory, record, tag);
   // Lookup in the bank at cycle 2; DRAM done at 2 + 40 + 2 = 44 ns (cycle 44);
   // the fill reaches the L1 at 44 + 10 = 54 and answers in cycle 55.
   EXPECT_EQ(answered, 55u);
@@ -333,28 +344,15 @@ TEST(HierarchyMemory, TooFewMshrsForARecordIsAnError) {
 // channels: it takes their bandwidth and latency, counts in the DRAM bytes, and
 // a miss after it waits behind it.
 TEST(HierarchyMemory, ATransferTakesTheDramChannelsAndAMissWaitsBehindIt) {
-  MemoryConfig c = hierarchy();
-  c.clockMhz = 1000;  // 1 ns cycles
-  c.l1.hitLatency = 2;
-  c.l2.latency = 10;
-  c.dram.latencyNs = 40;
-  c.dram.gbps = 64;  // 2 channels: 2 ns a 64-byte line on each
-  c.dram.channels = 2;
-  auto memory = MemorySystem::make(c, smallMap(), 1);
+  auto memory = MemorySystem::make(roundHierarchy(), smallMap(), 1);
   // 20 lines over two channels: 10 each, 2 ns apart; the last done at 18 + 40 + 2.
   EXPECT_EQ(memory->transfer(20 * 64), 60u);
   EXPECT_EQ(memory->stats().transferBytes, 20u * 64);
   EXPECT_EQ(memory->stats().dramBytes, 20u * 64);
   // The cold read of AColdReadTakesEveryLevelsLatency (answered in cycle 55)
   // now finds its channel busy until 20 ns.
-  memory->request(0, Port::Index, 0, 5);
   uint32_t record = 0, tag = 0;
-  uint64_t answered = 0;
-  for (int i = 0; i < 200 && answered == 0; ++i) {
-    memory->tick();
-    if (memory->response(0, Port::Index, record, tag)) answered = memory->cycle();
-  }
-  EXPECT_EQ(answered, 55u + 18u);
+  EXPECT_EQ(answerOfOneRead(*memory, record, tag), 55u + 18u);
   // The fixed model has no DRAM: a transfer takes its latency, and is counted.
   MemoryConfig fixed;
   fixed.fixedLatency = 7;

@@ -73,14 +73,7 @@ TEST(ScBvhTreelets, SuspendedWalksTakeTheUnbrokenWalkThroughTheRayQueues) {
     for (const QRay& ray : c.rays) expected += fx::bvhTreeletCrossings(c.image, ray);
     for (const int units : {1, 4}) {
       for (const int kib : {1, 64}) {
-        TraversalRunOptions o;
-        o.units = units;
-        o.memory.kind = mem::MemoryKind::Hierarchy;
-        o.stream.outputStallProbability = 0.3;
-        o.stream.inputIdleProbability = 0.2;
-        o.treelets = true;
-        o.queues.kib = kib;
-        o.dispatchBatch = 4;
+        TraversalRunOptions o = test::treeletStressOptions(units, kib);
         std::vector<fx::TraversalTrace> traces;
         const TraversalRunStats s = device.run(c.image, c.rays, traces, o);
         const std::string where = fmt::format("{}, {} units, {} KiB", c.name, units, kib);

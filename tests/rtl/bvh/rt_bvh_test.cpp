@@ -126,14 +126,7 @@ TEST(RtBvhTreelets, TheRtlSetsTheSameWalksAsideInTheSameCyclesAsTheCycleModel) {
     c.image.treeletNodes = 1;
     for (const int units : {1, 4}) {
       for (const int kib : {1, 64}) {
-        TraversalRunOptions o;
-        o.units = units;
-        o.memory.kind = mem::MemoryKind::Hierarchy;
-        o.stream.outputStallProbability = 0.3;
-        o.stream.inputIdleProbability = 0.2;
-        o.treelets = true;
-        o.queues.kib = kib;
-        o.dispatchBatch = 4;
+        TraversalRunOptions o = test::treeletStressOptions(units, kib);
         std::vector<fx::TraversalTrace> traces, modelTraces;
         const TraversalRunStats s = rtl->run(c.image, c.rays, traces, o);
         const TraversalRunStats m = model->run(c.image, c.rays, modelTraces, o);
