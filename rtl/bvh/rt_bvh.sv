@@ -307,6 +307,14 @@ module rt_bvh #(
   localparam int L = rt_pkg::BVH_SETUP_LATENCY;
   logic [L-1:0]              rsm_q;
   logic [rt_pkg::BVH_WALK_W-1:0] rsm_walk_q [L];
+  // bvh_walk_t's fields as bit offsets (Yosys 0.23 takes no element of a
+  // packed array field): stack_entry[k] at k * ENTRY_W, stack_ref[k] at
+  // W_REF + k * REF_W, then sp, next_entry, next_ref and the closest hit on top.
+  localparam int W_REF   = SUSPEND * ENTRY_W;
+  localparam int W_SP    = W_REF + SUSPEND * REF_W;
+  localparam int W_NEXTE = W_SP + SP_W;
+  localparam int W_NEXTR = W_NEXTE + ENTRY_W;
+  localparam int W_HIT   = W_NEXTR + REF_W;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       rsm_q <= '0;
@@ -319,17 +327,16 @@ module rt_bvh #(
     rsm_walk_q[0] <= ray_walk_i;
     for (int i = 1; i < L; i++) rsm_walk_q[i] <= rsm_walk_q[i-1];
   end
-  rt_pkg::bvh_walk_t init_walk;
+  logic [rt_pkg::BVH_WALK_W-1:0] init_walk;
   assign init_walk   = rsm_walk_q[L-1];
   assign init_resume = rsm_q[L-1];
-  assign init_hit    = {init_walk.has_hit, init_walk.prim_id, init_walk.t_num, init_walk.det, init_walk.u_num,
-                        init_walk.v_num};
+  assign init_hit    = init_walk[W_HIT +: `RT_WALK_HIT_W];
   // The candidate at init: the root, or the resumed walk's next node.
   logic [REF_W-1:0]   init_ref;
   logic [ENTRY_W-1:0] init_entry;
   ref_t               init_ref_s;
-  assign init_ref   = init_resume ? init_walk.next_ref : cfg_root_i;
-  assign init_entry = init_resume ? init_walk.next_entry : '0;
+  assign init_ref   = init_resume ? init_walk[W_NEXTR +: REF_W] : cfg_root_i;
+  assign init_entry = init_resume ? init_walk[W_NEXTE +: ENTRY_W] : '0;
   assign init_ref_s = init_ref;
 
   // ---- State (reset) ---------------------------------------------------------------------
@@ -405,7 +412,7 @@ module rt_bvh #(
     if (init) begin
       cur_ref_q[init_slot]   <= init_ref;
       cur_entry_q[init_slot] <= init_entry;
-      sp_q[init_slot]        <= init_resume ? SP_W'(init_walk.sp) : '0;
+      sp_q[init_slot]        <= init_resume ? init_walk[W_SP +: SP_W] : '0;
     end
   end
 
@@ -423,19 +430,20 @@ module rt_bvh #(
     end
     if (init && init_resume) begin
       for (int k = 0; k < SUSPEND; k++) begin
-        stack_q[stack_addr(init_slot, STK_W'(k))] <= {init_walk.stack_ref[k], init_walk.stack_entry[k]};
+        stack_q[stack_addr(init_slot, STK_W'(k))] <= {init_walk[W_REF + k * REF_W +: REF_W],
+                                                       init_walk[k * ENTRY_W +: ENTRY_W]};
       end
     end
   end
 
   // A suspended walk's part of its record, for done_slot: its candidate, sp
   // and the stack's window (entries at or above sp read as 0).
-  logic [SUSPEND-1:0][REF_W-1:0]   done_stack_ref;
-  logic [SUSPEND-1:0][ENTRY_W-1:0] done_stack_entry;
+  logic [SUSPEND*REF_W-1:0]   done_stack_ref;    // entry k at k * REF_W
+  logic [SUSPEND*ENTRY_W-1:0] done_stack_entry;  // entry k at k * ENTRY_W
   always_comb begin
     for (int k = 0; k < SUSPEND; k++) begin
-      {done_stack_ref[k], done_stack_entry[k]} = SP_W'(k) < sp_q[done_slot]
-          ? stack_q[stack_addr(done_slot, STK_W'(k))] : '0;
+      {done_stack_ref[k * REF_W +: REF_W], done_stack_entry[k * ENTRY_W +: ENTRY_W]} =
+          SP_W'(k) < sp_q[done_slot] ? stack_q[stack_addr(done_slot, STK_W'(k))] : '0;
     end
   end
   assign done_suspend = suspending_q[done_slot];
@@ -501,6 +509,9 @@ module rt_bvh #(
   // The stack never overflows: a push happens below the levels limit
   // (kBvhMaxLevels; checkImage refuses deeper images).
   `RT_CHECK_IF(a_stack_depth, box_valid && box_both, sp_q[box_slot] < SP_W'(STACK))
+  // The record's layout, as bvh_walk_t packs it.
+  `RT_ASSERT_STATIC(g_walk_layout_check, W_HIT + `RT_WALK_HIT_W == rt_pkg::BVH_WALK_W && SP_W == rt_pkg::BVH_SP_W,
+                    "rt_bvh: the offsets of bvh_walk_t's fields differ from rt_pkg")
 `endif
 
 endmodule

@@ -84,16 +84,17 @@ void RayQueues::suspend(size_t segment, uint32_t block, int bits) {
     stats_.bytesWritten += bytes;
     stats_.peakBytes = std::max(stats_.peakBytes, onChip_);
   }
-  writing_.push_back(r);
+  writing_.emplace(r.readyAt, r);
 }
 
 void RayQueues::endCycle() {
   const uint64_t now = memory_.cycle();
-  // Records join their queues in the order they were suspended, once written
-  // (a DRAM record may finish after a later on-chip one: it waits for it).
-  while (!writing_.empty() && writing_.front().readyAt <= now) {
-    queues_[writing_.front().block].push_back(writing_.front());
-    writing_.pop_front();
+  // Records join their queues once written, in the order their writes
+  // finish (ties: the order they were suspended).
+  while (!writing_.empty() && writing_.begin()->first <= now) {
+    const Record& r = writing_.begin()->second;
+    queues_[r.block].push_back(r);
+    writing_.erase(writing_.begin());
     ++waiting_;
   }
   stats_.byteCycles += onChip_;

@@ -99,7 +99,7 @@ class RayQueues {
   RayQueueConfig config_;
   MemorySystem& memory_;
   size_t fresh_, launched_ = 0;
-  std::deque<Record> writing_;                  // in the order of their writes
+  std::multimap<uint64_t, Record> writing_;     // by the cycle their write is done
   std::map<uint32_t, std::deque<Record>> queues_;  // block -> records, oldest first
   size_t waiting_ = 0;                          // records in queues_
   bool onBlock_ = false;
