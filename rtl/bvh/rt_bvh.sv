@@ -78,8 +78,11 @@
 //
 // Storage: one-hot state vectors (N bits each, reset); per-slot registers as
 // arrays written by index (no reset; written before read). The stacks of all
-// slots are one memory of N x BVH_STACK_DEPTH entries {ref, entry}: one write
-// port (the box answer's push), one read port (the pop lane).
+// slots, entries {ref, entry}, in two parts: each slot's bottom
+// BVH_SUSPEND_ENTRIES (the suspend window: a suspension reads them and a
+// resumption writes them at once) in flip-flops, and the entries above in one
+// memory of N x (BVH_STACK_DEPTH - BVH_SUSPEND_ENTRIES): one write port (the
+// box answer's push), one read port (the pop lane), a macro.
 //
 // Latency: every transition takes one clock edge. Throughput: per cycle one
 // allocation, one init, one visit, one node grant, one node response, one box
@@ -134,7 +137,14 @@ module rt_bvh #(
   localparam int STACK   = rt_pkg::BVH_STACK_DEPTH;
   localparam int SP_W    = $clog2(STACK + 1);                    // 0 .. STACK
   localparam int STK_W   = (STACK > 1) ? $clog2(STACK) : 1;
-  localparam int STK_AW  = $clog2(N * STACK);                    // stack memory address
+  // The stack in two parts: each slot's bottom BVH_SUSPEND_ENTRIES entries (the
+  // suspend window) in flip-flops, which a suspension reads and a resumption
+  // writes all at once; the entries above them in one memory of one read and
+  // one write port (a macro: docs/silicon.md).
+  localparam int WIN     = rt_pkg::BVH_SUSPEND_ENTRIES;
+  localparam int UPPER   = STACK - WIN;                          // entries above the window, per slot
+  localparam int WIN_AW  = $clog2(N * WIN);
+  localparam int UP_AW   = (N * UPPER > 1) ? $clog2(N * UPPER) : 1;
   localparam int CAND_W  = REF_W + ENTRY_W;                      // {ref, entry}
 
   // bvh_ref_t as plain bits, read into a local struct (Yosys 0.23 reads a
@@ -146,8 +156,13 @@ module rt_bvh #(
   } ref_t;
 
   // Where slot s keeps its stack entry k.
-  function automatic logic [STK_AW-1:0] stack_addr(input logic [SlotW-1:0] s, input logic [STK_W-1:0] k);
-    stack_addr = STK_AW'(s) * STK_AW'(STACK) + STK_AW'(k);
+  function automatic logic [WIN_AW-1:0] win_addr(input logic [SlotW-1:0] s, input logic [STK_W-1:0] k);
+    win_addr = WIN_AW'(s) * WIN_AW'(WIN) + WIN_AW'(k);
+  endfunction
+  function automatic logic [UP_AW-1:0] upper_addr(input logic [SlotW-1:0] s, input logic [STK_W-1:0] k);
+    logic [STK_W-1:0] above;  // the entry's place above the window
+    above = k - STK_W'(WIN);
+    upper_addr = UP_AW'(s) * UP_AW'(UPPER) + UP_AW'(above);
   endfunction
 
   // ---- State vectors (bit s = slot s) -------------------------------------------
@@ -165,7 +180,8 @@ module rt_bvh #(
   logic [REF_W-1:0]       cur_ref_q   [N];  // the candidate: its reference and entry
   logic [ENTRY_W-1:0]     cur_entry_q [N];
   logic [SP_W-1:0]        sp_q     [N];
-  logic [CAND_W-1:0]      stack_q  [N * STACK];
+  logic [CAND_W-1:0]      win_q    [N * WIN];    // stack entries 0 .. WIN-1 of each slot
+  logic [CAND_W-1:0]      upper_q  [N * UPPER];  // entries WIN .. STACK-1
   logic [31:0]            blk_q    [N];     // the treelet block of the last interior node entered
   logic [N-1:0]           suspending_q;     // DONE: the walk is set aside, not over
 
@@ -260,7 +276,9 @@ module rt_bvh #(
   logic [CAND_W-1:0] pop_top;
   assign pop_sp    = sp_q[pop_slot_q];
   assign pop_empty = pop_sp == '0;
-  assign pop_top   = stack_q[stack_addr(pop_slot_q, STK_W'(pop_sp - 1'b1))];
+  logic [STK_W-1:0]  pop_k;
+  assign pop_k     = STK_W'(pop_sp - 1'b1);
+  assign pop_top   = pop_k < STK_W'(WIN) ? win_q[win_addr(pop_slot_q, pop_k)] : upper_q[upper_addr(pop_slot_q, pop_k)];
 
   // ---- The box answer --------------------------------------------------------------------
   // Both children entered: the nearer (child 0 on a tie) is the candidate, the
@@ -426,11 +444,15 @@ module rt_bvh #(
   // entries come in at init (the window's; those above its sp are never read).
   always_ff @(posedge clk_i) begin : p_stack
     if (box_valid && box_both) begin
-      stack_q[stack_addr(box_slot, STK_W'(sp_q[box_slot]))] <= {box_ref[!box_pick], box_entry[!box_pick]};
+      if (sp_q[box_slot] < SP_W'(WIN)) begin
+        win_q[win_addr(box_slot, STK_W'(sp_q[box_slot]))] <= {box_ref[!box_pick], box_entry[!box_pick]};
+      end else begin
+        upper_q[upper_addr(box_slot, STK_W'(sp_q[box_slot]))] <= {box_ref[!box_pick], box_entry[!box_pick]};
+      end
     end
     if (init && init_resume) begin
       for (int k = 0; k < SUSPEND; k++) begin
-        stack_q[stack_addr(init_slot, STK_W'(k))] <= {init_walk[W_REF + k * REF_W +: REF_W],
+        win_q[win_addr(init_slot, STK_W'(k))] <= {init_walk[W_REF + k * REF_W +: REF_W],
                                                        init_walk[k * ENTRY_W +: ENTRY_W]};
       end
     end
@@ -443,7 +465,7 @@ module rt_bvh #(
   always_comb begin
     for (int k = 0; k < SUSPEND; k++) begin
       {done_stack_ref[k * REF_W +: REF_W], done_stack_entry[k * ENTRY_W +: ENTRY_W]} =
-          SP_W'(k) < sp_q[done_slot] ? stack_q[stack_addr(done_slot, STK_W'(k))] : '0;
+          SP_W'(k) < sp_q[done_slot] ? win_q[win_addr(done_slot, STK_W'(k))] : '0;
     end
   end
   assign done_suspend = suspending_q[done_slot];
