@@ -19,6 +19,7 @@ void checkChipOptions(const TraversalRunOptions& options) {
     throw InputError(fmt::format("--host-threads {}: must be 0 (one per core) or more", options.hostThreads));
   }
   memoryConfigOf(options).validate();
+  if (options.treelets) options.queues.validate();
 }
 
 ChipFigures& ChipFigures::operator+=(const ChipFigures& o) {

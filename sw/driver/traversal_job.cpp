@@ -87,7 +87,6 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
       throw InputError("--schedule treelet needs a treelet layout of the BVH: --bvh-treelet-bytes N (the on-chip "
                        "budget of a treelet, e.g. 32768; docs/scheduling.md)");
     }
-    config.queues.validate();
   }
   JobResult job;
   job.rays.assign(rays.begin(), rays.end());

@@ -512,17 +512,14 @@ class UnitRun {
     res_ = fx::wire_bits::unpackFixed<Desc::kResFieldList>(resWire_);
     const size_t k = ownRay(uint64_t(res_[0]), "result", true);
     shared_.finished[k] = 1;
+    // A walk's counts add to its ray's walks before it (none for its first).
     const size_t ray = shared_.rayOf(k);
-    if (k == ray) {  // a ray's first walk: its result is the whole trace's so far
-      shared_.resultElements[k] = fx::takeTraversalResult(res_, shared_.rays[ray].id, shared_.traces[ray]);
-    } else {  // a resumed walk counts on from the walks before it
-      fx::TraversalTrace part;
-      shared_.resultElements[k] = fx::takeTraversalResult(res_, shared_.rays[ray].id, part);
-      fx::TraversalTrace& trace = shared_.traces[ray];
-      trace.tests += part.tests;
-      trace.quadricTests += part.quadricTests;
-      trace.hit = part.hit;
-    }
+    fx::TraversalTrace part;
+    shared_.resultElements[k] = fx::takeTraversalResult(res_, shared_.rays[ray].id, part);
+    fx::TraversalTrace& trace = shared_.traces[ray];
+    trace.tests += part.tests;
+    trace.quadricTests += part.quadricTests;
+    trace.hit = part.hit;
     if constexpr (kSuspends) {
       if (top_.res_suspended_o) {  // not over: its record to the ray queues (its hit so far is in it)
         shared_.traces[ray].hit.reset();
@@ -700,7 +697,6 @@ TraversalRunStats runTraversalChip(std::vector<std::unique_ptr<Clocked>>& pool, 
                                    "systemc and rtl models",
                                    Clocked::kModel, Desc::kNames.unit));
     }
-    options.queues.validate();
     shared.dispatcher.useQueues(std::make_unique<mem::RayQueues>(options.queues, rays.size(), memory));
   }
   std::deque<trav_detail::UnitRun<Clocked, Image>> runs;  // (not movable: a deque grows in place)

@@ -1,6 +1,7 @@
 #include "bvh/rt_bvh_model.h"
 
 #include <array>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -248,23 +249,22 @@ void rt_bvh_model::mark(int k, State st, bool join) {
 // not culled), stack and closest hit, in the candidate's block.
 void rt_bvh_model::load(int k) {
   Slot& s = slots_[size_t(k)];
-  s.anyHit = false;
-  s.hitSeen = false;
-  s.suspending = false;
+  std::optional<fx::BvhWalk> walk;
   if (const walk_in* resumed = resumedWalk()) {
     std::array<uint32_t, size_t(fx::wireWords(rt_bvh_unit::WALK_W))> wire{};
     fromValue<rt_bvh_unit::WALK_W>(resumed->walk, wire);
-    const fx::BvhWalk walk = fx::bvhWalkOf(fx::wire_bits::unpackFixed<fx::kBvhWalkFields>(wire), uint32_t(k));
-    const fx::QRay ray = loadRay(k, walk.trace.hit);
-    s.setup = fx::BvhRaySetup::setup(ray);
-    s.anyHit = ray.anyHit;
-    s.cur = Candidate{walk.next->ref, walk.next->entry};
-    s.sp = int(walk.stack.size());
-    for (size_t e = 0; e < walk.stack.size(); ++e) stacks_[size_t(k)][e] = Candidate{walk.stack[e].ref, walk.stack[e].entry};
+    walk = fx::bvhWalkOf(fx::wire_bits::unpackFixed<fx::kBvhWalkFields>(wire), uint32_t(k));
+  }
+  const fx::QRay ray = loadRay(k, walk ? walk->trace.hit : std::nullopt);
+  s.setup = fx::BvhRaySetup::setup(ray);
+  s.anyHit = ray.anyHit;
+  s.hitSeen = false;
+  s.suspending = false;
+  if (walk) {
+    s.cur = Candidate{walk->next->ref, walk->next->entry};
+    s.sp = int(walk->stack.size());
+    for (size_t e = 0; e < walk->stack.size(); ++e) stacks_[size_t(k)][e] = Candidate{walk->stack[e].ref, walk->stack[e].entry};
   } else {
-    const fx::QRay ray = loadRay(k);
-    s.setup = fx::BvhRaySetup::setup(ray);
-    s.anyHit = ray.anyHit;
     std::array<uint32_t, size_t(fx::wireWords(rt_bvh_unit::CFG_W))> root{};
     fromValue<rt_bvh_unit::CFG_W>(cfg_i.read(), root);
     s.cur = Candidate{unpackRef(root.data()), 0};
