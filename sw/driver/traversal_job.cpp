@@ -79,13 +79,14 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
                                  config.memLatencyJitter));
   }
   if (config.schedule == Schedule::Treelet) {
-    if constexpr (!requires { Unit::kWalkFieldList; }) {
+    if constexpr (!fx::SuspendsWalks<Unit>) {
       throw InputError(fmt::format("--schedule treelet: the {} unit cannot set walks aside; the treelet schedule "
-                                   "runs on the BVH unit (--accel bvh)",
+                                   "runs on the BVH and octree units (--accel bvh|octree)",
                                    Unit::kNames.unit));
     } else if (!Unit::hasTreelets(image)) {
-      throw InputError("--schedule treelet needs a treelet layout of the BVH: --bvh-treelet-bytes N (the on-chip "
-                       "budget of a treelet, e.g. 32768; docs/scheduling.md)");
+      throw InputError(fmt::format("--schedule treelet needs a treelet layout: {} N (the on-chip budget of a "
+                                   "treelet, e.g. 32768; docs/scheduling.md)",
+                                   Unit::kTreeletFlag));
     }
   }
   JobResult job;
@@ -120,7 +121,7 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
     job.modelSeconds += secondsSince(start);
     start = std::chrono::steady_clock::now();
     golden.run(image, batch, goldenTraces, {});
-    if constexpr (requires { Unit::treeletCrossings(image, batch.front()); }) {
+    if constexpr (fx::SuspendsWalks<Unit>) {
       for (const fx::QRay& ray : batch) treelets += Unit::treeletCrossings(image, ray);
     }
     job.goldenSeconds += secondsSince(start);

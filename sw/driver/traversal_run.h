@@ -250,13 +250,7 @@ class UnitRun {
   static constexpr size_t kResWords = size_t(fx::wireWords(fx::recordBits(Desc::kResFields)));
   static constexpr size_t kVisitWords = size_t(fx::wireWords(fx::recordBits(kVisitFields)));
   static constexpr size_t kFirstVisits = 16;  // a ray's visit list starts this long
-  static constexpr size_t kWalkWords = [] {
-    if constexpr (requires { Desc::kWalkFieldList; }) {
-      return size_t(fx::wireWords(fx::recordBits(Desc::kWalkFieldList)));
-    } else {
-      return size_t(0);
-    }
-  }();
+  static constexpr size_t kWalkWords = size_t(fx::wireWords(fx::kWalkBitsOf<Desc>));
   static size_t visitRay(uint64_t visit) { return uint32_t(visit >> kVisitRayLsb); }  // {ray_id, element}
 
  public:
@@ -610,7 +604,7 @@ class ChipRun {
   // end of the run, the watchdog.
   void endCycle() {
     // The walks set aside in this cycle, unit by unit, into the ray queues.
-    if constexpr (requires { Desc::kWalkFieldList; }) {
+    if constexpr (fx::SuspendsWalks<Desc>) {
       if (mem::RayQueues* queues = shared_.dispatcher.queues()) {
         for (auto& unit : units_) {
           for (SuspendedWalk& w : unit.suspended()) {
@@ -693,8 +687,8 @@ TraversalRunStats runTraversalChip(std::vector<std::unique_ptr<Clocked>>& pool, 
   if (options.treelets) {
     if constexpr (!trav_detail::UnitRun<Clocked, Image>::kSuspends) {
       throw InputError(fmt::format("--schedule treelet: the {} model of the {} unit cannot set walks aside (no "
-                                   "suspend and resume ports); the treelet schedule runs on the BVH unit's golden, "
-                                   "systemc and rtl models",
+                                   "suspend and resume ports); the treelet schedule runs on the BVH's golden, systemc "
+                                   "and rtl models and the octree's golden and systemc models",
                                    Clocked::kModel, Desc::kNames.unit));
     }
     shared.dispatcher.useQueues(std::make_unique<mem::RayQueues>(options.queues, rays.size(), memory));

@@ -11,6 +11,7 @@
 #include "common/sah.h"
 #include "golden/isect.h"
 #include "golden/memory_image.h"
+#include "golden/record_bits.h"
 #include "golden/wide.h"
 
 namespace lancer::fx {
@@ -240,23 +241,8 @@ void layoutBvhTreelets(BvhImage& image, uint32_t blockNodes) {
   if (!std::has_single_bit(blockNodes)) {
     throw InputError(fmt::format("BVH treelet blocks of {} nodes: a block must be a power of two", blockNodes));
   }
-  // Primitives in leaf order, each kind in its table.
-  std::vector<QTriangle> triangles;
-  std::vector<QQuadric> quadrics;
-  triangles.reserve(image.triangles.size());
-  quadrics.reserve(image.quadrics.size());
-  for (uint32_t& entry : image.indices) {
-    const uint32_t place = entryPlace(entry);
-    if (isQuadricEntry(entry)) {
-      entry = quadricEntry(uint32_t(quadrics.size()));
-      quadrics.push_back(image.quadrics[place]);
-    } else {
-      entry = triangleEntry(uint32_t(triangles.size()));
-      triangles.push_back(image.triangles[place]);
-    }
-  }
-  image.triangles = std::move(triangles);
-  image.quadrics = std::move(quadrics);
+  // Primitives in leaf order (each is listed once), each kind in its table.
+  renumberPrimitivesByListing(image.indices, image.triangles, image.quadrics);
   // Treelets, packed next-fit into the blocks.
   const std::vector<std::vector<uint32_t>> treelets = formTreelets(image.nodes, blockNodes);
   std::vector<uint32_t> placed(image.nodes.size());
@@ -311,41 +297,42 @@ void continueBvhWalk(const BvhImage& image, const QRay& ray, BvhWalk& walk, uint
   Walker{image, ray, setup, walk, nullptr, block, true}.run();
 }
 
+namespace {
+
+u128 refValue(const BvhRef& r) { return wire_bits::packValue<kBvhRefFields>({r.leaf ? 1u : 0u, r.count, r.first}); }
+BvhRef refOf(u128 value) {
+  const auto v = wire_bits::unpackValue<kBvhRefFields>(value);
+  return BvhRef{v[0] != 0, uint32_t(v[1]), uint32_t(v[2])};
+}
+
+}  // namespace
+
 std::array<u128, valueCount(kBvhWalkFields)> bvhWalkValues(const BvhWalk& walk) {
   if (walk.stack.size() > size_t(kBvhSuspendEntries) || !walk.next) {
     throw std::logic_error("bvh_walk_t: a finished walk, or a stack deeper than the suspend window");
   }
-  const auto ref = [](const BvhRef& r) {
-    return (u128(r.leaf ? 1 : 0) << (kBvhCountBits + 32)) | (u128(r.count) << 32) | r.first;
-  };
   std::array<u128, valueCount(kBvhWalkFields)> v{};
-  size_t k = 0;
-  const IsectResult hit = walk.trace.hit.value_or(IsectResult{});
-  for (const u128 x : {u128(walk.trace.hit ? 1 : 0), u128(hit.primId), hit.tNum, hit.det, hit.uNum, hit.vNum,
-                       ref(walk.next->ref), walk.next->entry, u128(walk.stack.size())}) {
-    v[k++] = x;
+  putWalkHit(walk.trace.hit, v);
+  size_t k = size_t(kWalkHitFields);
+  for (const u128 x : {refValue(walk.next->ref), walk.next->entry, u128(walk.stack.size())}) v[k++] = x;
+  for (size_t e = 0; e < walk.stack.size(); ++e) {
+    v[k + e] = refValue(walk.stack[e].ref);
+    v[k + size_t(kBvhSuspendEntries) + e] = walk.stack[e].entry;
   }
-  for (int e = 0; e < kBvhSuspendEntries; ++e) v[k + size_t(e)] = e < int(walk.stack.size()) ? ref(walk.stack[size_t(e)].ref) : 0;
-  k += kBvhSuspendEntries;
-  for (int e = 0; e < kBvhSuspendEntries; ++e) v[k + size_t(e)] = e < int(walk.stack.size()) ? walk.stack[size_t(e)].entry : 0;
   return v;
 }
 
 BvhWalk bvhWalkOf(std::span<const u128> v, uint32_t rayId) {
-  const auto ref = [](u128 x) {
-    return BvhRef{((x >> (kBvhCountBits + 32)) & 1) != 0, uint32_t(x >> 32) & ((1u << kBvhCountBits) - 1),
-                  uint32_t(x)};
-  };
   BvhWalk walk;
-  if (v[0] != 0) {
-    walk.trace.hit = IsectResult{.rayId = rayId, .primId = uint32_t(v[1]), .hit = true, .tNum = v[2], .det = v[3],
-                                 .uNum = v[4], .vNum = v[5]};
-  }
-  walk.next = BvhWalkEntry{ref(v[6]), v[7]};
-  const size_t sp = size_t(v[8]);
+  walk.trace.hit = walkHitOf(v, rayId);
+  constexpr size_t k = size_t(kWalkHitFields);
+  walk.next = BvhWalkEntry{refOf(v[k]), v[k + 1]};
+  const size_t sp = size_t(v[k + 2]);
   if (sp > size_t(kBvhSuspendEntries)) throw std::logic_error("bvh_walk_t: sp beyond the suspend window");
   walk.stack.reserve(kBvhStackDepth);
-  for (size_t e = 0; e < sp; ++e) walk.stack.push_back(BvhWalkEntry{ref(v[9 + e]), v[9 + kBvhSuspendEntries + e]});
+  for (size_t e = 0; e < sp; ++e) {
+    walk.stack.push_back(BvhWalkEntry{refOf(v[k + 3 + e]), v[k + 3 + size_t(kBvhSuspendEntries) + e]});
+  }
   return walk;
 }
 

@@ -61,8 +61,8 @@ struct BvhImage {
   uint32_t treeletNodes = 0;         // node-table entries of a treelet block (a power of two)
   size_t treelets = 0;               // connected subtrees, packed into the blocks
   size_t paddingNodes = 0;           // unused entries inside the blocks (never read)
-  // The treelet block of interior node `index` (the treelet layout only).
-  uint32_t blockOf(uint32_t index) const { return index / treeletNodes; }
+  // The treelet block of interior node `index` (one block without the layout).
+  uint32_t blockOf(uint32_t index) const { return treeletNodes ? index / treeletNodes : 0; }
 };
 
 inline constexpr int kDefaultBvhLeafSize = 4;

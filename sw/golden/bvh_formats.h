@@ -78,19 +78,13 @@ inline constexpr int kBvhSpBits = std::bit_width(unsigned(kBvhStackDepth));  // 
 inline constexpr int kBvhBlockShiftBits = 5;                                  // a block of 2^0 .. 2^31 entries
 // ---- bvh_walk_t: a suspended walk: its closest hit so far, the node it enters
 // next, its stack --------------------------------------------------------------------
-inline constexpr FieldSpec kBvhWalkFields[] = {
-    {"has_hit", 1, 1, false, "1: the ray has a closest hit so far (the fields below); 0: none yet"},
-    {"prim_id", kPrimIdBits, 1, false, "the closest hit so far: as isect_res_t (zero without one)"},
-    {"t_num", kTNumBits, 1, false, "as isect_res_t"},
-    {"det", kDetAbsBits, 1, false, "as isect_res_t"},
-    {"u_num", kBaryBits, 1, false, "as isect_res_t"},
-    {"v_num", kBaryBits, 1, false, "as isect_res_t"},
+inline constexpr auto kBvhWalkFields = walkRecordFields(std::array<FieldSpec, 5>{{
     {"next_ref", kBvhRefBits, 1, false, "the node entered on resuming (bvh_ref_t; box test passed, not culled)"},
     {"next_entry", kBvhEntryBits, 1, false, "its entry parameter"},
     {"sp", kBvhSpBits, 1, false, "stack entries, 0 .. BVH_SUSPEND_ENTRIES"},
     {"stack_ref", kBvhRefBits, kBvhSuspendEntries, false, "stack entry k (bottom first; k < sp): bvh_ref_t"},
     {"stack_entry", kBvhEntryBits, kBvhSuspendEntries, false, "its entry parameter"},
-};
+}});
 
 inline constexpr RecordSpec kBvhRecords[] = {
     {"bvh_ref_t", "BVH_REF_W", "a BVH child reference", kBvhRefFields},

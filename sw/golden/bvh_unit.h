@@ -43,11 +43,12 @@ struct BvhUnit : UnitBase<UnitKind::Bvh, BvhImage, BvhNode, kBvhNodeFields, kBvh
              fmt::format("BVH unit's largest leaf, 1..{} triangles (default {})", kBvhMaxLeafSize,
                          kDefaultBvhLeafSize),
              true, {"bvh_leaf_size"}, true, kBvhMaxLeafSize},
-            {"--bvh-treelet-bytes", &AccelOptions::bvhTreeletBytes,
+            {kTreeletFlag, &AccelOptions::bvhTreeletBytes,
              fmt::format("BVH unit's treelet layout: node bytes of a treelet block, at least one node ({} bytes); "
                          "0: depth-first (docs/scheduling.md)", kNodeBytes),
              false, {"bvh_treelet_bytes"}, false}};
   }
+  static constexpr const char* kTreeletFlag = "--bvh-treelet-bytes";
   static constexpr uint32_t kNodeBytes = uint32_t(kBvhNodeBits + 7) / 8;
   static_assert(AccelOptions{}.bvhLeafSize == kDefaultBvhLeafSize, "a replay omits --bvh-leaf at the default");
   static Image build(std::vector<QTriangle> triangles, const AccelOptions& options, std::vector<QQuadric> quadrics = {}) {
@@ -55,7 +56,7 @@ struct BvhUnit : UnitBase<UnitKind::Bvh, BvhImage, BvhNode, kBvhNodeFields, kBvh
                                 std::move(quadrics));
     if (options.bvhTreeletBytes != 0) {
       if (options.bvhTreeletBytes < int(kNodeBytes)) {
-        throw InputError(fmt::format("--bvh-treelet-bytes {}: a treelet holds at least one node ({} bytes)",
+        throw InputError(fmt::format("{} {}: a treelet holds at least one node ({} bytes)", kTreeletFlag,
                                      options.bvhTreeletBytes, kNodeBytes));
       }
       layoutBvhTreelets(image, std::bit_floor(uint32_t(options.bvhTreeletBytes) / kNodeBytes));
@@ -85,11 +86,7 @@ struct BvhUnit : UnitBase<UnitKind::Bvh, BvhImage, BvhNode, kBvhNodeFields, kBvh
   static uint32_t treeletBlockShift(const Image& image) {
     return image.treeletNodes ? uint32_t(std::countr_zero(image.treeletNodes)) : 0;
   }
-  struct Suspended {
-    uint32_t block;
-    int bits;
-  };
-  static Suspended suspended(const Image& image, std::span<const u128> walk) {
+  static WaitingWalk suspended(const Image& image, std::span<const u128> walk) {
     const BvhWalk w = bvhWalkOf(walk, 0);
     return {w.waitsFor(image), bvhSuspendedBits(w.stack.size())};
   }

@@ -1,7 +1,9 @@
 #include "golden/octree.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <queue>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -9,6 +11,7 @@
 #include "common/error.h"
 #include "golden/isect.h"
 #include "golden/memory_image.h"
+#include "golden/record_bits.h"
 #include "golden/wide.h"
 
 namespace lancer::fx {
@@ -123,6 +126,175 @@ struct Walker {
   }
 };
 
+bool behind(const std::array<OctT, 3>& t1) { return negative(t1[0]) || negative(t1[1]) || negative(t1[2]); }
+
+// rt_octree's walk, step for step (docs/octree-unit.md, "Slot state machine"),
+// between its reads of child groups: the reads are where a treelet schedule
+// may set it aside. The recursive Walker above is the reference it must equal.
+struct Stepper {
+  const OctreeImage& image;
+  const QRay& ray;
+  const OctreeRaySetup& setup;
+  OctreeWalk& walk;
+  TreeletCrossings* crossings = nullptr;  // counted where the layout has treelet blocks
+  uint32_t block = 0;                     // the block the walk is in
+  bool suspends = false;                  // stop before a read in another block
+  bool groupHeld = false;                 // the stack top's group is in the unit (group_valid)
+
+  void run() {
+    if (walk.next == OctreeWalk::Next::Start) start();
+    while (walk.next == OctreeWalk::Next::Descend || walk.next == OctreeWalk::Next::Refill) {
+      if (image.treeletNodes != 0 && image.blockOf(walk.group) != block) {
+        const bool suspension = walk.stack.size() <= size_t(kOctreeSuspendLevels);
+        if (suspends && suspension) return;  // walk.group waits for its block
+        block = image.blockOf(walk.group);
+        if (crossings) {
+          ++crossings->crossings;
+          if (suspension) {
+            ++crossings->suspensions;
+            crossings->stateBits += uint64_t(octreeSuspendedBits(walk.stack.size()));
+          }
+        }
+      }
+      groupHeld = true;
+      if (walk.next == OctreeWalk::Next::Descend) {
+        descend();
+      } else {
+        const OctreeLevel& top = walk.stack.back();
+        enter(top.first + uint32_t(top.child ^ setup.mirror));
+      }
+    }
+  }
+
+  // Revelles' root test, then the root (its record is the unit's configuration).
+  void start() {
+    const OctT in = std::max({setup.t0[0], setup.t0[1], setup.t0[2]});
+    const OctT out = std::min({setup.t1[0], setup.t1[1], setup.t1[2]});
+    walk.t0 = setup.t0;
+    walk.t1 = setup.t1;
+    if (!(in < out) || behind(walk.t1)) {
+      walk.next = OctreeWalk::Next::Over;
+      return;
+    }
+    enter(0);
+  }
+
+  // ENTER: the visit; an interior node waits for its group, a leaf is tested.
+  void enter(uint32_t index) {
+    walk.trace.visits.push_back(index);
+    const OctreeNode& node = image.nodes[index];
+    if (!node.leaf) {
+      walk.next = OctreeWalk::Next::Descend;
+      walk.group = node.first;
+      return;
+    }
+    for (uint32_t k = 0; k < node.count; ++k) testEntry(walk.trace, ray, tablesOf(image), image.indices[node.first + k]);
+    const auto bound = walkBound(ray, walk.trace.hit);
+    if ((ray.anyHit && walk.trace.hit) || (bound && hitWithin(*bound, walk.t1, setup))) {
+      walk.next = OctreeWalk::Next::Over;
+      return;
+    }
+    advance();
+  }
+
+  // DESCEND into the first child; on an axis the ray never crosses, the side
+  // of the mid-plane the origin lies on (the node's corner from the path).
+  void descend() {
+    const int depth = int(walk.stack.size());
+    std::array<OctT, 3> tm{};
+    for (int a = 0; a < 3; ++a) {
+      if (setup.active[a]) {
+        tm[a] = midpoint(walk.t0[a], walk.t1[a]);
+        continue;
+      }
+      int64_t lo = 0;
+      for (int k = 0; k < depth; ++k) lo += int64_t((walk.stack[size_t(k)].child >> (2 - a)) & 1) << (kPosBits - 1 - k);
+      tm[a] = setup.origin[a] < lo + (int64_t(1) << (kPosBits - 1 - depth)) ? kPlusInf : kMinusInf;
+    }
+    const int child = firstChild(walk.t0, tm);
+    walk.stack.push_back(OctreeLevel{walk.group, uint8_t(child)});
+    for (int a = 0; a < 3; ++a) ((child >> (2 - a)) & 1 ? walk.t0 : walk.t1)[size_t(a)] = tm[a];
+    if (behind(walk.t1)) {
+      advance();
+    } else {
+      enter(walk.group + uint32_t(child ^ setup.mirror));
+    }
+  }
+
+  // The advance: to the next sibling across the exit plane (Revelles' table
+  // 2), or up a level (the parent's parameters from the child's).
+  void advance() {
+    while (!walk.stack.empty()) {
+      OctreeLevel& top = walk.stack.back();
+      const int x = exitAxis(walk.t1);
+      const int bit = 4 >> x;
+      if (!(top.child & bit)) {
+        const OctT t0 = walk.t0[size_t(x)];
+        walk.t0[size_t(x)] = walk.t1[size_t(x)];
+        walk.t1[size_t(x)] = OctT{2 * walk.t1[size_t(x)].value - t0.value, 0};
+        top.child = uint8_t(top.child | bit);
+        if (behind(walk.t1)) continue;
+        if (groupHeld) {
+          enter(top.first + uint32_t(top.child ^ setup.mirror));
+        } else {
+          walk.next = OctreeWalk::Next::Refill;
+          walk.group = top.first;
+        }
+        return;
+      }
+      for (int a = 0; a < 3; ++a) {
+        if (!setup.active[a]) continue;
+        OctT& t0 = walk.t0[size_t(a)];
+        OctT& t1 = walk.t1[size_t(a)];
+        if ((top.child >> (2 - a)) & 1) {
+          t0.value = 2 * t0.value - t1.value;
+        } else {
+          t1.value = 2 * t1.value - t0.value;
+        }
+      }
+      walk.stack.pop_back();
+      groupHeld = false;
+    }
+    walk.next = OctreeWalk::Next::Over;
+  }
+};
+
+// The tree of child groups (each named by its first node) cut into treelets,
+// each its groups ascending; treelets in the order of their roots.
+std::vector<std::vector<uint32_t>> formOctreeTreelets(const std::vector<OctreeNode>& nodes, uint32_t blockGroups) {
+  std::vector<std::vector<uint32_t>> treelets;
+  if (nodes.empty() || nodes[0].leaf) return treelets;
+  using Group = std::pair<int, uint32_t>;  // (depth, first node): the shallowest, then the lowest index
+  std::priority_queue<uint32_t, std::vector<uint32_t>, std::greater<>> roots;
+  std::vector<int> depthOf(nodes.size(), 0);
+  roots.push(nodes[0].first);
+  depthOf[nodes[0].first] = 1;
+  while (!roots.empty()) {
+    const uint32_t root = roots.top();
+    roots.pop();
+    std::vector<uint32_t> members{root};
+    std::priority_queue<Group, std::vector<Group>, std::greater<>> frontier;
+    const auto open = [&](uint32_t group) {
+      for (uint32_t n = group; n < group + uint32_t(kOctreeChildren); ++n) {
+        if (nodes[n].leaf) continue;
+        depthOf[nodes[n].first] = depthOf[group] + 1;
+        frontier.emplace(depthOf[group] + 1, nodes[n].first);
+      }
+    };
+    open(root);
+    while (members.size() < blockGroups && !frontier.empty()) {
+      const uint32_t next = frontier.top().second;
+      frontier.pop();
+      members.push_back(next);
+      open(next);
+    }
+    for (; !frontier.empty(); frontier.pop()) roots.push(frontier.top().second);
+    std::sort(members.begin(), members.end());
+    treelets.push_back(std::move(members));
+  }
+  return treelets;
+}
+
 }  // namespace
 
 int defaultOctreeDepth(size_t triangles) {
@@ -210,6 +382,120 @@ OctreeTrace traverseOctree(const OctreeImage& image, const QRay& ray) {
   if (!(enter < leave)) return trace;
   Walker{image, ray, setup, trace}.visit(0, Box{}, setup.t0, setup.t1);
   return trace;
+}
+
+void layoutOctreeTreelets(OctreeImage& image, uint32_t blockNodes) {
+  if (!std::has_single_bit(blockNodes) || blockNodes < uint32_t(kOctreeChildren)) {
+    throw InputError(fmt::format("octree treelet blocks of {} nodes: a block is a power of two of at least one "
+                                 "child group ({} nodes)",
+                                 blockNodes, kOctreeChildren));
+  }
+  const uint32_t blockGroups = blockNodes / uint32_t(kOctreeChildren);
+  // Treelets, packed next-fit into the blocks after the root's slot (entry 0
+  // and seven entries of padding, so that every group is aligned).
+  const std::vector<std::vector<uint32_t>> treelets = formOctreeTreelets(image.nodes, blockGroups);
+  std::vector<uint32_t> placed(image.nodes.size());
+  uint64_t block = 0, used = 1;
+  for (const std::vector<uint32_t>& t : treelets) {
+    if (used + t.size() > blockGroups) {
+      ++block;
+      used = 0;
+    }
+    for (size_t k = 0; k < t.size(); ++k) placed[t[k]] = uint32_t((block * blockGroups + used + k) * kOctreeChildren);
+    used += t.size();
+  }
+  std::vector<OctreeNode> nodes(size_t(block * blockGroups + used) * kOctreeChildren, OctreeNode{true, 0, 0});
+  const auto relink = [&](OctreeNode node) {
+    if (!node.leaf) node.first = placed[node.first];
+    return node;
+  };
+  nodes[0] = relink(image.nodes[0]);
+  for (const std::vector<uint32_t>& t : treelets) {
+    for (uint32_t group : t) {
+      for (uint32_t c = 0; c < uint32_t(kOctreeChildren); ++c) nodes[placed[group] + c] = relink(image.nodes[group + c]);
+    }
+  }
+  // The index list in node-table order, then the primitives by first listing.
+  std::vector<uint32_t> indices;
+  indices.reserve(image.indices.size());
+  for (OctreeNode& node : nodes) {
+    if (!node.leaf || node.count == 0) continue;
+    const auto run = std::span(image.indices).subspan(node.first, node.count);
+    node.first = uint32_t(indices.size());
+    indices.insert(indices.end(), run.begin(), run.end());
+  }
+  renumberPrimitivesByListing(indices, image.triangles, image.quadrics);
+  for (const OctreeNode& node : nodes) {
+    if (node.leaf && node.count > 1) std::sort(indices.begin() + node.first, indices.begin() + node.first + node.count);
+  }
+  image.paddingNodes = nodes.size() - image.nodes.size();
+  image.nodes = std::move(nodes);
+  image.indices = std::move(indices);
+  image.treeletNodes = blockNodes;
+  image.treelets = treelets.size();
+  checkRegionFits("octree", "node table", image.nodes.size(), "lower --octree-depth or raise --octree-treelet-bytes");
+}
+
+OctreeWalk startOctreeWalk(const OctreeImage& image) {
+  OctreeWalk walk;
+  walk.group = image.nodes.empty() || image.nodes[0].leaf ? 0 : image.nodes[0].first;
+  walk.stack.reserve(size_t(kOctreeStackDepth));
+  return walk;
+}
+
+void continueOctreeWalk(const OctreeImage& image, const QRay& ray, OctreeWalk& walk, uint32_t block) {
+  const OctreeRaySetup setup = OctreeRaySetup::setup(ray);
+  Stepper{image, ray, setup, walk, nullptr, block, true}.run();
+}
+
+std::array<u128, valueCount(kOctreeWalkFields)> octreeWalkValues(const OctreeWalk& walk) {
+  const bool refill = walk.next == OctreeWalk::Next::Refill;
+  if (walk.stack.size() > size_t(kOctreeSuspendLevels) || (walk.next != OctreeWalk::Next::Descend && !refill)) {
+    throw std::logic_error("octree_walk_t: a walk not waiting for a group, or a stack deeper than the suspend window");
+  }
+  std::array<u128, valueCount(kOctreeWalkFields)> v{};
+  putWalkHit(walk.trace.hit, v);
+  size_t k = size_t(kWalkHitFields);
+  for (const u128 x : {u128(refill ? 1 : 0), u128(walk.group), u128(walk.stack.size())}) v[k++] = x;
+  for (const auto* t : {&walk.t0, &walk.t1}) {
+    for (const OctT& p : *t) v[k++] = p.inf == 0 ? u128(p.value) : 0;
+  }
+  for (size_t e = 0; e < walk.stack.size(); ++e) {
+    v[k + e] = walk.stack[e].first;
+    v[k + size_t(kOctreeSuspendLevels) + e] = walk.stack[e].child;
+  }
+  return v;
+}
+
+OctreeWalk octreeWalkOf(std::span<const u128> v, const QRay& ray) {
+  const OctreeRaySetup setup = OctreeRaySetup::setup(ray);
+  OctreeWalk walk;
+  walk.trace.hit = walkHitOf(v, ray.id);
+  size_t k = size_t(kWalkHitFields);
+  walk.next = v[k] != 0 ? OctreeWalk::Next::Refill : OctreeWalk::Next::Descend;
+  walk.group = uint32_t(v[k + 1]);
+  const size_t depth = size_t(v[k + 2]);
+  if (depth > size_t(kOctreeSuspendLevels)) throw std::logic_error("octree_walk_t: depth beyond the suspend window");
+  k += 3;
+  for (auto* t : {&walk.t0, &walk.t1}) {
+    const OctT inactive = t == &walk.t0 ? kMinusInf : kPlusInf;
+    for (int a = 0; a < 3; ++a, ++k) (*t)[size_t(a)] = setup.active[a] ? OctT{i128(v[k]), 0} : inactive;
+  }
+  walk.stack.reserve(size_t(kOctreeStackDepth));
+  for (size_t e = 0; e < depth; ++e) {
+    walk.stack.push_back(OctreeLevel{uint32_t(v[k + e]), uint8_t(v[k + size_t(kOctreeSuspendLevels) + e])});
+  }
+  return walk;
+}
+
+TreeletCrossings octreeTreeletCrossings(const OctreeImage& image, const QRay& ray) {
+  TreeletCrossings crossings;
+  if (image.treeletNodes == 0) return crossings;
+  OctreeWalk walk = startOctreeWalk(image);
+  const OctreeRaySetup setup = OctreeRaySetup::setup(ray);
+  Stepper{image, ray, setup, walk, &crossings, walk.waitsFor(image)}.run();
+  crossings.rays = 1;
+  return crossings;
 }
 
 }  // namespace lancer::fx

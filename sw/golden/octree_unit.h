@@ -2,6 +2,7 @@
 
 // The octree unit's descriptor (golden/unit.h lists what a descriptor provides).
 
+#include <bit>
 #include <optional>
 
 #include "golden/octree.h"
@@ -25,20 +26,38 @@ struct OctreeUnit : UnitBase<UnitKind::Octree, OctreeImage, OctreeNode, kOctreeN
     return image.nodes.empty() ? std::array<u128, 3>{} : nodeValues(image.nodes[0]);
   }
 
-  // --octree-depth and --octree-leaf, or the heuristics where 0.
+  // --octree-depth and --octree-leaf, or the heuristics where 0;
+  // --octree-treelet-bytes: the treelet layout (layoutOctreeTreelets), blocks
+  // of the most nodes (a power of two, whole child groups) in that many bytes.
   static std::vector<BuildOption> buildOptions() {
     return {{"--octree-depth", &AccelOptions::octreeMaxDepth,
              fmt::format("Octree maximum depth, 1..{} (default: from the triangle count)", kOctreeMaxDepth), true,
              {"octree_max_depth"}, true, kOctreeMaxDepth},
             {"--octree-leaf", &AccelOptions::octreeLeafSize,
              fmt::format("Octree leaf size: split nodes holding more triangles (default {})", kDefaultOctreeLeafSize),
-             true, {"octree_leaf_size"}}};
+             true, {"octree_leaf_size"}},
+            {kTreeletFlag, &AccelOptions::octreeTreeletBytes,
+             fmt::format("Octree unit's treelet layout: node bytes of a treelet block, at least one child group ({} "
+                         "bytes); 0: depth-first (docs/scheduling.md)",
+                         kGroupBytes),
+             false, {"octree_treelet_bytes"}, false}};
   }
+  static constexpr const char* kTreeletFlag = "--octree-treelet-bytes";
+  static constexpr uint32_t kNodeBytes = uint32_t(kOctreeNodeBits + 7) / 8;
+  static constexpr uint32_t kGroupBytes = kNodeBytes * uint32_t(kOctreeChildren);
   static Image build(std::vector<QTriangle> triangles, const AccelOptions& options, std::vector<QQuadric> quadrics = {}) {
     const size_t primitives = triangles.size() + quadrics.size();
     const int depth = options.octreeMaxDepth ? options.octreeMaxDepth : defaultOctreeDepth(primitives);
     const int leaf = options.octreeLeafSize ? options.octreeLeafSize : kDefaultOctreeLeafSize;
-    return buildOctreeImage(std::move(triangles), depth, leaf, std::move(quadrics));
+    Image image = buildOctreeImage(std::move(triangles), depth, leaf, std::move(quadrics));
+    if (options.octreeTreeletBytes != 0) {
+      if (options.octreeTreeletBytes < int(kGroupBytes)) {
+        throw InputError(fmt::format("{} {}: a treelet holds at least one child group ({} bytes)", kTreeletFlag,
+                                     options.octreeTreeletBytes, kGroupBytes));
+      }
+      layoutOctreeTreelets(image, std::bit_floor(uint32_t(options.octreeTreeletBytes) / kNodeBytes));
+    }
+    return image;
   }
 
   static void checkImage(const Image& image, std::span<const QRay> rays) {
@@ -51,6 +70,25 @@ struct OctreeUnit : UnitBase<UnitKind::Octree, OctreeImage, OctreeNode, kOctreeN
   }
 
   static TraversalTrace traverse(const Image& image, const QRay& ray) { return traverseOctree(image, ray); }
+  // The treelet schedule (docs/scheduling.md): the unit suspends walks
+  // (octree_walk_t) before a child-group read in another block of a treelet
+  // layout, 2^shift node-table entries each (cfg_block_shift_i); a suspended
+  // walk waits for the block of the group it reads next, and a ray queue holds
+  // octreeSuspendedBits of it.
+  static constexpr const auto& kWalkFieldList = kOctreeWalkFields;
+  static constexpr int kBlockShiftBits = kOctreeBlockShiftBits;  // cfg_block_shift_i
+  static bool hasTreelets(const Image& image) { return image.treeletNodes != 0; }
+  static uint32_t treeletBlockShift(const Image& image) {
+    return image.treeletNodes ? uint32_t(std::countr_zero(image.treeletNodes)) : 0;
+  }
+  static WaitingWalk suspended(const Image& image, std::span<const u128> walk) {
+    const OctreeWalk w = octreeWalkOf(walk, QRay{});  // (its block and depth need no ray)
+    return {w.waitsFor(image), octreeSuspendedBits(w.stack.size())};
+  }
+  // The treelet layout's crossings of a ray's walk (none without the layout).
+  static TreeletCrossings treeletCrossings(const Image& image, const QRay& ray) {
+    return octreeTreeletCrossings(image, ray);
+  }
 
   // The unit holds one child group: the one of the node it descended into
   // last (or refilled). Entering a node whose parent's group is not held costs
@@ -89,7 +127,10 @@ struct OctreeUnit : UnitBase<UnitKind::Octree, OctreeImage, OctreeNode, kOctreeN
     return {{"octree_depth", "octree depth", double(image.depth)},
             {"octree_max_depth", "octree max depth", double(image.maxDepth)},
             {"octree_leaf_size", "octree leaf size", double(image.leafSize)},
-            {"octree_nodes", "octree nodes", double(image.nodes.size())}};
+            {"octree_nodes", "octree nodes", double(image.nodes.size())},
+            {"octree_treelet_bytes", "octree treelet block bytes", double(image.treeletNodes * kNodeBytes)},
+            {"octree_treelets", "octree treelets", double(image.treelets)},
+            {"octree_treelet_padding_nodes", "octree treelet padding nodes", double(image.paddingNodes)}};
   }
 };
 

@@ -67,4 +67,35 @@ PrimitiveTables tablesOf(const Image& image) {
   return {image.triangles, image.quadrics};
 }
 
+// The primitive tables renumbered by first listing in the index list (a
+// layout's locality: a leaf's primitives near its neighbours'), each kind in
+// its own table; every entry of `indices` rewritten to the new places.
+// Primitives never listed are dropped.
+inline void renumberPrimitivesByListing(std::vector<uint32_t>& indices, std::vector<QTriangle>& triangles,
+                                        std::vector<QQuadric>& quadrics) {
+  constexpr uint32_t kUnplaced = ~uint32_t(0);
+  std::vector<uint32_t> triangleAt(triangles.size(), kUnplaced), quadricAt(quadrics.size(), kUnplaced);
+  std::vector<QTriangle> newTriangles;
+  std::vector<QQuadric> newQuadrics;
+  newTriangles.reserve(triangles.size());
+  newQuadrics.reserve(quadrics.size());
+  for (uint32_t& entry : indices) {
+    const uint32_t place = entryPlace(entry);
+    const bool quadric = isQuadricEntry(entry);
+    uint32_t& at = quadric ? quadricAt[place] : triangleAt[place];
+    if (at == kUnplaced) {
+      if (quadric) {
+        at = uint32_t(newQuadrics.size());
+        newQuadrics.push_back(quadrics[place]);
+      } else {
+        at = uint32_t(newTriangles.size());
+        newTriangles.push_back(triangles[place]);
+      }
+    }
+    entry = primitiveEntry(at, quadric);
+  }
+  triangles = std::move(newTriangles);
+  quadrics = std::move(newQuadrics);
+}
+
 }  // namespace lancer::fx

@@ -105,4 +105,21 @@ std::array<u128, valueCount(Fields)> unpackFixed(std::span<const uint32_t> wire)
   return values;
 }
 
+// A record of at most 128 bits as one value (a field of a wider record: a
+// walk record's node references), and back.
+template <const auto& Fields>
+u128 packValue(const std::array<u128, valueCount(Fields)>& values) {
+  static_assert(recordBits(Fields) <= 128, "packValue: the record is wider than 128 bits");
+  std::array<uint32_t, 4> wire{};
+  packFixed<Fields>(values, wire);
+  return u128(wire[0]) | (u128(wire[1]) << 32) | (u128(wire[2]) << 64) | (u128(wire[3]) << 96);
+}
+template <const auto& Fields>
+std::array<u128, valueCount(Fields)> unpackValue(u128 value) {
+  static_assert(recordBits(Fields) <= 128, "unpackValue: the record is wider than 128 bits");
+  const std::array<uint32_t, 4> wire{uint32_t(value), uint32_t(value >> 32), uint32_t(value >> 64),
+                                     uint32_t(value >> 96)};
+  return unpackFixed<Fields>(wire);
+}
+
 }  // namespace lancer::fx::wire_bits

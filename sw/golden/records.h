@@ -103,6 +103,24 @@ constexpr std::array<FieldSpec, 10> traversalResFields(const char* visited, cons
   }};
 }
 
+// ---- <unit>_walk_t: a walk set aside by the treelet schedule (docs/scheduling.md):
+// the closest hit so far, field for field as isect_res_t, then the unit's own
+// walk state `state` ------------------------------------------------------------------
+inline constexpr int kWalkHitFields = 6;
+template <size_t N>
+constexpr std::array<FieldSpec, kWalkHitFields + N> walkRecordFields(const std::array<FieldSpec, N>& state) {
+  std::array<FieldSpec, kWalkHitFields + N> fields{{
+      {"has_hit", 1, 1, false, "1: the ray has a closest hit so far (the fields below); 0: none yet"},
+      {"prim_id", kPrimIdBits, 1, false, "the closest hit so far: as isect_res_t (zero without one)"},
+      {"t_num", kTNumBits, 1, false, "as isect_res_t"},
+      {"det", kDetAbsBits, 1, false, "as isect_res_t"},
+      {"u_num", kBaryBits, 1, false, "as isect_res_t"},
+      {"v_num", kBaryBits, 1, false, "as isect_res_t"},
+  }};
+  for (size_t i = 0; i < N; ++i) fields[size_t(kWalkHitFields) + i] = state[i];
+  return fields;
+}
+
 inline constexpr RecordSpec kIsectRay{"isect_ray_t", "ISECT_RAY_W", "a quantized ray", kIsectRayFields};
 inline constexpr RecordSpec kIsectTri{"isect_tri_t", "ISECT_TRI_W", "a quantized triangle", kIsectTriFields};
 inline constexpr RecordSpec kIsectRes{"isect_res_t", "ISECT_RES_W", "an intersection result", kIsectResFields};

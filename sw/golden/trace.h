@@ -1,8 +1,10 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "golden/records.h"
@@ -59,6 +61,19 @@ inline uint32_t takeTraversalResult(const std::array<u128, 10>& fields, uint32_t
     trace.hit = hit;
   }
   return uint32_t(fields[1]);
+}
+
+// The closest hit so far as the first kWalkHitFields values of a walk record
+// (walkRecordFields), and back for the ray whose own id is `rayId`.
+inline void putWalkHit(const std::optional<IsectResult>& hit, std::span<u128> values) {
+  const IsectResult h = hit.value_or(IsectResult{});
+  const std::array<u128, kWalkHitFields> v{u128(hit ? 1 : 0), u128(h.primId), h.tNum, h.det, h.uNum, h.vNum};
+  std::copy(v.begin(), v.end(), values.begin());
+}
+inline std::optional<IsectResult> walkHitOf(std::span<const u128> v, uint32_t rayId) {
+  if (v[0] == 0) return std::nullopt;
+  return IsectResult{.rayId = rayId, .primId = uint32_t(v[1]), .hit = true, .tNum = v[2], .det = v[3],
+                     .uNum = v[4], .vNum = v[5]};
 }
 
 }  // namespace lancer::fx

@@ -166,6 +166,13 @@ struct BuildOption {
   int max = std::numeric_limits<int>::max();  // the largest value the unit takes (this default: no limit)
 };
 
+// A walk set aside by the treelet schedule, as a ray queue sees it: the block
+// it waits for and the bits its queue entry holds (the ray and its walk record).
+struct WaitingWalk {
+  uint32_t block;
+  int bits;
+};
+
 // A figure of a unit's memory image (the grid's resolution, the octree's depth).
 struct ImageCounter {
   const char* key;    // JSON key
@@ -190,5 +197,20 @@ template <class U>
 inline constexpr int kNodeBitsOf = recordBits(U::kNodeFields);
 template <class U>
 inline constexpr int kCfgBitsOf = recordBits(U::kCfgFields);
+
+// A unit that can set walks aside (the treelet schedule, docs/scheduling.md):
+// its descriptor has a walk record (kWalkFieldList, kBlockShiftBits) and
+// hasTreelets, treeletBlockShift, suspended, treeletCrossings.
+template <class U>
+concept SuspendsWalks = requires { U::kWalkFieldList; };
+// Its walk record's bits (0 for a unit that cannot set walks aside).
+template <class U>
+inline constexpr int kWalkBitsOf = [] {
+  if constexpr (SuspendsWalks<U>) {
+    return recordBits(U::kWalkFieldList);
+  } else {
+    return 0;
+  }
+}();
 
 }  // namespace lancer::fx

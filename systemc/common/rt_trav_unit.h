@@ -70,14 +70,8 @@ struct rt_trav_unit {
   static constexpr auto kVisitFields = Desc::kVisitFields;
   // A unit that can set a walk aside (the treelet schedule, docs/scheduling.md)
   // has a walk record: its suspension ports carry it (WALK_W bits; 1 otherwise, unused).
-  static constexpr bool kSuspends = requires { Desc::kWalkFieldList; };
-  static constexpr int WALK_W = [] {
-    if constexpr (kSuspends) {
-      return fx::recordBits(Desc::kWalkFieldList);
-    } else {
-      return 1;
-    }
-  }();
+  static constexpr bool kSuspends = fx::SuspendsWalks<Desc>;
+  static constexpr int WALK_W = kSuspends ? fx::kWalkBitsOf<Desc> : 1;
   static constexpr int BLOCK_SHIFT_W = [] {
     if constexpr (kSuspends) {
       return Desc::kBlockShiftBits;

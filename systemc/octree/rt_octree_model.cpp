@@ -98,9 +98,11 @@ void rt_octree_model::visit(int k) {
 
 // GROUP_REQ: the node's child group; REFILL_REQ: the group of the level the walk is in.
 void rt_octree_model::requestGroup(int k) {
-  const Slot& s = slots_[size_t(k)];
+  Slot& s = slots_[size_t(k)];
   const bool group = s.state == State::GroupReq;
-  pushNode(k, group ? s.rec.first : s.stack[size_t(s.depth - 1)].first);
+  const uint32_t address = group ? s.rec.first : s.stack[size_t(s.depth - 1)].first;
+  pushNode(k, address);
+  s.block = address >> cfg_block_shift_i.read();
   setState(k, group ? State::WaitGroup : State::WaitRefill);
 }
 
@@ -173,9 +175,35 @@ void rt_octree_model::mark(int k, State st, bool join) {
   }
 }
 
-// SETUP -> ENTER | DONE at the end of accept + OCTREE_SETUP_LATENCY: the per-ray setup and the root test.
+// SETUP -> ENTER | DONE at the end of accept + OCTREE_SETUP_LATENCY: the
+// per-ray setup and the root test; or a resumed walk's registers, waiting for
+// the group it reads first (GROUP_REQ or REFILL_REQ), in that group's block.
 void rt_octree_model::load(int k) {
   Slot& s = slots_[size_t(k)];
+  s.groupValid = false;
+  s.suspending = false;
+  if (const walk_in* resumed = resumedWalk()) {
+    std::array<uint32_t, size_t(fx::wireWords(rt_octree_unit::WALK_W))> wire{};
+    fromValue<rt_octree_unit::WALK_W>(resumed->walk, wire);
+    const auto values = fx::wire_bits::unpackFixed<fx::kOctreeWalkFields>(wire);
+    const fx::QRay ray = loadRay(k, fx::walkHitOf(values, uint32_t(k)));
+    const fx::OctreeWalk walk = fx::octreeWalkOf(values, ray);
+    s.setup = fx::OctreeRaySetup::setup(ray);
+    s.t0 = walk.t0;
+    s.t1 = walk.t1;
+    s.depth = int(walk.stack.size());
+    for (size_t e = 0; e < walk.stack.size(); ++e) s.stack[e] = StackEntry{walk.stack[e].first, walk.stack[e].child};
+    s.block = walk.group >> cfg_block_shift_i.read();
+    if (walk.next == fx::OctreeWalk::Next::Refill) {
+      const StackEntry& top = s.stack[size_t(s.depth - 1)];
+      s.nodeId = top.first + uint32_t(top.child ^ s.setup.mirror);
+      setState(k, State::RefillReq);
+    } else {
+      s.rec = fx::OctreeNode{false, walk.group, 0};
+      setState(k, State::GroupReq);
+    }
+    return;
+  }
   s.setup = fx::OctreeRaySetup::setup(loadRay(k));
   s.t0 = s.setup.t0;
   s.t1 = s.setup.t1;
@@ -184,17 +212,47 @@ void rt_octree_model::load(int k) {
   fromValue<rt_octree_unit::CFG_W>(cfg_i.read(), root);
   s.rec = unpackNode(root.data());
   s.depth = 0;
-  s.groupValid = false;
+  s.block = s.rec.leaf ? 0 : s.rec.first >> cfg_block_shift_i.read();
   const fx::OctT enter = std::max({s.t0[0], s.t0[1], s.t0[2]});
   const fx::OctT leave = std::min({s.t1[0], s.t1[1], s.t1[2]});
   setState(k, enter < leave ? State::Enter : State::Done);
+}
+
+// GROUP_REQ or REFILL_REQ, unless suspension is on and the group lies in
+// another block than the slot's with at most OCTREE_SUSPEND_LEVELS levels on
+// the stack: then DONE, suspended (its result carries the walk).
+void rt_octree_model::readGroup(int k, State request) {
+  Slot& s = slots_[size_t(k)];
+  s.refill = request == State::RefillReq;
+  const uint32_t group = s.refill ? s.stack[size_t(s.depth - 1)].first : s.rec.first;
+  s.suspending = cfg_suspend_i.read() && (group >> cfg_block_shift_i.read()) != s.block &&
+                 s.depth <= fx::kOctreeSuspendLevels;
+  setState(k, s.suspending ? State::Done : request);
+}
+
+// The done slot's walk record, if it is suspended: the closest hit so far,
+// the group it reads first, the node's parameters, the stack
+// (fx::octreeWalkValues' packing).
+rt_octree_model::walk_in rt_octree_model::suspendedWalk(int k) const {
+  const Slot& s = slots_[size_t(k)];
+  if (!s.suspending) return {};
+  fx::OctreeWalk walk;
+  if (hit(k).hasHit) walk.trace.hit = hit(k).best;
+  walk.next = s.refill ? fx::OctreeWalk::Next::Refill : fx::OctreeWalk::Next::Descend;
+  walk.group = s.refill ? s.stack[size_t(s.depth - 1)].first : s.rec.first;
+  walk.t0 = s.t0;
+  walk.t1 = s.t1;
+  for (int e = 0; e < s.depth; ++e) walk.stack.push_back(fx::OctreeLevel{s.stack[size_t(e)].first, s.stack[size_t(e)].child});
+  std::array<uint32_t, size_t(fx::wireWords(rt_octree_unit::WALK_W))> wire{};
+  fx::wire_bits::packFixed<fx::kOctreeWalkFields>(fx::octreeWalkValues(walk), wire);
+  return walk_in{true, toValue<rt_octree_unit::WALK_W>(wire)};
 }
 
 // ENTER on the visit grant (the visit record is pushed by the caller).
 void rt_octree_model::enter(int k) {
   const Slot& s = slots_[size_t(k)];
   if (!s.rec.leaf) {
-    setState(k, State::GroupReq);
+    readGroup(k, State::GroupReq);
   } else if (s.rec.count > 0) {
     startRun(k, s.rec.first, s.rec.count);
     setState(k, State::Fetch);
@@ -259,7 +317,13 @@ void rt_octree_model::advance(int k) {
     const int stored = next ^ s.setup.mirror;
     s.nodeId = top.first + uint32_t(stored);
     if (s.groupValid) s.rec = s.group[size_t(stored)];
-    setState(k, anyNegative(s.t1) ? State::Next : (s.groupValid ? State::Enter : State::RefillReq));
+    if (anyNegative(s.t1)) {
+      setState(k, State::Next);
+    } else if (s.groupValid) {
+      setState(k, State::Enter);
+    } else {
+      readGroup(k, State::RefillReq);
+    }
     return;
   }
   for (int y = 0; y < 3; ++y) {

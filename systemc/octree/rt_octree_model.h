@@ -63,6 +63,9 @@ class rt_octree_model : public rt_walk_model<rt_octree_model, rt_octree_unit, /*
     std::array<StackEntry, MAX_STACK> stack{};
     std::array<fx::OctreeNode, fx::kOctreeChildren> group{};
     bool groupValid = false;
+    uint32_t block = 0;       // the treelet block of the last child group read (the root's at the start)
+    bool suspending = false;  // DONE: the walk is set aside before a group read, not over
+    bool refill = false;      // ... before the refill of the stack top's group, not a descent
   };
 
   using lanes_t = std::array<int, ADV_LANES>;  // each advance lane's slot, or -1
@@ -86,6 +89,8 @@ class rt_octree_model : public rt_walk_model<rt_octree_model, rt_octree_unit, /*
   void enter(int k);
   void descend(int k);
   void advance(int k);
+  void readGroup(int k, State request);
+  walk_in suspendedWalk(int k) const;
 
   std::array<Slot, N> slots_{};
   // Slots by what they wait for or do this cycle.

@@ -4,11 +4,11 @@ traversal unit and model, the path tracer on the Cornell box under --schedule
 fifo and sorted on a 4-unit chip draws byte-equal images, with the same rays,
 hits, tests, steps and memory reads in every class, 0 mismatches, 0 beyond the bound and
 0 self-hits; each report names its schedule, and the sorted one states its
-sort's cost. The BVH runs on a treelet layout of 2-node blocks, and under
---schedule treelet as well where the model sets walks aside (golden,
-systemc, rtl): the same answers, its walks suspended and resumed through the ray
-queues (the report's ray_queues). Where a unit or a model cannot, treelet is
-refused with a one-line error naming why.
+sort's cost. The BVH runs on a treelet layout of 2-node blocks and the octree
+on one of single child groups, and under --schedule treelet as well where the
+model sets walks aside (TREELET_MODELS): the same answers, its walks suspended
+and resumed through the ray queues (the report's ray_queues). Where a unit or
+a model cannot, treelet is refused with a one-line error naming why.
 
 Usage: check_schedules.py LANCER OUT_DIR [MODEL ...]
 """
@@ -22,12 +22,14 @@ from pathlib import Path
 SAME = ("rays", "hits", "intersection_tests", "steps", "memory_reads", "node_bytes", "mismatches")
 
 
-TREELET_MODELS = ("golden", "systemc", "rtl")  # the models of the BVH unit that set walks aside
+# The models of each unit that set walks aside.
+TREELET_MODELS = {"bvh": ("golden", "systemc", "rtl"), "octree": ("golden", "systemc")}
+LAYOUTS = {"bvh": ["--bvh-treelet-bytes", "62"], "octree": ["--octree-treelet-bytes", "64"]}
 
 
 def command(lancer, out, unit, model, schedule):
     stem = out / f"{unit}-{model}-{schedule}"
-    layout = ["--bvh-treelet-bytes", "62"] if unit == "bvh" else []
+    layout = LAYOUTS.get(unit, [])
     return stem, [lancer, "run", "--scene", "builtin:cornell", "--integrator", "path", "--spp", "2",
                   "--accel", unit, "--model", model, "--units", "4", "--memory", "hierarchy",
                   "--width", "24", "--height", "24", "--schedule", schedule, *layout,
@@ -56,11 +58,12 @@ def main():
         for model in models:
             where = f"{unit} {model}"
             schedules = ["fifo", "sorted"]
-            if unit == "bvh" and model in TREELET_MODELS:
+            if model in TREELET_MODELS.get(unit, ()):
                 schedules.append("treelet")
             else:
                 error = refused(lancer, out, unit, model)
-                expected = "cannot set walks aside" if unit != "bvh" else "no ray queues"
+                expected = ("no ray queues" if unit != "grid" and model in ("systemc-pins", "rtl-systemc")
+                            else "cannot set walks aside")
                 if error is None or "error: --schedule treelet" not in error or expected not in error or "\n" in error:
                     failures.append(f"{where}: --schedule treelet is not refused with a clear error: {error!r}")
             runs = {s: run(lancer, out, unit, model, s) for s in schedules}

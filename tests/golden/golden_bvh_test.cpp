@@ -19,6 +19,7 @@
 #include "support/bvh_cases.h"
 #include "support/test_paths.h"
 #include "support/traversal_cases.h"
+#include "support/treelet_walks.h"
 
 namespace lancer::fx {
 namespace {
@@ -503,42 +504,20 @@ TEST(GoldenBvhTreelets, CrossingsAreTheInteriorNodesEnteredInAnotherBlock) {
   EXPECT_GT(all.stateBits, all.crossings * uint64_t(bvhSuspendedBits(0))) << "some crossings with a stack";
 }
 
-// Walks the rays as the treelet schedule does: each walk set aside where it
-// leaves its block with a stack within the window (carried through bvh_walk_t,
-// as the unit's ports carry it) and resumed block by block, the fullest queue
-// first, every ray's walk interleaved with the others'. Each must end where its
-// unbroken walk ends (the same visits, tests and hit); returns the suspensions.
+// The BVH's walk for test::walkBlockByBlock.
+struct BvhWalkOps {
+  using Image = BvhImage;
+  using Walk = BvhWalk;
+  static constexpr int window = kBvhSuspendEntries;
+  static Walk start(const Image& image) { return startBvhWalk(image); }
+  static void resume(const Image& image, const QRay& ray, Walk& walk, uint32_t block) {
+    continueBvhWalk(image, ray, walk, block);
+  }
+  static Walk carry(const Walk& walk, const QRay& ray) { return bvhWalkOf(bvhWalkValues(walk), ray.id); }
+  static TraversalTrace traverse(const Image& image, const QRay& ray) { return traverseBvh(image, ray); }
+};
 uint64_t walkBlockByBlock(const BvhImage& image, std::span<const QRay> rays) {
-  std::vector<BvhWalk> walks;
-  std::map<uint32_t, std::deque<size_t>> queues;  // block -> rays waiting for it
-  for (size_t r = 0; r < rays.size(); ++r) {
-    walks.push_back(startBvhWalk(image));
-    queues[walks.back().waitsFor(image)].push_back(r);
-  }
-  uint64_t suspensions = 0;
-  while (!queues.empty()) {
-    auto fullest = std::max_element(queues.begin(), queues.end(),
-                                    [](const auto& a, const auto& b) { return a.second.size() < b.second.size(); });
-    const uint32_t block = fullest->first;
-    std::deque<size_t> batch = std::move(fullest->second);
-    queues.erase(fullest);
-    for (const size_t r : batch) {
-      continueBvhWalk(image, rays[r], walks[r], block);
-      if (walks[r].done()) continue;
-      EXPECT_LE(walks[r].stack.size(), size_t(kBvhSuspendEntries)) << "ray " << r << ": beyond the window";
-      BvhWalk carried = bvhWalkOf(bvhWalkValues(walks[r]), rays[r].id);
-      carried.trace.visits = std::move(walks[r].trace.visits);  // the visits and counts stay with the driver
-      carried.trace.tests = walks[r].trace.tests;
-      carried.trace.quadricTests = walks[r].trace.quadricTests;
-      walks[r] = std::move(carried);
-      queues[walks[r].waitsFor(image)].push_back(r);
-      ++suspensions;
-    }
-  }
-  for (size_t r = 0; r < rays.size(); ++r) {
-    EXPECT_EQ(walks[r].trace, traverseBvh(image, rays[r])) << "ray " << r << ", blocks of " << image.treeletNodes;
-  }
-  return suspensions;
+  return test::walkBlockByBlock<BvhWalkOps>(image, rays);
 }
 
 TEST(GoldenBvhTreelets, SuspendedWalksResumedBlockByBlockTakeTheUnbrokenWalk) {

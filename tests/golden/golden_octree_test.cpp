@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <random>
 
 #include "common/error.h"
@@ -7,10 +8,13 @@
 #include "golden/isect.h"
 #include "golden/memory_image.h"
 #include "golden/octree.h"
+#include "golden/octree_unit.h"
 #include "scene/scene.h"
 #include "support/structure_test_support.h"
 #include "support/test_paths.h"
+#include "support/octree_cases.h"
 #include "support/traversal_cases.h"
+#include "support/treelet_walks.h"
 
 namespace lancer::fx {
 namespace {
@@ -191,6 +195,176 @@ TEST(GoldenOctree, BadConfigurationsAreErrors) {
         << e.what();
   }
   EXPECT_LE(defaultOctreeDepth(100000000), kOctreeMaxDepth);
+}
+
+// ---- The treelet layout and the walk set aside (docs/scheduling.md) ---------------
+
+// The octree's walk for test::walkBlockByBlock.
+struct OctreeWalkOps {
+  using Image = OctreeImage;
+  using Walk = OctreeWalk;
+  static constexpr int window = kOctreeSuspendLevels;
+  static Walk start(const Image& image) { return startOctreeWalk(image); }
+  static void resume(const Image& image, const QRay& ray, Walk& walk, uint32_t block) {
+    continueOctreeWalk(image, ray, walk, block);
+  }
+  static Walk carry(const Walk& walk, const QRay& ray) { return octreeWalkOf(octreeWalkValues(walk), ray); }
+  static TraversalTrace traverse(const Image& image, const QRay& ray) { return traverseOctree(image, ray); }
+};
+
+std::vector<QRay> treeletRays(uint64_t seed, uint32_t count) {
+  std::mt19937_64 rng{seed};
+  std::vector<QRay> rays;
+  for (uint32_t i = 0; i < count; ++i) {
+    rays.push_back(randomLatticeRay(rng, i));
+    rays.back().anyHit = i % 3 == 0;
+  }
+  return rays;
+}
+
+// rt_octree's step-for-step walk (the one a treelet schedule sets aside) is
+// the recursive reference walk on every hard case, unbroken (no layout) and
+// set aside at every group of its own block.
+TEST(GoldenOctreeTreelets, TheSteppedWalkIsTheReferenceWalkOnEveryHardCase) {
+  for (test::OctreeCase& c : test::octreeHardCases()) {
+    EXPECT_EQ(test::walkBlockByBlock<OctreeWalkOps>(c.image, c.rays), 0u) << c.name << ": no layout, no suspension";
+    if (c.image.nodes[0].leaf) continue;
+    layoutOctreeTreelets(c.image, kOctreeChildren);
+    test::walkBlockByBlock<OctreeWalkOps>(c.image, c.rays);
+    if (::testing::Test::HasFailure()) FAIL() << c.name;
+  }
+}
+
+class GoldenOctreeTreeletLayout : public ::testing::TestWithParam<uint32_t> {};
+
+// The layout renumbers nodes and primitives and changes nothing a ray finds:
+// the same hit, as many nodes entered and tests issued. Every group is whole
+// in one aligned block; the root keeps entry 0; padding is never referenced.
+TEST_P(GoldenOctreeTreeletLayout, EveryRayWalksTheSameTreeToTheSameHit) {
+  static const std::vector<QTriangle> tris = quantizeScene(loadScene(test::kBunny));
+  const uint32_t blockNodes = GetParam();
+  const OctreeImage plain = buildOctreeImage(tris, std::min(7, kOctreeMaxDepth), 4);
+  OctreeImage image = plain;
+  layoutOctreeTreelets(image, blockNodes);
+  EXPECT_EQ(image.treeletNodes, blockNodes);
+  EXPECT_EQ(image.nodes.size() % kOctreeChildren, 0u);
+  EXPECT_EQ(image.nodes.size(), plain.nodes.size() + image.paddingNodes);
+  EXPECT_EQ(image.indices.size(), plain.indices.size());
+  EXPECT_GE(image.treelets, (plain.nodes.size() / kOctreeChildren + blockNodes / kOctreeChildren - 1) /
+                                (blockNodes / kOctreeChildren));
+  std::vector<int> referenced(image.nodes.size(), 0);
+  referenced[0] = 1;
+  uint32_t listed = 0;
+  for (uint32_t i = 0; i < image.nodes.size(); ++i) {
+    const OctreeNode& n = image.nodes[i];
+    if (n.leaf) {
+      EXPECT_EQ(n.first, n.count ? listed : n.first) << "node " << i << ": the index list in node-table order";
+      listed += n.count;
+      EXPECT_TRUE(std::is_sorted(image.indices.begin() + n.first, image.indices.begin() + n.first + n.count));
+      continue;
+    }
+    ASSERT_EQ(n.first % kOctreeChildren, 0u) << "node " << i << ": a group starts on a multiple of 8";
+    EXPECT_EQ(image.blockOf(n.first), image.blockOf(n.first + kOctreeChildren - 1)) << "a group in one block";
+    for (uint32_t c = 0; c < kOctreeChildren; ++c) ++referenced[n.first + c];
+  }
+  size_t padding = 0;
+  for (uint32_t i = 0; i < image.nodes.size(); ++i) {
+    EXPECT_LE(referenced[i], 1) << "node " << i << " has two parents";
+    if (referenced[i] == 0) {
+      ++padding;
+      EXPECT_EQ(image.nodes[i], (OctreeNode{true, 0, 0})) << "padding node " << i;
+    }
+  }
+  EXPECT_EQ(padding, image.paddingNodes);
+  std::mt19937_64 rng{blockNodes};
+  for (uint32_t i = 0; i < 300; ++i) {
+    const QRay ray = randomLatticeRay(rng, i);
+    const OctreeTrace a = traverseOctree(plain, ray), b = traverseOctree(image, ray);
+    ASSERT_EQ(b.hit, a.hit) << "ray " << i;
+    ASSERT_EQ(b.visits.size(), a.visits.size()) << "ray " << i;
+    ASSERT_EQ(b.tests, a.tests) << "ray " << i;
+  }
+}
+INSTANTIATE_TEST_SUITE_P(BlockSizes, GoldenOctreeTreeletLayout, ::testing::Values(8u, 16u, 64u, 512u, 4096u));
+
+// With every group its own block, every group read but the first (the root's
+// group, in the block a fresh walk starts in) is a crossing; with one block
+// for the whole tree, none is.
+TEST(GoldenOctreeTreelets, CrossingsAreTheGroupReadsInAnotherBlock) {
+  const std::vector<QTriangle> tris = quantizeScene(makeCornellBox());
+  const OctreeImage plain = buildOctreeImage(tris, std::min(6, kOctreeMaxDepth), 1);
+  OctreeImage single = plain, whole = plain;
+  layoutOctreeTreelets(single, kOctreeChildren);
+  layoutOctreeTreelets(whole, std::bit_ceil(uint32_t(plain.nodes.size() + kOctreeChildren)));
+  const OctreeUnit::NodeReads reads(single);
+  std::mt19937_64 rng{5};
+  TreeletCrossings all;
+  for (uint32_t i = 0; i < 300; ++i) {
+    const QRay ray = randomLatticeRay(rng, i);
+    EXPECT_EQ(octreeTreeletCrossings(plain, ray).rays, 0u) << "no layout, nothing counted";
+    EXPECT_EQ(octreeTreeletCrossings(whole, ray).crossings, 0u);
+    const uint64_t groupReads = reads(traverseOctree(single, ray));
+    const TreeletCrossings c = octreeTreeletCrossings(single, ray);
+    ASSERT_EQ(c.rays, 1u);
+    ASSERT_EQ(c.crossings, groupReads > 0 ? groupReads - 1 : 0) << "ray " << i;
+    ASSERT_EQ(c.suspensions, c.crossings) << "a depth-6 tree stays within the window";
+    ASSERT_GE(c.stateBits, c.crossings * uint64_t(octreeSuspendedBits(0)));
+    all += c;
+  }
+  EXPECT_GT(all.crossings, 300u);
+}
+
+TEST(GoldenOctreeTreelets, SuspendedWalksResumedBlockByBlockTakeTheUnbrokenWalk) {
+  static const std::vector<QTriangle> tris = quantizeScene(loadScene(test::kBunny));
+  for (const uint32_t blockNodes : {8u, 64u, 1024u}) {
+    OctreeImage image = buildOctreeImage(tris, std::min(7, kOctreeMaxDepth), 4);
+    layoutOctreeTreelets(image, blockNodes);
+    const std::vector<QRay> rays = treeletRays(blockNodes, 400);
+    const uint64_t suspensions = test::walkBlockByBlock<OctreeWalkOps>(image, rays);
+    TreeletCrossings crossings;
+    for (const QRay& ray : rays) crossings += octreeTreeletCrossings(image, ray);
+    EXPECT_EQ(suspensions, crossings.suspensions) << "blocks of " << blockNodes;
+    EXPECT_GE(crossings.crossings, crossings.suspensions);
+    if (blockNodes == 8) EXPECT_GT(suspensions, rays.size());
+  }
+}
+
+// A read with more levels on the stack than the window is a crossing, not a
+// suspension: the walk goes on into the other block. The walk to two tiny
+// triangles a few units apart goes down to where they part.
+TEST(GoldenOctreeTreelets, AReadWithAStackDeeperThanTheWindowGoesOn) {
+  const std::vector<QTriangle> two{QTriangle{0, {{{10, 10, 10}, {11, 10, 10}, {10, 11, 10}}}},
+                                   QTriangle{1, {{{14, 14, 14}, {15, 14, 14}, {14, 15, 14}}}}};
+  OctreeImage image = buildOctreeImage(two, kOctreeMaxDepth, 1);  // they part only in nodes a few units wide
+  if (image.depth <= kOctreeSuspendLevels + 1) GTEST_SKIP() << "the formats' octrees fit the window";
+  layoutOctreeTreelets(image, kOctreeChildren);
+  const std::vector<QRay> rays = {QRay{.id = 0, .org = {0, 0, 0}, .dir = {kDirMax, kDirMax, kDirMax}},
+                                  QRay{.id = 1, .org = {10, 10, 0}, .dir = {1, 1, kDirMax}}};
+  for (const QRay& ray : rays) {
+    const TreeletCrossings c = octreeTreeletCrossings(image, ray);
+    EXPECT_GT(c.crossings, c.suspensions) << "ray " << ray.id;
+    EXPECT_GT(c.suspensions, 0u) << "ray " << ray.id;
+  }
+  test::walkBlockByBlock<OctreeWalkOps>(image, rays);
+}
+
+TEST(GoldenOctreeTreelets, TheBudgetIsAtLeastOneGroupAndBlocksArePowersOfTwo) {
+  const std::vector<QTriangle> tris = quantizeScene(makeCornellBox());
+  OctreeImage image = buildOctreeImage(tris, 4, 2);
+  EXPECT_THROW(layoutOctreeTreelets(image, 4), InputError);
+  EXPECT_THROW(layoutOctreeTreelets(image, 24), InputError);
+  AccelOptions options;
+  options.octreeTreeletBytes = int(OctreeUnit::kGroupBytes) - 1;
+  try {
+    OctreeUnit::build(tris, options);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              fmt::format("--octree-treelet-bytes {}: a treelet holds at least one child group ({} bytes)",
+                          OctreeUnit::kGroupBytes - 1, OctreeUnit::kGroupBytes));
+  }
+  options.octreeTreeletBytes = int(OctreeUnit::kGroupBytes) * 5;  // 40 nodes: blocks of 32
+  EXPECT_EQ(OctreeUnit::build(tris, options).treeletNodes, 32u);
 }
 
 }  // namespace

@@ -275,16 +275,4 @@ std::vector<BvhCase> bvhHardCases() {
                              tinyComponents, cornellRandom, cornellSegments});
 }
 
-TraversalRunOptions treeletStressOptions(int units, int queueKib) {
-  TraversalRunOptions o;
-  o.units = units;
-  o.memory.kind = mem::MemoryKind::Hierarchy;
-  o.stream.outputStallProbability = 0.3;
-  o.stream.inputIdleProbability = 0.2;
-  o.treelets = true;
-  o.queues.kib = queueKib;
-  o.dispatchBatch = 4;
-  return o;
-}
-
 }  // namespace lancer::test

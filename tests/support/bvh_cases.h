@@ -54,9 +54,4 @@ fx::BvhImage bvhChainImage(int levels);
 // A root whose two children are empty leaves spanning the lattice.
 fx::BvhImage bvhTwoEmptyLeaves();
 
-// The treelet schedule's stress run (the models' treelet tests): `units`
-// units on the hierarchy, a queue memory of `queueKib`, the stream's bubbles
-// and stalls, batches of 4 rays.
-TraversalRunOptions treeletStressOptions(int units, int queueKib);
-
 }  // namespace lancer::test

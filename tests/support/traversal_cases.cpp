@@ -246,4 +246,16 @@ std::string describeTraversalTrace(const fx::TraversalTrace& t, const char* elem
   return s;
 }
 
+TraversalRunOptions treeletStressOptions(int units, int queueKib) {
+  TraversalRunOptions o;
+  o.units = units;
+  o.memory.kind = mem::MemoryKind::Hierarchy;
+  o.stream.outputStallProbability = 0.3;
+  o.stream.inputIdleProbability = 0.2;
+  o.treelets = true;
+  o.queues.kib = queueKib;
+  o.dispatchBatch = 4;
+  return o;
+}
+
 }  // namespace lancer::test

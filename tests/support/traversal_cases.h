@@ -179,4 +179,9 @@ TraversalRunOptions roughTraversalOptions(uint64_t seed, int raysInFlight = 0);
 std::string describeLatticeRay(const fx::QRay& ray);
 std::string describeTraversalTrace(const fx::TraversalTrace& trace, const char* element, size_t shown);
 
+// The treelet schedule's stress run (the models' treelet tests): `units`
+// units on the hierarchy, a queue memory of `queueKib`, the stream's bubbles
+// and stalls, batches of 4 rays.
+TraversalRunOptions treeletStressOptions(int units, int queueKib);
+
 }  // namespace lancer::test
