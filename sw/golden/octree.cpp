@@ -129,8 +129,9 @@ struct Walker {
 bool behind(const std::array<OctT, 3>& t1) { return negative(t1[0]) || negative(t1[1]) || negative(t1[2]); }
 
 // rt_octree's walk, step for step (docs/octree-unit.md, "Slot state machine"),
-// between its reads of child groups: the reads are where a treelet schedule
-// may set it aside. The recursive Walker above is the reference it must equal.
+// between its reads of child groups: a descent's read is where a treelet
+// schedule may set it aside. The recursive Walker above is the reference it
+// must equal.
 struct Stepper {
   const OctreeImage& image;
   const QRay& ray;
@@ -138,14 +139,15 @@ struct Stepper {
   OctreeWalk& walk;
   TreeletCrossings* crossings = nullptr;  // counted where the layout has treelet blocks
   uint32_t block = 0;                     // the block the walk is in
-  bool suspends = false;                  // stop before a read in another block
+  bool suspends = false;                  // stop before a descent's read in another block
   bool groupHeld = false;                 // the stack top's group is in the unit (group_valid)
 
   void run() {
     if (walk.next == OctreeWalk::Next::Start) start();
     while (walk.next == OctreeWalk::Next::Descend || walk.next == OctreeWalk::Next::Refill) {
       if (image.treeletNodes != 0 && image.blockOf(walk.group) != block) {
-        const bool suspension = walk.stack.size() <= size_t(kOctreeSuspendLevels);
+        const bool suspension =
+            walk.next == OctreeWalk::Next::Descend && walk.stack.size() <= size_t(kOctreeSuspendLevels);
         if (suspends && suspension) return;  // walk.group waits for its block
         block = image.blockOf(walk.group);
         if (crossings) {
@@ -449,14 +451,13 @@ void continueOctreeWalk(const OctreeImage& image, const QRay& ray, OctreeWalk& w
 }
 
 std::array<u128, valueCount(kOctreeWalkFields)> octreeWalkValues(const OctreeWalk& walk) {
-  const bool refill = walk.next == OctreeWalk::Next::Refill;
-  if (walk.stack.size() > size_t(kOctreeSuspendLevels) || (walk.next != OctreeWalk::Next::Descend && !refill)) {
-    throw std::logic_error("octree_walk_t: a walk not waiting for a group, or a stack deeper than the suspend window");
+  if (walk.stack.size() > size_t(kOctreeSuspendLevels) || walk.next != OctreeWalk::Next::Descend) {
+    throw std::logic_error("octree_walk_t: a walk not about to descend, or a stack deeper than the suspend window");
   }
   std::array<u128, valueCount(kOctreeWalkFields)> v{};
   putWalkHit(walk.trace.hit, v);
   size_t k = size_t(kWalkHitFields);
-  for (const u128 x : {u128(refill ? 1 : 0), u128(walk.group), u128(walk.stack.size())}) v[k++] = x;
+  for (const u128 x : {u128(walk.group), u128(walk.stack.size())}) v[k++] = x;
   for (const auto* t : {&walk.t0, &walk.t1}) {
     for (const OctT& p : *t) v[k++] = p.inf == 0 ? u128(p.value) : 0;
   }
@@ -472,11 +473,11 @@ OctreeWalk octreeWalkOf(std::span<const u128> v, const QRay& ray) {
   OctreeWalk walk;
   walk.trace.hit = walkHitOf(v, ray.id);
   size_t k = size_t(kWalkHitFields);
-  walk.next = v[k] != 0 ? OctreeWalk::Next::Refill : OctreeWalk::Next::Descend;
-  walk.group = uint32_t(v[k + 1]);
-  const size_t depth = size_t(v[k + 2]);
+  walk.next = OctreeWalk::Next::Descend;
+  walk.group = uint32_t(v[k]);
+  const size_t depth = size_t(v[k + 1]);
   if (depth > size_t(kOctreeSuspendLevels)) throw std::logic_error("octree_walk_t: depth beyond the suspend window");
-  k += 3;
+  k += 2;
   for (auto* t : {&walk.t0, &walk.t1}) {
     const OctT inactive = t == &walk.t0 ? kMinusInf : kPlusInf;
     for (int a = 0; a < 3; ++a, ++k) (*t)[size_t(a)] = setup.active[a] ? OctT{i128(v[k]), 0} : inactive;

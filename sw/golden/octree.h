@@ -127,7 +127,7 @@ struct OctreeWalk {
   enum class Next : uint8_t {
     Start,    // a fresh ray: the root test, then the root
     Descend,  // read `group` (the entered node's children), then descend into the first child
-    Refill,   // read `group` (the stack top's), then enter the stack top's child
+    Refill,   // read `group` (the stack top's), then enter the stack top's child (never suspended)
     Over,
   };
   Next next = Next::Start;
@@ -141,13 +141,14 @@ struct OctreeWalk {
 };
 // A fresh walk, in the block of the root's child group (0 for a leaf root).
 OctreeWalk startOctreeWalk(const OctreeImage& image);
-// Walks on until the walk ends or is about to read a child group of another
-// treelet block than `block` with at most kOctreeSuspendLevels levels on its
-// stack (without the treelet layout: to the end).
+// Walks on until the walk ends or is about to descend into a node whose child
+// group lies in another treelet block than `block`, with at most
+// kOctreeSuspendLevels levels on its stack (without the treelet layout: to
+// the end).
 void continueOctreeWalk(const OctreeImage& image, const QRay& ray, OctreeWalk& walk, uint32_t block);
 
-// A suspended walk as octree_walk_t carries it: the closest hit so far, what
-// it reads first, the node's parameters, the stack. The visits and test counts
+// A suspended walk as octree_walk_t carries it: the closest hit so far, the
+// group it reads first, the node's parameters, the stack. The visits and test counts
 // so far stay with the ray (the run joins them).
 std::array<u128, valueCount(kOctreeWalkFields)> octreeWalkValues(const OctreeWalk& walk);
 // The record's walk for `ray` (its setup gives back the infinities of the axes

@@ -176,8 +176,8 @@ void rt_octree_model::mark(int k, State st, bool join) {
 }
 
 // SETUP -> ENTER | DONE at the end of accept + OCTREE_SETUP_LATENCY: the
-// per-ray setup and the root test; or a resumed walk's registers, waiting for
-// the group it reads first (GROUP_REQ or REFILL_REQ), in that group's block.
+// per-ray setup and the root test; or a resumed walk's registers, in
+// GROUP_REQ for the child group it descends into, in that group's block.
 void rt_octree_model::load(int k) {
   Slot& s = slots_[size_t(k)];
   s.groupValid = false;
@@ -194,14 +194,8 @@ void rt_octree_model::load(int k) {
     s.depth = int(walk.stack.size());
     for (size_t e = 0; e < walk.stack.size(); ++e) s.stack[e] = StackEntry{walk.stack[e].first, walk.stack[e].child};
     s.block = walk.group >> cfg_block_shift_i.read();
-    if (walk.next == fx::OctreeWalk::Next::Refill) {
-      const StackEntry& top = s.stack[size_t(s.depth - 1)];
-      s.nodeId = top.first + uint32_t(top.child ^ s.setup.mirror);
-      setState(k, State::RefillReq);
-    } else {
-      s.rec = fx::OctreeNode{false, walk.group, 0};
-      setState(k, State::GroupReq);
-    }
+    s.rec = fx::OctreeNode{false, walk.group, 0};
+    setState(k, State::GroupReq);
     return;
   }
   s.setup = fx::OctreeRaySetup::setup(loadRay(k));
@@ -218,16 +212,14 @@ void rt_octree_model::load(int k) {
   setState(k, enter < leave ? State::Enter : State::Done);
 }
 
-// GROUP_REQ or REFILL_REQ, unless suspension is on and the group lies in
+// GROUP_REQ, unless suspension is on and the node's child group lies in
 // another block than the slot's with at most OCTREE_SUSPEND_LEVELS levels on
 // the stack: then DONE, suspended (its result carries the walk).
-void rt_octree_model::readGroup(int k, State request) {
+void rt_octree_model::requestOrSuspend(int k) {
   Slot& s = slots_[size_t(k)];
-  s.refill = request == State::RefillReq;
-  const uint32_t group = s.refill ? s.stack[size_t(s.depth - 1)].first : s.rec.first;
-  s.suspending = cfg_suspend_i.read() && (group >> cfg_block_shift_i.read()) != s.block &&
+  s.suspending = cfg_suspend_i.read() && (s.rec.first >> cfg_block_shift_i.read()) != s.block &&
                  s.depth <= fx::kOctreeSuspendLevels;
-  setState(k, s.suspending ? State::Done : request);
+  setState(k, s.suspending ? State::Done : State::GroupReq);
 }
 
 // The done slot's walk record, if it is suspended: the closest hit so far,
@@ -238,8 +230,8 @@ rt_octree_model::walk_in rt_octree_model::suspendedWalk(int k) const {
   if (!s.suspending) return {};
   fx::OctreeWalk walk;
   if (hit(k).hasHit) walk.trace.hit = hit(k).best;
-  walk.next = s.refill ? fx::OctreeWalk::Next::Refill : fx::OctreeWalk::Next::Descend;
-  walk.group = s.refill ? s.stack[size_t(s.depth - 1)].first : s.rec.first;
+  walk.next = fx::OctreeWalk::Next::Descend;
+  walk.group = s.rec.first;
   walk.t0 = s.t0;
   walk.t1 = s.t1;
   for (int e = 0; e < s.depth; ++e) walk.stack.push_back(fx::OctreeLevel{s.stack[size_t(e)].first, s.stack[size_t(e)].child});
@@ -252,7 +244,7 @@ rt_octree_model::walk_in rt_octree_model::suspendedWalk(int k) const {
 void rt_octree_model::enter(int k) {
   const Slot& s = slots_[size_t(k)];
   if (!s.rec.leaf) {
-    readGroup(k, State::GroupReq);
+    requestOrSuspend(k);
   } else if (s.rec.count > 0) {
     startRun(k, s.rec.first, s.rec.count);
     setState(k, State::Fetch);
@@ -317,13 +309,7 @@ void rt_octree_model::advance(int k) {
     const int stored = next ^ s.setup.mirror;
     s.nodeId = top.first + uint32_t(stored);
     if (s.groupValid) s.rec = s.group[size_t(stored)];
-    if (anyNegative(s.t1)) {
-      setState(k, State::Next);
-    } else if (s.groupValid) {
-      setState(k, State::Enter);
-    } else {
-      readGroup(k, State::RefillReq);
-    }
+    setState(k, anyNegative(s.t1) ? State::Next : (s.groupValid ? State::Enter : State::RefillReq));
     return;
   }
   for (int y = 0; y < 3; ++y) {

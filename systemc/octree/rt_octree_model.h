@@ -64,8 +64,7 @@ class rt_octree_model : public rt_walk_model<rt_octree_model, rt_octree_unit, /*
     std::array<fx::OctreeNode, fx::kOctreeChildren> group{};
     bool groupValid = false;
     uint32_t block = 0;       // the treelet block of the last child group read (the root's at the start)
-    bool suspending = false;  // DONE: the walk is set aside before a group read, not over
-    bool refill = false;      // ... before the refill of the stack top's group, not a descent
+    bool suspending = false;  // DONE: the walk is set aside before a descent, not over
   };
 
   using lanes_t = std::array<int, ADV_LANES>;  // each advance lane's slot, or -1
@@ -89,7 +88,7 @@ class rt_octree_model : public rt_walk_model<rt_octree_model, rt_octree_unit, /*
   void enter(int k);
   void descend(int k);
   void advance(int k);
-  void readGroup(int k, State request);
+  void requestOrSuspend(int k);
   walk_in suspendedWalk(int k) const;
 
   std::array<Slot, N> slots_{};

@@ -5,11 +5,10 @@
 
 #include <vector>
 
-#include <fmt/format.h>
-
 #include "golden/bvh.h"
 #include "support/bvh_cases.h"
 #include "trav_sc_suite.h"
+#include "trav_sc_treelets.h"
 
 namespace lancer {
 namespace {
@@ -57,13 +56,11 @@ TEST_P(ScBvh, OneRayTimingFollowsTheStateMachine) {
   EXPECT_EQ(s.cycles, e + 5) << "empty root leaf";
 }
 
-// The treelet schedule on the cycle model (docs/scheduling.md): every hard
-// case with each node its own treelet block (the most suspensions: the chain's
-// walk is deeper than the suspend window), on a chip of one and of four units,
-// with the stream's bubbles and stalls, a queue memory too small for the walks
-// (overflow to DRAM) and one that holds them: every ray takes its unbroken
-// walk, bit for bit, and the units set aside exactly the golden walk's
-// suspensions. A run is the same twice and whatever the host threads.
+// The treelet schedule on the cycle model (test::checkTreeletRuns): every
+// hard case with each node its own treelet block (the most suspensions: the
+// chain's walk is deeper than the suspend window): every ray takes its
+// unbroken walk, bit for bit, and the units set aside exactly the golden
+// walk's suspensions.
 TEST(ScBvhTreelets, SuspendedWalksTakeTheUnbrokenWalkThroughTheRayQueues) {
   SystemCBvhDevice device(SystemCImpl::Model);
   mem::RayQueueStats all;
@@ -71,29 +68,7 @@ TEST(ScBvhTreelets, SuspendedWalksTakeTheUnbrokenWalkThroughTheRayQueues) {
     c.image.treeletNodes = 1;
     fx::TreeletCrossings expected;
     for (const QRay& ray : c.rays) expected += fx::bvhTreeletCrossings(c.image, ray);
-    for (const int units : {1, 4}) {
-      for (const int kib : {1, 64}) {
-        TraversalRunOptions o = test::treeletStressOptions(units, kib);
-        std::vector<fx::TraversalTrace> traces;
-        const TraversalRunStats s = device.run(c.image, c.rays, traces, o);
-        const std::string where = fmt::format("{}, {} units, {} KiB", c.name, units, kib);
-        ASSERT_EQ(traces.size(), c.rays.size()) << where;
-        for (size_t k = 0; k < c.rays.size(); ++k) {
-          ASSERT_EQ(traces[k], fx::traverseBvh(c.image, c.rays[k])) << where << ", ray " << k;
-        }
-        EXPECT_EQ(s.queues.suspensions, expected.suspensions) << where;
-        EXPECT_EQ(s.queues.bytesRead, s.queues.bytesWritten) << where << ": every record on chip read back once";
-        all += s.queues;
-        if (units == 4 && kib == 1) {
-          o.hostThreads = 4;
-          std::vector<fx::TraversalTrace> again;
-          const TraversalRunStats t = device.run(c.image, c.rays, again, o);
-          EXPECT_EQ(t.cycles, s.cycles) << where;
-          EXPECT_EQ(t.queues, s.queues) << where;
-          EXPECT_EQ(again, traces) << where;
-        }
-      }
-    }
+    test::checkTreeletRuns(device, c.name, c.image, c.rays, expected.suspensions, fx::traverseBvh, all);
     if (c.name == "chain") EXPECT_GT(expected.crossings, expected.suspensions) << "the window's limit is met";
   }
   EXPECT_GT(all.suspensions, 1000u);

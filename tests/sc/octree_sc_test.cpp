@@ -5,11 +5,10 @@
 
 #include <vector>
 
-#include <fmt/format.h>
-
 #include "golden/octree.h"
 #include "support/octree_cases.h"
 #include "trav_sc_suite.h"
+#include "trav_sc_treelets.h"
 
 namespace lancer {
 namespace {
@@ -98,9 +97,9 @@ TEST_P(ScOctree, OneRayTimingFollowsTheStateMachine) {
 // The treelet schedule on the cycle model (docs/scheduling.md): every hard
 // case laid out with each child group its own treelet block (the most
 // suspensions; the maximum-depth cases read groups deeper than the suspend
-// window), on a chip of one and of four units, with the stream's bubbles and
-// stalls, a queue memory too small for the walks (overflow to DRAM) and one
-// that holds them: every ray takes its unbroken walk, bit for bit, and the
+// window), on one unit with a queue memory that holds the walks and on four
+// with one too small for them (overflow to DRAM), with the stream's bubbles
+// and stalls: every ray takes its unbroken walk, bit for bit, and the
 // units set aside exactly the golden walk's suspensions. A run is the same
 // twice and whatever the host threads.
 TEST(ScOctreeTreelets, SuspendedWalksTakeTheUnbrokenWalkThroughTheRayQueues) {
@@ -112,29 +111,7 @@ TEST(ScOctreeTreelets, SuspendedWalksTakeTheUnbrokenWalkThroughTheRayQueues) {
     fx::TreeletCrossings expected;
     for (const QRay& ray : c.rays) expected += fx::octreeTreeletCrossings(c.image, ray);
     every += expected;
-    for (const int units : {1, 4}) {
-      for (const int kib : {1, 64}) {
-        TraversalRunOptions o = test::treeletStressOptions(units, kib);
-        std::vector<fx::TraversalTrace> traces;
-        const TraversalRunStats s = device.run(c.image, c.rays, traces, o);
-        const std::string where = fmt::format("{}, {} units, {} KiB", c.name, units, kib);
-        ASSERT_EQ(traces.size(), c.rays.size()) << where;
-        for (size_t k = 0; k < c.rays.size(); ++k) {
-          ASSERT_EQ(traces[k], fx::traverseOctree(c.image, c.rays[k])) << where << ", ray " << k;
-        }
-        EXPECT_EQ(s.queues.suspensions, expected.suspensions) << where;
-        EXPECT_EQ(s.queues.bytesRead, s.queues.bytesWritten) << where << ": every record on chip read back once";
-        all += s.queues;
-        if (units == 4 && kib == 1) {
-          o.hostThreads = 4;
-          std::vector<fx::TraversalTrace> again;
-          const TraversalRunStats t = device.run(c.image, c.rays, again, o);
-          EXPECT_EQ(t.cycles, s.cycles) << where;
-          EXPECT_EQ(t.queues, s.queues) << where;
-          EXPECT_EQ(again, traces) << where;
-        }
-      }
-    }
+    test::checkTreeletRuns(device, c.name, c.image, c.rays, expected.suspensions, fx::traverseOctree, all);
   }
   EXPECT_GT(every.crossings, every.suspensions) << "the window's limit is met";
   EXPECT_GT(all.suspensions, 1000u);
