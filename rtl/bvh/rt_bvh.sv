@@ -182,7 +182,7 @@ module rt_bvh #(
   logic [SP_W-1:0]        sp_q     [N];
   logic [CAND_W-1:0]      win_q    [N * WIN];    // stack entries 0 .. WIN-1 of each slot
   logic [CAND_W-1:0]      upper_q  [N * UPPER];  // entries WIN .. STACK-1
-  logic [31:0]            blk_q    [N];     // the treelet block of the last interior node entered
+  logic [31:0]            blk_q    [N];     // the last interior node entered (its block: the bits above the shift)
   logic [N-1:0]           suspending_q;     // DONE: the walk is set aside, not over
 
   // ---- Events ----------------------------------------------------------------------------
@@ -305,10 +305,15 @@ module rt_bvh #(
   // interior node of another block than the slot's and the stack (as it
   // stands after the event) fits the record's window.
   localparam int SUSPEND = rt_pkg::BVH_SUSPEND_ENTRIES;
+  // Two nodes share a block when their indices agree above the block's shift:
+  // a mask (registered: the configuration is static), not a shifter, after
+  // the stack's read.
+  logic [31:0] blk_mask_q;
+  always_ff @(posedge clk_i) blk_mask_q <= ~((32'(1) << cfg_block_shift_i) - 32'(1));
   // (A reference's leaf bit is its top bit, its first field the low 32: bvh_ref_t.)
-  function automatic logic leaves(input logic leaf, input logic [31:0] first, input logic [31:0] blk,
+  function automatic logic leaves(input logic leaf, input logic [31:0] first, input logic [31:0] last,
                                   input logic [SP_W-1:0] sp);
-    leaves = cfg_suspend_i && !leaf && (first >> cfg_block_shift_i) != blk && sp <= SP_W'(SUSPEND);
+    leaves = cfg_suspend_i && !leaf && ((first ^ last) & blk_mask_q) != '0 && sp <= SP_W'(SUSPEND);
   endfunction
   logic [REF_W-1:0] pop_ref, check_ref;
   logic box_leaves, pop_leaves, check_leaves;
@@ -434,10 +439,10 @@ module rt_bvh #(
     end
   end
 
-  // The block the slot is in: its first node's at init, then each interior node's it enters.
+  // The last interior node the slot entered (its block: the bits above the shift): at init its first node.
   always_ff @(posedge clk_i) begin : p_block
-    if (visit_go && !visit_ref.leaf) blk_q[visit_slot] <= visit_ref.first >> cfg_block_shift_i;
-    if (init) blk_q[init_slot] <= init_ref_s.first >> cfg_block_shift_i;
+    if (visit_go && !visit_ref.leaf) blk_q[visit_slot] <= visit_ref.first;
+    if (init) blk_q[init_slot] <= init_ref_s.first;
   end
 
   // The stack: the box answer pushes the farther child; a resumed walk's
