@@ -84,54 +84,14 @@ OctT midpoint(const OctT& t0, const OctT& t1) {
 
 bool negative(const OctT& t) { return t.inf < 0 || (t.inf == 0 && t.value < 0); }
 
-struct Walker {
-  const OctreeImage& image;
-  const QRay& ray;
-  const OctreeRaySetup& setup;
-  OctreeTrace& trace;
-  bool done = false;
-
-  void visit(uint32_t index, const Box& box, const std::array<OctT, 3>& t0, const std::array<OctT, 3>& t1) {
-    if (negative(t1[0]) || negative(t1[1]) || negative(t1[2])) return;  // behind the origin
-    trace.visits.push_back(index);
-    const OctreeNode& node = image.nodes[index];
-    if (node.leaf) {
-      for (uint32_t k = 0; k < node.count; ++k) testEntry(trace, ray, tablesOf(image), image.indices[node.first + k]);
-      if (ray.anyHit && trace.hit) {  // any hit answers: no exit test
-        done = true;
-        return;
-      }
-      const auto bound = walkBound(ray, trace.hit);
-      done = bound && hitWithin(*bound, t1, setup);
-      return;
-    }
-    // Mid-plane parameters: halvings, or +-inf for an axis the ray never
-    // crosses, by the side of the mid-plane the (mirrored) origin lies on.
-    std::array<OctT, 3> tm{};
-    for (int a = 0; a < 3; ++a) {
-      tm[a] = setup.active[a] ? midpoint(t0[a], t1[a])
-                              : (setup.origin[a] < box.lo[a] + box.side / 2 ? kPlusInf : kMinusInf);
-    }
-    for (int child = firstChild(t0, tm); child < 8 && !done;) {
-      std::array<OctT, 3> c0{}, c1{};
-      for (int a = 0; a < 3; ++a) {
-        const bool upper = (child >> (2 - a)) & 1;
-        c0[a] = upper ? tm[a] : t0[a];
-        c1[a] = upper ? t1[a] : tm[a];
-      }
-      // The mirrored walk's child `child` is the stored child child ^ a.
-      visit(node.first + uint32_t(child ^ setup.mirror), box.child(child), c0, c1);
-      child = nextChild(child, c1);
-    }
-  }
-};
-
 bool behind(const std::array<OctT, 3>& t1) { return negative(t1[0]) || negative(t1[1]) || negative(t1[2]); }
 
-// rt_octree's walk, step for step (docs/octree-unit.md, "Slot state machine"),
-// between its reads of child groups: a descent's read is where a treelet
-// schedule may set it aside. The recursive Walker above is the reference it
-// must equal.
+// rt_octree's walk, step for step (docs/octree-unit.md, "Slot state machine"):
+// the node's plane parameters and the stack of {group base, child}, between
+// its reads of child groups; a descent's read is where a treelet schedule may
+// set it aside. It visits the nodes of Revelles' recursion in its order: the
+// children a node's ray crosses, from firstChild by nextChild, a child behind
+// the origin (some t1 < 0) skipped.
 struct Stepper {
   const OctreeImage& image;
   const QRay& ray;
@@ -376,14 +336,10 @@ bool hitWithin(const IsectResult& hit, const std::array<OctT, 3>& t1, const Octr
 }
 
 OctreeTrace traverseOctree(const OctreeImage& image, const QRay& ray) {
-  OctreeTrace trace;
+  OctreeWalk walk = startOctreeWalk(image);
   const OctreeRaySetup setup = OctreeRaySetup::setup(ray);
-  // Revelles' root test: the ray meets the root's interior.
-  const OctT enter = std::max({setup.t0[0], setup.t0[1], setup.t0[2]});
-  const OctT leave = std::min({setup.t1[0], setup.t1[1], setup.t1[2]});
-  if (!(enter < leave)) return trace;
-  Walker{image, ray, setup, trace}.visit(0, Box{}, setup.t0, setup.t1);
-  return trace;
+  Stepper{image, ray, setup, walk}.run();
+  return std::move(walk.trace);
 }
 
 void layoutOctreeTreelets(OctreeImage& image, uint32_t blockNodes) {

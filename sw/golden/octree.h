@@ -113,11 +113,12 @@ OctreeTrace traverseOctree(const OctreeImage& image, const QRay& ray);
 void layoutOctreeTreelets(OctreeImage& image, uint32_t blockNodes);
 
 // ---- A walk set aside and resumed (the treelet schedule, docs/scheduling.md) ----
-// The walk as rt_octree steps it: the node's plane parameters and the stack
-// of {group base, child} per level (no parameters on the stack: halvings are
-// exact, so a child's give back its parent's), between its reads of child
-// groups. A walk suspended before a read and resumed later makes exactly the
-// unbroken walk's steps, in any interleaving with other rays.
+// The walk as rt_octree steps it (traverseOctree is this walk unbroken): the
+// node's plane parameters and the stack of {group base, child} per level (no
+// parameters on the stack: halvings are exact, so a child's give back its
+// parent's), between its reads of child groups. A walk suspended before a
+// descent and resumed later makes exactly the unbroken walk's steps, in any
+// interleaving with other rays.
 struct OctreeLevel {
   uint32_t first = 0;  // the level's child-group base
   uint8_t child = 0;   // which of its children the walk is in (mirrored numbering)

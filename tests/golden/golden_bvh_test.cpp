@@ -536,7 +536,9 @@ TEST(GoldenBvhTreelets, SuspendedWalksResumedBlockByBlockTakeTheUnbrokenWalk) {
     for (const QRay& ray : rays) crossings += bvhTreeletCrossings(image, ray);
     EXPECT_EQ(suspensions, crossings.suspensions) << "blocks of " << blockNodes;
     EXPECT_GE(crossings.crossings, crossings.suspensions);
-    if (blockNodes == 1) EXPECT_GT(suspensions, rays.size());
+    if (blockNodes == 1) {
+      EXPECT_GT(suspensions, rays.size());
+    }
   }
 }
 

@@ -223,10 +223,10 @@ std::vector<QRay> treeletRays(uint64_t seed, uint32_t count) {
   return rays;
 }
 
-// rt_octree's step-for-step walk (the one a treelet schedule sets aside) is
-// the recursive reference walk on every hard case, unbroken (no layout) and
-// set aside at every group of its own block.
-TEST(GoldenOctreeTreelets, TheSteppedWalkIsTheReferenceWalkOnEveryHardCase) {
+// On every hard case a walk set aside before every descent (each child group
+// its own block) and resumed, its record carried through octree_walk_t, takes
+// the unbroken walk; without a layout nothing is set aside.
+TEST(GoldenOctreeTreelets, AWalkSetAsideAtEveryGroupTakesTheUnbrokenWalk) {
   for (test::OctreeCase& c : test::octreeHardCases()) {
     EXPECT_EQ(test::walkBlockByBlock<OctreeWalkOps>(c.image, c.rays), 0u) << c.name << ": no layout, no suspension";
     if (c.image.nodes[0].leaf) continue;
@@ -331,7 +331,9 @@ TEST(GoldenOctreeTreelets, SuspendedWalksResumedBlockByBlockTakeTheUnbrokenWalk)
     for (const QRay& ray : rays) crossings += octreeTreeletCrossings(image, ray);
     EXPECT_EQ(suspensions, crossings.suspensions) << "blocks of " << blockNodes;
     EXPECT_GE(crossings.crossings, crossings.suspensions);
-    if (blockNodes == 8) EXPECT_GT(suspensions, rays.size());
+    if (blockNodes == 8) {
+      EXPECT_GT(suspensions, rays.size());
+    }
   }
 }
 
