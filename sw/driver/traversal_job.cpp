@@ -83,7 +83,7 @@ JobResult runTraversalJob(const Image& image, std::span<const std::optional<Quan
       throw InputError(fmt::format("--schedule treelet: the {} unit cannot set walks aside; the treelet schedule "
                                    "runs on the BVH and octree units (--accel bvh|octree)",
                                    Unit::kNames.unit));
-    } else if (!Unit::hasTreelets(image)) {
+    } else if (!fx::hasTreeletLayout(image)) {
       throw InputError(fmt::format("--schedule treelet needs a treelet layout: {} N (the on-chip budget of a "
                                    "treelet, e.g. 32768; docs/scheduling.md)",
                                    Unit::kTreeletFlag));

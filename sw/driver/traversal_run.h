@@ -274,7 +274,7 @@ class UnitRun {
     trav_detail::configure(top_, ports_.image);
     if constexpr (kSuspends) {
       top_.cfg_suspend_i = options_.treelets;
-      top_.cfg_block_shift_i = Desc::treeletBlockShift(ports_.image);
+      top_.cfg_block_shift_i = fx::treeletBlockShift(ports_.image);
     }
   }
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <queue>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -12,6 +11,7 @@
 #include "golden/isect.h"
 #include "golden/memory_image.h"
 #include "golden/record_bits.h"
+#include "golden/treelet_layout.h"
 #include "golden/wide.h"
 
 namespace lancer::fx {
@@ -202,39 +202,6 @@ double childArea(const BvhNode& node, int c) {
   return x * y + y * z + z * x;
 }
 
-// The treelets of the tree, each its nodes in depth-first order; treelets in
-// the depth-first order of their roots.
-std::vector<std::vector<uint32_t>> formTreelets(const std::vector<BvhNode>& nodes, uint32_t blockNodes) {
-  std::vector<std::vector<uint32_t>> treelets;
-  if (nodes.empty()) return treelets;
-  std::priority_queue<uint32_t, std::vector<uint32_t>, std::greater<>> roots;
-  roots.push(0);
-  using Frontier = std::pair<double, uint32_t>;  // (area, ~index): the largest area, then the lowest index
-  while (!roots.empty()) {
-    const uint32_t root = roots.top();
-    roots.pop();
-    std::vector<uint32_t> members{root};
-    std::priority_queue<Frontier> frontier;
-    const auto open = [&](uint32_t index) {
-      for (int c = 0; c < kBvhWidth; ++c) {
-        const BvhRef& ref = nodes[index].child[size_t(c)];
-        if (!ref.leaf) frontier.emplace(childArea(nodes[index], c), ~ref.first);
-      }
-    };
-    open(root);
-    while (members.size() < blockNodes && !frontier.empty()) {
-      const uint32_t next = ~frontier.top().second;
-      frontier.pop();
-      members.push_back(next);
-      open(next);
-    }
-    for (; !frontier.empty(); frontier.pop()) roots.push(~frontier.top().second);
-    std::sort(members.begin(), members.end());
-    treelets.push_back(std::move(members));
-  }
-  return treelets;
-}
-
 }  // namespace
 
 void layoutBvhTreelets(BvhImage& image, uint32_t blockNodes) {
@@ -243,19 +210,20 @@ void layoutBvhTreelets(BvhImage& image, uint32_t blockNodes) {
   }
   // Primitives in leaf order (each is listed once), each kind in its table.
   renumberPrimitivesByListing(image.indices, image.triangles, image.quadrics);
-  // Treelets, packed next-fit into the blocks.
-  const std::vector<std::vector<uint32_t>> treelets = formTreelets(image.nodes, blockNodes);
-  std::vector<uint32_t> placed(image.nodes.size());
-  uint64_t block = 0, used = 0;
-  for (const std::vector<uint32_t>& t : treelets) {
-    if (used + t.size() > blockNodes) {
-      ++block;
-      used = 0;
-    }
-    for (size_t k = 0; k < t.size(); ++k) placed[t[k]] = uint32_t(block * blockNodes + used + k);
-    used += t.size();
+  // Treelets of interior nodes, the largest child boxes first, packed next-fit into the blocks.
+  std::vector<std::vector<uint32_t>> treelets;
+  if (!image.nodes.empty()) {
+    treelets = formGreedyTreelets(0, blockNodes, [&](uint32_t index, auto emit) {
+      for (int c = 0; c < kBvhWidth; ++c) {
+        const BvhRef& ref = image.nodes[index].child[size_t(c)];
+        if (!ref.leaf) emit(childArea(image.nodes[index], c), ref.first);
+      }
+    });
   }
-  std::vector<BvhNode> nodes(image.nodes.empty() ? 0 : size_t(block * blockNodes + used));
+  std::vector<uint32_t> placed(image.nodes.size());
+  const uint64_t slots =
+      packTreeletsNextFit(treelets, blockNodes, 0, [&](uint32_t index, uint64_t slot) { placed[index] = uint32_t(slot); });
+  std::vector<BvhNode> nodes(static_cast<size_t>(slots));
   for (size_t i = 0; i < image.nodes.size(); ++i) {
     BvhNode node = image.nodes[i];
     for (BvhRef& child : node.child) {

@@ -55,11 +55,7 @@ struct BvhUnit : UnitBase<UnitKind::Bvh, BvhImage, BvhNode, kBvhNodeFields, kBvh
     Image image = buildBvhImage(std::move(triangles), options.bvhLeafSize ? options.bvhLeafSize : kDefaultBvhLeafSize,
                                 std::move(quadrics));
     if (options.bvhTreeletBytes != 0) {
-      if (options.bvhTreeletBytes < int(kNodeBytes)) {
-        throw InputError(fmt::format("{} {}: a treelet holds at least one node ({} bytes)", kTreeletFlag,
-                                     options.bvhTreeletBytes, kNodeBytes));
-      }
-      layoutBvhTreelets(image, std::bit_floor(uint32_t(options.bvhTreeletBytes) / kNodeBytes));
+      layoutBvhTreelets(image, treeletBlockNodes(kTreeletFlag, options.bvhTreeletBytes, kNodeBytes, 1, "node"));
     }
     return image;
   }
@@ -82,10 +78,6 @@ struct BvhUnit : UnitBase<UnitKind::Bvh, BvhImage, BvhNode, kBvhNodeFields, kBvh
   // it enters next, and a ray queue holds bvhSuspendedBits of it.
   static constexpr const auto& kWalkFieldList = kBvhWalkFields;
   static constexpr int kBlockShiftBits = kBvhBlockShiftBits;  // cfg_block_shift_i
-  static bool hasTreelets(const Image& image) { return image.treeletNodes != 0; }
-  static uint32_t treeletBlockShift(const Image& image) {
-    return image.treeletNodes ? uint32_t(std::countr_zero(image.treeletNodes)) : 0;
-  }
   static WaitingWalk suspended(const Image& image, std::span<const u128> walk) {
     const BvhWalk w = bvhWalkOf(walk, 0);
     return {w.waitsFor(image), bvhSuspendedBits(w.stack.size())};

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <queue>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -12,6 +11,7 @@
 #include "golden/isect.h"
 #include "golden/memory_image.h"
 #include "golden/record_bits.h"
+#include "golden/treelet_layout.h"
 #include "golden/wide.h"
 
 namespace lancer::fx {
@@ -221,42 +221,6 @@ struct Stepper {
   }
 };
 
-// The tree of child groups (each named by its first node) cut into treelets,
-// each its groups ascending; treelets in the order of their roots.
-std::vector<std::vector<uint32_t>> formOctreeTreelets(const std::vector<OctreeNode>& nodes, uint32_t blockGroups) {
-  std::vector<std::vector<uint32_t>> treelets;
-  if (nodes.empty() || nodes[0].leaf) return treelets;
-  using Group = std::pair<int, uint32_t>;  // (depth, first node): the shallowest, then the lowest index
-  std::priority_queue<uint32_t, std::vector<uint32_t>, std::greater<>> roots;
-  std::vector<int> depthOf(nodes.size(), 0);
-  roots.push(nodes[0].first);
-  depthOf[nodes[0].first] = 1;
-  while (!roots.empty()) {
-    const uint32_t root = roots.top();
-    roots.pop();
-    std::vector<uint32_t> members{root};
-    std::priority_queue<Group, std::vector<Group>, std::greater<>> frontier;
-    const auto open = [&](uint32_t group) {
-      for (uint32_t n = group; n < group + uint32_t(kOctreeChildren); ++n) {
-        if (nodes[n].leaf) continue;
-        depthOf[nodes[n].first] = depthOf[group] + 1;
-        frontier.emplace(depthOf[group] + 1, nodes[n].first);
-      }
-    };
-    open(root);
-    while (members.size() < blockGroups && !frontier.empty()) {
-      const uint32_t next = frontier.top().second;
-      frontier.pop();
-      members.push_back(next);
-      open(next);
-    }
-    for (; !frontier.empty(); frontier.pop()) roots.push(frontier.top().second);
-    std::sort(members.begin(), members.end());
-    treelets.push_back(std::move(members));
-  }
-  return treelets;
-}
-
 }  // namespace
 
 int defaultOctreeDepth(size_t triangles) {
@@ -349,20 +313,27 @@ void layoutOctreeTreelets(OctreeImage& image, uint32_t blockNodes) {
                                  blockNodes, kOctreeChildren));
   }
   const uint32_t blockGroups = blockNodes / uint32_t(kOctreeChildren);
-  // Treelets, packed next-fit into the blocks after the root's slot (entry 0
-  // and seven entries of padding, so that every group is aligned).
-  const std::vector<std::vector<uint32_t>> treelets = formOctreeTreelets(image.nodes, blockGroups);
-  std::vector<uint32_t> placed(image.nodes.size());
-  uint64_t block = 0, used = 1;
-  for (const std::vector<uint32_t>& t : treelets) {
-    if (used + t.size() > blockGroups) {
-      ++block;
-      used = 0;
-    }
-    for (size_t k = 0; k < t.size(); ++k) placed[t[k]] = uint32_t((block * blockGroups + used + k) * kOctreeChildren);
-    used += t.size();
+  // Treelets of child groups (each named by its first node), the shallowest
+  // first (every node of a depth has the same surface), packed next-fit into
+  // the blocks after the root's slot (entry 0 and seven entries of padding,
+  // so that every group is aligned).
+  std::vector<std::vector<uint32_t>> treelets;
+  if (!image.nodes.empty() && !image.nodes[0].leaf) {
+    std::vector<int> depthOf(image.nodes.size(), 0);
+    depthOf[image.nodes[0].first] = 1;
+    treelets = formGreedyTreelets(image.nodes[0].first, blockGroups, [&](uint32_t group, auto emit) {
+      for (uint32_t n = group; n < group + uint32_t(kOctreeChildren); ++n) {
+        if (image.nodes[n].leaf) continue;
+        depthOf[image.nodes[n].first] = depthOf[group] + 1;
+        emit(-double(depthOf[group] + 1), image.nodes[n].first);
+      }
+    });
   }
-  std::vector<OctreeNode> nodes(size_t(block * blockGroups + used) * kOctreeChildren, OctreeNode{true, 0, 0});
+  std::vector<uint32_t> placed(image.nodes.size());
+  const uint64_t slots = packTreeletsNextFit(treelets, blockGroups, 1, [&](uint32_t group, uint64_t slot) {
+    placed[group] = uint32_t(slot * kOctreeChildren);
+  });
+  std::vector<OctreeNode> nodes(size_t(slots) * kOctreeChildren, OctreeNode{true, 0, 0});
   const auto relink = [&](OctreeNode node) {
     if (!node.leaf) node.first = placed[node.first];
     return node;

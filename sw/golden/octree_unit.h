@@ -2,7 +2,6 @@
 
 // The octree unit's descriptor (golden/unit.h lists what a descriptor provides).
 
-#include <bit>
 #include <optional>
 
 #include "golden/octree.h"
@@ -51,11 +50,8 @@ struct OctreeUnit : UnitBase<UnitKind::Octree, OctreeImage, OctreeNode, kOctreeN
     const int leaf = options.octreeLeafSize ? options.octreeLeafSize : kDefaultOctreeLeafSize;
     Image image = buildOctreeImage(std::move(triangles), depth, leaf, std::move(quadrics));
     if (options.octreeTreeletBytes != 0) {
-      if (options.octreeTreeletBytes < int(kGroupBytes)) {
-        throw InputError(fmt::format("{} {}: a treelet holds at least one child group ({} bytes)", kTreeletFlag,
-                                     options.octreeTreeletBytes, kGroupBytes));
-      }
-      layoutOctreeTreelets(image, std::bit_floor(uint32_t(options.octreeTreeletBytes) / kNodeBytes));
+      layoutOctreeTreelets(image, treeletBlockNodes(kTreeletFlag, options.octreeTreeletBytes, kNodeBytes,
+                                                    uint32_t(kOctreeChildren), "child group"));
     }
     return image;
   }
@@ -77,10 +73,6 @@ struct OctreeUnit : UnitBase<UnitKind::Octree, OctreeImage, OctreeNode, kOctreeN
   // octreeSuspendedBits of it.
   static constexpr const auto& kWalkFieldList = kOctreeWalkFields;
   static constexpr int kBlockShiftBits = kOctreeBlockShiftBits;  // cfg_block_shift_i
-  static bool hasTreelets(const Image& image) { return image.treeletNodes != 0; }
-  static uint32_t treeletBlockShift(const Image& image) {
-    return image.treeletNodes ? uint32_t(std::countr_zero(image.treeletNodes)) : 0;
-  }
   static WaitingWalk suspended(const Image& image, std::span<const u128> walk) {
     const OctreeWalk w = octreeWalkOf(walk, QRay{});  // (its block and depth need no ray)
     return {w.waitsFor(image), octreeSuspendedBits(w.stack.size())};

@@ -30,6 +30,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <iterator>
 #include <limits>
@@ -173,6 +174,29 @@ struct WaitingWalk {
   int bits;
 };
 
+// The block of a treelet layout for a budget of `bytes` (`flag`,
+// --<unit>-treelet-bytes): the most node-table entries of `nodeBytes` each, a
+// power of two, that fit it. A budget below the smallest block (`leastNodes`
+// entries: one `least`) is an error naming the flag.
+inline uint32_t treeletBlockNodes(const char* flag, int bytes, uint32_t nodeBytes, uint32_t leastNodes,
+                                  const char* least) {
+  if (bytes < int(nodeBytes * leastNodes)) {
+    throw InputError(
+        fmt::format("{} {}: a treelet holds at least one {} ({} bytes)", flag, bytes, least, nodeBytes * leastNodes));
+  }
+  return std::bit_floor(uint32_t(bytes) / nodeBytes);
+}
+// An image's treelet layout (treeletNodes: its blocks' entries, 0 without
+// one): whether it has one, and its blocks' shift (cfg_block_shift_i).
+template <class Image>
+bool hasTreeletLayout(const Image& image) {
+  return image.treeletNodes != 0;
+}
+template <class Image>
+uint32_t treeletBlockShift(const Image& image) {
+  return image.treeletNodes ? uint32_t(std::countr_zero(image.treeletNodes)) : 0;
+}
+
 // A figure of a unit's memory image (the grid's resolution, the octree's depth).
 struct ImageCounter {
   const char* key;    // JSON key
@@ -199,8 +223,9 @@ template <class U>
 inline constexpr int kCfgBitsOf = recordBits(U::kCfgFields);
 
 // A unit that can set walks aside (the treelet schedule, docs/scheduling.md):
-// its descriptor has a walk record (kWalkFieldList, kBlockShiftBits) and
-// hasTreelets, treeletBlockShift, suspended, treeletCrossings.
+// its descriptor has a walk record (kWalkFieldList, kBlockShiftBits),
+// kTreeletFlag, suspended and treeletCrossings, its image a treelet layout
+// (treeletNodes: hasTreeletLayout, treeletBlockShift).
 template <class U>
 concept SuspendsWalks = requires { U::kWalkFieldList; };
 // Its walk record's bits (0 for a unit that cannot set walks aside).

@@ -69,7 +69,9 @@ TEST(ScBvhTreelets, SuspendedWalksTakeTheUnbrokenWalkThroughTheRayQueues) {
     fx::TreeletCrossings expected;
     for (const QRay& ray : c.rays) expected += fx::bvhTreeletCrossings(c.image, ray);
     test::checkTreeletRuns(device, c.name, c.image, c.rays, expected.suspensions, fx::traverseBvh, all);
-    if (c.name == "chain") EXPECT_GT(expected.crossings, expected.suspensions) << "the window's limit is met";
+    if (c.name == "chain") {
+      EXPECT_GT(expected.crossings, expected.suspensions) << "the window's limit is met";
+    }
   }
   EXPECT_GT(all.suspensions, 1000u);
   EXPECT_GT(all.overflows, 0u);

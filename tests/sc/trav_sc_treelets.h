@@ -27,7 +27,7 @@ namespace lancer::test {
 template <class Device, class Image, class Reference>
 void checkTreeletRuns(Device& device, const std::string& name, const Image& image, std::span<const fx::QRay> rays,
                       uint64_t suspensions, Reference reference, mem::RayQueueStats& all) {
-  for (const auto [units, kib] : {std::pair{1, 64}, std::pair{4, 1}}) {
+  for (const auto& [units, kib] : {std::pair{1, 64}, std::pair{4, 1}}) {
     TraversalRunOptions o = treeletStressOptions(units, kib);
     std::vector<fx::TraversalTrace> traces;
     const TraversalRunStats s = device.run(image, rays, traces, o);
