@@ -61,6 +61,12 @@
 //   advance: DONE at depth 0; sibling -> ENTER | REFILL_REQ | NEXT; pop -> NEXT | DONE
 //   REFILL_REQ -node grant-> WAIT_REFILL -node response-> ENTER
 //   DONE -done grant-> FREE
+//   ENTER of an interior node with cfg_suspend_i, its child group (first) in
+//          another block (first >> cfg_block_shift_i) than the last group the
+//          slot read, and at most OCTREE_SUSPEND_LEVELS levels on the stack:
+//          DONE, suspended instead of GROUP_REQ (its result carries the walk:
+//          res_suspended_o, res_walk_o); it resumes as a new ray with
+//          ray_resume_i, in GROUP_REQ for that group at init
 //
 // Every step after setup is additions, halvings, comparisons and table look-ups
 // (fx::firstChild, fx::nextChild). Halvings are exact, so the stack holds no
@@ -89,7 +95,8 @@
 // Storage: one-hot state vectors (N bits each, reset); per-slot registers as
 // arrays written by index (no reset; written before read). The current node's
 // entry {group base, child} sits in registers; the stack below it is written
-// only by DESCEND. A slot's node id (group base + (child ^ a)) and its node
+// by DESCEND and a resumption: its bottom levels (the suspend window) in
+// flip-flops, those above in a memory (a macro). A slot's node id (group base + (child ^ a)) and its node
 // read address are formed when they are granted.
 //
 // Shape (as rt_grid's walk): the steps are combinational (b_advance, the
@@ -112,9 +119,21 @@ module rt_octree #(
 
   // Configuration, static while rays are in flight.
   input  rt_pkg::octree_node_t                   cfg_root_i,   // node 0 (the root's record)
+  // The treelet schedule (docs/scheduling.md): set walks aside before they
+  // descend into a child group of another treelet block of
+  // 2^cfg_block_shift_i node-table entries.
+  input  logic                                   cfg_suspend_i,
+  input  logic [rt_pkg::OCTREE_BLOCK_SHIFT_W-1:0] cfg_block_shift_i,
 
-  // One result per ray, one record per node entered.
+  // With a ray accepted: it resumes the walk of ray_walk_i.
+  input  logic                                   ray_resume_i,
+  input  rt_pkg::octree_walk_t                   ray_walk_i,
+
+  // One result per ray (per walk: a suspended walk's result comes with its
+  // record, res_walk_o, 0 otherwise), one record per node entered.
   output rt_pkg::octree_res_t                      res_data_o,
+  output logic                                     res_suspended_o,
+  output rt_pkg::octree_walk_t                     res_walk_o,
   output rt_pkg::octree_visit_t                    visit_data_o
 );
 
@@ -124,8 +143,9 @@ module rt_octree #(
   localparam int unsigned ExitW     = rt_pkg::OCTREE_T_W;
   localparam int unsigned DenW      = rt_pkg::OCTREE_COMMON_W;
   localparam int unsigned RunPorts  = 1;
-  localparam int unsigned WalkPartW = 0;     // walks are not set aside
   localparam bit          RegRsp    = 1'b0;  // node responses straight to the walk
+  // A suspended walk's record less its closest hit (the result carries that).
+  localparam int unsigned WalkPartW = rt_pkg::OCTREE_WALK_W - `RT_WALK_HIT_W;
 `define RT_WALK_CORE_BODY
 `include "rt_walk_core.svh"
 
@@ -138,7 +158,18 @@ module rt_octree #(
   localparam int STACK   = rt_pkg::OCTREE_MAX_DEPTH;             // levels 0 .. P-1
   localparam int STK_W   = (STACK > 1) ? $clog2(STACK) : 1;
   localparam int ENTRY_W = 35;                                   // {group base, child}
-  localparam int STK_AW  = $clog2(N * STACK);                    // stack memory address
+  // The ancestors' entries in two parts: each slot's bottom WIN levels (the
+  // suspend window: a suspension reads them and a resumption writes them at
+  // once) in flip-flops, the levels above them in one memory of one write
+  // port (DESCEND's push) and AdvLanes + 1 read ports (the lanes' pops). A
+  // walk set aside has at most OCTREE_SUSPEND_LEVELS levels, the current
+  // one in registers: the window holds the others.
+  localparam int SUSPEND = rt_pkg::OCTREE_SUSPEND_LEVELS;
+  localparam int WIN     = (SUSPEND - 1 < STACK) ? SUSPEND - 1 : STACK;
+  localparam int UPPER   = STACK - WIN;                          // levels above the window, per slot
+  localparam int WIN_AW  = $clog2(N * WIN);
+  localparam int UP_N    = (N * UPPER > 0) ? N * UPPER : 1;
+  localparam int UP_AW   = (UP_N > 1) ? $clog2(UP_N) : 1;
 
   // Rank of a parameter in the order -inf < finite < +inf.
   localparam logic [1:0] NEG_INF = 2'd0;
@@ -175,15 +206,21 @@ module rt_octree #(
     if (active[2] && (!(active[0] || active[1]) || z < $signed(min_active))) min_active = z;
   endfunction
 
-  // Where slot s keeps its stack entry of level d.
-  function automatic logic [STK_AW-1:0] stack_addr(input logic [SlotW-1:0] s, input logic [STK_W-1:0] d);
-    stack_addr = STK_AW'(s) * STK_AW'(STACK) + STK_AW'(d);
+  // Where slot s keeps its stack entry of level d (in the window below WIN).
+  function automatic logic [WIN_AW-1:0] win_addr(input logic [SlotW-1:0] s, input logic [STK_W-1:0] d);
+    win_addr = WIN_AW'(s) * WIN_AW'(WIN) + WIN_AW'(d);
+  endfunction
+  function automatic logic [UP_AW-1:0] upper_addr(input logic [SlotW-1:0] s, input logic [STK_W-1:0] d);
+    logic [STK_W-1:0] above;  // the level's place above the window
+    above = d - STK_W'(WIN);
+    upper_addr = UP_AW'(s) * UP_AW'(UPPER) + UP_AW'(above);
   endfunction
 
   // ---- State vectors (bit s = slot s) -------------------------------------------
   logic [N-1:0] enter_q, group_req_q, wait_group_q, fetch_q, check_q;
   logic [N-1:0] next_q, refill_req_q, wait_refill_q, done_q;
   logic [N-1:0] gv_q;       // the child group holding the current node is in the group buffer
+  logic [N-1:0] suspending_q;  // DONE: the walk is set aside before a descent, not over
   logic         desc_q;     // a slot is in DESCEND: desc_slot_q
   logic [SlotW-1:0] desc_slot_q;
   // The DESCEND slot's operands, read at its node response (the slot waits in
@@ -202,10 +239,11 @@ module rt_octree #(
   logic [2:0]             active_q   [N];
   logic [3*ORG_W-1:0]     org_q      [N];   // o' {z, y, x}
   logic [31:0]            first_q    [N];   // the current node's record (its count: u_idx_count)
-  // The ancestors' entries: one memory of N * STACK entries, slot s's level d
-  // at s * STACK + d; DESCEND writes it (one port), each advance lane reads it
-  // (AdvLanes + 1 ports).
-  logic [ENTRY_W-1:0]     stack_q    [N * STACK];
+  // The ancestors' entries: levels 0 .. WIN-1 of slot s at s * WIN + level
+  // (flip-flops), the levels above at s * UPPER + level - WIN (a memory).
+  logic [ENTRY_W-1:0]     win_q      [N * WIN];
+  logic [ENTRY_W-1:0]     upper_q    [UP_N];
+  logic [31:0]            blk_q      [N];   // the last child group read (its block: the bits above the shift)
   // Written by the advance too.
   logic [3*T_W-1:0]       t0_q       [N];   // the current node's parameters {z, y, x}
   logic [3*T_W-1:0]       t1_q       [N];
@@ -390,6 +428,7 @@ module rt_octree #(
     logic [1:0]            xa;
     logic [DEPTH_W-1:0]    depth;
     logic [ENTRY_W-1:0]    parent;
+    logic [STK_W-1:0]      level;
     logic                  sibling, behind;
     logic [N-1:0]          oh;
     {adv_oh, to_enter, to_refill, to_next, to_done, popped} = '0;
@@ -403,7 +442,7 @@ module rt_octree #(
       lane_depth_d[l] = '0;
       lane_step[l]    = 1'b0;
       lane_pop[l]     = 1'b0;
-      {s, active, child, depth, xa, bits, sibling, up, behind, parent, oh} = '0;
+      {s, active, child, depth, xa, bits, sibling, up, behind, parent, level, oh} = '0;
       for (int a = 0; a < 3; a++) begin
         t0[a] = '0;
         t1[a] = '0;
@@ -423,7 +462,9 @@ module rt_octree #(
         behind  = behind_q[s];
         bits    = 3'b100 >> xa;
         sibling = (child & bits) == '0;
-        parent          = stack_q[stack_addr(s, STK_W'(depth - DEPTH_W'(2)))];
+        // The parent's entry: level depth - 2, in the window or the memory.
+        level           = STK_W'(depth - DEPTH_W'(2));
+        parent          = level < STK_W'(WIN) ? win_q[win_addr(s, level)] : upper_q[upper_addr(s, level)];
         lane_t0_d[l]    = t0_q[s];
         lane_t1_d[l]    = t1_q[s];
         lane_grp_d[l]   = parent[34:3];
@@ -550,6 +591,68 @@ module rt_octree #(
     end
   end
 
+  // ---- Suspension (the treelet schedule) ------------------------------------------------
+  // An interior node entered whose child group lies in another block than the
+  // last group the slot read, with at most SUSPEND levels on the stack: the
+  // walk leaves the unit instead of reading the group (DONE, suspended; its
+  // result carries the record). Two indices share a block when they agree
+  // above the block's shift: a mask (registered: the configuration is
+  // static), not a shifter.
+  logic [31:0] blk_mask_q;
+  logic [31:0] node_index;  // node_slot's group: its node's children, or a refill's
+  assign node_index = group_req_q[node_slot] ? first_q[node_slot] : grp_q[node_slot];
+  always_ff @(posedge clk_i) blk_mask_q <= ~((32'(1) << cfg_block_shift_i) - 32'(1));
+  logic visit_leaves;
+  assign visit_leaves = cfg_suspend_i && ((visit_rec.first ^ blk_q[visit_slot]) & blk_mask_q) != '0
+                        && depth_q[visit_slot] <= DEPTH_W'(SUSPEND);
+
+  // A resumed walk's record, captured with its ray and carried beside the
+  // ray's setup (OCTREE_SETUP_LATENCY stages, as rt_octree_setup): at init the
+  // slot takes its parameters, stack and closest hit, and asks for the group.
+  localparam int L = rt_pkg::OCTREE_SETUP_LATENCY;
+  localparam int CHILD_W = 3;
+  logic [L-1:0]                     rsm_q;
+  logic [rt_pkg::OCTREE_WALK_W-1:0] rsm_walk_q [L];
+  // octree_walk_t's fields as bit offsets (Yosys 0.23 takes no element of a
+  // packed array field): stack_child[k] at k * CHILD_W, stack_first[k] at
+  // W_FIRST + 32 k, t1[a] at W_T1 + a T_W, t0[a] at W_T0 + a T_W, then depth,
+  // group and the closest hit on top.
+  localparam int W_FIRST = SUSPEND * CHILD_W;
+  localparam int W_T1    = W_FIRST + SUSPEND * 32;
+  localparam int W_T0    = W_T1 + 3 * T_W;
+  localparam int W_DEPTH = W_T0 + 3 * T_W;
+  localparam int W_GROUP = W_DEPTH + DEPTH_W;
+  localparam int W_HIT   = W_GROUP + 32;
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      rsm_q <= '0;
+    end else begin
+      rsm_q[0] <= alloc && ray_resume_i;
+      for (int i = 1; i < L; i++) rsm_q[i] <= rsm_q[i-1];
+    end
+  end
+  always_ff @(posedge clk_i) begin
+    rsm_walk_q[0] <= ray_walk_i;
+    for (int i = 1; i < L; i++) rsm_walk_q[i] <= rsm_walk_q[i-1];
+  end
+  logic [rt_pkg::OCTREE_WALK_W-1:0] init_walk;
+  logic [DEPTH_W-1:0]               init_walk_depth;
+  logic [31:0]                      init_walk_group;
+  logic [ENTRY_W-1:0]               init_walk_top;    // its current level's entry (none at depth 0)
+  assign init_walk       = rsm_walk_q[L-1];
+  assign init_resume     = rsm_q[L-1];
+  assign init_hit        = init_walk[W_HIT +: `RT_WALK_HIT_W];
+  assign init_walk_depth = init_walk[W_DEPTH +: DEPTH_W];
+  assign init_walk_group = init_walk[W_GROUP +: 32];
+  always_comb begin
+    init_walk_top = '0;
+    for (int k = 0; k < SUSPEND; k++) begin
+      if (init_walk_depth == DEPTH_W'(k + 1)) begin
+        init_walk_top = {init_walk[W_FIRST + k * 32 +: 32], init_walk[k * CHILD_W +: CHILD_W]};
+      end
+    end
+  end
+
   // ---- State (reset) ---------------------------------------------------------------------
   // Each vector loses the slots whose event leaves its state and gains those
   // whose event enters it. (Written at the edge, not as an always_comb _d: a
@@ -567,29 +670,34 @@ module rt_octree #(
       wait_refill_q <= '0;
       done_q        <= '0;
       gv_q          <= '0;
+      suspending_q  <= '0;
       desc_q        <= 1'b0;
       desc_slot_q   <= '0;
       fin_q         <= 1'b0;
       fin_slot_q    <= '0;
       fresh_q       <= '0;
     end else begin : b_next
-      logic [N-1:0] visit_group, visit_fetch, visit_check, stepped;
-      visit_group   = visit_oh & {N{!visit_leaf}};
+      logic [N-1:0] visit_group, visit_leave, visit_fetch, visit_check, init_fresh, stepped;
+      visit_group   = visit_oh & {N{!visit_leaf && !visit_leaves}};
+      visit_leave   = visit_oh & {N{!visit_leaf && visit_leaves}};
+      init_fresh    = init_oh & {N{!init_resume}};
       visit_fetch   = visit_oh & {N{visit_leaf && !visit_empty}};
       visit_check   = visit_oh & {N{visit_leaf && visit_empty}};
       stepped       = '0;
       for (int l = 0; l < LANES; l++) stepped = stepped | onehot(lane_step[l], lane_slot[l]);
-      enter_q       <= (enter_q & ~visit_oh) | (init_oh & {N{init_enter}})
+      enter_q       <= (enter_q & ~visit_oh) | (init_fresh & {N{init_enter}})
                        | (desc_oh & {N{!desc_behind}}) | to_enter | (rsp_oh & wait_refill_q);
-      group_req_q   <= (group_req_q & ~node_oh) | visit_group;
+      group_req_q   <= (group_req_q & ~node_oh) | visit_group | (init_oh & {N{init_resume}});
       refill_req_q  <= (refill_req_q & ~node_oh) | to_refill;
       wait_group_q  <= (wait_group_q & ~rsp_oh) | (node_oh & group_req_q);
       wait_refill_q <= (wait_refill_q & ~rsp_oh) | (node_oh & refill_req_q);
       fetch_q       <= (fetch_q & ~fin_oh) | visit_fetch;
       check_q       <= (check_q & ~adv_oh & ~check_oh) | fin_oh | visit_check;
       next_q        <= (next_q & ~adv_oh) | to_next | (desc_oh & {N{desc_behind}});
-      done_q        <= (done_q & ~done_oh) | (init_oh & {N{!init_enter}}) | to_done
-                       | (check_oh & {N{check_holds}});
+      done_q        <= (done_q & ~done_oh) | (init_fresh & {N{!init_enter}}) | to_done
+                       | (check_oh & {N{check_holds}}) | visit_leave;
+      // Set when the walk leaves, cleared when the slot takes its next ray.
+      suspending_q  <= (suspending_q & ~init_oh) | visit_leave;
       gv_q          <= (gv_q & ~popped & ~init_oh) | rsp_oh;
       desc_q        <= node_valid && wait_group_q[node_tag];
       desc_slot_q   <= node_tag;
@@ -625,21 +733,76 @@ module rt_octree #(
       child_q[desc_slot_q] <= desc_child_d;
       depth_q[desc_slot_q] <= desc_depth + 1'b1;
     end
+    // A resumed walk's parameters, depth and current entry (its inactive
+    // axes' parameters are 0: never read).
     if (init) begin
-      t0_q[init_slot]    <= init_t0;
-      t1_q[init_slot]    <= init_t1;
-      depth_q[init_slot] <= '0;
-      grp_q[init_slot]   <= '0;
-      child_q[init_slot] <= '0;
+      t0_q[init_slot]    <= init_resume ? init_walk[W_T0 +: 3 * T_W] : init_t0;
+      t1_q[init_slot]    <= init_resume ? init_walk[W_T1 +: 3 * T_W] : init_t1;
+      depth_q[init_slot] <= init_resume ? init_walk_depth : '0;
+      grp_q[init_slot]   <= init_walk_top[ENTRY_W-1:3];
+      child_q[init_slot] <= init_walk_top[2:0];
     end
   end
 
-  // The stack: DESCEND pushes the current entry (none at the root).
+  // The stack: DESCEND pushes the current entry (none at the root); a resumed
+  // walk's levels come into the window at init (those at or above its
+  // current level are never read before DESCEND writes them).
   always_ff @(posedge clk_i) begin : p_stack
     if (desc_q && desc_depth != '0) begin
-      stack_q[stack_addr(desc_slot_q, STK_W'(desc_depth - 1'b1))] <= {grp_q[desc_slot_q], child_q[desc_slot_q]};
+      if (STK_W'(desc_depth - 1'b1) < STK_W'(WIN)) begin
+        win_q[win_addr(desc_slot_q, STK_W'(desc_depth - 1'b1))] <= {grp_q[desc_slot_q], child_q[desc_slot_q]};
+      end else begin
+        upper_q[upper_addr(desc_slot_q, STK_W'(desc_depth - 1'b1))] <= {grp_q[desc_slot_q], child_q[desc_slot_q]};
+      end
+    end
+    if (init && init_resume) begin
+      for (int k = 0; k < WIN; k++) begin
+        win_q[win_addr(init_slot, STK_W'(k))] <= {init_walk[W_FIRST + k * 32 +: 32], init_walk[k * CHILD_W +: CHILD_W]};
+      end
     end
   end
+
+  // The last child group the slot read (its block: the bits above the
+  // shift): the root's at init, a resumed walk's group.
+  always_ff @(posedge clk_i) begin : p_block
+    if (node_go) blk_q[node_slot] <= node_index;
+    if (init) blk_q[init_slot] <= init_resume ? init_walk_group : cfg_root_i.first;
+  end
+
+  // A suspended walk's part of its record, for done_slot: the group it reads
+  // first, its depth, the parameters (an inactive axis's 0) and the stack
+  // (the window's levels, then the current entry; levels at or above the
+  // depth read as 0).
+  logic [SUSPEND*32-1:0]      done_stack_first;  // level k at 32 k
+  logic [SUSPEND*CHILD_W-1:0] done_stack_child;  // level k at CHILD_W k
+  logic [3*T_W-1:0]           done_t0, done_t1;
+  always_comb begin
+    logic [DEPTH_W-1:0] depth;
+    depth = depth_q[done_slot];
+    for (int k = 0; k < SUSPEND; k++) begin
+      {done_stack_first[k * 32 +: 32], done_stack_child[k * CHILD_W +: CHILD_W]} = '0;
+      if (DEPTH_W'(k + 1) == depth) begin
+        {done_stack_first[k * 32 +: 32], done_stack_child[k * CHILD_W +: CHILD_W]} =
+            {grp_q[done_slot], child_q[done_slot]};
+      end else if (k < WIN && DEPTH_W'(k + 1) < depth) begin
+        {done_stack_first[k * 32 +: 32], done_stack_child[k * CHILD_W +: CHILD_W]} =
+            win_q[win_addr(done_slot, STK_W'(k))];
+      end
+    end
+    done_t0 = t0_q[done_slot];
+    done_t1 = t1_q[done_slot];
+    for (int a = 0; a < 3; a++) begin
+      if (!active_q[done_slot][a]) begin
+        done_t0[a*T_W +: T_W] = '0;
+        done_t1[a*T_W +: T_W] = '0;
+      end
+    end
+  end
+  assign done_suspend    = suspending_q[done_slot];
+  assign done_walk       = {first_q[done_slot], depth_q[done_slot], done_t0, done_t1, done_stack_first,
+                            done_stack_child};
+  assign res_suspended_o = res_suspend;
+  assign res_walk_o      = res_walk;
 
   // The ray's setup, and the current node's record.
   always_ff @(posedge clk_i) begin : p_ray
@@ -652,6 +815,7 @@ module rt_octree #(
 
   always_ff @(posedge clk_i) begin : p_node
     if (visit_go) first_q[visit_slot] <= visit_rec.first;
+    if (init && init_resume) first_q[init_slot] <= init_walk_group;
   end
 
   always_ff @(posedge clk_i) begin : p_desc_operands
@@ -673,7 +837,7 @@ module rt_octree #(
   assign run_start       = visit_go && visit_leaf;
   assign run_slot        = visit_slot;
   assign run_count       = 32'(visit_rec.count);
-  assign node_addr     = ADDR_W'(group_req_q[node_slot] ? first_q[node_slot] : grp_q[node_slot]);
+  assign node_addr     = ADDR_W'(node_index);
   assign idx_addr      = ADDR_W'(first_q[idx_slot] + idx_issued);
   assign check_exit    = min_active(active_q[check_sel], t1_q[check_sel][0*T_W +: T_W], t1_q[check_sel][1*T_W +: T_W],
                                       t1_q[check_sel][2*T_W +: T_W]);
@@ -694,6 +858,10 @@ module rt_octree #(
   end
   // An interior node one lattice unit wide cannot be split: the image is malformed.
   `RT_CHECK_IF(a_stack_depth, desc_q, desc_depth < DEPTH_W'(STACK))
+  // The record's layout, as octree_walk_t packs it.
+  `RT_ASSERT_STATIC(g_walk_layout_check, W_HIT + `RT_WALK_HIT_W == rt_pkg::OCTREE_WALK_W &&
+                    DEPTH_W == rt_pkg::OCTREE_DEPTH_W,
+                    "rt_octree: the offsets of octree_walk_t's fields differ from rt_pkg")
 `endif
 
 endmodule

@@ -687,8 +687,8 @@ TraversalRunStats runTraversalChip(std::vector<std::unique_ptr<Clocked>>& pool, 
   if (options.treelets) {
     if constexpr (!trav_detail::UnitRun<Clocked, Image>::kSuspends) {
       throw InputError(fmt::format("--schedule treelet: the {} model of the {} unit cannot set walks aside (no "
-                                   "suspend and resume ports); the treelet schedule runs on the BVH's golden, systemc "
-                                   "and rtl models and the octree's golden and systemc models",
+                                   "suspend and resume ports); the treelet schedule runs on the golden, systemc and "
+                                   "rtl models of the BVH and the octree",
                                    Clocked::kModel, Desc::kNames.unit));
     }
     shared.dispatcher.useQueues(std::make_unique<mem::RayQueues>(options.queues, rays.size(), memory));

@@ -62,10 +62,9 @@ inline constexpr auto kOctreeWalkFields = walkRecordFields(std::array<FieldSpec,
 }});
 inline constexpr int kOctreeWalkBits = recordBits(kOctreeWalkFields);
 
-// (octree_walk_t joins rt_pkg's records with rt_octree's suspend and resume
-// ports: the RTL does not set walks aside yet, docs/octree-unit.md.)
 inline constexpr RecordSpec kOctreeRecords[] = {
     {"octree_node_t", "OCTREE_NODE_W", "an octree node table entry", kOctreeNodeFields},
+    {"octree_walk_t", "OCTREE_WALK_W", "an octree walk set aside (treelet schedule)", kOctreeWalkFields},
     {"octree_visit_t", "OCTREE_VISIT_W", "an octree unit node step", kOctreeVisitFields},
     {"octree_res_t", "OCTREE_RESULT_W", "an octree unit ray result", kOctreeResFields},
 };
@@ -85,6 +84,8 @@ inline constexpr PackageParam kOctreeFormatParams[] = {
     {"OCTREE_MAX_DEPTH", kOctreeMaxDepth}, {"OCTREE_STACK_DEPTH", kOctreeStackDepth},
     {"OCTREE_T_W", kOctreeTBits},          {"OCTREE_COMMON_W", kOctreeCommonBits},
     {"OCTREE_CHILDREN", kOctreeChildren},
+    {"OCTREE_SUSPEND_LEVELS", kOctreeSuspendLevels}, {"OCTREE_DEPTH_W", kOctreeDepthBits},
+    {"OCTREE_BLOCK_SHIFT_W", kOctreeBlockShiftBits},
 };
 inline constexpr PackageParam kOctreeLatencies[] = {{"OCTREE_SETUP_LATENCY", kOctreeSetupLatency}};
 

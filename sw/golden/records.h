@@ -85,17 +85,13 @@ constexpr std::array<FieldSpec, 2> traversalVisitFields(const char* id, int idBi
   }};
 }
 
-// ---- <unit>_res_t: a ray's answer from a traversal unit: the
-// structure elements it visited (`visited`: cells, nodes), the tests it issued
-// (and of them the ray-quadric ones), and its closest hit, field for field as isect_res_t ---------------------------------
-constexpr std::array<FieldSpec, 10> traversalResFields(const char* visited, const char* visitedDoc) {
+// A closest hit, field for field as isect_res_t after its flag (`flag`: the
+// result's hit, a walk record's has_hit): a ray's result and a walk set aside
+// carry it alike.
+constexpr std::array<FieldSpec, 6> closestHitFields(const char* flag, const char* flagDoc, const char* primDoc) {
   return {{
-      {"ray_id", kRayIdBits, 1, false, "ray id"},
-      {visited, 32, 1, false, visitedDoc},
-      {"tests", 32, 1, false, "ray-primitive tests issued"},
-      {"quadric_tests", 32, 1, false, "of them ray-quadric (0 in a unit without rt_quadric)"},
-      {"hit", 1, 1, false, "1 if the ray hit a primitive"},
-      {"prim_id", kPrimIdBits, 1, false, "closest primitive (zero on a miss)"},
+      {flag, 1, 1, false, flagDoc},
+      {"prim_id", kPrimIdBits, 1, false, primDoc},
       {"t_num", kTNumBits, 1, false, "as isect_res_t"},
       {"det", kDetAbsBits, 1, false, "as isect_res_t"},
       {"u_num", kBaryBits, 1, false, "as isect_res_t"},
@@ -103,20 +99,31 @@ constexpr std::array<FieldSpec, 10> traversalResFields(const char* visited, cons
   }};
 }
 
+// ---- <unit>_res_t: a ray's answer from a traversal unit: the
+// structure elements it visited (`visited`: cells, nodes), the tests it issued
+// (and of them the ray-quadric ones), and its closest hit, field for field as isect_res_t ---------------------------------
+constexpr std::array<FieldSpec, 10> traversalResFields(const char* visited, const char* visitedDoc) {
+  std::array<FieldSpec, 10> fields{{
+      {"ray_id", kRayIdBits, 1, false, "ray id"},
+      {visited, 32, 1, false, visitedDoc},
+      {"tests", 32, 1, false, "ray-primitive tests issued"},
+      {"quadric_tests", 32, 1, false, "of them ray-quadric (0 in a unit without rt_quadric)"},
+  }};
+  const auto hit = closestHitFields("hit", "1 if the ray hit a primitive", "closest primitive (zero on a miss)");
+  for (size_t i = 0; i < hit.size(); ++i) fields[4 + i] = hit[i];
+  return fields;
+}
+
 // ---- <unit>_walk_t: a walk set aside by the treelet schedule (docs/scheduling.md):
 // the closest hit so far, field for field as isect_res_t, then the unit's own
 // walk state `state` ------------------------------------------------------------------
-inline constexpr int kWalkHitFields = 6;
+inline constexpr int kWalkHitFields = int(closestHitFields("", "", "").size());
 template <size_t N>
 constexpr std::array<FieldSpec, kWalkHitFields + N> walkRecordFields(const std::array<FieldSpec, N>& state) {
-  std::array<FieldSpec, kWalkHitFields + N> fields{{
-      {"has_hit", 1, 1, false, "1: the ray has a closest hit so far (the fields below); 0: none yet"},
-      {"prim_id", kPrimIdBits, 1, false, "the closest hit so far: as isect_res_t (zero without one)"},
-      {"t_num", kTNumBits, 1, false, "as isect_res_t"},
-      {"det", kDetAbsBits, 1, false, "as isect_res_t"},
-      {"u_num", kBaryBits, 1, false, "as isect_res_t"},
-      {"v_num", kBaryBits, 1, false, "as isect_res_t"},
-  }};
+  std::array<FieldSpec, kWalkHitFields + N> fields{};
+  const auto hit = closestHitFields("has_hit", "1: the ray has a closest hit so far (the fields below); 0: none yet",
+                                    "the closest hit so far: as isect_res_t (zero without one)");
+  for (size_t i = 0; i < hit.size(); ++i) fields[i] = hit[i];
   for (size_t i = 0; i < N; ++i) fields[size_t(kWalkHitFields) + i] = state[i];
   return fields;
 }

@@ -222,9 +222,7 @@ rt_bvh_model::walk_in rt_bvh_model::suspendedWalk(int k) const {
     const Candidate& c = stacks_[size_t(k)][size_t(e)];
     walk.stack.push_back(fx::BvhWalkEntry{c.ref, c.entry});
   }
-  std::array<uint32_t, size_t(fx::wireWords(rt_bvh_unit::WALK_W))> wire{};
-  fx::wire_bits::packFixed<fx::kBvhWalkFields>(fx::bvhWalkValues(walk), wire);
-  return walk_in{true, toValue<rt_bvh_unit::WALK_W>(wire)};
+  return suspendedRecord(fx::bvhWalkValues(walk));
 }
 
 // The sets a slot in state `st` belongs to, joined or left.
@@ -250,11 +248,7 @@ void rt_bvh_model::mark(int k, State st, bool join) {
 void rt_bvh_model::load(int k) {
   Slot& s = slots_[size_t(k)];
   std::optional<fx::BvhWalk> walk;
-  if (const walk_in* resumed = resumedWalk()) {
-    std::array<uint32_t, size_t(fx::wireWords(rt_bvh_unit::WALK_W))> wire{};
-    fromValue<rt_bvh_unit::WALK_W>(resumed->walk, wire);
-    walk = fx::bvhWalkOf(fx::wire_bits::unpackFixed<fx::kBvhWalkFields>(wire), uint32_t(k));
-  }
+  if (const auto values = resumedWalkValues()) walk = fx::bvhWalkOf(*values, uint32_t(k));
   const fx::QRay ray = loadRay(k, walk ? walk->trace.hit : std::nullopt);
   s.setup = fx::BvhRaySetup::setup(ray);
   s.anyHit = ray.anyHit;

@@ -597,6 +597,30 @@ class rt_trav_shell_model : public rt_trav_unit_ports<Unit, rt_value, rt_value, 
     }
   }
 
+  // The resumed walk's record as field values (the descriptor's
+  // kWalkFieldList, as fx::<unit>WalkOf reads them), if the ray leaving the
+  // setup pipeline resumes one.
+  template <class U = Unit>
+    requires U::kSuspends
+  auto resumedWalkValues() const {
+    using values = decltype(fx::wire_bits::unpackFixed<U::descriptor::kWalkFieldList>({}));
+    const walk_in* resumed = resumedWalk();
+    if (resumed == nullptr) return std::optional<values>{};
+    std::array<uint32_t, size_t(fx::wireWords(U::WALK_W))> wire{};
+    fromValue<U::WALK_W>(resumed->walk, wire);
+    return std::optional<values>{fx::wire_bits::unpackFixed<U::descriptor::kWalkFieldList>(wire)};
+  }
+
+  // A suspended walk's record for the result port, from its field values (as
+  // fx::<unit>WalkValues gives them).
+  template <class Values, class U = Unit>
+    requires U::kSuspends
+  static walk_in suspendedRecord(const Values& values) {
+    std::array<uint32_t, size_t(fx::wireWords(U::WALK_W))> wire{};
+    fx::wire_bits::packFixed<U::descriptor::kWalkFieldList>(values, wire);
+    return walk_in{true, toValue<U::WALK_W>(wire)};
+  }
+
   // The done grant: the ray's result record (its counts since it entered the
   // slot), with the walk's record when the walk is suspended; the slot is free again.
   void finishRay(int k, const walk_in& suspended = {}) {

@@ -182,12 +182,9 @@ void rt_octree_model::load(int k) {
   Slot& s = slots_[size_t(k)];
   s.groupValid = false;
   s.suspending = false;
-  if (const walk_in* resumed = resumedWalk()) {
-    std::array<uint32_t, size_t(fx::wireWords(rt_octree_unit::WALK_W))> wire{};
-    fromValue<rt_octree_unit::WALK_W>(resumed->walk, wire);
-    const auto values = fx::wire_bits::unpackFixed<fx::kOctreeWalkFields>(wire);
-    const fx::QRay ray = loadRay(k, fx::walkHitOf(values, uint32_t(k)));
-    const fx::OctreeWalk walk = fx::octreeWalkOf(values, ray);
+  if (const auto values = resumedWalkValues()) {
+    const fx::QRay ray = loadRay(k, fx::walkHitOf(*values, uint32_t(k)));
+    const fx::OctreeWalk walk = fx::octreeWalkOf(*values, ray);
     s.setup = fx::OctreeRaySetup::setup(ray);
     s.t0 = walk.t0;
     s.t1 = walk.t1;
@@ -235,9 +232,7 @@ rt_octree_model::walk_in rt_octree_model::suspendedWalk(int k) const {
   walk.t0 = s.t0;
   walk.t1 = s.t1;
   for (int e = 0; e < s.depth; ++e) walk.stack.push_back(fx::OctreeLevel{s.stack[size_t(e)].first, s.stack[size_t(e)].child});
-  std::array<uint32_t, size_t(fx::wireWords(rt_octree_unit::WALK_W))> wire{};
-  fx::wire_bits::packFixed<fx::kOctreeWalkFields>(fx::octreeWalkValues(walk), wire);
-  return walk_in{true, toValue<rt_octree_unit::WALK_W>(wire)};
+  return suspendedRecord(fx::octreeWalkValues(walk));
 }
 
 // ENTER on the visit grant (the visit record is pushed by the caller).

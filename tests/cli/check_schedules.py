@@ -23,7 +23,7 @@ SAME = ("rays", "hits", "intersection_tests", "steps", "memory_reads", "node_byt
 
 
 # The models of each unit that set walks aside.
-TREELET_MODELS = {"bvh": ("golden", "systemc", "rtl"), "octree": ("golden", "systemc")}
+TREELET_MODELS = {"bvh": ("golden", "systemc", "rtl"), "octree": ("golden", "systemc", "rtl")}
 LAYOUTS = {"bvh": ["--bvh-treelet-bytes", "62"], "octree": ["--octree-treelet-bytes", "64"]}
 
 

@@ -515,6 +515,7 @@ struct BvhWalkOps {
   }
   static Walk carry(const Walk& walk, const QRay& ray) { return bvhWalkOf(bvhWalkValues(walk), ray.id); }
   static TraversalTrace traverse(const Image& image, const QRay& ray) { return traverseBvh(image, ray); }
+  static TreeletCrossings crossings(const Image& image, const QRay& ray) { return bvhTreeletCrossings(image, ray); }
 };
 uint64_t walkBlockByBlock(const BvhImage& image, std::span<const QRay> rays) {
   return test::walkBlockByBlock<BvhWalkOps>(image, rays);
@@ -525,20 +526,9 @@ TEST(GoldenBvhTreelets, SuspendedWalksResumedBlockByBlockTakeTheUnbrokenWalk) {
   for (const uint32_t blockNodes : {1u, 16u, 256u}) {
     BvhImage image = buildBvhImage(tris, 4);
     layoutBvhTreelets(image, blockNodes);
-    std::mt19937_64 rng{blockNodes};
-    std::vector<QRay> rays;
-    for (uint32_t i = 0; i < 400; ++i) {
-      rays.push_back(randomLatticeRay(rng, i));
-      rays.back().anyHit = i % 3 == 0;
-    }
-    const uint64_t suspensions = walkBlockByBlock(image, rays);
-    TreeletCrossings crossings;
-    for (const QRay& ray : rays) crossings += bvhTreeletCrossings(image, ray);
-    EXPECT_EQ(suspensions, crossings.suspensions) << "blocks of " << blockNodes;
-    EXPECT_GE(crossings.crossings, crossings.suspensions);
-    if (blockNodes == 1) {
-      EXPECT_GT(suspensions, rays.size());
-    }
+    const std::vector<QRay> rays = test::treeletRays(blockNodes, 400);
+    const uint64_t suspensions = test::checkBlockByBlock<BvhWalkOps>(image, rays);
+    if (blockNodes == 1) EXPECT_GT(suspensions, rays.size());
   }
 }
 

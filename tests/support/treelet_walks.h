@@ -8,17 +8,21 @@
 //
 // Ops names a unit's walk: Image, Walk, start(image), resume(image, ray, walk,
 // block), carry(walk, ray) (through the record and back), window (the stack
-// entries a suspension may hold), traverse(image, ray) (the unbroken walk).
+// entries a suspension may hold), traverse(image, ray) (the unbroken walk),
+// crossings(image, ray) (the golden count of its block crossings).
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <deque>
 #include <map>
+#include <random>
 #include <span>
 #include <vector>
 
 #include "golden/records.h"
+#include "golden/trace.h"
+#include "support/traversal_cases.h"
 
 namespace lancer::test {
 
@@ -56,6 +60,29 @@ uint64_t walkBlockByBlock(const typename Ops::Image& image, std::span<const fx::
     EXPECT_EQ(walks[r].trace, Ops::traverse(image, rays[r])) << "ray " << r << ", blocks of " << image.treeletNodes;
   }
   return suspensions;
+}
+
+// walkBlockByBlock, and the count: the walks set aside are exactly the
+// crossings within the window (Ops::crossings); returns them.
+template <class Ops>
+uint64_t checkBlockByBlock(const typename Ops::Image& image, std::span<const fx::QRay> rays) {
+  const uint64_t suspensions = walkBlockByBlock<Ops>(image, rays);
+  fx::TreeletCrossings crossings;
+  for (const fx::QRay& ray : rays) crossings += Ops::crossings(image, ray);
+  EXPECT_EQ(suspensions, crossings.suspensions) << "blocks of " << image.treeletNodes;
+  EXPECT_GE(crossings.crossings, crossings.suspensions);
+  return suspensions;
+}
+
+// `count` random lattice rays for a treelet walk, every third an any-hit ray.
+inline std::vector<fx::QRay> treeletRays(uint64_t seed, uint32_t count) {
+  std::mt19937_64 rng{seed};
+  std::vector<fx::QRay> rays;
+  for (uint32_t i = 0; i < count; ++i) {
+    rays.push_back(randomLatticeRay(rng, i));
+    rays.back().anyHit = i % 3 == 0;
+  }
+  return rays;
 }
 
 }  // namespace lancer::test

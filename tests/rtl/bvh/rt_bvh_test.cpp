@@ -15,6 +15,7 @@
 #include "support/bvh_cases.h"
 #include "support/unit_devices.h"
 #include "trav_rtl_suite.h"
+#include "trav_rtl_treelets.h"
 
 namespace lancer::rtltest {
 namespace {
@@ -119,29 +120,8 @@ TEST(RtBvh, DISABLED_AgainstTheOctree) {
 // takes its unbroken walk, and the RTL sets aside the same walks in the same
 // cycles as the SystemC model (the same cycles, traces and queue figures).
 TEST(RtBvhTreelets, TheRtlSetsTheSameWalksAsideInTheSameCyclesAsTheCycleModel) {
-  const auto rtl = makeTraversalDevice<fx::BvhUnit>("rtl");
-  const auto model = makeTraversalDevice<fx::BvhUnit>("systemc");
-  uint64_t suspensions = 0;
-  for (BvhCase c : test::bvhHardCases()) {
-    c.image.treeletNodes = 1;
-    for (const int units : {1, 4}) {
-      for (const int kib : {1, 64}) {
-        TraversalRunOptions o = test::treeletStressOptions(units, kib);
-        std::vector<fx::TraversalTrace> traces, modelTraces;
-        const TraversalRunStats s = rtl->run(c.image, c.rays, traces, o);
-        const TraversalRunStats m = model->run(c.image, c.rays, modelTraces, o);
-        const std::string where = fmt::format("{}, {} units, {} KiB", c.name, units, kib);
-        for (size_t k = 0; k < c.rays.size(); ++k) {
-          ASSERT_EQ(traces.at(k), fx::traverseBvh(c.image, c.rays[k])) << where << ", ray " << k;
-        }
-        EXPECT_EQ(s.cycles, m.cycles) << where;
-        EXPECT_EQ(s.queues, m.queues) << where;
-        EXPECT_EQ(s.unitRays, m.unitRays) << where;
-        suspensions += s.queues.suspensions;
-      }
-    }
-  }
-  EXPECT_GT(suspensions, 1000u);
+  const auto eachNodeItsBlock = [](fx::BvhImage& image) { image.treeletNodes = 1; };
+  EXPECT_GT(expectTreeletRunsLikeTheModel<fx::BvhUnit>(test::bvhHardCases(), eachNodeItsBlock, fx::traverseBvh), 1000u);
 }
 
 }  // namespace

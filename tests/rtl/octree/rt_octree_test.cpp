@@ -16,6 +16,7 @@
 #include "support/octree_cases.h"
 #include "octree/too_deep_image.h"
 #include "trav_rtl_suite.h"
+#include "trav_rtl_treelets.h"
 
 namespace lancer::rtltest {
 namespace {
@@ -106,6 +107,19 @@ TEST(RtOctree, EachDeviceReportsItsOwnAssertions) {
   Octree::expectSameTraces(c.image, c.rays, Octree::rough(22), older);
   expectAssertionFails(newer);
   Octree::expectSameTraces(c.image, c.rays, Octree::rough(23), older);
+}
+
+// The treelet schedule on the RTL (docs/scheduling.md): the hard cases with
+// each child group its own block (the maximum-depth cases read groups deeper
+// than the suspend window), on chips of one and four units, with the stream's
+// bubbles and stalls, queue memories that overflow and that do not: every ray
+// takes its unbroken walk, and the RTL sets aside the same walks in the same
+// cycles as the SystemC model.
+TEST(RtOctreeTreelets, TheRtlSetsTheSameWalksAsideInTheSameCyclesAsTheCycleModel) {
+  const auto eachGroupItsBlock = [](OctreeImage& image) { fx::layoutOctreeTreelets(image, fx::kOctreeChildren); };
+  EXPECT_GT(expectTreeletRunsLikeTheModel<fx::OctreeUnit>(test::octreeHardCases(), eachGroupItsBlock,
+                                                          fx::traverseOctree),
+            1000u);
 }
 
 }  // namespace
