@@ -327,9 +327,6 @@ module rt_bvh #(
   // A resumed walk's record, captured with its ray and carried beside the
   // ray's setup (BVH_SETUP_LATENCY stages, as rt_mirror_pairs): at init the
   // slot takes its candidate, stack and closest hit.
-  localparam int L = rt_pkg::BVH_SETUP_LATENCY;
-  logic [L-1:0]              rsm_q;
-  logic [rt_pkg::BVH_WALK_W-1:0] rsm_walk_q [L];
   // bvh_walk_t's fields as bit offsets (Yosys 0.23 takes no element of a
   // packed array field): stack_entry[k] at k * ENTRY_W, stack_ref[k] at
   // W_REF + k * REF_W, then sp, next_entry, next_ref and the closest hit on top.
@@ -338,21 +335,9 @@ module rt_bvh #(
   localparam int W_NEXTE = W_SP + SP_W;
   localparam int W_NEXTR = W_NEXTE + ENTRY_W;
   localparam int W_HIT   = W_NEXTR + REF_W;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      rsm_q <= '0;
-    end else begin
-      rsm_q[0] <= alloc && ray_resume_i;
-      for (int i = 1; i < L; i++) rsm_q[i] <= rsm_q[i-1];
-    end
-  end
-  always_ff @(posedge clk_i) begin
-    rsm_walk_q[0] <= ray_walk_i;
-    for (int i = 1; i < L; i++) rsm_walk_q[i] <= rsm_walk_q[i-1];
-  end
   logic [rt_pkg::BVH_WALK_W-1:0] init_walk;
-  assign init_walk   = rsm_walk_q[L-1];
-  assign init_resume = rsm_q[L-1];
+  rt_pipe_regs #(.Width(rt_pkg::BVH_WALK_W), .Stages(rt_pkg::BVH_SETUP_LATENCY)) u_resumed (
+    .clk_i, .rst_ni, .valid_i(alloc && ray_resume_i), .data_i(ray_walk_i), .valid_o(init_resume), .data_o(init_walk));
   assign init_hit    = init_walk[W_HIT +: `RT_WALK_HIT_W];
   // The candidate at init: the root, or the resumed walk's next node.
   logic [REF_W-1:0]   init_ref;

@@ -609,10 +609,7 @@ module rt_octree #(
   // A resumed walk's record, captured with its ray and carried beside the
   // ray's setup (OCTREE_SETUP_LATENCY stages, as rt_octree_setup): at init the
   // slot takes its parameters, stack and closest hit, and asks for the group.
-  localparam int L = rt_pkg::OCTREE_SETUP_LATENCY;
   localparam int CHILD_W = 3;
-  logic [L-1:0]                     rsm_q;
-  logic [rt_pkg::OCTREE_WALK_W-1:0] rsm_walk_q [L];
   // octree_walk_t's fields as bit offsets (Yosys 0.23 takes no element of a
   // packed array field): stack_child[k] at k * CHILD_W, stack_first[k] at
   // W_FIRST + 32 k, t1[a] at W_T1 + a T_W, t0[a] at W_T0 + a T_W, then depth,
@@ -623,24 +620,12 @@ module rt_octree #(
   localparam int W_DEPTH = W_T0 + 3 * T_W;
   localparam int W_GROUP = W_DEPTH + DEPTH_W;
   localparam int W_HIT   = W_GROUP + 32;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) begin
-      rsm_q <= '0;
-    end else begin
-      rsm_q[0] <= alloc && ray_resume_i;
-      for (int i = 1; i < L; i++) rsm_q[i] <= rsm_q[i-1];
-    end
-  end
-  always_ff @(posedge clk_i) begin
-    rsm_walk_q[0] <= ray_walk_i;
-    for (int i = 1; i < L; i++) rsm_walk_q[i] <= rsm_walk_q[i-1];
-  end
   logic [rt_pkg::OCTREE_WALK_W-1:0] init_walk;
+  rt_pipe_regs #(.Width(rt_pkg::OCTREE_WALK_W), .Stages(rt_pkg::OCTREE_SETUP_LATENCY)) u_resumed (
+    .clk_i, .rst_ni, .valid_i(alloc && ray_resume_i), .data_i(ray_walk_i), .valid_o(init_resume), .data_o(init_walk));
   logic [DEPTH_W-1:0]               init_walk_depth;
   logic [31:0]                      init_walk_group;
   logic [ENTRY_W-1:0]               init_walk_top;    // its current level's entry (none at depth 0)
-  assign init_walk       = rsm_walk_q[L-1];
-  assign init_resume     = rsm_q[L-1];
   assign init_hit        = init_walk[W_HIT +: `RT_WALK_HIT_W];
   assign init_walk_depth = init_walk[W_DEPTH +: DEPTH_W];
   assign init_walk_group = init_walk[W_GROUP +: 32];
@@ -739,8 +724,8 @@ module rt_octree #(
       t0_q[init_slot]    <= init_resume ? init_walk[W_T0 +: 3 * T_W] : init_t0;
       t1_q[init_slot]    <= init_resume ? init_walk[W_T1 +: 3 * T_W] : init_t1;
       depth_q[init_slot] <= init_resume ? init_walk_depth : '0;
-      grp_q[init_slot]   <= init_walk_top[ENTRY_W-1:3];
-      child_q[init_slot] <= init_walk_top[2:0];
+      grp_q[init_slot]   <= init_resume ? init_walk_top[ENTRY_W-1:3] : '0;
+      child_q[init_slot] <= init_resume ? init_walk_top[2:0] : '0;
     end
   end
 

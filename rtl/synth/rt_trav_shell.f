@@ -2,6 +2,7 @@
 # on, relative to rtl/, in compile order (read by the units' lists with -f).
 lib/rt_fifo.sv
 lib/rt_pipe_reg.sv
+lib/rt_pipe_regs.sv
 lib/rt_rr_arb.sv
 lib/rt_closest_hit.sv
 lib/rt_exit_test.sv
