@@ -528,7 +528,9 @@ TEST(GoldenBvhTreelets, SuspendedWalksResumedBlockByBlockTakeTheUnbrokenWalk) {
     layoutBvhTreelets(image, blockNodes);
     const std::vector<QRay> rays = test::treeletRays(blockNodes, 400);
     const uint64_t suspensions = test::checkBlockByBlock<BvhWalkOps>(image, rays);
-    if (blockNodes == 1) EXPECT_GT(suspensions, rays.size());
+    if (blockNodes == 1) {
+      EXPECT_GT(suspensions, rays.size());
+    }
   }
 }
 

@@ -318,7 +318,9 @@ TEST(GoldenOctreeTreelets, SuspendedWalksResumedBlockByBlockTakeTheUnbrokenWalk)
     layoutOctreeTreelets(image, blockNodes);
     const std::vector<QRay> rays = test::treeletRays(blockNodes, 400);
     const uint64_t suspensions = test::checkBlockByBlock<OctreeWalkOps>(image, rays);
-    if (blockNodes == 8) EXPECT_GT(suspensions, rays.size());
+    if (blockNodes == 8) {
+      EXPECT_GT(suspensions, rays.size());
+    }
   }
 }
 

@@ -279,7 +279,9 @@ TEST(FixedMemory, UnitZeroIsTheSingleUnitPorts) {
       const bool r1 = memory->response(0, Port(p), a1, t1);
       const bool r2 = single[size_t(p)].respond(cycle, a2, t2);
       ASSERT_EQ(r1, r2) << "cycle " << cycle << " port " << p;
-      if (r1) EXPECT_EQ(a1, a2);
+      if (r1) {
+        EXPECT_EQ(a1, a2);
+      }
       if (rng() % 2) {
         const uint32_t addr = uint32_t(rng() % 1000);
         memory->request(0, Port(p), addr, 1);
